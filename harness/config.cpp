@@ -1,0 +1,290 @@
+#include "config.h"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "structures/error.h"
+
+namespace rtbench {
+
+namespace {
+
+std::string join(const std::vector<std::string>& items, const std::string& sep = ", ") {
+    std::string out;
+    for (const std::string& s : items) out += (out.empty() ? "" : sep) + s;
+    return out;
+}
+
+const char* typeName(ValueType t) {
+    switch (t) {
+        case ValueType::Int: return "an integer";
+        case ValueType::Float: return "a number";
+        case ValueType::String: return "a string";
+        case ValueType::Bool: return "true or false";
+        case ValueType::Int3: return "an array of 3 integers";
+        case ValueType::Float3: return "an array of 3 numbers";
+    }
+    return "?";
+}
+
+std::string where(const std::string& file, const toml::source_region& src) {
+    if (src.begin.line == 0) return file;
+    return file + ":" + std::to_string(src.begin.line);
+}
+
+}  // namespace
+
+const std::vector<KeySpec>& configSchema() {
+    static const std::vector<KeySpec> schema = [] {
+        std::vector<KeySpec> s;
+        auto add = [&](KeySpec k) { s.push_back(std::move(k)); };
+        add({"experiment.name", ValueType::String, "experiment name; results go to <output>/<name>/", {}, true});
+        add({"experiment.output", ValueType::String, "output folder (relative to the working directory)", std::string("out")});
+        add({"experiment.repetitions", ValueType::Int, "timed repetitions per run (median reported)", std::int64_t(5), false, 1, 1000});
+        add({"experiment.warmups", ValueType::Int, "untimed warm-up dispatches before timing", std::int64_t(1), false, 0, 100});
+        add({"scene.source", ValueType::String, "mesh file (.off/.obj/.ply/.stl, relative to the config), cgal:NAME, or procedural:christen_a|christen_b", {}, true});
+        add({"camera.width", ValueType::Int, "image width in pixels", std::int64_t(1024), false, 1, 16384});
+        add({"camera.height", ValueType::Int, "image height in pixels", std::int64_t(1024), false, 1, 16384});
+        add({"camera.position", ValueType::Float3, "eye position (default: fitted to the scene bounds)", {}});
+        add({"camera.look_at", ValueType::Float3, "point looked at (default: the scene box centre)", {}});
+        add({"camera.up", ValueType::Float3, "up vector", std::array<double, 3>{0, 1, 0}});
+        add({"camera.fov_deg", ValueType::Float, "vertical field of view in degrees", 45.0, false, 1, 179});
+        add({"structure.type", ValueType::String, "acceleration structure", std::string("uniform_grid"), false, -1e300, 1e300, {"uniform_grid"}});
+        add({"structure.min_dim", ValueType::Int, "Purcell's heuristic: cells along the smallest extent (default 64 when no rule is given)", {}, false, 1, 2048});
+        add({"structure.resolution", ValueType::Int3, "explicit cells per axis [x, y, z]", {}, false, 1, 4096});
+        add({"structure.cells_per_triangle", ValueType::Float, "density rule: about this many cubic cells per triangle", {}, false, 1e-3, 1e3});
+        add({"strategy.type", ValueType::String, "how the kernel runs", std::string("branching"), false, -1e300, 1e300, {"branching"}});
+        add({"strategy.workgroup_size", ValueType::Int, "invocations per workgroup (specialization constant)", std::int64_t(64), false, 1, 1024});
+        add({"baseline.embree_config", ValueType::String, "Embree device config string, e.g. \"isa=avx2\"", std::string("")});
+        add({"device.name", ValueType::String, "\"auto\" (discrete GPU, else lavapipe) or a substring of the device name", std::string("auto")});
+        add({"device.validation", ValueType::Bool, "enable the Vulkan validation layer (a run fails on any message)", false});
+        add({"output.images", ValueType::Bool, "write PNGs (needs OpenImageIO; else hit records are kept)", true});
+        add({"output.hit_records", ValueType::Bool, "keep per-ray hit records (<run>.hits) for `rtbench images`", false});
+        return s;
+    }();
+    return schema;
+}
+
+std::string formatValue(const ConfigValue& value) {
+    struct Visitor {
+        std::string operator()(std::int64_t v) const { return std::to_string(v); }
+        std::string operator()(double v) const {
+            std::ostringstream s;
+            s.precision(9);
+            s << v;
+            return s.str();
+        }
+        std::string operator()(const std::string& v) const { return v; }
+        std::string operator()(bool v) const { return v ? "true" : "false"; }
+        std::string operator()(const std::array<double, 3>& v) const {
+            return "[" + (*this)(v[0]) + " " + (*this)(v[1]) + " " + (*this)(v[2]) + "]";
+        }
+    };
+    return std::visit(Visitor{}, value);
+}
+
+namespace {
+
+// Converts one TOML node (scalar or 3-array) to a value of the spec's type, or throws.
+ConfigValue convert(const std::string& file, const KeySpec& spec, const toml::node& node) {
+    const std::string at = where(file, node.source()) + ": key '" + spec.name + "': ";
+    auto checkRange = [&](double v) {
+        if (!(v >= spec.min && v <= spec.max)) {
+            std::ostringstream s;
+            s << at << "value " << v << " is out of range [" << spec.min << ", " << spec.max << "]";
+            throw Error(s.str());
+        }
+    };
+    auto wrongType = [&]() -> Error {
+        return Error(at + "expected " + typeName(spec.type) + " (or a list of them to sweep)");
+    };
+    switch (spec.type) {
+        case ValueType::Int: {
+            if (!node.is_integer()) throw wrongType();
+            const std::int64_t v = node.as_integer()->get();
+            checkRange(static_cast<double>(v));
+            return v;
+        }
+        case ValueType::Float: {
+            if (!node.is_number()) throw wrongType();
+            const double v = node.value<double>().value();
+            if (!std::isfinite(v)) throw Error(at + "value must be finite");
+            checkRange(v);
+            return v;
+        }
+        case ValueType::String: {
+            if (!node.is_string()) throw wrongType();
+            const std::string v = node.as_string()->get();
+            if (!spec.choices.empty() &&
+                std::find(spec.choices.begin(), spec.choices.end(), v) == spec.choices.end())
+                throw Error(at + "'" + v + "' is not allowed (allowed: " + join(spec.choices) + ")");
+            return v;
+        }
+        case ValueType::Bool:
+            if (!node.is_boolean()) throw wrongType();
+            return node.as_boolean()->get();
+        case ValueType::Int3:
+        case ValueType::Float3: {
+            const toml::array* a = node.as_array();
+            if (!a || a->size() != 3) throw wrongType();
+            std::array<double, 3> v{};
+            for (std::size_t i = 0; i < 3; ++i) {
+                const toml::node& e = *a->get(i);
+                if (spec.type == ValueType::Int3 ? !e.is_integer() : !e.is_number()) throw wrongType();
+                v[i] = e.value<double>().value();
+                if (!std::isfinite(v[i])) throw Error(at + "value must be finite");
+                checkRange(v[i]);
+            }
+            return v;
+        }
+    }
+    throw wrongType();
+}
+
+// A list-valued node sweeps: for 3-vectors a list of 3-arrays, for scalars a list of scalars.
+bool isSweep(const KeySpec& spec, const toml::node& node) {
+    const toml::array* a = node.as_array();
+    if (!a) return false;
+    if (spec.type == ValueType::Int3 || spec.type == ValueType::Float3)
+        return !a->empty() && a->get(0)->is_array();
+    return true;
+}
+
+}  // namespace
+
+std::int64_t RunConfig::getInt(const std::string& key) const { return std::get<std::int64_t>(values.at(key)); }
+double RunConfig::getFloat(const std::string& key) const { return std::get<double>(values.at(key)); }
+const std::string& RunConfig::getString(const std::string& key) const { return std::get<std::string>(values.at(key)); }
+bool RunConfig::getBool(const std::string& key) const { return std::get<bool>(values.at(key)); }
+std::array<double, 3> RunConfig::getVec3(const std::string& key) const {
+    return std::get<std::array<double, 3>>(values.at(key));
+}
+
+std::string RunConfig::canonical() const {
+    std::string out;
+    for (const auto& [key, value] : values) out += key + "=" + formatValue(value) + ";";
+    return out;
+}
+
+std::string RunConfig::hash() const {
+    std::uint64_t h = 1469598103934665603ull;  // FNV-1a 64
+    for (unsigned char c : canonical()) h = (h ^ c) * 1099511628211ull;
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+    return buf;
+}
+
+std::string RunConfig::label() const {
+    std::string out;
+    for (const std::string& key : sweptKeys) out += (out.empty() ? "" : " ") + key + "=" + formatValue(values.at(key));
+    return out.empty() ? "single run" : out;
+}
+
+ExperimentPlan loadExperiment(const std::string& path) {
+    ExperimentPlan plan;
+    plan.configPath = path;
+    {
+        std::ifstream in(path);
+        if (!in) throw Error(path + ": cannot open config file");
+        std::ostringstream text;
+        text << in.rdbuf();
+        plan.configText = text.str();
+    }
+    plan.configDir = std::filesystem::absolute(path).parent_path().string();
+
+    toml::table root;
+    try {
+        root = toml::parse(plan.configText, path);
+    } catch (const toml::parse_error& e) {
+        throw Error(where(path, e.source()) + ": TOML syntax error: " + std::string(e.description()));
+    }
+
+    const std::vector<KeySpec>& schema = configSchema();
+    std::map<std::string, std::vector<std::string>> sections;  // section -> keys
+    std::vector<std::string> sectionOrder;
+    for (const KeySpec& k : schema) {
+        const std::string section = k.name.substr(0, k.name.find('.'));
+        if (!sections.count(section)) sectionOrder.push_back(section);
+        sections[section].push_back(k.name.substr(k.name.find('.') + 1));
+    }
+
+    // Unknown sections and keys are errors: a typo must not silently fall back to a default.
+    std::map<std::string, const toml::node*> given;
+    for (auto&& [sectionKey, sectionNode] : root) {
+        const std::string section(sectionKey.str());
+        if (!sections.count(section))
+            throw Error(where(path, sectionKey.source()) + ": unknown section [" + section +
+                        "] (allowed: " + join(sectionOrder) + ")");
+        const toml::table* table = sectionNode.as_table();
+        if (!table)
+            throw Error(where(path, sectionKey.source()) + ": '" + section + "' must be a table ([" +
+                        section + "])");
+        for (auto&& [key, node] : *table) {
+            const std::string name(key.str());
+            const auto& allowed = sections[section];
+            if (std::find(allowed.begin(), allowed.end(), name) == allowed.end())
+                throw Error(where(path, key.source()) + ": unknown key '" + section + "." + name +
+                            "' (allowed in [" + section + "]: " + join(allowed) + ")");
+            given[section + "." + name] = &node;
+        }
+    }
+
+    // Each key: a single value, a default, or a list of values (an axis of the sweep).
+    std::vector<std::pair<std::string, std::vector<ConfigValue>>> axes;
+    for (const KeySpec& spec : schema) {
+        auto it = given.find(spec.name);
+        std::vector<ConfigValue> values;
+        if (it == given.end()) {
+            if (spec.required)
+                throw Error(path + ": missing required key '" + spec.name + "' (" + spec.help + ")");
+            if (spec.defaultValue) values.push_back(*spec.defaultValue);
+        } else if (isSweep(spec, *it->second)) {
+            const toml::array& list = *it->second->as_array();
+            if (list.empty())
+                throw Error(where(path, it->second->source()) + ": key '" + spec.name + "': an empty list sweeps nothing");
+            for (const toml::node& element : list) values.push_back(convert(path, spec, element));
+        } else {
+            values.push_back(convert(path, spec, *it->second));
+        }
+        if (!values.empty()) axes.emplace_back(spec.name, std::move(values));
+    }
+
+    // Grid resolution: at most one rule; min_dim 64 when none is given.
+    const std::vector<std::string> rules = {"structure.min_dim", "structure.resolution", "structure.cells_per_triangle"};
+    std::vector<std::string> rulesGiven;
+    for (const std::string& r : rules)
+        if (given.count(r)) rulesGiven.push_back(r);
+    if (rulesGiven.size() > 1)
+        throw Error(where(path, given[rulesGiven[1]]->source()) + ": keys " + join(rulesGiven, " and ") +
+                    " both set the grid resolution; give exactly one");
+    if (rulesGiven.empty()) axes.emplace_back("structure.min_dim", std::vector<ConfigValue>{std::int64_t(64)});
+
+    // Cartesian product, the last axis varying fastest.
+    std::vector<std::string> swept;
+    std::size_t total = 1;
+    for (const auto& [key, values] : axes) {
+        if (values.size() > 1) swept.push_back(key);
+        total *= values.size();
+        if (total > 100000) throw Error(path + ": the sweep expands to over 100000 runs");
+    }
+    for (std::size_t r = 0; r < total; ++r) {
+        RunConfig run;
+        run.index = r;
+        run.sweptKeys = swept;
+        std::size_t rest = r;
+        for (auto it = axes.rbegin(); it != axes.rend(); ++it) {
+            run.values[it->first] = it->second[rest % it->second.size()];
+            rest /= it->second.size();
+        }
+        plan.runs.push_back(std::move(run));
+    }
+    return plan;
+}
+
+}  // namespace rtbench

@@ -1,0 +1,39 @@
+// The CPU baseline: Embree 3 in robust mode tracing the bit-identical rays the kernels trace.
+#pragma once
+#include <embree3/rtcore.h>
+
+#include <string>
+#include <vector>
+
+#include "kernels/gpu_layout.h"
+#include "structures/mesh.h"
+
+namespace rtbench {
+
+enum class EmbreeMode { Intersect1, Intersect16 };
+
+class EmbreeReference {
+public:
+    // deviceConfig: Embree's device config string, e.g. "isa=avx2" (Debian's 3.13 crashes with
+    // its default ISA on some AVX-512 machines). Builds a RTC_SCENE_FLAG_ROBUST scene.
+    EmbreeReference(const TriangleMesh& mesh, const std::string& deviceConfig);
+    ~EmbreeReference();
+    EmbreeReference(const EmbreeReference&) = delete;
+    EmbreeReference& operator=(const EmbreeReference&) = delete;
+
+    // Traces all rays (TBB parallel_for over chunks); returns wall time in ms. hits[i] gets
+    // t, primitive and barycentrics (work counters 0); t = kNoHitT, primitive = kNoHit on a miss.
+    double trace(const std::vector<gpu::Ray>& rays, EmbreeMode mode, std::vector<gpu::HitRecord>& hits);
+
+    double buildMs() const { return buildMs_; }
+    int threads() const;
+    static std::string version() { return RTC_VERSION_STRING; }
+
+private:
+    void checkDevice(const char* what) const;
+    RTCDevice device_ = nullptr;
+    RTCScene scene_ = nullptr;
+    double buildMs_ = 0.0;
+};
+
+}  // namespace rtbench

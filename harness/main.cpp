@@ -1,0 +1,70 @@
+// rtbench: GPU ray tracing strategies measured against Embree, from TOML experiment configs.
+#include <CLI/CLI.hpp>
+
+#include <iostream>
+
+#include "harness/config.h"
+#include "harness/images.h"
+#include "harness/runner.h"
+#include "harness/vulkan_context.h"
+#include "structures/error.h"
+
+int main(int argc, char** argv) {
+    CLI::App app{"rtbench: GPU ray tracing strategies (Purcell 2002, Christen 2005) measured against Embree"};
+    app.require_subcommand(1);
+
+    std::string configPath;
+    rtbench::RunnerOptions options;
+    CLI::App* run = app.add_subcommand("run", "Run every run of an experiment config (list-valued keys sweep)");
+    run->add_option("config", configPath, "experiment config (TOML), e.g. configs/bunny.toml")->required();
+    run->add_option("-o,--output", options.outputOverride, "output folder (overrides experiment.output)");
+    run->add_option("-d,--device", options.deviceOverride, "Vulkan device: auto or a name substring (overrides device.name)");
+    run->add_flag("--validation", options.validationOverride, "enable the Vulkan validation layer; a run fails on any message");
+    run->add_flag("-q,--quiet", options.quiet, "print only the summary table");
+
+    CLI::App* devices = app.add_subcommand("devices", "List the Vulkan devices rtbench can use");
+
+    std::string imagesFolder;
+    CLI::App* images = app.add_subcommand("images", "Write PNGs from the per-ray hit records (*.hits) of a results folder");
+    images->add_option("results_dir", imagesFolder, "folder holding run-NNN.hits files")->required();
+
+    CLI::App* keys = app.add_subcommand("keys", "List every config key with its type, default and meaning");
+
+    CLI11_PARSE(app, argc, argv);
+    try {
+        if (*run) {
+            const rtbench::ExperimentPlan plan = rtbench::loadExperiment(configPath);
+            const rtbench::ExperimentResult result = rtbench::runExperiment(plan, options);
+            std::cout << "\n" << rtbench::summaryTable(result.rows);
+            std::cout << "\nresults: " << result.folder << "/runs.csv (and context.json, images) — "
+                      << result.rows.size() - result.failed << " ok, " << result.failed << " failed\n";
+            return result.failed ? 1 : 0;
+        }
+        if (*devices) {
+            for (const rtbench::DeviceInfo& d : rtbench::VulkanContext::listDevices())
+                std::cout << d.name << "\n  driver: " << d.driver << "\n  Vulkan " << d.apiVersion << ", type " << d.type
+                          << ", subgroup size " << d.subgroupSize << "\n  maxStorageBufferRange " << d.maxStorageBufferRange
+                          << " bytes, maxComputeWorkGroupCount[0] " << d.maxWorkGroupCountX << ", push constants "
+                          << d.maxPushConstantsSize << " bytes\n  device-local heap " << d.deviceLocalBytes
+                          << " bytes, timestamps " << (d.timestampsSupported ? "yes" : "no") << " (period "
+                          << d.timestampPeriodNs << " ns)\n";
+            return 0;
+        }
+        if (*images) {
+            const int n = rtbench::writeImagesForFolder(imagesFolder);
+            std::cout << "wrote images for " << n << " run(s) in " << imagesFolder << "\n";
+            return 0;
+        }
+        if (*keys) {
+            for (const rtbench::KeySpec& k : rtbench::configSchema())
+                std::cout << k.name << (k.required ? " (required)" : "")
+                          << (k.defaultValue ? " = " + rtbench::formatValue(*k.defaultValue) : std::string()) << "\n    "
+                          << k.help << "\n";
+            return 0;
+        }
+    } catch (const std::exception& e) {
+        std::cerr << "rtbench: error: " << e.what() << "\n";
+        return 2;
+    }
+    return 0;
+}

@@ -1,0 +1,341 @@
+#include "runner.h"
+
+#include <tbb/parallel_for.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <thread>
+
+#include "branching_strategy.h"
+#include "embree_reference.h"
+#include "images.h"
+#include "metrics.h"
+#include "structures/camera.h"
+#include "structures/error.h"
+#include "structures/grid_reference.h"
+#include "structures/mesh_io.h"
+#include "structures/procedural.h"
+#include "structures/uniform_grid.h"
+#include "version.h"
+#include "vulkan_context.h"
+
+namespace rtbench {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string paramColumn(const std::string& key) {
+    std::string c = key;
+    for (char& ch : c)
+        if (ch == '.') ch = '_';
+    return c;
+}
+
+const std::vector<std::string> kMetricColumns = {
+    "run", "label", "status", "error", "config_hash", "git_commit", "device", "driver",
+    "scene_triangles", "scene_degenerate", "rays",
+    "grid_res_x", "grid_res_y", "grid_res_z", "grid_cells", "grid_empty_fraction", "grid_references",
+    "grid_refs_per_triangle", "grid_max_refs_in_cell", "grid_bytes", "grid_build_ms",
+    "kernel_ms_median", "kernel_ms_min", "kernel_ms_max", "kernel_mrays_s",
+    "embree1_ms_median", "embree1_ms_min", "embree1_ms_max", "embree1_mrays_s",
+    "embree16_ms_median", "embree16_ms_min", "embree16_ms_max", "embree16_mrays_s",
+    "embree_threads", "embree_build_ms", "speed_ratio_vs_embree1",
+    "hits", "hit_miss_agreement", "same_primitive_agreement", "rel_distance_error_mean",
+    "rel_distance_error_max", "hit_miss_mismatches", "primitive_mismatches",
+    "voxels_per_ray_mean", "voxels_per_ray_max", "triangles_per_ray_mean", "triangles_per_ray_max",
+    "cpu_reference_mismatches", "wall_s"};
+
+TriangleMesh loadScene(const std::string& source, const std::string& configDir) {
+    if (source.rfind("procedural:", 0) == 0) return proceduralScene(source.substr(11));
+    if (source.rfind("cgal:", 0) == 0) {
+        TriangleMesh mesh = readMeshFile(resolveCgalMesh(source.substr(5)));
+        mesh.name = source;
+        return mesh;
+    }
+    fs::path p(source);
+    if (p.is_relative()) p = fs::path(configDir) / p;
+    return readMeshFile(p.lexically_normal().string());
+}
+
+GridResolutionRule resolutionRule(const RunConfig& run) {
+    GridResolutionRule rule;
+    if (run.has("structure.resolution")) {
+        rule.kind = GridResolutionRule::Kind::Explicit;
+        const auto r = run.getVec3("structure.resolution");
+        rule.resolution = {unsigned(r[0]), unsigned(r[1]), unsigned(r[2])};
+    } else if (run.has("structure.cells_per_triangle")) {
+        rule.kind = GridResolutionRule::Kind::Density;
+        rule.cellsPerTriangle = run.getFloat("structure.cells_per_triangle");
+    } else {
+        rule.kind = GridResolutionRule::Kind::MinDim;
+        rule.minDim = unsigned(run.getInt("structure.min_dim"));
+    }
+    return rule;
+}
+
+glm::vec3 toVec3(const std::array<double, 3>& a) { return glm::vec3(float(a[0]), float(a[1]), float(a[2])); }
+
+std::string num(double v, int significant = 6) { return formatNumber(v, significant); }
+
+// Rays whose GPU record differs in any field from the CPU reference traversal.
+std::uint64_t referenceMismatches(const UniformGrid& grid, const std::vector<gpu::Ray>& rays,
+                                  const std::vector<gpu::HitRecord>& gpuHits) {
+    std::atomic<std::uint64_t> mismatches{0};
+    const gridref::GridTraversal traversal = gridTraversal(grid);
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 4096), [&](const auto& range) {
+        gridref::GridTraversal local = traversal;
+        std::uint64_t count = 0;
+        for (std::size_t i = range.begin(); i != range.end(); ++i) {
+            const gpu::HitRecord h = local.rtTraceGrid(rays[i]);
+            count += std::memcmp(&h, &gpuHits[i], sizeof h) != 0;
+        }
+        mismatches += count;
+    });
+    return mismatches;
+}
+
+// What is cached across the runs of one plan (a sweep reuses scenes, devices, Embree scenes).
+struct Caches {
+    std::map<std::string, std::shared_ptr<TriangleMesh>> meshes;
+    std::map<std::string, std::shared_ptr<VulkanContext>> devices;
+    std::map<std::string, std::shared_ptr<EmbreeReference>> embree;
+};
+
+void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOptions& options,
+                const std::string& folder, Caches& caches, Row& row) {
+    // Device.
+    const std::string deviceName = options.deviceOverride.empty() ? run.getString("device.name") : options.deviceOverride;
+    const bool validation = options.validationOverride || run.getBool("device.validation");
+    const std::string deviceKey = deviceName + (validation ? "+validation" : "");
+    if (!caches.devices.count(deviceKey)) caches.devices[deviceKey] = std::make_shared<VulkanContext>(deviceName, validation);
+    VulkanContext& vk = *caches.devices[deviceKey];
+    row["device"] = vk.info().name;
+    row["driver"] = vk.info().driver;
+    const std::size_t messagesBefore = vk.validationMessages().size();
+
+    // Scene and rays.
+    const std::string source = run.getString("scene.source");
+    if (!caches.meshes.count(source)) caches.meshes[source] = std::make_shared<TriangleMesh>(loadScene(source, plan.configDir));
+    const TriangleMesh& mesh = *caches.meshes[source];
+    row["scene_triangles"] = std::to_string(mesh.triangles.size());
+    row["scene_degenerate"] = std::to_string(mesh.degenerateCount());
+    PinholeCamera camera = fitCamera(mesh.bounds(), float(run.getFloat("camera.fov_deg")));
+    if (run.has("camera.look_at")) camera.lookAt = toVec3(run.getVec3("camera.look_at"));
+    if (run.has("camera.position")) camera.position = toVec3(run.getVec3("camera.position"));
+    camera.up = toVec3(run.getVec3("camera.up"));
+    const unsigned width = unsigned(run.getInt("camera.width")), height = unsigned(run.getInt("camera.height"));
+    const std::vector<gpu::Ray> rays = generatePrimaryRays(camera, width, height);
+    row["rays"] = std::to_string(rays.size());
+
+    // Grid: refuse before building what the device cannot hold in one binding.
+    const GridResolutionRule rule = resolutionRule(run);
+    const auto res = chooseGridResolution(gridBounds(mesh.bounds()), mesh.triangles.size(), rule);
+    const std::uint64_t cells = std::uint64_t(res[0]) * res[1] * res[2];
+    const std::uint64_t offsetBytes = (cells + 1) * 4;
+    if (offsetBytes > vk.info().maxStorageBufferRange)
+        throw Error("grid " + std::to_string(res[0]) + "x" + std::to_string(res[1]) + "x" + std::to_string(res[2]) +
+                    " (" + std::to_string(cells) + " cells) needs " + std::to_string(offsetBytes) +
+                    " bytes of cell offsets, over " + vk.info().name + "'s maxStorageBufferRange of " +
+                    std::to_string(vk.info().maxStorageBufferRange) + " bytes");
+    const UniformGrid grid = buildUniformGrid(mesh, rule);
+    const GridStats& g = grid.stats;
+    row["grid_res_x"] = std::to_string(g.resolution[0]);
+    row["grid_res_y"] = std::to_string(g.resolution[1]);
+    row["grid_res_z"] = std::to_string(g.resolution[2]);
+    row["grid_cells"] = std::to_string(g.cells);
+    row["grid_empty_fraction"] = num(g.emptyFraction);
+    row["grid_references"] = std::to_string(g.references);
+    row["grid_refs_per_triangle"] = num(g.referencesPerTriangle);
+    row["grid_max_refs_in_cell"] = std::to_string(g.maxReferencesInCell);
+    row["grid_bytes"] = std::to_string(g.bytes);
+    row["grid_build_ms"] = num(g.buildMs, 4);
+
+    // Kernel.
+    BranchingOptions kernelOptions;
+    kernelOptions.workgroupSize = unsigned(run.getInt("strategy.workgroup_size"));
+    kernelOptions.warmups = int(run.getInt("experiment.warmups"));
+    kernelOptions.repetitions = int(run.getInt("experiment.repetitions"));
+    const KernelRun kernel = runBranching(vk, grid, rays, kernelOptions);
+    const TimingStats kt = timingStats(kernel.gpuMs);
+    row["kernel_ms_median"] = num(kt.median);
+    row["kernel_ms_min"] = num(kt.min);
+    row["kernel_ms_max"] = num(kt.max);
+    const double kernelMrays = kt.median > 0 ? double(rays.size()) / (kt.median * 1e3) : 0.0;
+    row["kernel_mrays_s"] = num(kernelMrays);
+
+    // Embree on the same rays.
+    const std::string embreeConfig = run.getString("baseline.embree_config");
+    const std::string embreeKey = source + "|" + embreeConfig;
+    if (!caches.embree.count(embreeKey)) caches.embree[embreeKey] = std::make_shared<EmbreeReference>(mesh, embreeConfig);
+    EmbreeReference& embree = *caches.embree[embreeKey];
+    std::vector<gpu::HitRecord> embreeHits, scratch;
+    double embree1Mrays = 0.0;
+    for (EmbreeMode mode : {EmbreeMode::Intersect1, EmbreeMode::Intersect16}) {
+        const std::string prefix = mode == EmbreeMode::Intersect1 ? "embree1" : "embree16";
+        for (int i = 0; i < kernelOptions.warmups; ++i) embree.trace(rays, mode, scratch);
+        std::vector<double> ms;
+        for (int i = 0; i < kernelOptions.repetitions; ++i)
+            ms.push_back(embree.trace(rays, mode, mode == EmbreeMode::Intersect1 ? embreeHits : scratch));
+        const TimingStats et = timingStats(ms);
+        const double mrays = double(rays.size()) / (et.median * 1e3);
+        row[prefix + "_ms_median"] = num(et.median);
+        row[prefix + "_ms_min"] = num(et.min);
+        row[prefix + "_ms_max"] = num(et.max);
+        row[prefix + "_mrays_s"] = num(mrays);
+        if (mode == EmbreeMode::Intersect1) embree1Mrays = mrays;
+    }
+    row["embree_threads"] = std::to_string(embree.threads());
+    row["embree_build_ms"] = num(embree.buildMs(), 4);
+    row["speed_ratio_vs_embree1"] = num(kernelMrays / embree1Mrays, 4);
+
+    // Accuracy and work.
+    const Agreement a = compareHits(kernel.hits, embreeHits);
+    const WorkStats w = workStats(kernel.hits);
+    row["hits"] = std::to_string(w.hits);
+    row["hit_miss_agreement"] = num(a.hitMissAgreement, 8);
+    row["same_primitive_agreement"] = num(a.samePrimitiveAgreement, 8);
+    row["rel_distance_error_mean"] = num(a.relDistanceErrorMean, 4);
+    row["rel_distance_error_max"] = num(a.relDistanceErrorMax, 4);
+    row["hit_miss_mismatches"] = std::to_string(a.hitMissMismatches);
+    row["primitive_mismatches"] = std::to_string(a.primitiveMismatches);
+    row["voxels_per_ray_mean"] = num(w.voxelsPerRayMean);
+    row["voxels_per_ray_max"] = std::to_string(w.voxelsPerRayMax);
+    row["triangles_per_ray_mean"] = num(w.trianglesPerRayMean);
+    row["triangles_per_ray_max"] = std::to_string(w.trianglesPerRayMax);
+    row["cpu_reference_mismatches"] = std::to_string(referenceMismatches(grid, rays, kernel.hits));
+
+    // Images, or the per-ray records to make them later.
+    const std::string prefix = (fs::path(folder) / ("run-" + row["run"])).string();
+    const HitImage image = makeHitImage(width, height, rays, grid.triangles, kernel.hits, embreeHits);
+    const bool wantImages = run.getBool("output.images");
+    if (run.getBool("output.hit_records") || (wantImages && !imagesSupported())) writeHitRecords(prefix + ".hits", image);
+    if (wantImages && imagesSupported()) writeImages(prefix, image);
+
+    if (vk.validationMessages().size() != messagesBefore)
+        throw Error("the Vulkan validation layer reported: " + vk.validationMessages()[messagesBefore]);
+}
+
+std::string contextJson(const ExperimentPlan& plan, const std::vector<Row>& rows, const Caches& caches) {
+    std::ostringstream j;
+    j << "{\n";
+    j << "  \"config_path\": " << jsonString(plan.configPath) << ",\n";
+    j << "  \"config_text\": " << jsonString(plan.configText) << ",\n";
+    j << "  \"git_commit\": " << jsonString(gitCommit()) << ",\n";
+    j << "  \"date_utc\": " << jsonString(utcNow()) << ",\n";
+    j << "  \"host\": " << jsonString(hostName()) << ",\n";
+    j << "  \"cpu\": " << jsonString(cpuModel()) << ",\n";
+    j << "  \"cpu_threads\": " << std::thread::hardware_concurrency() << ",\n";
+    j << "  \"embree_version\": " << jsonString(EmbreeReference::version()) << ",\n";
+    j << "  \"images\": " << (imagesSupported() ? "\"OpenImageIO\"" : "\"hit records only\"") << ",\n";
+    j << "  \"devices\": [";
+    bool first = true;
+    for (const auto& [key, vk] : caches.devices) {
+        const DeviceInfo& d = vk->info();
+        j << (first ? "\n" : ",\n") << "    {\"name\": " << jsonString(d.name) << ", \"driver\": " << jsonString(d.driver)
+          << ", \"api\": " << jsonString(d.apiVersion) << ", \"type\": " << jsonString(d.type)
+          << ", \"subgroup_size\": " << d.subgroupSize << ", \"max_storage_buffer_range\": " << d.maxStorageBufferRange
+          << ", \"timestamp_period_ns\": " << d.timestampPeriodNs << "}";
+        first = false;
+    }
+    j << "\n  ],\n  \"runs\": [";
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        const Row& r = rows[i];
+        j << (i ? ",\n" : "\n") << "    {\"run\": " << jsonString(r.at("run")) << ", \"label\": " << jsonString(r.at("label"))
+          << ", \"config_hash\": " << jsonString(r.at("config_hash")) << ", \"status\": " << jsonString(r.at("status")) << "}";
+    }
+    j << "\n  ]\n}\n";
+    return j.str();
+}
+
+}  // namespace
+
+std::vector<std::string> runColumns() {
+    std::vector<std::string> columns;
+    for (const KeySpec& k : configSchema()) columns.push_back(paramColumn(k.name));
+    columns.insert(columns.end(), kMetricColumns.begin(), kMetricColumns.end());
+    return columns;
+}
+
+std::string summaryTable(const std::vector<Row>& rows) {
+    std::ostringstream out;
+    auto get = [](const Row& r, const char* key) {
+        auto it = r.find(key);
+        return it == r.end() || it->second.empty() ? std::string("-") : it->second;
+    };
+    out << std::left << std::setw(5) << "run" << std::setw(34) << "parameters" << std::right << std::setw(12)
+        << "kernel Mr/s" << std::setw(12) << "Embree1 Mr/s" << std::setw(13) << "Embree16 Mr/s" << std::setw(9)
+        << "ratio" << std::setw(12) << "hit/miss %" << std::setw(10) << "status" << "\n";
+    for (const Row& r : rows) {
+        std::string agreement = get(r, "hit_miss_agreement");
+        if (agreement != "-") agreement = formatNumber(100.0 * std::stod(agreement), 6);
+        std::string label = get(r, "label");
+        if (label.size() > 33) label = label.substr(0, 30) + "...";
+        out << std::left << std::setw(5) << get(r, "run") << std::setw(34) << label << std::right << std::setw(12)
+            << get(r, "kernel_mrays_s") << std::setw(12) << get(r, "embree1_mrays_s") << std::setw(13)
+            << get(r, "embree16_mrays_s") << std::setw(9) << get(r, "speed_ratio_vs_embree1") << std::setw(12)
+            << agreement << std::setw(10) << get(r, "status") << "\n";
+    }
+    for (const Row& r : rows)
+        if (get(r, "status") == "failed") out << "run " << get(r, "run") << " failed: " << get(r, "error") << "\n";
+    return out.str();
+}
+
+ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& options) {
+    ExperimentResult result;
+    const RunConfig& first = plan.runs.front();
+    const std::string output = options.outputOverride.empty() ? first.getString("experiment.output") : options.outputOverride;
+    result.folder = (fs::path(output) / first.getString("experiment.name")).string();
+    fs::create_directories(result.folder);
+    const std::string csvPath = (fs::path(result.folder) / "runs.csv").string();
+    const std::vector<std::string> columns = runColumns();
+    Caches caches;
+    if (!options.quiet)
+        std::cout << "[rtbench] " << plan.configPath << ": " << plan.runs.size() << " run"
+                  << (plan.runs.size() == 1 ? "" : "s") << " -> " << result.folder << "\n";
+    const auto experimentStart = std::chrono::steady_clock::now();
+    for (const RunConfig& run : plan.runs) {
+        Row row;
+        for (const auto& [key, value] : run.values) row[paramColumn(key)] = formatValue(value);
+        char index[16];
+        std::snprintf(index, sizeof index, "%03zu", run.index);
+        row["run"] = index;
+        row["label"] = run.label();
+        row["config_hash"] = run.hash();
+        row["git_commit"] = gitCommit();
+        if (!options.quiet) {
+            const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - experimentStart).count();
+            std::cout << "[run " << run.index + 1 << "/" << plan.runs.size() << ", " << std::fixed << std::setprecision(0)
+                      << elapsed << " s] " << run.label() << " ..." << std::defaultfloat << std::flush;
+        }
+        const auto start = std::chrono::steady_clock::now();
+        try {
+            executeRun(plan, run, options, result.folder, caches, row);
+            row["status"] = "ok";
+        } catch (const std::exception& e) {
+            row["status"] = "failed";
+            row["error"] = e.what();
+            ++result.failed;
+        }
+        row["wall_s"] = formatNumber(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 4);
+        if (!options.quiet) {
+            if (row["status"] == "ok")
+                std::cout << " " << row["kernel_mrays_s"] << " Mrays/s (Embree " << row["embree1_mrays_s"]
+                          << "), hit/miss agreement " << row["hit_miss_agreement"] << ", " << row["wall_s"] << " s\n";
+            else
+                std::cout << " FAILED: " << row["error"] << "\n";
+        }
+        result.rows.push_back(row);
+        writeCsv(csvPath, columns, result.rows);  // after every run: an interrupt loses nothing done
+    }
+    writeFileAtomically((fs::path(result.folder) / "context.json").string(), contextJson(plan, result.rows, caches));
+    return result;
+}
+
+}  // namespace rtbench

@@ -1,0 +1,499 @@
+#include "vulkan_context.h"
+
+#include <algorithm>
+#include <cstring>
+#include <fstream>
+#include <iostream>
+
+#include "structures/error.h"
+
+namespace rtbench {
+
+std::string vkResultName(VkResult result) {
+    switch (result) {
+#define RT_CASE(x) \
+    case x:        \
+        return #x;
+        RT_CASE(VK_SUCCESS)
+        RT_CASE(VK_NOT_READY)
+        RT_CASE(VK_TIMEOUT)
+        RT_CASE(VK_INCOMPLETE)
+        RT_CASE(VK_ERROR_OUT_OF_HOST_MEMORY)
+        RT_CASE(VK_ERROR_OUT_OF_DEVICE_MEMORY)
+        RT_CASE(VK_ERROR_INITIALIZATION_FAILED)
+        RT_CASE(VK_ERROR_DEVICE_LOST)
+        RT_CASE(VK_ERROR_MEMORY_MAP_FAILED)
+        RT_CASE(VK_ERROR_LAYER_NOT_PRESENT)
+        RT_CASE(VK_ERROR_EXTENSION_NOT_PRESENT)
+        RT_CASE(VK_ERROR_FEATURE_NOT_PRESENT)
+        RT_CASE(VK_ERROR_INCOMPATIBLE_DRIVER)
+        RT_CASE(VK_ERROR_TOO_MANY_OBJECTS)
+        RT_CASE(VK_ERROR_FORMAT_NOT_SUPPORTED)
+        RT_CASE(VK_ERROR_FRAGMENTED_POOL)
+        RT_CASE(VK_ERROR_OUT_OF_POOL_MEMORY)
+        RT_CASE(VK_ERROR_INVALID_SHADER_NV)
+#undef RT_CASE
+        default:
+            return "VkResult(" + std::to_string(static_cast<int>(result)) + ")";
+    }
+}
+
+namespace {
+
+void check(VkResult result, const char* call) {
+    if (result != VK_SUCCESS) throw Error(std::string("Vulkan: ") + call + " failed: " + vkResultName(result));
+}
+#define VK_CHECK(call) check((call), #call)
+
+std::string versionString(std::uint32_t v) {
+    return std::to_string(VK_API_VERSION_MAJOR(v)) + "." + std::to_string(VK_API_VERSION_MINOR(v)) +
+           "." + std::to_string(VK_API_VERSION_PATCH(v));
+}
+
+std::string lower(std::string s) {
+    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+}
+
+VKAPI_ATTR VkBool32 VKAPI_CALL onValidationMessage(VkDebugUtilsMessageSeverityFlagBitsEXT,
+                                                   VkDebugUtilsMessageTypeFlagsEXT,
+                                                   const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                                   void* user) {
+    auto* messages = static_cast<std::vector<std::string>*>(user);
+    messages->push_back(data->pMessage ? data->pMessage : "(no message)");
+    std::cerr << "[vulkan validation] " << messages->back() << "\n";
+    return VK_FALSE;
+}
+
+VkInstance createInstance(bool validation, const std::vector<std::string>* messages,
+                          VkDebugUtilsMessengerEXT* messenger) {
+    VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+    app.pApplicationName = "rtbench";
+    app.apiVersion = VK_API_VERSION_1_2;
+    std::vector<const char*> layers, extensions;
+    if (validation) {
+        layers.push_back("VK_LAYER_KHRONOS_validation");
+        extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
+    }
+    VkDebugUtilsMessengerCreateInfoEXT debugInfo{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+    debugInfo.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
+                                VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+    debugInfo.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT |
+                            VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                            VK_DEBUG_UTILS_MESSAGE_TYPE_PERFORMANCE_BIT_EXT;
+    debugInfo.pfnUserCallback = onValidationMessage;
+    debugInfo.pUserData = const_cast<std::vector<std::string>*>(messages);
+
+    VkInstanceCreateInfo create{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+    create.pNext = validation ? &debugInfo : nullptr;  // also reports on create/destroy
+    create.pApplicationInfo = &app;
+    create.enabledLayerCount = static_cast<std::uint32_t>(layers.size());
+    create.ppEnabledLayerNames = layers.data();
+    create.enabledExtensionCount = static_cast<std::uint32_t>(extensions.size());
+    create.ppEnabledExtensionNames = extensions.data();
+    VkInstance instance = VK_NULL_HANDLE;
+    VkResult result = vkCreateInstance(&create, nullptr, &instance);
+    if (result == VK_ERROR_LAYER_NOT_PRESENT)
+        throw Error("Vulkan: vkCreateInstance failed: VK_ERROR_LAYER_NOT_PRESENT "
+                    "(install vulkan-validationlayers for validation)");
+    if (result == VK_ERROR_INCOMPATIBLE_DRIVER)
+        throw Error("Vulkan: vkCreateInstance failed: VK_ERROR_INCOMPATIBLE_DRIVER (no Vulkan "
+                    "driver found: install mesa-vulkan-drivers for lavapipe)");
+    check(result, "vkCreateInstance");
+    if (validation) {
+        auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
+        if (!create) throw Error("Vulkan: vkCreateDebugUtilsMessengerEXT not available");
+        VK_CHECK(create(instance, &debugInfo, nullptr, messenger));
+    }
+    return instance;
+}
+
+std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance) {
+    std::uint32_t count = 0;
+    VK_CHECK(vkEnumeratePhysicalDevices(instance, &count, nullptr));
+    std::vector<VkPhysicalDevice> devices(count);
+    VK_CHECK(vkEnumeratePhysicalDevices(instance, &count, devices.data()));
+    return devices;
+}
+
+DeviceInfo describe(VkPhysicalDevice device) {
+    VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
+    VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+    subgroup.pNext = &driver;
+    VkPhysicalDeviceProperties2 props{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    props.pNext = &subgroup;
+    vkGetPhysicalDeviceProperties2(device, &props);
+    const VkPhysicalDeviceLimits& limits = props.properties.limits;
+    DeviceInfo info;
+    info.name = props.properties.deviceName;
+    info.driver = std::string(driver.driverName) + " " + driver.driverInfo;
+    info.apiVersion = versionString(props.properties.apiVersion);
+    switch (props.properties.deviceType) {
+        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: info.type = "discrete"; break;
+        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: info.type = "integrated"; break;
+        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: info.type = "virtual"; break;
+        case VK_PHYSICAL_DEVICE_TYPE_CPU: info.type = "cpu"; break;
+        default: info.type = "other";
+    }
+    info.subgroupSize = subgroup.subgroupSize;
+    info.maxStorageBufferRange = limits.maxStorageBufferRange;
+    info.maxWorkGroupCountX = limits.maxComputeWorkGroupCount[0];
+    info.maxPushConstantsSize = limits.maxPushConstantsSize;
+    info.timestampPeriodNs = limits.timestampPeriod;
+    info.timestampsSupported = limits.timestampComputeAndGraphics == VK_TRUE;
+    VkPhysicalDeviceMemoryProperties memory;
+    vkGetPhysicalDeviceMemoryProperties(device, &memory);
+    for (std::uint32_t h = 0; h < memory.memoryHeapCount; ++h)
+        if (memory.memoryHeaps[h].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
+            info.deviceLocalBytes = std::max<std::uint64_t>(info.deviceLocalBytes, memory.memoryHeaps[h].size);
+    return info;
+}
+
+std::vector<char> readFile(const std::string& path) {
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    if (!in) throw Error(path + ": cannot open SPIR-V (was the build complete?)");
+    std::vector<char> bytes(static_cast<std::size_t>(in.tellg()));
+    in.seekg(0);
+    in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    return bytes;
+}
+
+}  // namespace
+
+std::vector<DeviceInfo> VulkanContext::listDevices() {
+    VkInstance instance = createInstance(false, nullptr, nullptr);
+    std::vector<DeviceInfo> infos;
+    for (VkPhysicalDevice d : physicalDevices(instance)) infos.push_back(describe(d));
+    vkDestroyInstance(instance, nullptr);
+    return infos;
+}
+
+VulkanContext::VulkanContext(const std::string& deviceChoice, bool validation) {
+    instance_ = createInstance(validation, &messages_, &messenger_);
+
+    // Device choice: a name substring, or auto = discrete GPU > CPU (lavapipe) > the first.
+    const std::vector<VkPhysicalDevice> devices = physicalDevices(instance_);
+    if (devices.empty()) throw Error("Vulkan: no physical device (install mesa-vulkan-drivers)");
+    std::string available;
+    for (VkPhysicalDevice d : devices) available += (available.empty() ? "" : ", ") + describe(d).name;
+    if (deviceChoice == "auto" || deviceChoice.empty()) {
+        auto rank = [](const DeviceInfo& i) {
+            return i.type == "discrete" ? 0 : i.type == "cpu" ? 1 : i.type == "integrated" ? 2 : 3;
+        };
+        physical_ = *std::min_element(devices.begin(), devices.end(), [&](auto a, auto b) {
+            return rank(describe(a)) < rank(describe(b));
+        });
+    } else {
+        for (VkPhysicalDevice d : devices)
+            if (lower(describe(d).name).find(lower(deviceChoice)) != std::string::npos) {
+                physical_ = d;
+                break;
+            }
+        if (!physical_)
+            throw Error("Vulkan: no device matches '" + deviceChoice + "' (available: " + available + ")");
+    }
+    info_ = describe(physical_);
+    vkGetPhysicalDeviceMemoryProperties(physical_, &memoryProperties_);
+
+    // A queue family with compute.
+    std::uint32_t familyCount = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(physical_, &familyCount, nullptr);
+    std::vector<VkQueueFamilyProperties> families(familyCount);
+    vkGetPhysicalDeviceQueueFamilyProperties(physical_, &familyCount, families.data());
+    bool found = false;
+    for (std::uint32_t f = 0; f < familyCount && !found; ++f)
+        if (families[f].queueFlags & VK_QUEUE_COMPUTE_BIT) queueFamily_ = f, found = true;
+    if (!found) throw Error("Vulkan: " + info_.name + " has no compute queue");
+    timestampValidBits_ = families[queueFamily_].timestampValidBits;
+    info_.timestampsSupported = info_.timestampsSupported || timestampValidBits_ > 0;
+
+    const float priority = 1.0f;
+    VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+    queueInfo.queueFamilyIndex = queueFamily_;
+    queueInfo.queueCount = 1;
+    queueInfo.pQueuePriorities = &priority;
+    VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+    deviceInfo.queueCreateInfoCount = 1;
+    deviceInfo.pQueueCreateInfos = &queueInfo;
+    VK_CHECK(vkCreateDevice(physical_, &deviceInfo, nullptr, &device_));
+    vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
+
+    VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+    poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+    poolInfo.queueFamilyIndex = queueFamily_;
+    VK_CHECK(vkCreateCommandPool(device_, &poolInfo, nullptr, &commandPool_));
+
+    const VkDescriptorPoolSize poolSize{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 64};
+    VkDescriptorPoolCreateInfo descriptorPoolInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    descriptorPoolInfo.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
+    descriptorPoolInfo.maxSets = 8;
+    descriptorPoolInfo.poolSizeCount = 1;
+    descriptorPoolInfo.pPoolSizes = &poolSize;
+    VK_CHECK(vkCreateDescriptorPool(device_, &descriptorPoolInfo, nullptr, &descriptorPool_));
+
+    if (timestampValidBits_ > 0) {
+        VkQueryPoolCreateInfo queryInfo{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+        queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
+        queryInfo.queryCount = 2;
+        VK_CHECK(vkCreateQueryPool(device_, &queryInfo, nullptr, &queryPool_));
+    }
+    VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+    VK_CHECK(vkCreateFence(device_, &fenceInfo, nullptr, &fence_));
+}
+
+VulkanContext::~VulkanContext() {
+    if (device_) {
+        vkDeviceWaitIdle(device_);
+        vkDestroyFence(device_, fence_, nullptr);
+        if (queryPool_) vkDestroyQueryPool(device_, queryPool_, nullptr);
+        vkDestroyDescriptorPool(device_, descriptorPool_, nullptr);
+        vkDestroyCommandPool(device_, commandPool_, nullptr);
+        vkDestroyDevice(device_, nullptr);
+    }
+    if (messenger_) {
+        auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(instance_, "vkDestroyDebugUtilsMessengerEXT"));
+        if (destroy) destroy(instance_, messenger_, nullptr);
+    }
+    if (instance_) vkDestroyInstance(instance_, nullptr);
+}
+
+std::uint32_t VulkanContext::findMemoryType(std::uint32_t typeBits, VkMemoryPropertyFlags required,
+                                            VkMemoryPropertyFlags preferred) const {
+    for (VkMemoryPropertyFlags want : {required | preferred, required})
+        for (std::uint32_t i = 0; i < memoryProperties_.memoryTypeCount; ++i)
+            if ((typeBits & (1u << i)) && (memoryProperties_.memoryTypes[i].propertyFlags & want) == want)
+                return i;
+    throw Error("Vulkan: no memory type with the required properties on " + info_.name);
+}
+
+Buffer VulkanContext::createBuffer(VkDeviceSize size, VkBufferUsageFlags usage,
+                                   VkMemoryPropertyFlags required, VkMemoryPropertyFlags preferred) {
+    Buffer b;
+    b.size = std::max<VkDeviceSize>(size, 16);  // zero-sized buffers are invalid
+    VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    info.size = b.size;
+    info.usage = usage;
+    info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    VK_CHECK(vkCreateBuffer(device_, &info, nullptr, &b.buffer));
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(device_, b.buffer, &req);
+    VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    alloc.allocationSize = req.size;
+    alloc.memoryTypeIndex = findMemoryType(req.memoryTypeBits, required, preferred);
+    VK_CHECK(vkAllocateMemory(device_, &alloc, nullptr, &b.memory));
+    VK_CHECK(vkBindBufferMemory(device_, b.buffer, b.memory, 0));
+    const VkMemoryPropertyFlags flags = memoryProperties_.memoryTypes[alloc.memoryTypeIndex].propertyFlags;
+    if ((flags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) && (flags & VK_MEMORY_PROPERTY_HOST_COHERENT_BIT))
+        VK_CHECK(vkMapMemory(device_, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped));
+    return b;
+}
+
+Buffer VulkanContext::createStorageBuffer(VkDeviceSize size, const std::string& what) {
+    if (size > info_.maxStorageBufferRange)
+        throw Error("Vulkan: the " + what + " buffer would be " + std::to_string(size) +
+                    " bytes, over " + info_.name + "'s maxStorageBufferRange of " +
+                    std::to_string(info_.maxStorageBufferRange) + " bytes");
+    return createBuffer(size,
+                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                            VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                        VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0);
+}
+
+void VulkanContext::destroy(Buffer& b) {
+    if (b.mapped) vkUnmapMemory(device_, b.memory);
+    if (b.buffer) vkDestroyBuffer(device_, b.buffer, nullptr);
+    if (b.memory) vkFreeMemory(device_, b.memory, nullptr);
+    b = Buffer{};
+}
+
+VkCommandBuffer VulkanContext::beginOneShot() {
+    VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+    alloc.commandPool = commandPool_;
+    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    alloc.commandBufferCount = 1;
+    VkCommandBuffer cmd;
+    VK_CHECK(vkAllocateCommandBuffers(device_, &alloc, &cmd));
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    VK_CHECK(vkBeginCommandBuffer(cmd, &begin));
+    return cmd;
+}
+
+void VulkanContext::submitAndWait(VkCommandBuffer cmd) {
+    VK_CHECK(vkEndCommandBuffer(cmd));
+    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &cmd;
+    VK_CHECK(vkResetFences(device_, 1, &fence_));
+    VK_CHECK(vkQueueSubmit(queue_, 1, &submit, fence_));
+    VK_CHECK(vkWaitForFences(device_, 1, &fence_, VK_TRUE, UINT64_MAX));
+    vkFreeCommandBuffers(device_, commandPool_, 1, &cmd);
+}
+
+void VulkanContext::copyBuffer(VkBuffer from, VkBuffer to, VkDeviceSize size, bool toDevice) {
+    VkCommandBuffer cmd = beginOneShot();
+    const VkBufferCopy region{0, 0, size};
+    vkCmdCopyBuffer(cmd, from, to, 1, &region);
+    VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    if (toDevice) {
+        // Orders the staging copy before later compute shaders read the buffer.
+        barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                             0, 1, &barrier, 0, nullptr, 0, nullptr);
+    } else {
+        // Orders the read-back copy before the host reads the staging buffer.
+        barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1,
+                             &barrier, 0, nullptr, 0, nullptr);
+    }
+    submitAndWait(cmd);
+}
+
+void VulkanContext::upload(Buffer& b, const void* data, VkDeviceSize size) {
+    if (size == 0) return;
+    if (b.mapped) {
+        std::memcpy(b.mapped, data, size);  // host-coherent: visible at the next submit
+        return;
+    }
+    Buffer staging = createBuffer(size, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                  VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT, 0);
+    std::memcpy(staging.mapped, data, size);
+    copyBuffer(staging.buffer, b.buffer, size, true);
+    destroy(staging);
+}
+
+void VulkanContext::download(const Buffer& b, void* data, VkDeviceSize size) {
+    if (size == 0) return;
+    if (b.mapped) {
+        std::memcpy(data, b.mapped, size);
+        return;
+    }
+    Buffer staging = createBuffer(size, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                                  VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT,
+                                  VK_MEMORY_PROPERTY_HOST_CACHED_BIT);
+    copyBuffer(b.buffer, staging.buffer, size, false);
+    std::memcpy(data, staging.mapped, size);
+    destroy(staging);
+}
+
+ComputePipeline VulkanContext::createComputePipeline(const std::string& spirvPath,
+                                                     std::uint32_t bindingCount,
+                                                     std::uint32_t pushConstantBytes,
+                                                     std::uint32_t workgroupSize,
+                                                     const std::vector<SpecializationConstant>& constants) {
+    ComputePipeline p;
+    p.bindingCount = bindingCount;
+    p.pushConstantBytes = pushConstantBytes;
+    p.workgroupSize = workgroupSize;
+    std::vector<VkDescriptorSetLayoutBinding> bindings(bindingCount);
+    for (std::uint32_t i = 0; i < bindingCount; ++i)
+        bindings[i] = {i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+    VkDescriptorSetLayoutCreateInfo setInfo{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    setInfo.bindingCount = bindingCount;
+    setInfo.pBindings = bindings.data();
+    VK_CHECK(vkCreateDescriptorSetLayout(device_, &setInfo, nullptr, &p.setLayout));
+
+    const VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, pushConstantBytes};
+    VkPipelineLayoutCreateInfo layoutInfo{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    layoutInfo.setLayoutCount = 1;
+    layoutInfo.pSetLayouts = &p.setLayout;
+    layoutInfo.pushConstantRangeCount = pushConstantBytes ? 1 : 0;
+    layoutInfo.pPushConstantRanges = &range;
+    VK_CHECK(vkCreatePipelineLayout(device_, &layoutInfo, nullptr, &p.layout));
+
+    const std::vector<char> code = readFile(spirvPath);
+    VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+    moduleInfo.codeSize = code.size();
+    moduleInfo.pCode = reinterpret_cast<const std::uint32_t*>(code.data());
+    VkShaderModule module;
+    VK_CHECK(vkCreateShaderModule(device_, &moduleInfo, nullptr, &module));
+
+    std::vector<VkSpecializationMapEntry> entries;
+    std::vector<std::uint32_t> values;
+    for (const SpecializationConstant& c : constants) {
+        entries.push_back({c.id, static_cast<std::uint32_t>(values.size() * 4), 4});
+        values.push_back(c.value);
+    }
+    VkSpecializationInfo spec{static_cast<std::uint32_t>(entries.size()), entries.data(),
+                              values.size() * 4, values.data()};
+    VkComputePipelineCreateInfo pipelineInfo{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+    pipelineInfo.stage = {VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+    pipelineInfo.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    pipelineInfo.stage.module = module;
+    pipelineInfo.stage.pName = "main";
+    pipelineInfo.stage.pSpecializationInfo = &spec;
+    pipelineInfo.layout = p.layout;
+    const VkResult result = vkCreateComputePipelines(device_, VK_NULL_HANDLE, 1, &pipelineInfo, nullptr, &p.pipeline);
+    vkDestroyShaderModule(device_, module, nullptr);
+    check(result, "vkCreateComputePipelines");
+    return p;
+}
+
+void VulkanContext::destroy(ComputePipeline& p) {
+    if (p.pipeline) vkDestroyPipeline(device_, p.pipeline, nullptr);
+    if (p.layout) vkDestroyPipelineLayout(device_, p.layout, nullptr);
+    if (p.setLayout) vkDestroyDescriptorSetLayout(device_, p.setLayout, nullptr);
+    p = ComputePipeline{};
+}
+
+double VulkanContext::dispatch(const ComputePipeline& p, const std::vector<const Buffer*>& buffers,
+                               const void* pushConstants, std::uint64_t invocations) {
+    if (buffers.size() != p.bindingCount) throw Error("Vulkan: dispatch given the wrong number of buffers");
+    VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    alloc.descriptorPool = descriptorPool_;
+    alloc.descriptorSetCount = 1;
+    alloc.pSetLayouts = &p.setLayout;
+    VkDescriptorSet set;
+    VK_CHECK(vkAllocateDescriptorSets(device_, &alloc, &set));
+    std::vector<VkDescriptorBufferInfo> infos(buffers.size());
+    std::vector<VkWriteDescriptorSet> writes(buffers.size());
+    for (std::size_t i = 0; i < buffers.size(); ++i) {
+        infos[i] = {buffers[i]->buffer, 0, VK_WHOLE_SIZE};
+        writes[i] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        writes[i].dstSet = set;
+        writes[i].dstBinding = static_cast<std::uint32_t>(i);
+        writes[i].descriptorCount = 1;
+        writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        writes[i].pBufferInfo = &infos[i];
+    }
+    vkUpdateDescriptorSets(device_, static_cast<std::uint32_t>(writes.size()), writes.data(), 0, nullptr);
+
+    // Workgroups: a 2D grid of groups when x alone would exceed maxComputeWorkGroupCount[0].
+    const std::uint64_t groups = (invocations + p.workgroupSize - 1) / p.workgroupSize;
+    const std::uint64_t groupsX = std::min<std::uint64_t>(groups, info_.maxWorkGroupCountX);
+    const std::uint64_t groupsY = (groups + groupsX - 1) / groupsX;
+
+    VkCommandBuffer cmd = beginOneShot();
+    if (queryPool_) {
+        vkCmdResetQueryPool(cmd, queryPool_, 0, 2);
+        vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queryPool_, 0);
+    }
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout, 0, 1, &set, 0, nullptr);
+    if (p.pushConstantBytes)
+        vkCmdPushConstants(cmd, p.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, p.pushConstantBytes, pushConstants);
+    vkCmdDispatch(cmd, static_cast<std::uint32_t>(groupsX), static_cast<std::uint32_t>(groupsY), 1);
+    if (queryPool_) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queryPool_, 1);
+    // Orders the kernel's buffer writes before a read-back copy or a host read of mapped memory.
+    VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+    barrier.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_HOST_READ_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                         VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0,
+                         nullptr, 0, nullptr);
+    submitAndWait(cmd);
+    VK_CHECK(vkFreeDescriptorSets(device_, descriptorPool_, 1, &set));
+
+    if (!queryPool_) return -1.0;
+    std::uint64_t stamps[2];
+    VK_CHECK(vkGetQueryPoolResults(device_, queryPool_, 0, 2, sizeof(stamps), stamps, sizeof(std::uint64_t),
+                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    const std::uint64_t mask = timestampValidBits_ >= 64 ? ~0ull : ((1ull << timestampValidBits_) - 1);
+    const std::uint64_t ticks = (stamps[1] - stamps[0]) & mask;
+    return static_cast<double>(ticks) * info_.timestampPeriodNs * 1e-6;
+}
+
+}  // namespace rtbench

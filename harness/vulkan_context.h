@@ -1,0 +1,111 @@
+// Vulkan compute, read top to bottom: instance (validation optional), device choice, buffers,
+// pipelines with specialization constants, one-shot dispatches timed by timestamp queries.
+// Every call is checked; a failure throws rtbench::Error naming the call and the VkResult.
+#pragma once
+#include <vulkan/vulkan.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace rtbench {
+
+struct DeviceInfo {
+    std::string name;
+    std::string driver;       // driver name and info, e.g. "llvmpipe Mesa 22.3.6 (LLVM 15.0.6)"
+    std::string apiVersion;   // "1.3.230"
+    std::string type;         // discrete | integrated | virtual | cpu | other
+    std::uint32_t subgroupSize = 0;
+    std::uint64_t maxStorageBufferRange = 0;
+    std::uint32_t maxWorkGroupCountX = 0;
+    std::uint32_t maxPushConstantsSize = 0;
+    std::uint64_t deviceLocalBytes = 0;  // largest DEVICE_LOCAL heap
+    double timestampPeriodNs = 0.0;
+    bool timestampsSupported = false;
+};
+
+std::string vkResultName(VkResult result);
+
+struct Buffer {
+    VkBuffer buffer = VK_NULL_HANDLE;
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    VkDeviceSize size = 0;
+    void* mapped = nullptr;  // non-null when the memory is host-visible (e.g. lavapipe)
+};
+
+struct SpecializationConstant {
+    std::uint32_t id;
+    std::uint32_t value;
+};
+
+struct ComputePipeline {
+    VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    std::uint32_t bindingCount = 0;
+    std::uint32_t pushConstantBytes = 0;
+    std::uint32_t workgroupSize = 0;
+};
+
+class VulkanContext {
+public:
+    // deviceChoice: "auto" (a discrete GPU if any, else lavapipe/CPU, else the first) or a
+    // case-insensitive substring of the device name. validation: enable
+    // VK_LAYER_KHRONOS_validation and collect what it reports (see validationMessages()).
+    VulkanContext(const std::string& deviceChoice, bool validation);
+    ~VulkanContext();
+    VulkanContext(const VulkanContext&) = delete;
+    VulkanContext& operator=(const VulkanContext&) = delete;
+
+    static std::vector<DeviceInfo> listDevices();
+
+    const DeviceInfo& info() const { return info_; }
+
+    // A storage buffer in DEVICE_LOCAL memory (uploaded through a staging buffer when that
+    // memory is not host-visible). Throws when size exceeds maxStorageBufferRange.
+    Buffer createStorageBuffer(VkDeviceSize size, const std::string& what);
+    void upload(Buffer& buffer, const void* data, VkDeviceSize size);
+    void download(const Buffer& buffer, void* data, VkDeviceSize size);
+    void destroy(Buffer& buffer);
+
+    ComputePipeline createComputePipeline(const std::string& spirvPath, std::uint32_t bindingCount,
+                                          std::uint32_t pushConstantBytes,
+                                          std::uint32_t workgroupSize,
+                                          const std::vector<SpecializationConstant>& constants);
+    void destroy(ComputePipeline& pipeline);
+
+    // Binds the buffers to slots 0..n-1, pushes the constants, dispatches enough workgroups for
+    // `invocations` (2D when needed), waits, and returns the GPU time in ms from timestamps
+    // (or -1 where timestamps are unsupported).
+    double dispatch(const ComputePipeline& pipeline, const std::vector<const Buffer*>& buffers,
+                    const void* pushConstants, std::uint64_t invocations);
+
+    // Messages of the validation layer (warnings and errors) since creation.
+    const std::vector<std::string>& validationMessages() const { return messages_; }
+
+private:
+    std::uint32_t findMemoryType(std::uint32_t typeBits, VkMemoryPropertyFlags required,
+                                 VkMemoryPropertyFlags preferred) const;
+    Buffer createBuffer(VkDeviceSize size, VkBufferUsageFlags usage,
+                        VkMemoryPropertyFlags required, VkMemoryPropertyFlags preferred);
+    void submitAndWait(VkCommandBuffer cmd);
+    VkCommandBuffer beginOneShot();
+    void copyBuffer(VkBuffer from, VkBuffer to, VkDeviceSize size, bool toDevice);
+
+    VkInstance instance_ = VK_NULL_HANDLE;
+    VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;
+    VkPhysicalDevice physical_ = VK_NULL_HANDLE;
+    VkDevice device_ = VK_NULL_HANDLE;
+    VkQueue queue_ = VK_NULL_HANDLE;
+    std::uint32_t queueFamily_ = 0;
+    VkCommandPool commandPool_ = VK_NULL_HANDLE;
+    VkDescriptorPool descriptorPool_ = VK_NULL_HANDLE;
+    VkQueryPool queryPool_ = VK_NULL_HANDLE;
+    VkFence fence_ = VK_NULL_HANDLE;
+    VkPhysicalDeviceMemoryProperties memoryProperties_{};
+    DeviceInfo info_;
+    std::uint32_t timestampValidBits_ = 0;
+    std::vector<std::string> messages_;
+};
+
+}  // namespace rtbench

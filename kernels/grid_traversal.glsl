@@ -1,0 +1,186 @@
+// Uniform-grid ray traversal: ONE source for the GPU kernels and the CPU reference.
+// GLSL includes it after declaring the buffers `cellOffsets`, `triangleList`, `triangles` and the
+// push constant `params`; C++ includes it inside a struct with members of the same names
+// (structures/grid_reference.h), so both run the very same arithmetic, operation by operation.
+// Rules that keep the two bit-identical: float literals carry an `f`; no division except the
+// explicit reciprocals below; dot/cross written out (the driver's built-ins may fuse to FMA);
+// results marked `precise` (no contraction in SPIR-V; the C++ side builds with -ffp-contract=off).
+//
+// Algorithms: slab clipping to the grid box (Kay & Kajiya 1986); 3D-DDA (Amanatides & Woo 1987);
+// ray-triangle test of Moller & Trumbore 1997; Purcell et al. 2002 §3.1.3: a hit beyond the
+// current voxel does not end traversal (a nearer hit may lie in a later voxel). Such a hit is kept
+// as the best candidate, and traversal ends in the first voxel whose exit lies beyond it.
+
+float rtDot(vec3 a, vec3 b) {
+    precise float r = a.x * b.x + a.y * b.y + a.z * b.z;
+    return r;
+}
+
+vec3 rtCross(vec3 a, vec3 b) {
+    precise vec3 r = vec3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+    return r;
+}
+
+// Per-axis reciprocal of the direction; zero components are never used through it.
+vec3 rtInverseDirection(vec3 d) {
+    precise vec3 r = vec3(d.x != 0.0f ? 1.0f / d.x : 0.0f, d.y != 0.0f ? 1.0f / d.y : 0.0f,
+                          d.z != 0.0f ? 1.0f / d.z : 0.0f);
+    return r;
+}
+
+// Clips [tMin, tMax] of the ray to the box; false when it misses. Axis-parallel rays (a zero
+// direction component) are inside that slab iff the origin is within it (closed interval).
+bool rtClipToBox(vec3 o, vec3 d, vec3 invD, float tMin, float tMax, vec3 boxMin, vec3 boxMax,
+                 RT_OUT(float) tEnter, RT_OUT(float) tLeave) {
+    tEnter = tMin;
+    tLeave = tMax;
+    for (int a = 0; a < 3; ++a) {
+        if (d[a] == 0.0f) {
+            if (o[a] < boxMin[a] || o[a] > boxMax[a]) return false;
+        } else {
+            precise float t0 = (boxMin[a] - o[a]) * invD[a];
+            precise float t1 = (boxMax[a] - o[a]) * invD[a];
+            tEnter = max(tEnter, min(t0, t1));
+            tLeave = min(tLeave, max(t0, t1));
+        }
+    }
+    return tEnter <= tLeave;
+}
+
+// Moller-Trumbore. Updates (tBest, u, v) when the triangle is hit in [tMin, tBest).
+// A degenerate (zero-area) triangle has det == 0 for every ray and is never hit.
+bool rtIntersectTriangle(vec3 o, vec3 d, float tMin, vec3 v0, vec3 v1, vec3 v2,
+                         RT_INOUT(float) tBest, RT_INOUT(float) uBest, RT_INOUT(float) vBest) {
+    precise vec3 e1 = v1 - v0;
+    precise vec3 e2 = v2 - v0;
+    precise vec3 p = rtCross(d, e2);
+    precise float det = rtDot(e1, p);
+    if (det == 0.0f) return false;
+    precise float invDet = 1.0f / det;
+    precise vec3 s = o - v0;
+    precise float u = rtDot(s, p) * invDet;
+    if (u < 0.0f || u > 1.0f) return false;
+    precise vec3 q = rtCross(s, e1);
+    precise float v = rtDot(d, q) * invDet;
+    if (v < 0.0f || u + v > 1.0f) return false;
+    precise float t = rtDot(e2, q) * invDet;
+    if (t < tMin || t >= tBest) return false;
+    tBest = t;
+    uBest = u;
+    vBest = v;
+    return true;
+}
+
+// State of one ray's DDA walk (Amanatides & Woo 1987): the current voxel, the ray distance at
+// which it crosses the next boundary on each axis (tMax), the distance between boundaries
+// (tDelta), the step direction, and where the ray leaves the grid box (tLeave).
+struct RtDda {
+    ivec3 cell;
+    ivec3 stepDir;
+    vec3 tMaxAxis;
+    vec3 tDelta;
+    float tLeave;
+};
+
+// Sets up the walk from the clipped entry distance tEnter.
+RtDda rtDdaSetup(vec3 o, vec3 d, vec3 invD, float tEnter, float tLeave) {
+    RtDda s;
+    s.tLeave = tLeave;
+    vec3 boxMin = vec3(params.boundsMin);
+    vec3 cellSize = vec3(params.cellSize);
+    vec3 invCellSize = vec3(params.invCellSize);
+    precise vec3 entry = o + d * tEnter;
+    for (int a = 0; a < 3; ++a) {
+        int last = int(params.resolution[a]) - 1;
+        precise float local = (entry[a] - boxMin[a]) * invCellSize[a];
+        int c = clamp(int(floor(local)), 0, last);
+        s.cell[a] = c;
+        if (d[a] > 0.0f) {
+            s.stepDir[a] = 1;
+            precise float boundary = boxMin[a] + float(c + 1) * cellSize[a];
+            s.tMaxAxis[a] = (boundary - o[a]) * invD[a];
+            s.tDelta[a] = cellSize[a] * invD[a];
+        } else if (d[a] < 0.0f) {
+            s.stepDir[a] = -1;
+            precise float boundary = boxMin[a] + float(c) * cellSize[a];
+            s.tMaxAxis[a] = (boundary - o[a]) * invD[a];
+            s.tDelta[a] = -cellSize[a] * invD[a];
+        } else {
+            s.stepDir[a] = 0;
+            s.tMaxAxis[a] = kNoHitT;
+            s.tDelta[a] = kNoHitT;
+        }
+    }
+    return s;
+}
+
+// Distance at which the ray leaves the current voxel.
+float rtDdaVoxelExit(RtDda s) { return min(min(min(s.tMaxAxis.x, s.tMaxAxis.y), s.tMaxAxis.z), s.tLeave); }
+
+// Steps to the next voxel; false when the ray leaves the grid (or ends) instead.
+// Ties (the ray crosses an edge or a corner) step the lowest axis first.
+bool rtDdaStep(RT_INOUT(RtDda) s) {
+    int axis = 0;
+    if (s.tMaxAxis.y < s.tMaxAxis[axis]) axis = 1;
+    if (s.tMaxAxis.z < s.tMaxAxis[axis]) axis = 2;
+    if (s.tMaxAxis[axis] >= s.tLeave) return false;
+    s.cell[axis] += s.stepDir[axis];
+    if (s.cell[axis] < 0 || s.cell[axis] >= int(params.resolution[axis])) return false;
+    precise float next = s.tMaxAxis[axis] + s.tDelta[axis];
+    s.tMaxAxis[axis] = next;
+    return true;
+}
+
+uint rtCellIndex(ivec3 c) {
+    return uint(c.x) + params.resolution.x * (uint(c.y) + params.resolution.y * uint(c.z));
+}
+
+// The branching ray caster (Purcell §3.1 in one loop): walk the grid, test every triangle of each
+// non-empty voxel, stop in the first voxel whose exit lies at or beyond the nearest hit so far.
+HitRecord rtTraceGrid(Ray ray) {
+    HitRecord h;
+    h.t = kNoHitT;
+    h.primitive = kNoHit;
+    h.u = 0.0f;
+    h.v = 0.0f;
+    h.voxelsVisited = 0u;
+    h.trianglesTested = 0u;
+    h.pad0 = 0u;
+    h.pad1 = 0u;
+    vec3 o = vec3(ray.originTMin);
+    vec3 d = vec3(ray.directionTMax);
+    vec3 invD = rtInverseDirection(d);
+    float tEnter;
+    float tLeave;
+    if (!rtClipToBox(o, d, invD, ray.originTMin.w, ray.directionTMax.w, vec3(params.boundsMin),
+                     vec3(params.boundsMax), tEnter, tLeave))
+        return h;
+    RtDda s = rtDdaSetup(o, d, invD, tEnter, tLeave);
+    float tBest = ray.directionTMax.w;
+    float uBest = 0.0f;
+    float vBest = 0.0f;
+    uint primBest = kNoHit;
+    while (true) {
+        h.voxelsVisited += 1u;
+        uint cell = rtCellIndex(s.cell);
+        uint first = cellOffsets[cell];
+        uint end = cellOffsets[cell + 1u];
+        for (uint i = first; i < end; ++i) {
+            uint tri = triangleList[i];
+            h.trianglesTested += 1u;
+            if (rtIntersectTriangle(o, d, ray.originTMin.w, vec3(triangles[tri].v0),
+                                    vec3(triangles[tri].v1), vec3(triangles[tri].v2), tBest,
+                                    uBest, vBest))
+                primBest = tri;
+        }
+        if (primBest != kNoHit && tBest <= rtDdaVoxelExit(s)) break;
+        if (!rtDdaStep(s)) break;
+    }
+    if (primBest != kNoHit) {
+        h.t = tBest;
+        h.primitive = primBest;
+        h.u = uBest;
+        h.v = vBest;
+    }
+    return h;
+}

@@ -1,0 +1,47 @@
+#include "camera.h"
+
+#include <cmath>
+
+#include "error.h"
+
+namespace rtbench {
+
+PinholeCamera fitCamera(const Bounds3& bounds, float verticalFovDegrees) {
+    PinholeCamera camera;
+    camera.verticalFovDegrees = verticalFovDegrees;
+    const glm::vec3 centre = 0.5f * (bounds.min + bounds.max);
+    const float radius = std::max(0.5f * glm::length(bounds.extent()), 1e-6f);
+    const float halfFov = glm::radians(0.5f * verticalFovDegrees);
+    const float distance = radius / std::sin(halfFov);
+    const glm::vec3 view = glm::normalize(glm::vec3(0.0f, 0.25f, 1.0f));
+    camera.lookAt = centre;
+    camera.position = centre + distance * view;
+    return camera;
+}
+
+std::vector<gpu::Ray> generatePrimaryRays(const PinholeCamera& camera, unsigned width,
+                                          unsigned height) {
+    const glm::vec3 forward = camera.lookAt - camera.position;
+    if (glm::length(forward) == 0.0f) throw Error("camera: position equals look_at");
+    const glm::vec3 w = glm::normalize(forward);
+    const glm::vec3 u = glm::cross(w, camera.up);
+    if (glm::length(u) == 0.0f) throw Error("camera: up is parallel to the view direction");
+    const glm::vec3 right = glm::normalize(u);
+    const glm::vec3 down = glm::cross(w, right);  // image rows grow downwards
+    const float halfHeight = std::tan(glm::radians(0.5f * camera.verticalFovDegrees));
+    const float halfWidth = halfHeight * static_cast<float>(width) / static_cast<float>(height);
+    std::vector<gpu::Ray> rays(static_cast<std::size_t>(width) * height);
+    for (unsigned y = 0; y < height; ++y) {
+        for (unsigned x = 0; x < width; ++x) {
+            const float sx = (2.0f * (static_cast<float>(x) + 0.5f) / width - 1.0f) * halfWidth;
+            const float sy = (2.0f * (static_cast<float>(y) + 0.5f) / height - 1.0f) * halfHeight;
+            const glm::vec3 d = w + sx * right + sy * down;
+            gpu::Ray& ray = rays[static_cast<std::size_t>(y) * width + x];
+            ray.originTMin = glm::vec4(camera.position, 0.0f);
+            ray.directionTMax = glm::vec4(d, gpu::kNoHitT);
+        }
+    }
+    return rays;
+}
+
+}  // namespace rtbench

@@ -1,0 +1,23 @@
+// Procedural test scenes from Christen 2005 (§6.1), generated with fixed seeds.
+#pragma once
+#include <cstdint>
+#include <string>
+
+#include "mesh.h"
+
+namespace rtbench {
+
+// Scene A: three axis-aligned boxes of different sizes on a floor-less stage (36 triangles).
+TriangleMesh christenSceneA();
+
+// Scene B: a room (6 inward walls, 12 triangles) with 166 small cubes distributed in it by a
+// fixed-seed generator: 2,004 triangles, many empty voxels and many distinct occluders.
+TriangleMesh christenSceneB(std::uint32_t seed = 2005);
+
+// "christen_a" | "christen_b"; throws rtbench::Error listing the names otherwise.
+TriangleMesh proceduralScene(const std::string& name);
+
+// Appends an axis-aligned box (12 triangles, outward-facing unless inward).
+void appendBox(TriangleMesh& mesh, glm::vec3 lo, glm::vec3 hi, bool inward = false);
+
+}  // namespace rtbench

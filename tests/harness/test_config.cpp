@@ -1,0 +1,126 @@
+// Each config error names the file, line and key, and lists what is allowed.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "harness/config.h"
+#include "structures/error.h"
+
+namespace rtbench {
+namespace {
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+class Config : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() / ("rtbench-config-" + std::to_string(::getpid()));
+        fs::create_directories(dir_);
+        path_ = (dir_ / "c.toml").string();
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+    std::string write(const std::string& text) {
+        std::ofstream(path_) << text;
+        return path_;
+    }
+    std::string errorOf(const std::string& text) {
+        try {
+            loadExperiment(write(text));
+        } catch (const Error& e) {
+            return e.what();
+        }
+        return "(no error)";
+    }
+    fs::path dir_;
+    std::string path_;
+};
+
+const std::string kMinimal = "[experiment]\nname = \"t\"\n[scene]\nsource = \"procedural:christen_a\"\n";
+
+TEST_F(Config, MinimalConfigGetsDefaults) {
+    const ExperimentPlan plan = loadExperiment(write(kMinimal));
+    ASSERT_EQ(plan.runs.size(), 1u);
+    const RunConfig& run = plan.runs[0];
+    EXPECT_EQ(run.getInt("camera.width"), 1024);
+    EXPECT_EQ(run.getInt("structure.min_dim"), 64);
+    EXPECT_FALSE(run.has("structure.resolution"));
+    EXPECT_EQ(run.getString("device.name"), "auto");
+    EXPECT_EQ(run.getString("strategy.type"), "branching");
+    EXPECT_EQ(run.label(), "single run");
+}
+
+TEST_F(Config, UnknownKeyNamesFileLineAndAllowedKeys) {
+    EXPECT_EQ(errorOf(kMinimal + "[structure]\nmindim = 4\n"),
+              path_ + ":6: unknown key 'structure.mindim' (allowed in [structure]: type, min_dim, resolution, "
+                      "cells_per_triangle)");
+}
+
+TEST_F(Config, UnknownSection) {
+    EXPECT_THAT(errorOf(kMinimal + "\n[strategies]\ntype = \"x\"\n"),
+                HasSubstr(path_ + ":6: unknown section [strategies] (allowed: experiment, scene, camera, structure, "
+                                  "strategy, baseline, device, output)"));
+}
+
+TEST_F(Config, WrongType) {
+    EXPECT_EQ(errorOf(kMinimal + "[camera]\nwidth = \"wide\"\n"),
+              path_ + ":6: key 'camera.width': expected an integer (or a list of them to sweep)");
+    EXPECT_EQ(errorOf(kMinimal + "[structure]\nresolution = [1, 2]\n"),
+              path_ + ":6: key 'structure.resolution': expected an array of 3 integers (or a list of them to sweep)");
+}
+
+TEST_F(Config, OutOfRange) {
+    EXPECT_EQ(errorOf(kMinimal + "[structure]\nmin_dim = 0\n"),
+              path_ + ":6: key 'structure.min_dim': value 0 is out of range [1, 2048]");
+    EXPECT_EQ(errorOf(kMinimal + "[camera]\nwidth = [64, -1]\n"),
+              path_ + ":6: key 'camera.width': value -1 is out of range [1, 16384]");
+}
+
+TEST_F(Config, ValueNotInTheAllowedSet) {
+    EXPECT_EQ(errorOf(kMinimal + "[strategy]\ntype = \"wavefront\"\n"),
+              path_ + ":6: key 'strategy.type': 'wavefront' is not allowed (allowed: branching)");
+}
+
+TEST_F(Config, MissingRequiredKey) {
+    EXPECT_THAT(errorOf("[experiment]\nname = \"t\"\n"), HasSubstr(path_ + ": missing required key 'scene.source'"));
+}
+
+TEST_F(Config, TwoResolutionRules) {
+    EXPECT_EQ(errorOf(kMinimal + "[structure]\nmin_dim = 8\nresolution = [4, 4, 4]\n"),
+              path_ + ":7: keys structure.min_dim and structure.resolution both set the grid resolution; give exactly one");
+}
+
+TEST_F(Config, SyntaxErrorNamesTheLine) {
+    EXPECT_THAT(errorOf(kMinimal + "[camera]\nwidth = = 3\n"), HasSubstr(path_ + ":6: TOML syntax error"));
+}
+
+TEST_F(Config, MissingFile) {
+    try {
+        loadExperiment((dir_ / "absent.toml").string());
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_EQ(std::string(e.what()), (dir_ / "absent.toml").string() + ": cannot open config file");
+    }
+}
+
+TEST_F(Config, ListValuedKeysExpandToTheCartesianProduct) {
+    const ExperimentPlan plan = loadExperiment(
+        write(kMinimal + "[camera]\nwidth = [32, 64]\n[structure]\nresolution = [[1, 2, 3], [4, 5, 6], [7, 8, 9]]\n"));
+    ASSERT_EQ(plan.runs.size(), 6u);
+    EXPECT_EQ(plan.runs[0].getInt("camera.width"), 32);
+    EXPECT_EQ(plan.runs[0].getVec3("structure.resolution"), (std::array<double, 3>{1, 2, 3}));
+    EXPECT_EQ(plan.runs[1].getVec3("structure.resolution"), (std::array<double, 3>{4, 5, 6}));
+    EXPECT_EQ(plan.runs[3].getInt("camera.width"), 64);
+    EXPECT_EQ(plan.runs[5].label(), "camera.width=64 structure.resolution=[7 8 9]");
+    EXPECT_NE(plan.runs[0].hash(), plan.runs[1].hash());
+    EXPECT_EQ(plan.runs[0].hash(), loadExperiment(path_).runs[0].hash());  // stable
+}
+
+TEST_F(Config, EmptyListIsAnError) {
+    EXPECT_EQ(errorOf(kMinimal + "[structure]\nmin_dim = []\n"),
+              path_ + ":6: key 'structure.min_dim': an empty list sweeps nothing");
+}
+
+}  // namespace
+}  // namespace rtbench

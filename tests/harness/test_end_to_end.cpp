@@ -1,0 +1,106 @@
+// A whole experiment through the runner: config -> scene -> grid -> kernel -> Embree -> CSV.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "harness/images.h"
+#include "harness/runner.h"
+#include "tests/kernels/test_device.h"
+
+namespace rtbench {
+namespace {
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+class EndToEnd : public ::testing::Test {
+protected:
+    void SetUp() override {
+        dir_ = fs::temp_directory_path() / ("rtbench-e2e-" + std::to_string(::getpid()) + "-" +
+                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::create_directories(dir_);
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    ExperimentResult run(const std::string& body) {
+        const std::string path = (dir_ / "e2e.toml").string();
+        std::ofstream(path) << "[experiment]\nname = \"e2e\"\noutput = \"" << (dir_ / "out").string()
+                            << "\"\nrepetitions = 1\nwarmups = 0\n[device]\nname = \"" << testDeviceName()
+                            << "\"\nvalidation = true\n" << body;
+        RunnerOptions options;
+        options.quiet = true;
+        return runExperiment(loadExperiment(path), options);
+    }
+    fs::path dir_;
+};
+
+TEST_F(EndToEnd, BunnySmallImageAgreesWithEmbreeAndWritesEverything) {
+    const ExperimentResult result =
+        run("[scene]\nsource = \"cgal:bunny00\"\n[camera]\nwidth = 96\nheight = 80\n[structure]\nmin_dim = 16\n");
+    ASSERT_EQ(result.rows.size(), 1u);
+    const Row& row = result.rows[0];
+    ASSERT_EQ(row.at("status"), "ok") << row.at("error");
+    EXPECT_EQ(row.at("scene_triangles"), "75408");
+    EXPECT_EQ(row.at("rays"), std::to_string(96 * 80));
+    EXPECT_GE(std::stod(row.at("hit_miss_agreement")), 0.999);
+    EXPECT_GT(std::stoul(row.at("hits")), 1000u);
+    EXPECT_EQ(row.at("cpu_reference_mismatches"), "0");
+    EXPECT_EQ(row.at("grid_res_z"), "16");  // bunny's smallest extent is z
+    EXPECT_GT(std::stod(row.at("kernel_mrays_s")), 0.0);
+    EXPECT_GT(std::stod(row.at("embree1_mrays_s")), 0.0);
+
+    // The CSV on disk holds the same row under the documented columns; context.json exists.
+    const std::vector<Row> csv = readCsv(result.folder + "/runs.csv");
+    ASSERT_EQ(csv.size(), 1u);
+    for (const auto& [column, value] : csv[0]) {
+        const auto it = row.find(column);
+        EXPECT_EQ(value, it == row.end() ? "" : it->second) << column;
+    }
+    EXPECT_EQ(csv[0].size(), runColumns().size());
+    EXPECT_TRUE(fs::exists(result.folder + "/context.json"));
+    if (imagesSupported()) {
+        EXPECT_TRUE(fs::exists(result.folder + "/run-000-shaded.png"));
+        EXPECT_TRUE(fs::exists(result.folder + "/run-000-diff.png"));
+    } else {
+        EXPECT_TRUE(fs::exists(result.folder + "/run-000.hits"));
+    }
+}
+
+TEST_F(EndToEnd, AFailingRunWritesItsReasonAndTheOthersGoOn) {
+    const ExperimentResult result = run(
+        "[scene]\nsource = \"procedural:christen_b\"\n[camera]\nwidth = 48\nheight = 32\n"
+        "[structure]\nresolution = [[8, 8, 8], [2048, 2048, 2048], [4, 4, 4]]\n[output]\nimages = false\n");
+    ASSERT_EQ(result.rows.size(), 3u);
+    EXPECT_EQ(result.failed, 1);
+    EXPECT_EQ(result.rows[0].at("status"), "ok");
+    EXPECT_EQ(result.rows[1].at("status"), "failed");
+    EXPECT_THAT(result.rows[1].at("error"),
+                HasSubstr("grid 2048x2048x2048 (8589934592 cells) needs 34359738372 bytes of cell offsets, over "));
+    EXPECT_THAT(result.rows[1].at("error"), HasSubstr("maxStorageBufferRange"));
+    EXPECT_EQ(result.rows[2].at("status"), "ok");
+    EXPECT_EQ(readCsv(result.folder + "/runs.csv").size(), 3u);
+}
+
+TEST_F(EndToEnd, MissingMeshFailsTheRunWithTheFileName) {
+    const ExperimentResult result = run("[scene]\nsource = \"meshes/absent.off\"\n[camera]\nwidth = 8\nheight = 8\n");
+    ASSERT_EQ(result.rows.size(), 1u);
+    EXPECT_EQ(result.rows[0].at("status"), "failed");
+    EXPECT_EQ(result.rows[0].at("error"), (dir_ / "meshes/absent.off").string() + ": mesh file not found");
+}
+
+TEST_F(EndToEnd, HitRecordsMakeTheSameImagesLater) {
+    const ExperimentResult result = run(
+        "[scene]\nsource = \"procedural:christen_a\"\n[camera]\nwidth = 40\nheight = 30\n[output]\nhit_records = true\n");
+    ASSERT_EQ(result.rows.at(0).at("status"), "ok") << result.rows[0].at("error");
+    const HitImage image = readHitRecords(result.folder + "/run-000.hits");
+    EXPECT_EQ(image.width, 40u);
+    EXPECT_EQ(image.height, 30u);
+    std::size_t hits = 0;
+    for (float s : image.shade) hits += s >= 0.0f;
+    EXPECT_EQ(std::to_string(hits), result.rows[0].at("hits"));
+    if (imagesSupported()) EXPECT_EQ(writeImagesForFolder(result.folder), 1);
+}
+
+}  // namespace
+}  // namespace rtbench
