@@ -36,7 +36,8 @@ int main(int argc, char** argv) {
             const rtbench::ExperimentPlan plan = rtbench::loadExperiment(configPath);
             const rtbench::ExperimentResult result = rtbench::runExperiment(plan, options);
             std::cout << "\n" << rtbench::summaryTable(result.rows);
-            std::cout << "\nresults: " << result.folder << "/runs.csv (and context.json, images) — "
+            std::cout << "\nresults: " << result.folder << "/runs.csv (with context.json and "
+                      << (rtbench::imagesSupported() ? "PNG images" : "hit records for `rtbench images`") << ") — "
                       << result.rows.size() - result.failed << " ok, " << result.failed << " failed\n";
             return result.failed ? 1 : 0;
         }

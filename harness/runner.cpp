@@ -269,16 +269,16 @@ std::string summaryTable(const std::vector<Row>& rows) {
         auto it = r.find(key);
         return it == r.end() || it->second.empty() ? std::string("-") : it->second;
     };
-    out << std::left << std::setw(5) << "run" << std::setw(34) << "parameters" << std::right << std::setw(12)
-        << "kernel Mr/s" << std::setw(12) << "Embree1 Mr/s" << std::setw(13) << "Embree16 Mr/s" << std::setw(9)
+    out << std::left << std::setw(5) << "run" << std::setw(34) << "parameters" << std::right << std::setw(13)
+        << "kernel Mr/s" << std::setw(14) << "Embree1 Mr/s" << std::setw(15) << "Embree16 Mr/s" << std::setw(9)
         << "ratio" << std::setw(12) << "hit/miss %" << std::setw(10) << "status" << "\n";
     for (const Row& r : rows) {
         std::string agreement = get(r, "hit_miss_agreement");
         if (agreement != "-") agreement = formatNumber(100.0 * std::stod(agreement), 6);
         std::string label = get(r, "label");
         if (label.size() > 33) label = label.substr(0, 30) + "...";
-        out << std::left << std::setw(5) << get(r, "run") << std::setw(34) << label << std::right << std::setw(12)
-            << get(r, "kernel_mrays_s") << std::setw(12) << get(r, "embree1_mrays_s") << std::setw(13)
+        out << std::left << std::setw(5) << get(r, "run") << std::setw(34) << label << std::right << std::setw(13)
+            << get(r, "kernel_mrays_s") << std::setw(14) << get(r, "embree1_mrays_s") << std::setw(15)
             << get(r, "embree16_mrays_s") << std::setw(9) << get(r, "speed_ratio_vs_embree1") << std::setw(12)
             << agreement << std::setw(10) << get(r, "status") << "\n";
     }

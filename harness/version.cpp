@@ -1,5 +1,7 @@
 #include "version.h"
 
+#include "git_commit.h"  // generated at build time: RTBENCH_GIT_COMMIT
+
 #include <unistd.h>
 
 #include <ctime>

@@ -2,29 +2,17 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include <filesystem>
-#include <fstream>
-
 #include "harness/config.h"
 #include "structures/error.h"
+#include "tests/temp_dir.h"
 
 namespace rtbench {
 namespace {
-namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
 class Config : public ::testing::Test {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() / ("rtbench-config-" + std::to_string(::getpid()));
-        fs::create_directories(dir_);
-        path_ = (dir_ / "c.toml").string();
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-    std::string write(const std::string& text) {
-        std::ofstream(path_) << text;
-        return path_;
-    }
+    std::string write(const std::string& text) { return dir_.write("c.toml", text); }
     std::string errorOf(const std::string& text) {
         try {
             loadExperiment(write(text));
@@ -33,8 +21,8 @@ protected:
         }
         return "(no error)";
     }
-    fs::path dir_;
-    std::string path_;
+    TempDir dir_;
+    const std::string path_ = dir_.file("c.toml");
 };
 
 const std::string kMinimal = "[experiment]\nname = \"t\"\n[scene]\nsource = \"procedural:christen_a\"\n";
@@ -97,10 +85,10 @@ TEST_F(Config, SyntaxErrorNamesTheLine) {
 
 TEST_F(Config, MissingFile) {
     try {
-        loadExperiment((dir_ / "absent.toml").string());
+        loadExperiment(dir_.file("absent.toml"));
         FAIL();
     } catch (const Error& e) {
-        EXPECT_EQ(std::string(e.what()), (dir_ / "absent.toml").string() + ": cannot open config file");
+        EXPECT_EQ(std::string(e.what()), dir_.file("absent.toml") + ": cannot open config file");
     }
 }
 

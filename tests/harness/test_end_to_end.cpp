@@ -3,11 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
 
 #include "harness/images.h"
 #include "harness/runner.h"
 #include "tests/kernels/test_device.h"
+#include "tests/temp_dir.h"
 
 namespace rtbench {
 namespace {
@@ -16,23 +16,15 @@ using ::testing::HasSubstr;
 
 class EndToEnd : public ::testing::Test {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() / ("rtbench-e2e-" + std::to_string(::getpid()) + "-" +
-                                            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
     ExperimentResult run(const std::string& body) {
-        const std::string path = (dir_ / "e2e.toml").string();
-        std::ofstream(path) << "[experiment]\nname = \"e2e\"\noutput = \"" << (dir_ / "out").string()
-                            << "\"\nrepetitions = 1\nwarmups = 0\n[device]\nname = \"" << testDeviceName()
-                            << "\"\nvalidation = true\n" << body;
+        const std::string path = dir_.write("e2e.toml", "[experiment]\nname = \"e2e\"\noutput = \"" + dir_.file("out") +
+                                                            "\"\nrepetitions = 1\nwarmups = 0\n[device]\nname = \"" +
+                                                            testDeviceName() + "\"\nvalidation = true\n" + body);
         RunnerOptions options;
         options.quiet = true;
         return runExperiment(loadExperiment(path), options);
     }
-    fs::path dir_;
+    TempDir dir_;
 };
 
 TEST_F(EndToEnd, BunnySmallImageAgreesWithEmbreeAndWritesEverything) {
@@ -86,7 +78,7 @@ TEST_F(EndToEnd, MissingMeshFailsTheRunWithTheFileName) {
     const ExperimentResult result = run("[scene]\nsource = \"meshes/absent.off\"\n[camera]\nwidth = 8\nheight = 8\n");
     ASSERT_EQ(result.rows.size(), 1u);
     EXPECT_EQ(result.rows[0].at("status"), "failed");
-    EXPECT_EQ(result.rows[0].at("error"), (dir_ / "meshes/absent.off").string() + ": mesh file not found");
+    EXPECT_EQ(result.rows[0].at("error"), dir_.file("meshes/absent.off") + ": mesh file not found");
 }
 
 TEST_F(EndToEnd, HitRecordsMakeTheSameImagesLater) {
@@ -99,7 +91,9 @@ TEST_F(EndToEnd, HitRecordsMakeTheSameImagesLater) {
     std::size_t hits = 0;
     for (float s : image.shade) hits += s >= 0.0f;
     EXPECT_EQ(std::to_string(hits), result.rows[0].at("hits"));
-    if (imagesSupported()) EXPECT_EQ(writeImagesForFolder(result.folder), 1);
+    if (imagesSupported()) {
+        EXPECT_EQ(writeImagesForFolder(result.folder), 1);
+    }
 }
 
 }  // namespace

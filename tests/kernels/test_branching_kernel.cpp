@@ -63,7 +63,9 @@ protected:
 VulkanContext* BranchingKernel::vk_ = nullptr;
 
 TEST_F(BranchingKernel, RunsOnLavapipeUnlessAnotherDeviceIsNamed) {
-    if (testDeviceName() == "llvmpipe") EXPECT_NE(vk_->info().name.find("llvmpipe"), std::string::npos);
+    if (testDeviceName() == "llvmpipe") {
+        EXPECT_NE(vk_->info().name.find("llvmpipe"), std::string::npos);
+    }
     EXPECT_GT(vk_->info().subgroupSize, 0u);
 }
 

@@ -69,9 +69,10 @@ void expectDdaMatchesSlabs(const UniformGrid& grid, const gpu::Ray& ray) {
     for (unsigned z = 0; z < r[2]; ++z)
         for (unsigned y = 0; y < r[1]; ++y)
             for (unsigned x = 0; x < r[0]; ++x)
-                if (slab(ray, grid.voxelBounds(x, y, z), eps).interior)
+                if (slab(ray, grid.voxelBounds(x, y, z), eps).interior) {
                     EXPECT_TRUE(seen.count({int(x), int(y), int(z)}))
                         << "missed voxel " << x << "," << y << "," << z << " that the ray crosses";
+                }
 }
 
 gpu::Ray makeRay(glm::vec3 o, glm::vec3 d, float tMax = gpu::kNoHitT) {

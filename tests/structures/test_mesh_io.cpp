@@ -2,30 +2,17 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include <filesystem>
-#include <fstream>
-
 #include "structures/error.h"
 #include "structures/mesh_io.h"
+#include "tests/temp_dir.h"
 
 namespace rtbench {
 namespace {
-namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
 class MeshIo : public ::testing::Test {
 protected:
-    void SetUp() override {
-        dir_ = fs::temp_directory_path() / ("rtbench-mesh-io-" + std::to_string(::getpid()));
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
-    std::string write(const std::string& name, const std::string& text) {
-        const fs::path p = dir_ / name;
-        std::ofstream(p, std::ios::binary) << text;
-        return p.string();
-    }
+    std::string write(const std::string& name, const std::string& text) { return dir_.write(name, text); }
     // The message of the rtbench::Error that reading `path` throws.
     static std::string errorOf(const std::string& path) {
         try {
@@ -35,7 +22,7 @@ protected:
         }
         return "(no error)";
     }
-    fs::path dir_;
+    TempDir dir_;
 };
 
 const char* kTetrahedronOff =
@@ -63,7 +50,7 @@ TEST_F(MeshIo, ReadsOffObjPlyStlAndTriangulatesPolygons) {
 }
 
 TEST_F(MeshIo, MissingFile) {
-    EXPECT_EQ(errorOf((dir_ / "nope.off").string()), (dir_ / "nope.off").string() + ": mesh file not found");
+    EXPECT_EQ(errorOf(dir_.file("nope.off")), dir_.file("nope.off") + ": mesh file not found");
 }
 
 TEST_F(MeshIo, UnknownExtension) {
