@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
     CLI::App* keys = app.add_subcommand("keys", "List every config key with its type, default and meaning");
 
     CLI11_PARSE(app, argc, argv);
+    for (int i = 0; i < argc; ++i) options.commandLine += (i ? " " : "") + std::string(argv[i]);
     try {
         if (*run) {
             const rtbench::ExperimentPlan plan = rtbench::loadExperiment(configPath);

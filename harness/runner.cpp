@@ -222,9 +222,11 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
         throw Error("the Vulkan validation layer reported: " + vk.validationMessages()[messagesBefore]);
 }
 
-std::string contextJson(const ExperimentPlan& plan, const std::vector<Row>& rows, const Caches& caches) {
+std::string contextJson(const ExperimentPlan& plan, const RunnerOptions& options, const std::vector<Row>& rows,
+                        const Caches& caches) {
     std::ostringstream j;
     j << "{\n";
+    j << "  \"command\": " << jsonString(options.commandLine) << ",\n";
     j << "  \"config_path\": " << jsonString(plan.configPath) << ",\n";
     j << "  \"config_text\": " << jsonString(plan.configText) << ",\n";
     j << "  \"git_commit\": " << jsonString(gitCommit()) << ",\n";
@@ -334,7 +336,7 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
         result.rows.push_back(row);
         writeCsv(csvPath, columns, result.rows);  // after every run: an interrupt loses nothing done
     }
-    writeFileAtomically((fs::path(result.folder) / "context.json").string(), contextJson(plan, result.rows, caches));
+    writeFileAtomically((fs::path(result.folder) / "context.json").string(), contextJson(plan, options, result.rows, caches));
     return result;
 }
 

@@ -15,6 +15,7 @@ struct RunnerOptions {
     std::string deviceOverride;  // replaces device.name when non-empty
     bool validationOverride = false;  // forces device.validation on
     bool quiet = false;
+    std::string commandLine;  // recorded in context.json
 };
 
 struct ExperimentResult {
