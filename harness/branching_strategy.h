@@ -3,26 +3,30 @@
 #pragma once
 #include <vector>
 
-#include "structures/uniform_grid.h"
-#include "vulkan_context.h"
+#include "gpu_buffers.h"
 
 namespace rtbench {
 
-struct KernelRun {
-    std::vector<gpu::HitRecord> hits;  // from the instrumented dispatch (counters filled)
-    std::vector<double> gpuMs;         // timed dispatches (instrumentation off), one per repetition
-    double uploadMs = 0.0;             // wall time to create and fill the buffers
-};
-
-struct BranchingOptions {
+struct TimingOptions {
     unsigned workgroupSize = 64;
     int warmups = 1;
     int repetitions = 5;
 };
 
+struct KernelRun {
+    std::vector<gpu::HitRecord> hits;  // from the instrumented run (counters filled)
+    std::vector<double> gpuMs;         // total GPU time of each timed repetition
+    // Branching: lane counts of the subgroup ballots (instrumented run).
+    std::uint64_t activeLanes = 0, laneSlots = 0;
+};
+
 // Uploads grid and rays, runs one instrumented dispatch for hits and counters, then warm-ups and
 // timed repetitions with instrumentation off; checks the timed runs' hits equal the counted ones.
 KernelRun runBranching(VulkanContext& vk, const UniformGrid& grid, const std::vector<gpu::Ray>& rays,
-                       const BranchingOptions& options);
+                       const TimingOptions& options);
+
+// Throws when a timed run's hits differ from the instrumented run's (t and primitive).
+void expectSameHits(const std::vector<gpu::HitRecord>& timed, const std::vector<gpu::HitRecord>& counted,
+                    const char* strategy);
 
 }  // namespace rtbench

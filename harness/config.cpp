@@ -59,8 +59,15 @@ const std::vector<KeySpec>& configSchema() {
         add({"structure.min_dim", ValueType::Int, "Purcell's heuristic: cells along the smallest extent (default 64 when no rule is given)", {}, false, 1, 2048});
         add({"structure.resolution", ValueType::Int3, "explicit cells per axis [x, y, z]", {}, false, 1, 4096});
         add({"structure.cells_per_triangle", ValueType::Float, "density rule: about this many cubic cells per triangle", {}, false, 1e-3, 1e3});
-        add({"strategy.type", ValueType::String, "how the kernel runs", std::string("branching"), false, -1e300, 1e300, {"branching"}});
+        add({"strategy.type", ValueType::String, "branching: one kernel per ray stream (Purcell's branching architecture); multipass: a pass per traverse/intersect step with a ray-state stencil and an oracle", std::string("branching"), false, -1e300, 1e300, {"branching", "multipass"}});
         add({"strategy.workgroup_size", ValueType::Int, "invocations per workgroup (specialization constant)", std::int64_t(64), false, 1, 1024});
+        const std::vector<std::string> multipass = {"strategy.type=multipass"};
+        add({"strategy.traverse_steps_per_pass", ValueType::Int, "multipass: DDA steps per traverse pass (loop unrolling; Purcell used 4)", std::int64_t(1), false, 1, 64, {}, multipass});
+        add({"strategy.intersections_per_pass", ValueType::Int, "multipass: triangle tests per intersect pass (Purcell used 2)", std::int64_t(1), false, 1, 64, {}, multipass});
+        add({"strategy.suppress_finished_reads", ValueType::Bool, "multipass: rays that finish mid-pass skip the unrolled rest's reads", false, false, -1e300, 1e300, {}, multipass});
+        add({"strategy.scheduling", ValueType::String, "multipass: oracle (threshold on the waiting fraction) or naive (traverse until none traverses, then intersect until none waits)", std::string("oracle"), false, -1e300, 1e300, {"oracle", "naive"}, multipass});
+        add({"strategy.oracle_threshold", ValueType::Float, "multipass: intersect when waiting / active rays >= this (0: as soon as any waits; Purcell: 0.2)", 0.2, false, 0, 1, {}, {"strategy.type=multipass", "strategy.scheduling=oracle"}});
+        add({"strategy.max_passes", ValueType::Int, "multipass: pass cap (0: derived from the grid); reaching it fails the run", std::int64_t(0), false, 0, 1e9, {}, multipass});
         add({"baseline.embree_config", ValueType::String, "Embree device config string, e.g. \"isa=avx2\"", std::string("")});
         add({"device.name", ValueType::String, "\"auto\" (discrete GPU, else lavapipe) or a substring of the device name", std::string("auto")});
         add({"device.validation", ValueType::Bool, "enable the Vulkan validation layer (a run fails on any message)", false});
@@ -181,9 +188,10 @@ std::string RunConfig::hash() const {
 }
 
 std::string RunConfig::label() const {
-    std::string out;
-    for (const std::string& key : sweptKeys) out += (out.empty() ? "" : " ") + key + "=" + formatValue(values.at(key));
-    return out.empty() ? "single run" : out;
+    std::string params;
+    for (const std::string& key : sweptKeys) params += (params.empty() ? "" : " ") + key + "=" + formatValue(values.at(key));
+    if (sweep.empty()) return params.empty() ? "single run" : params;
+    return params.empty() ? sweep : sweep + ":" + params;
 }
 
 ExperimentPlan loadExperiment(const std::string& path) {
@@ -213,76 +221,127 @@ ExperimentPlan loadExperiment(const std::string& path) {
         if (!sections.count(section)) sectionOrder.push_back(section);
         sections[section].push_back(k.name.substr(k.name.find('.') + 1));
     }
+    using Given = std::map<std::string, const toml::node*>;
 
     // Unknown sections and keys are errors: a typo must not silently fall back to a default.
-    std::map<std::string, const toml::node*> given;
-    for (auto&& [sectionKey, sectionNode] : root) {
+    auto readSection = [&](const toml::key& sectionKey, const toml::node& sectionNode, Given& given) {
         const std::string section(sectionKey.str());
         if (!sections.count(section))
-            throw Error(where(path, sectionKey.source()) + ": unknown section [" + section +
-                        "] (allowed: " + join(sectionOrder) + ")");
+            throw Error(where(path, sectionKey.source()) + ": unknown section [" + section + "] (allowed: " +
+                        join(sectionOrder) + ", sweep)");
         const toml::table* table = sectionNode.as_table();
         if (!table)
-            throw Error(where(path, sectionKey.source()) + ": '" + section + "' must be a table ([" +
-                        section + "])");
+            throw Error(where(path, sectionKey.source()) + ": '" + section + "' must be a table ([" + section + "])");
         for (auto&& [key, node] : *table) {
             const std::string name(key.str());
             const auto& allowed = sections[section];
             if (std::find(allowed.begin(), allowed.end(), name) == allowed.end())
-                throw Error(where(path, key.source()) + ": unknown key '" + section + "." + name +
-                            "' (allowed in [" + section + "]: " + join(allowed) + ")");
+                throw Error(where(path, key.source()) + ": unknown key '" + section + "." + name + "' (allowed in [" +
+                            section + "]: " + join(allowed) + ")");
             given[section + "." + name] = &node;
         }
-    }
-
-    // Each key: a single value, a default, or a list of values (an axis of the sweep).
-    std::vector<std::pair<std::string, std::vector<ConfigValue>>> axes;
-    for (const KeySpec& spec : schema) {
-        auto it = given.find(spec.name);
-        std::vector<ConfigValue> values;
-        if (it == given.end()) {
-            if (spec.required)
-                throw Error(path + ": missing required key '" + spec.name + "' (" + spec.help + ")");
-            if (spec.defaultValue) values.push_back(*spec.defaultValue);
-        } else if (isSweep(spec, *it->second)) {
-            const toml::array& list = *it->second->as_array();
-            if (list.empty())
-                throw Error(where(path, it->second->source()) + ": key '" + spec.name + "': an empty list sweeps nothing");
-            for (const toml::node& element : list) values.push_back(convert(path, spec, element));
-        } else {
-            values.push_back(convert(path, spec, *it->second));
+    };
+    Given base;
+    std::vector<std::pair<std::string, Given>> sweeps;  // name, overrides
+    for (auto&& [sectionKey, sectionNode] : root) {
+        if (sectionKey.str() != "sweep") {
+            readSection(sectionKey, sectionNode, base);
+            continue;
         }
-        if (!values.empty()) axes.emplace_back(spec.name, std::move(values));
+        const toml::array* list = sectionNode.as_array();
+        if (!list || !list->is_array_of_tables())
+            throw Error(where(path, sectionKey.source()) + ": 'sweep' must be an array of tables ([[sweep]])");
+        for (const toml::node& element : *list) {
+            std::pair<std::string, Given> sweep;
+            for (auto&& [key, node] : *element.as_table()) {
+                if (key.str() == "name") {
+                    if (!node.is_string())
+                        throw Error(where(path, key.source()) + ": key 'sweep.name': expected a string");
+                    sweep.first = node.as_string()->get();
+                } else {
+                    readSection(key, node, sweep.second);
+                }
+            }
+            sweeps.push_back(std::move(sweep));
+        }
     }
+    if (sweeps.empty()) sweeps.emplace_back("", Given{});
 
-    // Grid resolution: at most one rule; min_dim 64 when none is given.
     const std::vector<std::string> rules = {"structure.min_dim", "structure.resolution", "structure.cells_per_triangle"};
-    std::vector<std::string> rulesGiven;
-    for (const std::string& r : rules)
-        if (given.count(r)) rulesGiven.push_back(r);
-    if (rulesGiven.size() > 1)
-        throw Error(where(path, given[rulesGiven[1]]->source()) + ": keys " + join(rulesGiven, " and ") +
-                    " both set the grid resolution; give exactly one");
-    if (rulesGiven.empty()) axes.emplace_back("structure.min_dim", std::vector<ConfigValue>{std::int64_t(64)});
+    std::map<std::string, const toml::node*> unread;  // given keys no run has read yet
+    std::set<std::string> seen;                        // canonical runs, to drop duplicates
+    for (const auto& [sweepName, overrides] : sweeps) {
+        // A sweep that sets a grid resolution rule replaces the base's rule.
+        Given given = base;
+        if (std::any_of(rules.begin(), rules.end(), [&](const std::string& r) { return overrides.count(r); }))
+            for (const std::string& r : rules) given.erase(r);
+        for (const auto& [key, node] : overrides) given[key] = node;
+        for (const auto& [key, node] : given) unread.emplace(key, node);
 
-    // Cartesian product, the last axis varying fastest.
-    std::vector<std::string> swept;
-    std::size_t total = 1;
-    for (const auto& [key, values] : axes) {
-        if (values.size() > 1) swept.push_back(key);
-        total *= values.size();
-        if (total > 100000) throw Error(path + ": the sweep expands to over 100000 runs");
-    }
-    for (std::size_t r = 0; r < total; ++r) {
-        RunConfig run;
-        run.index = r;
-        run.sweptKeys = swept;
-        std::size_t rest = r;
-        for (auto it = axes.rbegin(); it != axes.rend(); ++it) {
-            run.values[it->first] = it->second[rest % it->second.size()];
-            rest /= it->second.size();
+        std::vector<std::string> rulesGiven;
+        for (const std::string& r : rules)
+            if (given.count(r)) rulesGiven.push_back(r);
+        if (rulesGiven.size() > 1)
+            throw Error(where(path, given[rulesGiven[1]]->source()) + ": keys " + join(rulesGiven, " and ") +
+                        " both set the grid resolution; give exactly one");
+
+        // Each key: a single value, a default, or a list of values (an axis of the sweep).
+        std::vector<std::pair<std::string, std::vector<ConfigValue>>> axes;
+        for (const KeySpec& spec : schema) {
+            auto it = given.find(spec.name);
+            std::vector<ConfigValue> values;
+            if (it == given.end()) {
+                if (spec.required)
+                    throw Error(path + ": missing required key '" + spec.name + "' (" + spec.help + ")");
+                if (spec.defaultValue) values.push_back(*spec.defaultValue);
+                if (spec.name == "structure.min_dim" && rulesGiven.empty()) values.push_back(std::int64_t(64));
+            } else if (isSweep(spec, *it->second)) {
+                const toml::array& list = *it->second->as_array();
+                if (list.empty())
+                    throw Error(where(path, it->second->source()) + ": key '" + spec.name + "': an empty list sweeps nothing");
+                for (const toml::node& element : list) values.push_back(convert(path, spec, element));
+            } else {
+                values.push_back(convert(path, spec, *it->second));
+            }
+            if (!values.empty()) axes.emplace_back(spec.name, std::move(values));
         }
-        plan.runs.push_back(std::move(run));
+
+        // Cartesian product, the last axis varying fastest; keys a run does not read are dropped.
+        std::vector<std::string> swept;
+        std::size_t total = 1;
+        for (const auto& [key, values] : axes) {
+            if (values.size() > 1) swept.push_back(key);
+            total *= values.size();
+            if (total > 100000) throw Error(path + ": the sweep expands to over 100000 runs");
+        }
+        for (std::size_t r = 0; r < total; ++r) {
+            RunConfig run;
+            run.sweep = sweepName;
+            std::size_t rest = r;
+            for (auto it = axes.rbegin(); it != axes.rend(); ++it) {
+                run.values[it->first] = it->second[rest % it->second.size()];
+                rest /= it->second.size();
+            }
+            for (const KeySpec& spec : schema) {
+                const bool applies = std::all_of(spec.appliesWhen.begin(), spec.appliesWhen.end(), [&](const std::string& c) {
+                    const std::string key = c.substr(0, c.find('='));
+                    return run.has(key) && formatValue(run.values.at(key)) == c.substr(c.find('=') + 1);
+                });
+                if (!applies) run.values.erase(spec.name);
+            }
+            for (const auto& [key, value] : run.values) unread.erase(key);
+            for (const std::string& key : swept)
+                if (run.has(key)) run.sweptKeys.push_back(key);
+            if (!seen.insert(sweepName + "|" + run.canonical()).second) continue;
+            run.index = plan.runs.size();
+            plan.runs.push_back(std::move(run));
+        }
+    }
+    if (!unread.empty()) {
+        const auto& [key, node] = *unread.begin();
+        const KeySpec& spec = *std::find_if(schema.begin(), schema.end(), [&](const KeySpec& k) { return k.name == key; });
+        throw Error(where(path, node->source()) + ": key '" + key + "' is never read: it applies only when " +
+                    join(spec.appliesWhen, " and "));
     }
     return plan;
 }

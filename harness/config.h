@@ -24,6 +24,9 @@ struct KeySpec {
     bool required = false;
     double min = -1e300, max = 1e300;   // numeric range (each component for Int3/Float3)
     std::vector<std::string> choices;   // allowed strings, when a closed set
+    // "section.key=value" conditions under which the key is read (all must hold); a run where
+    // one fails drops the key, and a key given but read by no run is an error.
+    std::vector<std::string> appliesWhen = {};
 };
 
 // Every key rtbench reads. Unknown keys are errors.
@@ -32,6 +35,8 @@ const std::vector<KeySpec>& configSchema();
 // One run: every schema key that has a value (given or default), scalar.
 struct RunConfig {
     std::size_t index = 0;                      // 0-based position in the plan
+    std::string sweep;                          // name of the [[sweep]] it comes from, or ""
+
     std::map<std::string, ConfigValue> values;  // "section.key" -> value
     std::vector<std::string> sweptKeys;         // keys that vary across the plan
 
@@ -59,6 +64,8 @@ struct ExperimentPlan {
 };
 
 // Parses and validates a config file; throws rtbench::Error with file:line: key: message.
+// The sections give base values; each [[sweep]] table (optional `name`, then sections of its own)
+// overrides them, and the plan is the union of the sweeps' cartesian products, without duplicates.
 ExperimentPlan loadExperiment(const std::string& path);
 
 }  // namespace rtbench

@@ -13,7 +13,9 @@
 #include <sstream>
 #include <thread>
 
+#include "accounting.h"
 #include "branching_strategy.h"
+#include "multipass_strategy.h"
 #include "embree_reference.h"
 #include "images.h"
 #include "metrics.h"
@@ -50,7 +52,12 @@ const std::vector<std::string> kMetricColumns = {
     "hits", "hit_miss_agreement", "same_primitive_agreement", "rel_distance_error_mean",
     "rel_distance_error_max", "hit_miss_mismatches", "primitive_mismatches",
     "voxels_per_ray_mean", "voxels_per_ray_max", "triangles_per_ray_mean", "triangles_per_ray_max",
-    "cpu_reference_mismatches", "wall_s"};
+    "traversal_steps_per_ray_mean", "traversal_steps_per_ray_max",
+    "passes_total", "passes_setup", "passes_traverse", "passes_intersect", "passes_write", "passes_lower_bound",
+    "simd_efficiency", "bytes_stencil", "bytes_state", "bytes_voxel", "bytes_triangle_list", "bytes_vertices",
+    "bytes_output", "bytes_total", "bytes_per_ray",
+    "kernel_ms_setup", "kernel_ms_traverse", "kernel_ms_intersect", "kernel_ms_write",
+    "cpu_reference_mismatches", "cpu_counts_match", "wall_s"};
 
 TriangleMesh loadScene(const std::string& source, const std::string& configDir) {
     if (source.rfind("procedural:", 0) == 0) return proceduralScene(source.substr(11));
@@ -84,21 +91,43 @@ glm::vec3 toVec3(const std::array<double, 3>& a) { return glm::vec3(float(a[0]),
 
 std::string num(double v, int significant = 6) { return formatNumber(v, significant); }
 
-// Rays whose GPU record differs in any field from the CPU reference traversal.
-std::uint64_t referenceMismatches(const UniformGrid& grid, const std::vector<gpu::Ray>& rays,
-                                  const std::vector<gpu::HitRecord>& gpuHits) {
-    std::atomic<std::uint64_t> mismatches{0};
-    const gridref::GridTraversal traversal = gridTraversal(grid);
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 4096), [&](const auto& range) {
-        gridref::GridTraversal local = traversal;
-        std::uint64_t count = 0;
-        for (std::size_t i = range.begin(); i != range.end(); ++i) {
-            const gpu::HitRecord h = local.rtTraceGrid(rays[i]);
-            count += std::memcmp(&h, &gpuHits[i], sizeof h) != 0;
-        }
-        mismatches += count;
-    });
+// Rays whose GPU record differs in any field from the CPU reference's.
+std::uint64_t recordMismatches(const std::vector<gpu::HitRecord>& gpuHits, const std::vector<gpu::HitRecord>& cpuHits) {
+    std::uint64_t mismatches = 0;
+    for (std::size_t i = 0; i < gpuHits.size(); ++i)
+        mismatches += std::memcmp(&gpuHits[i], &cpuHits[i], sizeof(gpu::HitRecord)) != 0;
     return mismatches;
+}
+
+MultipassOptions multipassOptions(const RunConfig& run) {
+    MultipassOptions o;
+    o.traverseStepsPerPass = unsigned(run.getInt("strategy.traverse_steps_per_pass"));
+    o.intersectionsPerPass = unsigned(run.getInt("strategy.intersections_per_pass"));
+    o.suppressFinishedReads = run.getBool("strategy.suppress_finished_reads");
+    o.scheduling = run.getString("strategy.scheduling");
+    if (run.has("strategy.oracle_threshold")) o.oracleThreshold = run.getFloat("strategy.oracle_threshold");
+    o.maxPasses = std::uint64_t(run.getInt("strategy.max_passes"));
+    return o;
+}
+
+void writeArchitectureColumns(const ArchitectureMetrics& m, std::uint64_t rays, Row& row) {
+    row["traversal_steps_per_ray_mean"] = num(double(m.stepsTotal) / double(rays));
+    row["traversal_steps_per_ray_max"] = std::to_string(m.stepsMax);
+    row["passes_total"] = std::to_string(m.passes);
+    row["passes_setup"] = std::to_string(m.passesSetup);
+    row["passes_traverse"] = std::to_string(m.passesTraverse);
+    row["passes_intersect"] = std::to_string(m.passesIntersect);
+    row["passes_write"] = std::to_string(m.passesWrite);
+    if (m.passesLowerBound) row["passes_lower_bound"] = std::to_string(m.passesLowerBound);
+    row["simd_efficiency"] = num(m.simdEfficiency);
+    row["bytes_stencil"] = std::to_string(m.bytes.stencil);
+    row["bytes_state"] = std::to_string(m.bytes.state);
+    row["bytes_voxel"] = std::to_string(m.bytes.voxel);
+    row["bytes_triangle_list"] = std::to_string(m.bytes.triangleList);
+    row["bytes_vertices"] = std::to_string(m.bytes.vertices);
+    row["bytes_output"] = std::to_string(m.bytes.output);
+    row["bytes_total"] = std::to_string(m.bytes.total());
+    row["bytes_per_ray"] = num(double(m.bytes.total()) / double(rays));
 }
 
 // What is cached across the runs of one plan (a sweep reuses scenes, devices, Embree scenes).
@@ -157,13 +186,44 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
     row["grid_bytes"] = std::to_string(g.bytes);
     row["grid_build_ms"] = num(g.buildMs, 4);
 
-    // Kernel.
-    BranchingOptions kernelOptions;
-    kernelOptions.workgroupSize = unsigned(run.getInt("strategy.workgroup_size"));
-    kernelOptions.warmups = int(run.getInt("experiment.warmups"));
-    kernelOptions.repetitions = int(run.getInt("experiment.repetitions"));
-    const KernelRun kernel = runBranching(vk, grid, rays, kernelOptions);
-    const TimingStats kt = timingStats(kernel.gpuMs);
+    // Kernel, then the CPU reference on the same rays: hits, per-ray counters and pass/lane
+    // counts must be identical.
+    TimingOptions timing;
+    timing.workgroupSize = unsigned(run.getInt("strategy.workgroup_size"));
+    timing.warmups = int(run.getInt("experiment.warmups"));
+    timing.repetitions = int(run.getInt("experiment.repetitions"));
+    std::vector<gpu::HitRecord> kernelHits;
+    std::vector<double> kernelMs;
+    ArchitectureMetrics metrics;
+    if (run.getString("strategy.type") == "branching") {
+        if (timing.workgroupSize % vk.info().subgroupSize)
+            throw Error("strategy.workgroup_size " + std::to_string(timing.workgroupSize) +
+                        " is not a multiple of the subgroup size " + std::to_string(vk.info().subgroupSize));
+        KernelRun kernel = runBranching(vk, grid, rays, timing);
+        metrics = branchingMetrics(kernel.hits, kernel.activeLanes, kernel.laneSlots);
+        const LaneCounts lanes = branchingLaneCounts(grid, rays, vk.info().subgroupSize);
+        row["cpu_reference_mismatches"] = std::to_string(recordMismatches(kernel.hits, traceGridReference(grid, rays)));
+        row["cpu_counts_match"] = lanes.activeLanes == kernel.activeLanes && lanes.laneSlots == kernel.laneSlots ? "1" : "0";
+        kernelHits = std::move(kernel.hits);
+        kernelMs = std::move(kernel.gpuMs);
+    } else {
+        const MultipassOptions options = multipassOptions(run);
+        MultipassRun kernel = runMultipass(vk, grid, rays, options, timing);
+        metrics = multipassMetrics(kernel.hits, kernel.counts, options);
+        const MultipassResult cpu = simulateMultipass(grid, rays, options);
+        row["cpu_reference_mismatches"] = std::to_string(recordMismatches(kernel.hits, cpu.hits));
+        row["cpu_counts_match"] = cpu.counts == kernel.counts ? "1" : "0";
+        const char* kindColumns[kPassKinds] = {"kernel_ms_setup", "kernel_ms_traverse", "kernel_ms_intersect", "kernel_ms_write"};
+        for (int k = 0; k < kPassKinds; ++k) {
+            std::vector<double> ms;
+            for (const auto& byKind : kernel.gpuMsByKind) ms.push_back(byKind[k]);
+            row[kindColumns[k]] = num(timingStats(ms).median);
+        }
+        kernelHits = std::move(kernel.hits);
+        kernelMs = std::move(kernel.gpuMs);
+    }
+    writeArchitectureColumns(metrics, rays.size(), row);
+    const TimingStats kt = timingStats(kernelMs);
     row["kernel_ms_median"] = num(kt.median);
     row["kernel_ms_min"] = num(kt.min);
     row["kernel_ms_max"] = num(kt.max);
@@ -179,9 +239,9 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
     double embree1Mrays = 0.0;
     for (EmbreeMode mode : {EmbreeMode::Intersect1, EmbreeMode::Intersect16}) {
         const std::string prefix = mode == EmbreeMode::Intersect1 ? "embree1" : "embree16";
-        for (int i = 0; i < kernelOptions.warmups; ++i) embree.trace(rays, mode, scratch);
+        for (int i = 0; i < timing.warmups; ++i) embree.trace(rays, mode, scratch);
         std::vector<double> ms;
-        for (int i = 0; i < kernelOptions.repetitions; ++i)
+        for (int i = 0; i < timing.repetitions; ++i)
             ms.push_back(embree.trace(rays, mode, mode == EmbreeMode::Intersect1 ? embreeHits : scratch));
         const TimingStats et = timingStats(ms);
         const double mrays = double(rays.size()) / (et.median * 1e3);
@@ -196,8 +256,8 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
     row["speed_ratio_vs_embree1"] = num(kernelMrays / embree1Mrays, 4);
 
     // Accuracy and work.
-    const Agreement a = compareHits(kernel.hits, embreeHits);
-    const WorkStats w = workStats(kernel.hits);
+    const Agreement a = compareHits(kernelHits, embreeHits);
+    const WorkStats w = workStats(kernelHits);
     row["hits"] = std::to_string(w.hits);
     row["hit_miss_agreement"] = num(a.hitMissAgreement, 8);
     row["same_primitive_agreement"] = num(a.samePrimitiveAgreement, 8);
@@ -209,11 +269,10 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
     row["voxels_per_ray_max"] = std::to_string(w.voxelsPerRayMax);
     row["triangles_per_ray_mean"] = num(w.trianglesPerRayMean);
     row["triangles_per_ray_max"] = std::to_string(w.trianglesPerRayMax);
-    row["cpu_reference_mismatches"] = std::to_string(referenceMismatches(grid, rays, kernel.hits));
 
     // Images, or the per-ray records to make them later.
     const std::string prefix = (fs::path(folder) / ("run-" + row["run"])).string();
-    const HitImage image = makeHitImage(width, height, rays, grid.triangles, kernel.hits, embreeHits);
+    const HitImage image = makeHitImage(width, height, rays, grid.triangles, kernelHits, embreeHits);
     const bool wantImages = run.getBool("output.images");
     if (run.getBool("output.hit_records") || (wantImages && !imagesSupported())) writeHitRecords(prefix + ".hits", image);
     if (wantImages && imagesSupported()) writeImages(prefix, image);

@@ -142,6 +142,21 @@ DeviceInfo describe(VkPhysicalDevice device) {
     info.maxPushConstantsSize = limits.maxPushConstantsSize;
     info.timestampPeriodNs = limits.timestampPeriod;
     info.timestampsSupported = limits.timestampComputeAndGraphics == VK_TRUE;
+    VkPhysicalDeviceVulkan12Features v12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+    VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    features.pNext = &v12;
+    vkGetPhysicalDeviceFeatures2(device, &features);
+    auto need = [&](bool supported, const char* name) {
+        if (!supported) info.missingFeatures += (info.missingFeatures.empty() ? "" : ", ") + std::string(name);
+    };
+    need(v12.storageBuffer8BitAccess, "storageBuffer8BitAccess");
+    need(v12.shaderInt8, "shaderInt8");
+    need(features.features.shaderInt64, "shaderInt64");
+    need(v12.shaderBufferInt64Atomics, "shaderBufferInt64Atomics");
+    const VkSubgroupFeatureFlags ops = VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT |
+                                       VK_SUBGROUP_FEATURE_BALLOT_BIT;
+    need((subgroup.supportedOperations & ops) == ops && (subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT),
+         "subgroup basic/arithmetic/ballot in compute");
     VkPhysicalDeviceMemoryProperties memory;
     vkGetPhysicalDeviceMemoryProperties(device, &memory);
     for (std::uint32_t h = 0; h < memory.memoryHeapCount; ++h)
@@ -213,7 +228,17 @@ VulkanContext::VulkanContext(const std::string& deviceChoice, bool validation) {
     queueInfo.queueFamilyIndex = queueFamily_;
     queueInfo.queueCount = 1;
     queueInfo.pQueuePriorities = &priority;
+    if (!info_.missingFeatures.empty())
+        throw Error("Vulkan: " + info_.name + " lacks features the kernels need: " + info_.missingFeatures);
+    VkPhysicalDeviceVulkan12Features v12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+    v12.storageBuffer8BitAccess = VK_TRUE;
+    v12.shaderInt8 = VK_TRUE;
+    v12.shaderBufferInt64Atomics = VK_TRUE;
+    VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    features.pNext = &v12;
+    features.features.shaderInt64 = VK_TRUE;
     VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+    deviceInfo.pNext = &features;
     deviceInfo.queueCreateInfoCount = 1;
     deviceInfo.pQueueCreateInfos = &queueInfo;
     VK_CHECK(vkCreateDevice(physical_, &deviceInfo, nullptr, &device_));
@@ -299,6 +324,11 @@ Buffer VulkanContext::createStorageBuffer(VkDeviceSize size, const std::string& 
                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                             VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                         VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0);
+}
+
+Buffer VulkanContext::createHostStorageBuffer(VkDeviceSize size) {
+    return createBuffer(size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+                        VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT, 0);
 }
 
 void VulkanContext::destroy(Buffer& b) {
@@ -439,9 +469,8 @@ void VulkanContext::destroy(ComputePipeline& p) {
     p = ComputePipeline{};
 }
 
-double VulkanContext::dispatch(const ComputePipeline& p, const std::vector<const Buffer*>& buffers,
-                               const void* pushConstants, std::uint64_t invocations) {
-    if (buffers.size() != p.bindingCount) throw Error("Vulkan: dispatch given the wrong number of buffers");
+VkDescriptorSet VulkanContext::createDescriptorSet(const ComputePipeline& p, const std::vector<const Buffer*>& buffers) {
+    if (buffers.size() != p.bindingCount) throw Error("Vulkan: descriptor set given the wrong number of buffers");
     VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
     alloc.descriptorPool = descriptorPool_;
     alloc.descriptorSetCount = 1;
@@ -460,13 +489,33 @@ double VulkanContext::dispatch(const ComputePipeline& p, const std::vector<const
         writes[i].pBufferInfo = &infos[i];
     }
     vkUpdateDescriptorSets(device_, static_cast<std::uint32_t>(writes.size()), writes.data(), 0, nullptr);
+    return set;
+}
 
+void VulkanContext::destroy(VkDescriptorSet set) { VK_CHECK(vkFreeDescriptorSets(device_, descriptorPool_, 1, &set)); }
+
+double VulkanContext::dispatch(const ComputePipeline& p, const std::vector<const Buffer*>& buffers,
+                               const void* pushConstants, std::uint64_t invocations) {
+    VkDescriptorSet set = createDescriptorSet(p, buffers);
+    const double ms = dispatch(p, set, pushConstants, invocations);
+    destroy(set);
+    return ms;
+}
+
+double VulkanContext::dispatch(const ComputePipeline& p, VkDescriptorSet set, const void* pushConstants,
+                               std::uint64_t invocations) {
     // Workgroups: a 2D grid of groups when x alone would exceed maxComputeWorkGroupCount[0].
     const std::uint64_t groups = (invocations + p.workgroupSize - 1) / p.workgroupSize;
     const std::uint64_t groupsX = std::min<std::uint64_t>(groups, info_.maxWorkGroupCountX);
     const std::uint64_t groupsY = (groups + groupsX - 1) / groupsX;
 
     VkCommandBuffer cmd = beginOneShot();
+    // Orders earlier dispatches' buffer writes (the previous pass) before this kernel's reads.
+    VkMemoryBarrier previous{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    previous.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+    previous.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &previous, 0, nullptr, 0, nullptr);
     if (queryPool_) {
         vkCmdResetQueryPool(cmd, queryPool_, 0, 2);
         vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queryPool_, 0);
@@ -485,7 +534,6 @@ double VulkanContext::dispatch(const ComputePipeline& p, const std::vector<const
                          VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0,
                          nullptr, 0, nullptr);
     submitAndWait(cmd);
-    VK_CHECK(vkFreeDescriptorSets(device_, descriptorPool_, 1, &set));
 
     if (!queryPool_) return -1.0;
     std::uint64_t stamps[2];

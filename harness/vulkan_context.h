@@ -22,6 +22,9 @@ struct DeviceInfo {
     std::uint64_t deviceLocalBytes = 0;  // largest DEVICE_LOCAL heap
     double timestampPeriodNs = 0.0;
     bool timestampsSupported = false;
+    // Features the kernels need (kernels/bindings.glsl): one-byte stencil, 64-bit counters,
+    // subgroup arithmetic and ballots.
+    std::string missingFeatures;  // empty when all are supported
 };
 
 std::string vkResultName(VkResult result);
@@ -64,6 +67,8 @@ public:
     // A storage buffer in DEVICE_LOCAL memory (uploaded through a staging buffer when that
     // memory is not host-visible). Throws when size exceeds maxStorageBufferRange.
     Buffer createStorageBuffer(VkDeviceSize size, const std::string& what);
+    // A small buffer in HOST_VISIBLE | HOST_COHERENT memory (per-pass counters the host reads).
+    Buffer createHostStorageBuffer(VkDeviceSize size);
     void upload(Buffer& buffer, const void* data, VkDeviceSize size);
     void download(const Buffer& buffer, void* data, VkDeviceSize size);
     void destroy(Buffer& buffer);
@@ -74,9 +79,15 @@ public:
                                           const std::vector<SpecializationConstant>& constants);
     void destroy(ComputePipeline& pipeline);
 
-    // Binds the buffers to slots 0..n-1, pushes the constants, dispatches enough workgroups for
-    // `invocations` (2D when needed), waits, and returns the GPU time in ms from timestamps
-    // (or -1 where timestamps are unsupported).
+    // A descriptor set binding the buffers to slots 0..n-1 (for pipelines of that layout).
+    VkDescriptorSet createDescriptorSet(const ComputePipeline& pipeline, const std::vector<const Buffer*>& buffers);
+    void destroy(VkDescriptorSet set);
+
+    // Pushes the constants, dispatches enough workgroups for `invocations` (2D when needed),
+    // waits, and returns the GPU time in ms from timestamps (or -1 where unsupported).
+    double dispatch(const ComputePipeline& pipeline, VkDescriptorSet set, const void* pushConstants,
+                    std::uint64_t invocations);
+    // The same with a descriptor set made for this one dispatch.
     double dispatch(const ComputePipeline& pipeline, const std::vector<const Buffer*>& buffers,
                     const void* pushConstants, std::uint64_t invocations);
 

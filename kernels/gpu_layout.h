@@ -11,8 +11,10 @@ namespace rtbench::gpu {
 using vec4 = glm::vec4;
 using uvec4 = glm::uvec4;
 using uint = std::uint32_t;
+using uint64 = std::uint64_t;
 #define RTBENCH_CONST constexpr uint
 #else
+#define uint64 uint64_t
 #define RTBENCH_CONST const uint
 #endif
 
@@ -22,11 +24,37 @@ RTBENCH_CONST kBindingCellOffsets = 1;  // uint[cellCount + 1]: Purcell Fig. 4 v
 RTBENCH_CONST kBindingTriangleList = 2; // uint[references]: triangle ids, grouped by voxel
 RTBENCH_CONST kBindingVertices = 3;     // Triangle[triangleCount]
 RTBENCH_CONST kBindingHits = 4;         // HitRecord[rayCount]
-RTBENCH_CONST kBindingCount = 5;
+RTBENCH_CONST kBindingStencil = 5;      // uint8_t[rayCount]: multipass ray state (kState*)
+RTBENCH_CONST kBindingTraversal = 6;    // RayTraversalState[rayCount]: multipass DDA state
+RTBENCH_CONST kBindingHitState = 7;     // RayHitState[rayCount]: multipass best hit so far
+RTBENCH_CONST kBindingRayCounters = 8;  // RayCounters[rayCount]: per-ray work (instrumentation)
+RTBENCH_CONST kBindingPassCounters = 9; // PassCounters: oracle query + event counts of a pass
+RTBENCH_CONST kBindingCount = 10;       // every kernel uses the same set layout
 
 // ---- specialization-constant ids ----
-RTBENCH_CONST kSpecWorkgroupSize = 0;  // local_size_x of every kernel (default 64)
-RTBENCH_CONST kSpecInstrument = 1;     // 1: write per-ray work counters; 0: timing runs
+RTBENCH_CONST kSpecWorkgroupSize = 0;    // local_size_x of every kernel (default 64)
+RTBENCH_CONST kSpecInstrument = 1;       // 1: count work and bytes; 0: timing runs
+RTBENCH_CONST kSpecTraverseSteps = 2;    // multipass: DDA steps per traverse pass (K)
+RTBENCH_CONST kSpecIntersections = 3;    // multipass: triangle tests per intersect pass (M)
+RTBENCH_CONST kSpecSuppress = 4;         // multipass: 1 = rays done mid-pass skip the rest's reads
+
+// ---- multipass ray states: the one-byte "stencil" (Purcell et al. 2002 §3.2) ----
+RTBENCH_CONST kStateTraversing = 0;  // active: step through the grid
+RTBENCH_CONST kStateWaiting = 1;     // active: triangles of the current voxel to intersect
+RTBENCH_CONST kStateDoneHit = 2;     // done: nearest hit found
+RTBENCH_CONST kStateLeftGrid = 3;    // done: left the grid without a hit
+RTBENCH_CONST kStateMissedBox = 4;   // done: never entered the grid box
+
+// ---- PassCounters.counts indices (64-bit, summed over a dispatch) ----
+RTBENCH_CONST kCountTraversing = 0;     // rays traversing after the pass (oracle; always on)
+RTBENCH_CONST kCountWaiting = 1;        // rays waiting after the pass (oracle; always on)
+RTBENCH_CONST kCountUsefulRays = 2;     // rays whose state the kernel serves (did useful work)
+RTBENCH_CONST kCountStencilWrites = 3;  // ray-state bytes written (state changed)
+RTBENCH_CONST kCountOffsetReads = 4;    // cell offsets read (4 bytes each; a voxel entered reads two)
+RTBENCH_CONST kCountTriangleReads = 5;  // triangle-list entries read, each with its vertices
+RTBENCH_CONST kCountActiveLanes = 6;    // branching: sum of active lanes over subgroup ballots
+RTBENCH_CONST kCountLaneSlots = 7;      // branching: sum of subgroup size over subgroup ballots
+RTBENCH_CONST kCountSlots = 8;
 
 // A ray as generated once on the host and traced by every method (Embree included).
 struct Ray {
@@ -49,8 +77,8 @@ struct HitRecord {
     float v;              // byte 12: barycentric of v2
     uint voxelsVisited;   // byte 16: DDA steps taken (voxels entered), 0 if the box is missed
     uint trianglesTested; // byte 20: ray-triangle tests executed
-    uint pad0;            // byte 24
-    uint pad1;            // byte 28
+    uint traversalSteps;  // byte 24: DDA step attempts (voxelsVisited - 1, +1 if it left the grid)
+    uint pad;             // byte 28
 };
 
 // Uniform grid and stream parameters, as push constants (80 bytes, within the 128-byte minimum).
@@ -62,6 +90,32 @@ struct GridParams {
     uvec4 resolution;  // byte 64: xyz cells per axis, w = ray count
 };
 
+// Multipass per-ray traversal state, saved at the end of a pass and restored at the next.
+struct RayTraversalState {
+    vec4 tMaxAxisLeave;  // byte 0: xyz DDA tMax per axis, w = distance where the ray leaves the grid
+    uvec4 cellList;      // byte 16: xyz current voxel, w = position in its triangle list
+};
+
+// Multipass best hit so far (Purcell's "hit" texture).
+struct RayHitState {
+    float t;         // byte 0: ray tMax until a hit
+    uint primitive;  // byte 4: kNoHit until a hit
+    float u;         // byte 8
+    float v;         // byte 12
+};
+
+// Per-ray work, kept only by instrumented kernels (not charged as bandwidth).
+struct RayCounters {
+    uint voxelsVisited;    // byte 0
+    uint trianglesTested;  // byte 4
+    uint traversalSteps;   // byte 8: DDA step attempts (each traverse iteration that did work)
+    uint pad;              // byte 12
+};
+
+struct PassCounters {
+    uint64 counts[kCountSlots];  // byte 0 + 8 * kCount*
+};
+
 RTBENCH_CONST kNoHit = 0xFFFFFFFFu;
 
 #ifdef __cplusplus
@@ -70,9 +124,14 @@ static_assert(sizeof(Ray) == 32);
 static_assert(sizeof(Triangle) == 48);
 static_assert(sizeof(HitRecord) == 32);
 static_assert(sizeof(GridParams) == 80);
+static_assert(sizeof(RayTraversalState) == 32);
+static_assert(sizeof(RayHitState) == 16);
+static_assert(sizeof(RayCounters) == 16);
+static_assert(sizeof(PassCounters) == 64);
 }  // namespace rtbench::gpu
 #else
 const float kNoHitT = 3.402823466e38;
+#undef uint64
 #endif
 #undef RTBENCH_CONST
 

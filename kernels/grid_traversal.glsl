@@ -11,6 +11,15 @@
 // current voxel does not end traversal (a nearer hit may lie in a later voxel). Such a hit is kept
 // as the best candidate, and traversal ends in the first voxel whose exit lies beyond it.
 
+// Hooks for instrumentation, called at each voxel-loop and triangle-loop iteration of
+// rtTraceGrid (the branching kernel counts subgroup lanes there; the CPU reference logs voxels).
+#ifndef RT_ON_VOXEL
+#define RT_ON_VOXEL(cell)
+#endif
+#ifndef RT_ON_TRIANGLE
+#define RT_ON_TRIANGLE()
+#endif
+
 float rtDot(vec3 a, vec3 b) {
     precise float r = a.x * b.x + a.y * b.y + a.z * b.z;
     return r;
@@ -82,10 +91,29 @@ struct RtDda {
     float tLeave;
 };
 
+// Step direction and boundary spacing per axis: derived from the direction alone, so multipass
+// kernels recompute them each pass instead of saving them.
+void rtDdaDirection(vec3 d, vec3 invD, RT_INOUT(RtDda) s) {
+    vec3 cellSize = vec3(params.cellSize);
+    for (int a = 0; a < 3; ++a) {
+        if (d[a] > 0.0f) {
+            s.stepDir[a] = 1;
+            s.tDelta[a] = cellSize[a] * invD[a];
+        } else if (d[a] < 0.0f) {
+            s.stepDir[a] = -1;
+            s.tDelta[a] = -cellSize[a] * invD[a];
+        } else {
+            s.stepDir[a] = 0;
+            s.tDelta[a] = kNoHitT;
+        }
+    }
+}
+
 // Sets up the walk from the clipped entry distance tEnter.
 RtDda rtDdaSetup(vec3 o, vec3 d, vec3 invD, float tEnter, float tLeave) {
     RtDda s;
     s.tLeave = tLeave;
+    rtDdaDirection(d, invD, s);
     vec3 boxMin = vec3(params.boundsMin);
     vec3 cellSize = vec3(params.cellSize);
     vec3 invCellSize = vec3(params.invCellSize);
@@ -96,19 +124,13 @@ RtDda rtDdaSetup(vec3 o, vec3 d, vec3 invD, float tEnter, float tLeave) {
         int c = clamp(int(floor(local)), 0, last);
         s.cell[a] = c;
         if (d[a] > 0.0f) {
-            s.stepDir[a] = 1;
             precise float boundary = boxMin[a] + float(c + 1) * cellSize[a];
             s.tMaxAxis[a] = (boundary - o[a]) * invD[a];
-            s.tDelta[a] = cellSize[a] * invD[a];
         } else if (d[a] < 0.0f) {
-            s.stepDir[a] = -1;
             precise float boundary = boxMin[a] + float(c) * cellSize[a];
             s.tMaxAxis[a] = (boundary - o[a]) * invD[a];
-            s.tDelta[a] = -cellSize[a] * invD[a];
         } else {
-            s.stepDir[a] = 0;
             s.tMaxAxis[a] = kNoHitT;
-            s.tDelta[a] = kNoHitT;
         }
     }
     return s;
@@ -145,8 +167,8 @@ HitRecord rtTraceGrid(Ray ray) {
     h.v = 0.0f;
     h.voxelsVisited = 0u;
     h.trianglesTested = 0u;
-    h.pad0 = 0u;
-    h.pad1 = 0u;
+    h.traversalSteps = 0u;
+    h.pad = 0u;
     vec3 o = vec3(ray.originTMin);
     vec3 d = vec3(ray.directionTMax);
     vec3 invD = rtInverseDirection(d);
@@ -161,11 +183,13 @@ HitRecord rtTraceGrid(Ray ray) {
     float vBest = 0.0f;
     uint primBest = kNoHit;
     while (true) {
+        RT_ON_VOXEL(s.cell);
         h.voxelsVisited += 1u;
         uint cell = rtCellIndex(s.cell);
         uint first = cellOffsets[cell];
         uint end = cellOffsets[cell + 1u];
         for (uint i = first; i < end; ++i) {
+            RT_ON_TRIANGLE();
             uint tri = triangleList[i];
             h.trianglesTested += 1u;
             if (rtIntersectTriangle(o, d, ray.originTMin.w, vec3(triangles[tri].v0),
@@ -174,6 +198,7 @@ HitRecord rtTraceGrid(Ray ray) {
                 primBest = tri;
         }
         if (primBest != kNoHit && tBest <= rtDdaVoxelExit(s)) break;
+        h.traversalSteps += 1u;
         if (!rtDdaStep(s)) break;
     }
     if (primBest != kNoHit) {

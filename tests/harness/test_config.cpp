@@ -48,7 +48,7 @@ TEST_F(Config, UnknownKeyNamesFileLineAndAllowedKeys) {
 TEST_F(Config, UnknownSection) {
     EXPECT_THAT(errorOf(kMinimal + "\n[strategies]\ntype = \"x\"\n"),
                 HasSubstr(path_ + ":6: unknown section [strategies] (allowed: experiment, scene, camera, structure, "
-                                  "strategy, baseline, device, output)"));
+                                  "strategy, baseline, device, output, sweep)"));
 }
 
 TEST_F(Config, WrongType) {
@@ -67,7 +67,7 @@ TEST_F(Config, OutOfRange) {
 
 TEST_F(Config, ValueNotInTheAllowedSet) {
     EXPECT_EQ(errorOf(kMinimal + "[strategy]\ntype = \"wavefront\"\n"),
-              path_ + ":6: key 'strategy.type': 'wavefront' is not allowed (allowed: branching)");
+              path_ + ":6: key 'strategy.type': 'wavefront' is not allowed (allowed: branching, multipass)");
 }
 
 TEST_F(Config, MissingRequiredKey) {
@@ -108,6 +108,66 @@ TEST_F(Config, ListValuedKeysExpandToTheCartesianProduct) {
 TEST_F(Config, EmptyListIsAnError) {
     EXPECT_EQ(errorOf(kMinimal + "[structure]\nmin_dim = []\n"),
               path_ + ":6: key 'structure.min_dim': an empty list sweeps nothing");
+}
+
+}  // namespace
+}  // namespace rtbench
+
+namespace rtbench {
+namespace {
+
+TEST_F(Config, AKeyNoRunReadsIsAnError) {
+    EXPECT_EQ(errorOf(kMinimal + "[strategy]\ntype = \"branching\"\ntraverse_steps_per_pass = 4\n"),
+              path_ + ":7: key 'strategy.traverse_steps_per_pass' is never read: it applies only when "
+                      "strategy.type=multipass");
+    EXPECT_EQ(errorOf(kMinimal + "[strategy]\ntype = \"multipass\"\nscheduling = \"naive\"\noracle_threshold = 0.5\n"),
+              path_ + ":8: key 'strategy.oracle_threshold' is never read: it applies only when "
+                      "strategy.type=multipass and strategy.scheduling=oracle");
+}
+
+TEST_F(Config, KeysForOneStrategyAreDroppedFromTheOthersRunsWithoutDuplicates) {
+    const ExperimentPlan plan = loadExperiment(
+        write(kMinimal + "[strategy]\ntype = [\"branching\", \"multipass\"]\ntraverse_steps_per_pass = [1, 4]\n"));
+    ASSERT_EQ(plan.runs.size(), 3u);  // branching once, multipass with K = 1 and 4
+    EXPECT_EQ(plan.runs[0].getString("strategy.type"), "branching");
+    EXPECT_FALSE(plan.runs[0].has("strategy.traverse_steps_per_pass"));
+    EXPECT_EQ(plan.runs[0].label(), "strategy.type=branching");
+    EXPECT_EQ(plan.runs[2].getInt("strategy.traverse_steps_per_pass"), 4);
+    EXPECT_EQ(plan.runs[2].index, 2u);
+}
+
+TEST_F(Config, SweepsAreTheUnionOfTheirProductsOverTheBaseValues) {
+    const ExperimentPlan plan = loadExperiment(write(kMinimal + R"(
+[structure]
+min_dim = 16
+[strategy]
+type = "multipass"
+
+[[sweep]]
+name = "oracle"
+strategy.oracle_threshold = [0.0, 1.0]
+
+[[sweep]]
+name = "grid"
+structure.resolution = [[4, 4, 4], [8, 8, 8]]
+strategy.type = ["branching", "multipass"]
+)"));
+    ASSERT_EQ(plan.runs.size(), 6u);
+    EXPECT_EQ(plan.runs[0].sweep, "oracle");
+    EXPECT_EQ(plan.runs[0].getInt("structure.min_dim"), 16);
+    EXPECT_EQ(plan.runs[1].getFloat("strategy.oracle_threshold"), 1.0);
+    EXPECT_EQ(plan.runs[1].label(), "oracle:strategy.oracle_threshold=1");
+    EXPECT_EQ(plan.runs[2].sweep, "grid");
+    EXPECT_FALSE(plan.runs[2].has("structure.min_dim"));  // the sweep's rule replaces the base's
+    EXPECT_EQ(plan.runs[5].getVec3("structure.resolution"), (std::array<double, 3>{8, 8, 8}));
+    EXPECT_EQ(plan.runs[5].getString("strategy.type"), "multipass");
+}
+
+TEST_F(Config, UnknownKeyInASweep) {
+    EXPECT_EQ(errorOf(kMinimal + "[[sweep]]\nstrategy.kk = [1, 2]\n"),
+              path_ + ":6: unknown key 'strategy.kk' (allowed in [strategy]: type, workgroup_size, "
+                      "traverse_steps_per_pass, intersections_per_pass, suppress_finished_reads, scheduling, "
+                      "oracle_threshold, max_passes)");
 }
 
 }  // namespace

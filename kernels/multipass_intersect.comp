@@ -1,0 +1,18 @@
+// Multipass intersect pass: rays in state waiting test up to intersectionsPerPass triangles.
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "multipass_common.glsl"
+
+void main() {
+    uint rayIndex = rtRayIndex();
+    if (rayIndex >= params.resolution.w) return;
+    if (uint(stencil[rayIndex]) != kStateWaiting) return;  // the stencil test
+    MpEvents e = mpNoEvents();
+    RayTraversalState ts = traversalStates[rayIndex];
+    RayHitState hit = hitStates[rayIndex];
+    uint state = mpIntersect(rays[rayIndex], ts, hit, e);
+    traversalStates[rayIndex] = ts;
+    hitStates[rayIndex] = hit;
+    if (state != kStateWaiting) stencil[rayIndex] = uint8_t(state);
+    mpReport(rayIndex, kStateWaiting, state, e);
+}

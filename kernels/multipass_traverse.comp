@@ -1,0 +1,16 @@
+// Multipass traverse pass: rays in state traversing take up to traverseStepsPerPass DDA steps.
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "multipass_common.glsl"
+
+void main() {
+    uint rayIndex = rtRayIndex();
+    if (rayIndex >= params.resolution.w) return;
+    if (uint(stencil[rayIndex]) != kStateTraversing) return;  // the stencil test
+    MpEvents e = mpNoEvents();
+    RayTraversalState ts = traversalStates[rayIndex];
+    uint state = mpTraverse(rays[rayIndex], ts, hitStates[rayIndex], e);
+    traversalStates[rayIndex] = ts;
+    if (state != kStateTraversing) stencil[rayIndex] = uint8_t(state);
+    mpReport(rayIndex, kStateTraversing, state, e);
+}

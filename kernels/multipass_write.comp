@@ -1,0 +1,12 @@
+// Multipass final pass: every ray's hit record, in the branching kernel's format.
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#include "multipass_common.glsl"
+
+void main() {
+    uint rayIndex = rtRayIndex();
+    if (rayIndex >= params.resolution.w) return;
+    RayCounters c = RayCounters(0u, 0u, 0u, 0u);
+    if (instrument != 0u) c = rayCounters[rayIndex];
+    hits[rayIndex] = mpHitRecord(hitStates[rayIndex], c);
+}

@@ -1,0 +1,43 @@
+// Which pass the multipass ray caster runs next (Purcell et al. 2002 §3.2; Christen 2005 §5.6):
+// decided on the host from the number of rays in each active state after the last pass (the
+// occlusion query of the theses), shared by the GPU strategy and the CPU simulator.
+#pragma once
+#include <cstdint>
+#include <string>
+
+namespace rtbench {
+
+enum class PassKind { Setup = 0, Traverse = 1, Intersect = 2, Write = 3 };
+constexpr int kPassKinds = 4;
+const char* passKindName(PassKind kind);
+
+struct MultipassOptions {
+    unsigned traverseStepsPerPass = 1;  // K: DDA steps per traverse pass (Purcell: 4)
+    unsigned intersectionsPerPass = 1;  // M: triangle tests per intersect pass (Purcell: 2)
+    bool suppressFinishedReads = false; // rays done mid-pass skip the unrolled rest's reads
+    // "oracle": intersect when waiting / active >= oracleThreshold, else traverse (0: as soon as
+    // any ray waits; 0.2: Purcell's choice). "naive": traverse until no ray traverses, then
+    // intersect until no ray waits, and again.
+    std::string scheduling = "oracle";
+    double oracleThreshold = 0.2;
+    std::uint64_t maxPasses = 0;  // 0: automatic cap from the grid (multipassPassCap)
+};
+
+class PassScheduler {
+public:
+    explicit PassScheduler(const MultipassOptions& options) : options_(options) {}
+    // The next pass after one that left `traversing` and `waiting` rays active; Write when none.
+    PassKind next(std::uint64_t traversing, std::uint64_t waiting);
+
+private:
+    MultipassOptions options_;
+    PassKind naivePhase_ = PassKind::Traverse;
+};
+
+// A cap on passes from the grid: 4 x (ceil(Vmax / K) + ceil(Vmax * Lmax / M)) + 16, where
+// Vmax = resX + resY + resZ bounds the voxels one ray visits and Lmax the triangles in a voxel.
+// Scheduling makes progress every pass, so only a fault can reach it; it turns that into an error.
+std::uint64_t multipassPassCap(const unsigned resolution[3], std::uint32_t maxReferencesInCell,
+                               const MultipassOptions& options);
+
+}  // namespace rtbench
