@@ -51,7 +51,7 @@ const std::vector<KeySpec>& configSchema() {
         add({"scene.source", ValueType::String, "mesh file (.off/.obj/.ply/.stl, relative to the config), cgal:NAME, or procedural:christen_a|christen_b", {}, true});
         add({"camera.width", ValueType::Int, "image width in pixels", std::int64_t(1024), false, 1, 16384});
         add({"camera.height", ValueType::Int, "image height in pixels", std::int64_t(1024), false, 1, 16384});
-        add({"camera.position", ValueType::Float3, "eye position (default: fitted to the scene bounds)", {}});
+        add({"camera.position", ValueType::Float3, "eye position (default: the procedural scene's own viewpoint, else fitted to the scene bounds)", {}});
         add({"camera.look_at", ValueType::Float3, "point looked at (default: the scene box centre)", {}});
         add({"camera.up", ValueType::Float3, "up vector", std::array<double, 3>{0, 1, 0}});
         add({"camera.fov_deg", ValueType::Float, "vertical field of view in degrees", 45.0, false, 1, 179});

@@ -114,11 +114,13 @@ void writeArchitectureColumns(const ArchitectureMetrics& m, std::uint64_t rays, 
     row["traversal_steps_per_ray_mean"] = num(double(m.stepsTotal) / double(rays));
     row["traversal_steps_per_ray_max"] = std::to_string(m.stepsMax);
     row["passes_total"] = std::to_string(m.passes);
-    row["passes_setup"] = std::to_string(m.passesSetup);
-    row["passes_traverse"] = std::to_string(m.passesTraverse);
-    row["passes_intersect"] = std::to_string(m.passesIntersect);
-    row["passes_write"] = std::to_string(m.passesWrite);
-    if (m.passesLowerBound) row["passes_lower_bound"] = std::to_string(m.passesLowerBound);
+    if (m.passesSetup) {  // multipass only
+        row["passes_setup"] = std::to_string(m.passesSetup);
+        row["passes_traverse"] = std::to_string(m.passesTraverse);
+        row["passes_intersect"] = std::to_string(m.passesIntersect);
+        row["passes_write"] = std::to_string(m.passesWrite);
+        row["passes_lower_bound"] = std::to_string(m.passesLowerBound);
+    }
     row["simd_efficiency"] = num(m.simdEfficiency);
     row["bytes_stencil"] = std::to_string(m.bytes.stencil);
     row["bytes_state"] = std::to_string(m.bytes.state);
@@ -156,6 +158,8 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
     row["scene_triangles"] = std::to_string(mesh.triangles.size());
     row["scene_degenerate"] = std::to_string(mesh.degenerateCount());
     PinholeCamera camera = fitCamera(mesh.bounds(), float(run.getFloat("camera.fov_deg")));
+    if (source.rfind("procedural:", 0) == 0 && !run.has("camera.position") && !run.has("camera.look_at"))
+        camera = proceduralCamera(source.substr(11), camera.verticalFovDegrees).value_or(camera);
     if (run.has("camera.look_at")) camera.lookAt = toVec3(run.getVec3("camera.look_at"));
     if (run.has("camera.position")) camera.position = toVec3(run.getVec3("camera.position"));
     camera.up = toVec3(run.getVec3("camera.up"));

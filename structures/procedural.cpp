@@ -51,6 +51,15 @@ TriangleMesh christenSceneB(std::uint32_t seed) {
     return mesh;
 }
 
+std::optional<PinholeCamera> proceduralCamera(const std::string& name, float verticalFovDegrees) {
+    if (name != "christen_b") return std::nullopt;
+    PinholeCamera camera;
+    camera.position = {0.0f, 3.0f, 9.5f};  // by the front wall, looking across the room
+    camera.lookAt = {0.0f, 2.5f, 0.0f};
+    camera.verticalFovDegrees = verticalFovDegrees;
+    return camera;
+}
+
 TriangleMesh proceduralScene(const std::string& name) {
     if (name == "christen_a") return christenSceneA();
     if (name == "christen_b") return christenSceneB();

@@ -3,6 +3,9 @@
 #include <cstdint>
 #include <string>
 
+#include <optional>
+
+#include "camera.h"
 #include "mesh.h"
 
 namespace rtbench {
@@ -16,6 +19,10 @@ TriangleMesh christenSceneB(std::uint32_t seed = 2005);
 
 // "christen_a" | "christen_b"; throws rtbench::Error listing the names otherwise.
 TriangleMesh proceduralScene(const std::string& name);
+
+// The scene's own viewpoint, where fitting to the bounds would not do: scene B is seen from
+// inside its room (from outside, every ray would stop at a wall in its first voxel).
+std::optional<PinholeCamera> proceduralCamera(const std::string& name, float verticalFovDegrees);
 
 // Appends an axis-aligned box (12 triangles, outward-facing unless inward).
 void appendBox(TriangleMesh& mesh, glm::vec3 lo, glm::vec3 hi, bool inward = false);
