@@ -57,7 +57,7 @@ const std::vector<std::string> kMetricColumns = {
     "simd_efficiency", "bytes_stencil", "bytes_state", "bytes_voxel", "bytes_triangle_list", "bytes_vertices",
     "bytes_output", "bytes_total", "bytes_per_ray",
     "kernel_ms_setup", "kernel_ms_traverse", "kernel_ms_intersect", "kernel_ms_write",
-    "cpu_reference_mismatches", "cpu_counts_match", "wall_s"};
+    "cpu_reference_mismatches", "cpu_counts_match", "branching_mismatches", "wall_s"};
 
 TriangleMesh loadScene(const std::string& source, const std::string& configDir) {
     if (source.rfind("procedural:", 0) == 0) return proceduralScene(source.substr(11));
@@ -217,6 +217,8 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
         const MultipassResult cpu = simulateMultipass(grid, rays, options);
         row["cpu_reference_mismatches"] = std::to_string(recordMismatches(kernel.hits, cpu.hits));
         row["cpu_counts_match"] = cpu.counts == kernel.counts ? "1" : "0";
+        // The two architectures must produce identical hit records (and work counters).
+        row["branching_mismatches"] = std::to_string(recordMismatches(kernel.hits, traceGridReference(grid, rays)));
         const char* kindColumns[kPassKinds] = {"kernel_ms_setup", "kernel_ms_traverse", "kernel_ms_intersect", "kernel_ms_write"};
         for (int k = 0; k < kPassKinds; ++k) {
             std::vector<double> ms;
