@@ -19,42 +19,24 @@ struct Pipelines {
     }
 };
 
-// One run of the whole pass loop; fills counts from the pass counters when instrumented.
+// One run of the whole pass loop; the counts beyond the oracle's are filled when instrumented.
 MultipassCounts runPasses(VulkanContext& vk, GpuBuffers& buffers, Pipelines& pipelines, const MultipassOptions& options,
                           std::uint64_t cap, std::array<double, kPassKinds>& msByKind) {
-    MultipassCounts counts;
     msByKind.fill(0.0);
-    auto pass = [&](PassKind kind) {
+    return runPassLoop(options, cap, [&](PassKind kind) {
         buffers.resetPassCounters();
         const ComputePipeline& p = pipelines.byKind[static_cast<int>(kind)];
         msByKind[static_cast<int>(kind)] += vk.dispatch(p, buffers.descriptorSet(p), &buffers.params(), buffers.rayCount());
         const gpu::PassCounters c = buffers.readPassCounters();
-        ++counts.passes[static_cast<int>(kind)];
-        counts.sequence.push_back(kind);
-        if (kind == PassKind::Traverse) counts.usefulTraverse += c.counts[gpu::kCountUsefulRays];
-        if (kind == PassKind::Intersect) counts.usefulIntersect += c.counts[gpu::kCountUsefulRays];
-        counts.stencilWrites += c.counts[gpu::kCountStencilWrites];
-        counts.offsetReads += c.counts[gpu::kCountOffsetReads];
-        counts.triangleReads += c.counts[gpu::kCountTriangleReads];
-        return c;
-    };
-    gpu::PassCounters c = pass(PassKind::Setup);
-    std::uint64_t traversing = c.counts[gpu::kCountTraversing], waiting = c.counts[gpu::kCountWaiting];
-    PassScheduler scheduler(options);
-    for (PassKind kind = scheduler.next(traversing, waiting); kind != PassKind::Write;
-         kind = scheduler.next(traversing, waiting)) {
-        if (counts.totalPasses() >= cap)
-            throw Error("multipass: pass cap of " + std::to_string(cap) + " reached with " +
-                        std::to_string(traversing + waiting) + " rays still active");
-        c = pass(kind);
-        // The kernels count only the rays they served; the others keep their state.
-        if (kind == PassKind::Traverse)
-            traversing = c.counts[gpu::kCountTraversing], waiting += c.counts[gpu::kCountWaiting];
-        else
-            waiting = c.counts[gpu::kCountWaiting], traversing += c.counts[gpu::kCountTraversing];
-    }
-    pass(PassKind::Write);
-    return counts;
+        PassSums sums;
+        sums.traversing = c.counts[gpu::kCountTraversing];
+        sums.waiting = c.counts[gpu::kCountWaiting];
+        sums.useful = c.counts[gpu::kCountUsefulRays];
+        sums.stencilWrites = c.counts[gpu::kCountStencilWrites];
+        sums.offsetReads = c.counts[gpu::kCountOffsetReads];
+        sums.triangleReads = c.counts[gpu::kCountTriangleReads];
+        return sums;
+    });
 }
 
 }  // namespace

@@ -3,21 +3,8 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
 
-#include "error.h"
 
 namespace rtbench {
-
-namespace {
-// Per-pass sums, as the kernels' atomics produce them.
-struct PassSums {
-    std::uint64_t traversing = 0, waiting = 0, useful = 0, stencilWrites = 0, offsetReads = 0, triangleReads = 0;
-    PassSums& operator+=(const PassSums& o) {
-        traversing += o.traversing, waiting += o.waiting, useful += o.useful;
-        stencilWrites += o.stencilWrites, offsetReads += o.offsetReads, triangleReads += o.triangleReads;
-        return *this;
-    }
-};
-}  // namespace
 
 MultipassResult simulateMultipass(const UniformGrid& grid, const std::vector<gpu::Ray>& rays,
                                   const MultipassOptions& options) {
@@ -34,7 +21,6 @@ MultipassResult simulateMultipass(const UniformGrid& grid, const std::vector<gpu
     std::vector<gpu::RayCounters> counters(n, gpu::RayCounters{0, 0, 0, 0});
 
     MultipassResult result;
-    MultipassCounts& counts = result.counts;
     const std::uint64_t cap = options.maxPasses ? options.maxPasses
                                                 : multipassPassCap(&grid.stats.resolution[0], grid.stats.maxReferencesInCell, options);
     // One pass over the stream: rays whose stencil matches `kind` do its work.
@@ -72,32 +58,9 @@ MultipassResult simulateMultipass(const UniformGrid& grid, const std::vector<gpu
             },
             [](PassSums a, const PassSums& b) { return a += b; });
     };
-    auto account = [&](PassKind kind, const PassSums& sums) {
-        ++counts.passes[static_cast<int>(kind)];
-        counts.sequence.push_back(kind);
-        if (kind == PassKind::Traverse) counts.usefulTraverse += sums.useful;
-        if (kind == PassKind::Intersect) counts.usefulIntersect += sums.useful;
-        counts.stencilWrites += sums.stencilWrites;
-        counts.offsetReads += sums.offsetReads;
-        counts.triangleReads += sums.triangleReads;
-    };
-
-    PassSums sums = runPass(PassKind::Setup);
-    account(PassKind::Setup, sums);
-    std::uint64_t traversing = sums.traversing, waiting = sums.waiting;
-    PassScheduler scheduler(options);
-    for (PassKind kind = scheduler.next(traversing, waiting); kind != PassKind::Write;
-         kind = scheduler.next(traversing, waiting)) {
-        if (counts.totalPasses() >= cap)
-            throw Error("multipass: pass cap of " + std::to_string(cap) + " reached with " +
-                        std::to_string(traversing + waiting) + " rays still active");
-        sums = runPass(kind);
-        account(kind, sums);
-        // Only served rays are counted; the others keep their state.
-        if (kind == PassKind::Traverse) traversing = sums.traversing, waiting += sums.waiting;
-        else waiting = sums.waiting, traversing += sums.traversing;
-    }
-    account(PassKind::Write, PassSums{});
+    result.counts = runPassLoop(options, cap, [&](PassKind kind) {
+        return kind == PassKind::Write ? PassSums{} : runPass(kind);  // the write pass is below
+    });
     result.hits.resize(n);
     for (std::size_t i = 0; i < n; ++i) result.hits[i] = base.mpHitRecord(hitState[i], counters[i]);
     return result;

@@ -25,20 +25,6 @@ struct MultipassSteps : GridTraversal {
 #undef RT_OUT
 }  // namespace gridref
 
-// Counts of one multipass run, the same whether the GPU or the simulator produced them.
-struct MultipassCounts {
-    std::array<std::uint64_t, kPassKinds> passes{};  // by PassKind
-    std::uint64_t usefulTraverse = 0;   // rays served, summed over traverse passes
-    std::uint64_t usefulIntersect = 0;  // rays served, summed over intersect passes
-    std::uint64_t stencilWrites = 0;  // all passes
-    std::uint64_t offsetReads = 0;
-    std::uint64_t triangleReads = 0;
-    std::vector<PassKind> sequence;   // every pass in order (setup first, write last)
-
-    std::uint64_t totalPasses() const { return passes[0] + passes[1] + passes[2] + passes[3]; }
-    bool operator==(const MultipassCounts&) const = default;
-};
-
 struct MultipassResult {
     std::vector<gpu::HitRecord> hits;  // with per-ray counters
     MultipassCounts counts;

@@ -1,5 +1,7 @@
 #include "multipass_schedule.h"
 
+#include "error.h"
+
 namespace rtbench {
 
 const char* passKindName(PassKind kind) {
@@ -19,6 +21,39 @@ PassKind PassScheduler::next(std::uint64_t traversing, std::uint64_t waiting) {
     if (options_.scheduling == "naive") return naivePhase_;  // stay in the phase until it drains
     const double waitingFraction = double(waiting) / double(traversing + waiting);
     return waitingFraction >= options_.oracleThreshold ? PassKind::Intersect : PassKind::Traverse;
+}
+
+MultipassCounts runPassLoop(const MultipassOptions& options, std::uint64_t cap,
+                            const std::function<PassSums(PassKind)>& pass) {
+    MultipassCounts counts;
+    auto run = [&](PassKind kind) {
+        const PassSums sums = pass(kind);
+        ++counts.passes[static_cast<int>(kind)];
+        counts.sequence.push_back(kind);
+        if (kind == PassKind::Traverse) counts.usefulTraverse += sums.useful;
+        if (kind == PassKind::Intersect) counts.usefulIntersect += sums.useful;
+        counts.stencilWrites += sums.stencilWrites;
+        counts.offsetReads += sums.offsetReads;
+        counts.triangleReads += sums.triangleReads;
+        return sums;
+    };
+    PassSums sums = run(PassKind::Setup);
+    std::uint64_t traversing = sums.traversing, waiting = sums.waiting;
+    PassScheduler scheduler(options);
+    for (PassKind kind = scheduler.next(traversing, waiting); kind != PassKind::Write;
+         kind = scheduler.next(traversing, waiting)) {
+        if (counts.totalPasses() >= cap)
+            throw Error("multipass: pass cap of " + std::to_string(cap) + " reached with " +
+                        std::to_string(traversing + waiting) + " rays still active");
+        sums = run(kind);
+        // A pass counts only the rays it served; the others keep their state.
+        if (kind == PassKind::Traverse)
+            traversing = sums.traversing, waiting += sums.waiting;
+        else
+            waiting = sums.waiting, traversing += sums.traversing;
+    }
+    run(PassKind::Write);
+    return counts;
 }
 
 std::uint64_t multipassPassCap(const unsigned resolution[3], std::uint32_t maxReferencesInCell,

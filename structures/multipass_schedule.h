@@ -2,8 +2,11 @@
 // decided on the host from the number of rays in each active state after the last pass (the
 // occlusion query of the theses), shared by the GPU strategy and the CPU simulator.
 #pragma once
+#include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
+#include <vector>
 
 namespace rtbench {
 
@@ -33,6 +36,38 @@ private:
     MultipassOptions options_;
     PassKind naivePhase_ = PassKind::Traverse;
 };
+
+// What one pass reports about the rays it served (the kernels' atomics, the simulator's sums).
+struct PassSums {
+    std::uint64_t traversing = 0, waiting = 0;  // served rays in each active state after the pass
+    std::uint64_t useful = 0;                   // rays served
+    std::uint64_t stencilWrites = 0, offsetReads = 0, triangleReads = 0;
+    PassSums& operator+=(const PassSums& o) {
+        traversing += o.traversing, waiting += o.waiting, useful += o.useful;
+        stencilWrites += o.stencilWrites, offsetReads += o.offsetReads, triangleReads += o.triangleReads;
+        return *this;
+    }
+};
+
+// Counts of one multipass run, the same whether the GPU or the simulator produced them.
+struct MultipassCounts {
+    std::array<std::uint64_t, kPassKinds> passes{};  // by PassKind
+    std::uint64_t usefulTraverse = 0;   // rays served, summed over traverse passes
+    std::uint64_t usefulIntersect = 0;  // rays served, summed over intersect passes
+    std::uint64_t stencilWrites = 0;  // all passes
+    std::uint64_t offsetReads = 0;
+    std::uint64_t triangleReads = 0;
+    std::vector<PassKind> sequence;   // every pass in order (setup first, write last)
+
+    std::uint64_t totalPasses() const { return passes[0] + passes[1] + passes[2] + passes[3]; }
+    bool operator==(const MultipassCounts&) const = default;
+};
+
+// The pass loop of both the GPU strategy and the simulator: setup, then the scheduler's passes
+// until no ray is active, then write. `pass` runs one pass. Throws rtbench::Error when `cap`
+// passes have run and rays are still active.
+MultipassCounts runPassLoop(const MultipassOptions& options, std::uint64_t cap,
+                            const std::function<PassSums(PassKind)>& pass);
 
 // A cap on passes from the grid: 4 x (ceil(Vmax / K) + ceil(Vmax * Lmax / M)) + 16, where
 // Vmax = resX + resY + resZ bounds the voxels one ray visits and Lmax the triangles in a voxel.

@@ -59,6 +59,34 @@ TEST_F(EndToEnd, BunnySmallImageAgreesWithEmbreeAndWritesEverything) {
     }
 }
 
+TEST_F(EndToEnd, MultipassRowsCarryPassesBandwidthAndTheirChecks) {
+    const ExperimentResult result = run(
+        "[scene]\nsource = \"procedural:christen_a\"\n[camera]\nwidth = 64\nheight = 48\n[structure]\nmin_dim = 8\n"
+        "[strategy]\ntype = [\"branching\", \"multipass\"]\ntraverse_steps_per_pass = 2\n[output]\nimages = false\n");
+    ASSERT_EQ(result.rows.size(), 2u);
+    const Row& branching = result.rows[0];
+    const Row& multipass = result.rows[1];
+    ASSERT_EQ(branching.at("status"), "ok") << branching.at("error");
+    ASSERT_EQ(multipass.at("status"), "ok") << multipass.at("error");
+    EXPECT_EQ(branching.at("passes_total"), "1");
+    EXPECT_EQ(branching.count("passes_lower_bound"), 0u);
+    EXPECT_EQ(branching.at("cpu_counts_match"), "1");
+    EXPECT_EQ(multipass.at("cpu_counts_match"), "1");
+    EXPECT_EQ(multipass.at("cpu_reference_mismatches"), "0");
+    EXPECT_EQ(multipass.at("branching_mismatches"), "0");
+    EXPECT_EQ(multipass.at("strategy_traverse_steps_per_pass"), "2");
+    EXPECT_EQ(branching.count("strategy_traverse_steps_per_pass"), 0u);  // not a branching parameter
+    const auto passes = [&](const char* c) { return std::stoull(multipass.at(c)); };
+    EXPECT_EQ(passes("passes_total"),
+              passes("passes_setup") + passes("passes_traverse") + passes("passes_intersect") + passes("passes_write"));
+    EXPECT_GE(passes("passes_traverse") + passes("passes_intersect"), passes("passes_lower_bound"));
+    EXPECT_EQ(multipass.at("hits"), branching.at("hits"));
+    EXPECT_GT(std::stoull(multipass.at("bytes_stencil")), 0u);
+    EXPECT_EQ(branching.at("bytes_stencil"), "0");
+    EXPECT_EQ(multipass.at("bytes_output"), branching.at("bytes_output"));
+    EXPECT_LT(std::stod(multipass.at("simd_efficiency")), 1.0);
+}
+
 TEST_F(EndToEnd, AFailingRunWritesItsReasonAndTheOthersGoOn) {
     const ExperimentResult result = run(
         "[scene]\nsource = \"procedural:christen_b\"\n[camera]\nwidth = 48\nheight = 32\n"
@@ -72,6 +100,16 @@ TEST_F(EndToEnd, AFailingRunWritesItsReasonAndTheOthersGoOn) {
     EXPECT_THAT(result.rows[1].at("error"), HasSubstr("maxStorageBufferRange"));
     EXPECT_EQ(result.rows[2].at("status"), "ok");
     EXPECT_EQ(readCsv(result.folder + "/runs.csv").size(), 3u);
+}
+
+TEST_F(EndToEnd, PassCapFailsTheRunWithAClearStatus) {
+    const ExperimentResult result = run(
+        "[scene]\nsource = \"procedural:christen_b\"\n[camera]\nwidth = 16\nheight = 16\n[structure]\nmin_dim = 8\n"
+        "[strategy]\ntype = \"multipass\"\nmax_passes = 3\n[output]\nimages = false\n");
+    ASSERT_EQ(result.rows.size(), 1u);
+    EXPECT_EQ(result.rows[0].at("status"), "failed");
+    EXPECT_THAT(result.rows[0].at("error"), HasSubstr("multipass: pass cap of 3 reached with "));
+    EXPECT_THAT(result.rows[0].at("error"), HasSubstr(" rays still active"));
 }
 
 TEST_F(EndToEnd, MissingMeshFailsTheRunWithTheFileName) {

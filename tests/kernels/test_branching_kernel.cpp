@@ -11,7 +11,7 @@
 #include "structures/camera.h"
 #include "structures/grid_reference.h"
 #include "structures/procedural.h"
-#include "test_device.h"
+#include "tests/kernels/test_device.h"
 
 namespace rtbench {
 namespace {
@@ -48,19 +48,7 @@ void expectIdentical(const std::vector<gpu::HitRecord>& gpuHits, const std::vect
     EXPECT_EQ(differing, 0u);
 }
 
-class BranchingKernel : public ::testing::Test {
-protected:
-    static void SetUpTestSuite() { vk_ = new VulkanContext(testDeviceName(), /*validation=*/true); }
-    static void TearDownTestSuite() {
-        delete vk_;
-        vk_ = nullptr;
-    }
-    void TearDown() override {
-        EXPECT_TRUE(vk_->validationMessages().empty()) << vk_->validationMessages().front();
-    }
-    static VulkanContext* vk_;
-};
-VulkanContext* BranchingKernel::vk_ = nullptr;
+using BranchingKernel = VulkanTest;
 
 TEST_F(BranchingKernel, RunsOnLavapipeUnlessAnotherDeviceIsNamed) {
     if (testDeviceName() == "llvmpipe") {

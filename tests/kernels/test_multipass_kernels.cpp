@@ -64,22 +64,12 @@ std::size_t recordMismatches(const std::vector<gpu::HitRecord>& a, const std::ve
     return n;
 }
 
-class MultipassKernels : public ::testing::Test {
+class MultipassKernels : public VulkanTest {
 protected:
-    static void SetUpTestSuite() { vk_ = new VulkanContext(testDeviceName(), /*validation=*/true); }
-    static void TearDownTestSuite() {
-        delete vk_;
-        vk_ = nullptr;
-    }
-    void TearDown() override {
-        EXPECT_TRUE(vk_->validationMessages().empty()) << vk_->validationMessages().front();
-    }
     static MultipassRun run(const UniformGrid& grid, const std::vector<gpu::Ray>& rays, const MultipassOptions& o) {
         return runMultipass(*vk_, grid, rays, o, {64, 0, 1});
     }
-    static VulkanContext* vk_;
 };
-VulkanContext* MultipassKernels::vk_ = nullptr;
 
 using K = PassKind;
 
