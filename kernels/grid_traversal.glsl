@@ -157,6 +157,20 @@ uint rtCellIndex(ivec3 c) {
     return uint(c.x) + params.resolution.x * (uint(c.y) + params.resolution.y * uint(c.z));
 }
 
+// Clips the ray to the grid box and sets up its walk from the first voxel; false when it misses.
+bool rtEnterGrid(Ray ray, RT_OUT(RtDda) s) {
+    vec3 o = vec3(ray.originTMin);
+    vec3 d = vec3(ray.directionTMax);
+    vec3 invD = rtInverseDirection(d);
+    float tEnter;
+    float tLeave;
+    if (!rtClipToBox(o, d, invD, ray.originTMin.w, ray.directionTMax.w, vec3(params.boundsMin),
+                     vec3(params.boundsMax), tEnter, tLeave))
+        return false;
+    s = rtDdaSetup(o, d, invD, tEnter, tLeave);
+    return true;
+}
+
 // The branching ray caster (Purcell §3.1 in one loop): walk the grid, test every triangle of each
 // non-empty voxel, stop in the first voxel whose exit lies at or beyond the nearest hit so far.
 HitRecord rtTraceGrid(Ray ray) {
@@ -169,15 +183,10 @@ HitRecord rtTraceGrid(Ray ray) {
     h.trianglesTested = 0u;
     h.traversalSteps = 0u;
     h.pad = 0u;
+    RtDda s;
+    if (!rtEnterGrid(ray, s)) return h;
     vec3 o = vec3(ray.originTMin);
     vec3 d = vec3(ray.directionTMax);
-    vec3 invD = rtInverseDirection(d);
-    float tEnter;
-    float tLeave;
-    if (!rtClipToBox(o, d, invD, ray.originTMin.w, ray.directionTMax.w, vec3(params.boundsMin),
-                     vec3(params.boundsMax), tEnter, tLeave))
-        return h;
-    RtDda s = rtDdaSetup(o, d, invD, tEnter, tLeave);
     float tBest = ray.directionTMax.w;
     float uBest = 0.0f;
     float vBest = 0.0f;

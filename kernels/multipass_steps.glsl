@@ -67,18 +67,12 @@ uint mpSetup(Ray ray, RT_OUT(RayTraversalState) ts, RT_OUT(RayHitState) hit, RT_
     hit.primitive = kNoHit;
     hit.u = 0.0f;
     hit.v = 0.0f;
-    vec3 o = vec3(ray.originTMin);
-    vec3 d = vec3(ray.directionTMax);
-    vec3 invD = rtInverseDirection(d);
-    float tEnter;
-    float tLeave;
-    if (!rtClipToBox(o, d, invD, ray.originTMin.w, ray.directionTMax.w, vec3(params.boundsMin),
-                     vec3(params.boundsMax), tEnter, tLeave)) {
+    RtDda s;
+    if (!rtEnterGrid(ray, s)) {
         ts.tMaxAxisLeave = vec4(0.0f);
         ts.cellList = uvec4(0u);
         return kStateMissedBox;
     }
-    RtDda s = rtDdaSetup(o, d, invD, tEnter, tLeave);
     uint listPos = 0u;
     uint state = mpEnterVoxel(s, listPos, hit, e);
     ts = mpSave(s, listPos);

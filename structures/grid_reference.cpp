@@ -24,15 +24,9 @@ std::vector<gpu::HitRecord> traceGridReference(const UniformGrid& grid,
 
 std::vector<glm::ivec3> ddaVoxels(const UniformGrid& grid, const gpu::Ray& ray) {
     gridref::GridTraversal t = gridTraversal(grid);
-    const glm::vec3 o(ray.originTMin), d(ray.directionTMax);
-    const glm::vec3 invD = t.rtInverseDirection(d);
-    float tEnter = 0.0f, tLeave = 0.0f;
     std::vector<glm::ivec3> voxels;
-    if (!t.rtClipToBox(o, d, invD, ray.originTMin.w, ray.directionTMax.w,
-                       glm::vec3(grid.params.boundsMin), glm::vec3(grid.params.boundsMax), tEnter,
-                       tLeave))
-        return voxels;
-    gridref::GridTraversal::RtDda s = t.rtDdaSetup(o, d, invD, tEnter, tLeave);
+    gridref::GridTraversal::RtDda s;
+    if (!t.rtEnterGrid(ray, s)) return voxels;
     do voxels.push_back(s.cell);
     while (t.rtDdaStep(s));
     return voxels;
