@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 
 #include <iostream>
+#include <sstream>
 
 #include "harness/config.h"
 #include "harness/images.h"
@@ -21,6 +22,13 @@ int main(int argc, char** argv) {
     run->add_option("-d,--device", options.deviceOverride, "Vulkan device: auto or a name substring (overrides device.name)");
     run->add_flag("--validation", options.validationOverride, "enable the Vulkan validation layer; a run fails on any message");
     run->add_flag("-q,--quiet", options.quiet, "print only the summary table");
+    run->add_flag("-f,--force", options.force, "re-run runs whose rows (same run, config hash, commit) already exist");
+    std::string shard;
+    run->add_option("--shard", shard, "run only every N-th run, starting at i (0 <= i < N), e.g. 2/3; join with `rtbench merge`");
+
+    std::string mergeFolder;
+    CLI::App* merge = app.add_subcommand("merge", "Join the runs.shard-*.csv of a results folder into runs.csv, checking none is missing or doubled");
+    merge->add_option("results_dir", mergeFolder, "results folder of a sharded run")->required();
 
     CLI::App* devices = app.add_subcommand("devices", "List the Vulkan devices rtbench can use");
 
@@ -34,10 +42,20 @@ int main(int argc, char** argv) {
     for (int i = 0; i < argc; ++i) options.commandLine += (i ? " " : "") + std::string(argv[i]);
     try {
         if (*run) {
+            if (!shard.empty()) {
+                unsigned i = 0, n = 0;
+                char slash = 0;
+                std::istringstream in(shard);
+                if (!(in >> i >> slash >> n) || slash != '/' || n == 0 || i >= n || !in.eof())
+                    throw rtbench::Error("--shard " + shard + ": expected i/N with 0 <= i < N, e.g. 0/3");
+                options.shardIndex = i;
+                options.shardCount = n;
+            }
             const rtbench::ExperimentPlan plan = rtbench::loadExperiment(configPath);
             const rtbench::ExperimentResult result = rtbench::runExperiment(plan, options);
             std::cout << "\n" << rtbench::summaryTable(result.rows);
-            std::cout << "\nresults: " << result.folder << "/runs.csv (with context.json and "
+            if (result.reused) std::cout << "(" << result.reused << " run(s) kept from an earlier invocation; --force re-runs them)\n";
+            std::cout << "\nresults: " << result.folder << "/" << rtbench::runsFileName(options) << " (with context.json and "
                       << (rtbench::imagesSupported() ? "PNG images" : "hit records for `rtbench images`") << ") — "
                       << result.rows.size() - result.failed << " ok, " << result.failed << " failed\n";
             return result.failed ? 1 : 0;
@@ -50,6 +68,11 @@ int main(int argc, char** argv) {
                           << d.maxPushConstantsSize << " bytes\n  device-local heap " << d.deviceLocalBytes
                           << " bytes, timestamps " << (d.timestampsSupported ? "yes" : "no") << " (period "
                           << d.timestampPeriodNs << " ns)\n";
+            return 0;
+        }
+        if (*merge) {
+            const std::vector<rtbench::Row> rows = rtbench::mergeShards(mergeFolder);
+            std::cout << "merged " << rows.size() << " runs into " << mergeFolder << "/runs.csv\n";
             return 0;
         }
         if (*images) {

@@ -10,6 +10,8 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <set>
+#include <fstream>
 #include <sstream>
 #include <thread>
 
@@ -311,6 +313,12 @@ std::string contextJson(const ExperimentPlan& plan, const RunnerOptions& options
           << ", \"timestamp_period_ns\": " << d.timestampPeriodNs << "}";
         first = false;
     }
+    j << "\n  ],\n  \"plan\": [";
+    for (std::size_t i = 0; i < plan.runs.size(); ++i) {
+        char index[16];
+        std::snprintf(index, sizeof index, "%03zu", plan.runs[i].index);
+        j << (i ? ",\n" : "\n") << "    {\"run\": \"" << index << "\", \"config_hash\": \"" << plan.runs[i].hash() << "\"}";
+    }
     j << "\n  ],\n  \"runs\": [";
     for (std::size_t i = 0; i < rows.size(); ++i) {
         const Row& r = rows[i];
@@ -354,20 +362,47 @@ std::string summaryTable(const std::vector<Row>& rows) {
     return out.str();
 }
 
+std::string runsFileName(const RunnerOptions& options) {
+    if (options.shardCount <= 1) return "runs.csv";
+    return "runs.shard-" + std::to_string(options.shardIndex) + "-of-" + std::to_string(options.shardCount) + ".csv";
+}
+
 ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& options) {
     ExperimentResult result;
+    if (options.shardCount == 0 || options.shardIndex >= options.shardCount)
+        throw Error("--shard " + std::to_string(options.shardIndex) + "/" + std::to_string(options.shardCount) +
+                    ": expected i/N with 0 <= i < N");
     const RunConfig& first = plan.runs.front();
     const std::string output = options.outputOverride.empty() ? first.getString("experiment.output") : options.outputOverride;
     result.folder = (fs::path(output) / first.getString("experiment.name")).string();
     fs::create_directories(result.folder);
-    const std::string csvPath = (fs::path(result.folder) / "runs.csv").string();
+    const std::string csvName = runsFileName(options);
+    const std::string csvPath = (fs::path(result.folder) / csvName).string();
     const std::vector<std::string> columns = runColumns();
+
+    // Rows of an earlier invocation that can stand: ok, same run, same parameters, same commit.
+    std::map<std::string, Row> earlier;
+    if (!options.force && fs::exists(csvPath))
+        for (const Row& row : readCsv(csvPath))
+            if (row.count("status") && row.at("status") == "ok")
+                earlier[row.at("run") + "|" + row.at("config_hash") + "|" + row.at("git_commit")] = row;
+
+    std::vector<const RunConfig*> mine;
+    for (const RunConfig& run : plan.runs)
+        if (run.index % options.shardCount == options.shardIndex) mine.push_back(&run);
     Caches caches;
     if (!options.quiet)
-        std::cout << "[rtbench] " << plan.configPath << ": " << plan.runs.size() << " run"
-                  << (plan.runs.size() == 1 ? "" : "s") << " -> " << result.folder << "\n";
+        std::cout << "[rtbench] " << plan.configPath << ": " << mine.size() << " run" << (mine.size() == 1 ? "" : "s")
+                  << (options.shardCount > 1 ? " (shard " + std::to_string(options.shardIndex) + "/" +
+                                                   std::to_string(options.shardCount) + " of " +
+                                                   std::to_string(plan.runs.size()) + ")"
+                                             : std::string())
+                  << " -> " << result.folder << "/" << csvName << "\n";
     const auto experimentStart = std::chrono::steady_clock::now();
-    for (const RunConfig& run : plan.runs) {
+    double executedSeconds = 0.0;
+    int executed = 0;
+    for (std::size_t k = 0; k < mine.size(); ++k) {
+        const RunConfig& run = *mine[k];
         Row row;
         for (const auto& [key, value] : run.values) row[paramColumn(key)] = formatValue(value);
         char index[16];
@@ -376,10 +411,19 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
         row["label"] = run.label();
         row["config_hash"] = run.hash();
         row["git_commit"] = gitCommit();
+        const auto previous = earlier.find(row["run"] + "|" + row["config_hash"] + "|" + row["git_commit"]);
+        if (previous != earlier.end()) {
+            result.rows.push_back(previous->second);
+            ++result.reused;
+            if (!options.quiet) std::cout << "[run " << k + 1 << "/" << mine.size() << "] " << run.label() << ": done before, kept\n";
+            continue;
+        }
         if (!options.quiet) {
+            // Progress: runs done, elapsed, and an estimate for the rest from the runs executed so far.
             const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - experimentStart).count();
-            std::cout << "[run " << run.index + 1 << "/" << plan.runs.size() << ", " << std::fixed << std::setprecision(0)
-                      << elapsed << " s] " << run.label() << " ..." << std::defaultfloat << std::flush;
+            std::cout << "[run " << k + 1 << "/" << mine.size() << ", " << std::fixed << std::setprecision(0) << elapsed << " s";
+            if (executed > 0) std::cout << ", ~" << executedSeconds / executed * double(mine.size() - k) << " s left";
+            std::cout << "] " << run.label() << " ..." << std::defaultfloat << std::flush;
         }
         const auto start = std::chrono::steady_clock::now();
         try {
@@ -390,7 +434,10 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
             row["error"] = e.what();
             ++result.failed;
         }
-        row["wall_s"] = formatNumber(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 4);
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        executedSeconds += seconds;
+        ++executed;
+        row["wall_s"] = formatNumber(seconds, 4);
         if (!options.quiet) {
             if (row["status"] == "ok")
                 std::cout << " " << row["kernel_mrays_s"] << " Mrays/s (Embree " << row["embree1_mrays_s"]
@@ -401,8 +448,58 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
         result.rows.push_back(row);
         writeCsv(csvPath, columns, result.rows);  // after every run: an interrupt loses nothing done
     }
-    writeFileAtomically((fs::path(result.folder) / "context.json").string(), contextJson(plan, options, result.rows, caches));
+    writeCsv(csvPath, columns, result.rows);
+    const std::string contextName = options.shardCount > 1 ? "context.shard-" + std::to_string(options.shardIndex) +
+                                                                 "-of-" + std::to_string(options.shardCount) + ".json"
+                                                           : "context.json";
+    writeFileAtomically((fs::path(result.folder) / contextName).string(), contextJson(plan, options, result.rows, caches));
     return result;
+}
+
+std::vector<Row> mergeShards(const std::string& folder) {
+    if (!fs::is_directory(folder)) throw Error(folder + ": not a results folder");
+    std::vector<Row> rows;
+    std::set<std::string> planned;  // "run|config_hash" of every run in the plan
+    std::string firstContext;
+    int shards = 0;
+    for (const auto& entry : fs::directory_iterator(folder)) {
+        const std::string name = entry.path().filename().string();
+        if (name.rfind("runs.shard-", 0) == 0 && entry.path().extension() == ".csv") {
+            ++shards;
+            for (const Row& row : readCsv(entry.path().string())) rows.push_back(row);
+        }
+        if (name.rfind("context.shard-", 0) == 0) {
+            std::ifstream in(entry.path());
+            std::stringstream text;
+            text << in.rdbuf();
+            const std::string json = text.str();
+            if (firstContext.empty() || name < firstContext) firstContext = name;
+            // The plan list: {"run": "000", "config_hash": "..."} entries after "plan".
+            std::size_t at = json.find("\"plan\"");
+            while (at != std::string::npos && (at = json.find("{\"run\": \"", at)) != std::string::npos) {
+                const std::size_t runStart = at + 9, runEnd = json.find('"', runStart);
+                const std::size_t hashStart = json.find("\"config_hash\": \"", runEnd) + 16;
+                planned.insert(json.substr(runStart, runEnd - runStart) + "|" +
+                               json.substr(hashStart, json.find('"', hashStart) - hashStart));
+                at = runEnd;
+            }
+        }
+    }
+    if (shards == 0) throw Error(folder + ": no runs.shard-*.csv files to merge");
+    std::map<std::string, Row> byRun;
+    for (const Row& row : rows) {
+        const std::string key = row.at("run") + "|" + row.at("config_hash");
+        if (!planned.count(key)) throw Error(folder + ": run " + row.at("run") + " (" + row.at("label") + ") is not in the plan");
+        if (!byRun.emplace(key, row).second)
+            throw Error(folder + ": run " + row.at("run") + " (" + row.at("label") + ") appears in more than one shard");
+    }
+    for (const std::string& key : planned)
+        if (!byRun.count(key)) throw Error(folder + ": run " + key.substr(0, key.find('|')) + " is missing from the shards");
+    std::vector<Row> merged;
+    for (const auto& [key, row] : byRun) merged.push_back(row);
+    writeCsv((fs::path(folder) / "runs.csv").string(), runColumns(), merged);
+    fs::copy_file(fs::path(folder) / firstContext, fs::path(folder) / "context.json", fs::copy_options::overwrite_existing);
+    return merged;
 }
 
 }  // namespace rtbench

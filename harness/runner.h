@@ -16,18 +16,32 @@ struct RunnerOptions {
     bool validationOverride = false;  // forces device.validation on
     bool quiet = false;
     std::string commandLine;  // recorded in context.json
+    // Resumption: runs whose ok row (same run number, config hash and git commit) is already in
+    // the output's CSV are kept, not re-run, unless `force`.
+    bool force = false;
+    // Sharding: run only the runs whose index % shardCount == shardIndex, into
+    // runs.shard-<i>-of-<n>.csv (`rtbench merge` joins the shards).
+    unsigned shardIndex = 0, shardCount = 1;
 };
 
 struct ExperimentResult {
     std::string folder;     // <output>/<name>
     std::vector<Row> rows;  // as written to runs.csv
     int failed = 0;
+    int reused = 0;  // rows kept from an earlier invocation (resumption)
 };
 
 ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& options);
 
 // Column order of runs.csv: parameters first, then metrics.
 std::vector<std::string> runColumns();
+
+// The CSV file a run writes: runs.csv, or runs.shard-<i>-of-<n>.csv for a shard.
+std::string runsFileName(const RunnerOptions& options);
+
+// Joins the shards' CSVs of a results folder into runs.csv; checks that every run of the plan
+// (from the shards' context files) is there exactly once. Returns the merged rows.
+std::vector<Row> mergeShards(const std::string& folder);
 
 // The short table printed after a run (Mrays/s kernel vs Embree, agreement).
 std::string summaryTable(const std::vector<Row>& rows);

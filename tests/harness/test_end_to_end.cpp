@@ -14,14 +14,24 @@ namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
+RunnerOptions quietOptions() {
+    RunnerOptions options;
+    options.quiet = true;
+    return options;
+}
+
+// Columns that are measurements of time, not counts: they may differ between runs.
+bool isTiming(const std::string& column) {
+    return column.find("_ms") != std::string::npos || column.find("mrays") != std::string::npos ||
+           column == "speed_ratio_vs_embree1" || column == "wall_s";
+}
+
 class EndToEnd : public ::testing::Test {
 protected:
-    ExperimentResult run(const std::string& body) {
+    ExperimentResult run(const std::string& body, RunnerOptions options = quietOptions()) {
         const std::string path = dir_.write("e2e.toml", "[experiment]\nname = \"e2e\"\noutput = \"" + dir_.file("out") +
                                                             "\"\nrepetitions = 1\nwarmups = 0\n[device]\nname = \"" +
                                                             testDeviceName() + "\"\nvalidation = true\n" + body);
-        RunnerOptions options;
-        options.quiet = true;
         return runExperiment(loadExperiment(path), options);
     }
     TempDir dir_;
@@ -131,6 +141,62 @@ TEST_F(EndToEnd, HitRecordsMakeTheSameImagesLater) {
     EXPECT_EQ(std::to_string(hits), result.rows[0].at("hits"));
     if (imagesSupported()) {
         EXPECT_EQ(writeImagesForFolder(result.folder), 1);
+    }
+}
+
+}  // namespace
+}  // namespace rtbench
+
+namespace rtbench {
+namespace {
+
+const char* kSweep =
+    "[scene]\nsource = \"procedural:christen_a\"\n[camera]\nwidth = 32\nheight = 24\n[structure]\n"
+    "min_dim = [4, 6, 8, 10]\n[strategy]\ntype = [\"branching\", \"multipass\"]\n[output]\nimages = false\n";
+
+TEST_F(EndToEnd, AnInterruptedSweepResumesWithoutRedoingFinishedRuns) {
+    const ExperimentResult full = run(kSweep);
+    ASSERT_EQ(full.rows.size(), 8u);
+    // Interrupted after 5 runs: the CSV (rewritten after every run) holds their rows.
+    const std::string csv = full.folder + "/runs.csv";
+    std::vector<Row> rows = readCsv(csv);
+    rows.resize(5);
+    writeCsv(csv, runColumns(), rows);
+    const ExperimentResult resumed = run(kSweep);
+    EXPECT_EQ(resumed.reused, 5);
+    ASSERT_EQ(resumed.rows.size(), 8u);
+    for (std::size_t i = 0; i < 5; ++i) EXPECT_EQ(resumed.rows[i].at("wall_s"), rows[i].at("wall_s"));  // kept, not re-run
+    RunnerOptions force = quietOptions();
+    force.force = true;
+    EXPECT_EQ(run(kSweep, force).reused, 0);
+}
+
+TEST_F(EndToEnd, ThreeShardsMergedEqualTheUnshardedRun) {
+    const ExperimentResult whole = run(kSweep);
+    const std::vector<Row> unsharded = readCsv(whole.folder + "/runs.csv");
+    std::filesystem::remove(whole.folder + "/runs.csv");
+    for (unsigned i = 0; i < 3; ++i) {
+        RunnerOptions shard = quietOptions();
+        shard.shardIndex = i;
+        shard.shardCount = 3;
+        EXPECT_EQ(run(kSweep, shard).rows.size(), i < 2 ? 3u : 2u);
+    }
+    const std::vector<Row> merged = mergeShards(whole.folder);
+    ASSERT_EQ(merged.size(), unsharded.size());
+    for (std::size_t r = 0; r < merged.size(); ++r)
+        for (const auto& [column, value] : unsharded[r])
+            if (!isTiming(column)) EXPECT_EQ(merged[r].at(column), value) << "run " << r << " column " << column;
+
+    // A missing or doubled shard is an error.
+    std::filesystem::copy_file(whole.folder + "/runs.shard-0-of-3.csv", whole.folder + "/runs.shard-3-of-3.csv");
+    EXPECT_THROW(mergeShards(whole.folder), std::exception);
+    std::filesystem::remove(whole.folder + "/runs.shard-3-of-3.csv");
+    std::filesystem::remove(whole.folder + "/runs.shard-1-of-3.csv");
+    try {
+        mergeShards(whole.folder);
+        FAIL();
+    } catch (const std::exception& e) {
+        EXPECT_THAT(e.what(), HasSubstr("run 001 is missing from the shards"));
     }
 }
 
