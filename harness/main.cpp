@@ -1,6 +1,7 @@
 // rtbench: GPU ray tracing strategies measured against Embree, from TOML experiment configs.
 #include <CLI/CLI.hpp>
 
+#include <cstdlib>
 #include <iostream>
 #include <sstream>
 
@@ -35,6 +36,10 @@ int main(int argc, char** argv) {
     std::string imagesFolder;
     CLI::App* images = app.add_subcommand("images", "Write PNGs from the per-ray hit records (*.hits) of a results folder");
     images->add_option("results_dir", imagesFolder, "folder holding run-NNN.hits files")->required();
+
+    std::string plotFolder;
+    CLI::App* plot = app.add_subcommand("plot", "Write PNG and SVG charts next to a results folder's runs.csv (scripts/plot.py)");
+    plot->add_option("results_dir", plotFolder, "results folder")->required();
 
     CLI::App* keys = app.add_subcommand("keys", "List every config key with its type, default and meaning");
 
@@ -79,6 +84,11 @@ int main(int argc, char** argv) {
             const int n = rtbench::writeImagesForFolder(imagesFolder);
             std::cout << "wrote images for " << n << " run(s) in " << imagesFolder << "\n";
             return 0;
+        }
+        if (*plot) {
+            // Debian's python3-matplotlib and python3-pandas (PyPI is not reachable here).
+            const std::string command = "/usr/bin/python3 '" + std::string(RTBENCH_SOURCE_DIR) + "/scripts/plot.py' '" + plotFolder + "'";
+            return std::system(command.c_str()) == 0 ? 0 : 1;
         }
         if (*keys) {
             for (const rtbench::KeySpec& k : rtbench::configSchema())

@@ -1,0 +1,206 @@
+#!/usr/bin/python3
+"""Charts for an rtbench results folder: PNG and SVG next to runs.csv.
+
+usage: scripts/plot.py RESULTS_DIR      (or: build/rtbench plot RESULTS_DIR)
+Charts whose runs are absent from the folder are skipped. Uses Debian's python3-matplotlib and
+python3-pandas only.
+"""
+import json
+import sys
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import pandas as pd  # noqa: E402
+
+SCENES = {"cgal:bunny00": "bunny", "procedural:christen_a": "scene A", "procedural:christen_b": "scene B"}
+COLORS = {"branching": "tab:blue", "multipass": "tab:orange", "Embree rtcIntersect1": "tab:green"}
+BYTES = [("bytes_stencil", "stencil"), ("bytes_state", "state variables"), ("bytes_voxel", "voxel data"),
+         ("bytes_triangle_list", "triangle lists"), ("bytes_vertices", "triangle vertices"), ("bytes_output", "output")]
+KERNELS = [("kernel_ms_setup", "setup"), ("kernel_ms_traverse", "traverse"), ("kernel_ms_intersect", "intersect"),
+           ("kernel_ms_write", "write")]
+
+
+def save(fig, folder: Path, name: str, written: list):
+    fig.tight_layout()
+    for ext in ("png", "svg"):
+        fig.savefig(folder / f"{name}.{ext}", dpi=110)
+    plt.close(fig)
+    written.append(name)
+
+
+def size(frame) -> str:
+    return f"{int(frame.camera_width.iloc[0])}x{int(frame.camera_height.iloc[0])}"
+
+
+def pareto(points):
+    """Points not dominated in (speed up, agreement up), sorted by speed."""
+    front, best = [], -1.0
+    for x, y in sorted(points, key=lambda p: (-p[0], -p[1])):
+        if y > best:
+            front.append((x, y))
+            best = y
+    return sorted(front)
+
+
+def speed_vs_accuracy(runs, device, folder, written):
+    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.5))
+    points = []
+    for method, group in runs.groupby("strategy_type"):
+        left.scatter(group.kernel_mrays_s, 100 * group.hit_miss_agreement, label=method, color=COLORS.get(method), alpha=0.8)
+        right.scatter(group.kernel_mrays_s, group.rel_distance_error_mean, label=method, color=COLORS.get(method), alpha=0.8)
+        points += list(zip(group.kernel_mrays_s, 100 * group.hit_miss_agreement))
+    embree = runs.drop_duplicates("scene_source")
+    left.scatter(embree.embree1_mrays_s, [100.0] * len(embree), marker="s", label="Embree rtcIntersect1 (the reference)",
+                 color=COLORS["Embree rtcIntersect1"])
+    front = pareto(points)  # among the kernels' runs
+    left.plot([p[0] for p in front], [p[1] for p in front], "k--", marker="x", lw=1, label="Pareto front of the kernels")
+    left.set_xscale("log")
+    left.set_xlabel("speed (Mrays/s, log scale)")
+    left.set_ylabel("hit/miss agreement with Embree (%)")
+    left.legend(fontsize=8)
+    right.set_xscale("log")
+    right.set_xlabel("speed (Mrays/s, log scale)")
+    right.set_ylabel("mean relative distance error vs Embree")
+    right.legend(fontsize=8)
+    scenes = ", ".join(sorted(runs.scene.unique()))
+    fig.suptitle(f"Speed against accuracy, one point per run — {scenes}; {device}")
+    save(fig, folder, "speed_vs_accuracy", written)
+
+
+def passes_vs_threshold(runs, device, folder, written):
+    oracle = runs[(runs.strategy_type == "multipass") & (runs.strategy_scheduling == "oracle")]
+    if oracle.sweep.isin(["oracle"]).any():  # the threshold sweep and the runs at the base threshold
+        oracle = oracle[oracle.sweep.isin(["oracle", "architecture"])]
+    if oracle.strategy_oracle_threshold.nunique() < 3:
+        return
+    k, m = oracle.strategy_traverse_steps_per_pass.mode()[0], oracle.strategy_intersections_per_pass.mode()[0]
+    oracle = oracle[(oracle.strategy_traverse_steps_per_pass == k) & (oracle.strategy_intersections_per_pass == m)]
+    scenes = sorted(oracle.scene.unique())
+    fig, axes = plt.subplots(1, len(scenes), figsize=(4.2 * len(scenes), 4), squeeze=False)
+    for ax, scene in zip(axes[0], scenes):
+        group = oracle[oracle.scene == scene].sort_values("strategy_oracle_threshold")
+        ax.plot(group.strategy_oracle_threshold, group.passes_traverse + group.passes_intersect, "o-", label="traverse + intersect passes")
+        ax.plot(group.strategy_oracle_threshold, group.passes_intersect, "s:", label="intersect passes")
+        ax.axhline(group.passes_lower_bound.iloc[0], color="k", ls="--", lw=1, label="lower bound (Purcell)")
+        ax.set_yscale("log")
+        ax.set_xlabel("oracle threshold (waiting / active rays)")
+        ax.set_ylabel("passes (log scale)")
+        ax.set_title(f"{scene}, {size(group)}")
+        ax.legend(fontsize=7)
+    fig.suptitle(f"Passes against oracle threshold, K = {int(k)}, M = {int(m)}; {device}")
+    save(fig, folder, "passes_vs_threshold", written)
+
+
+def bandwidth_by_category(runs, device, folder, written):
+    chosen = runs[runs.sweep == "architecture"] if (runs.sweep == "architecture").any() else runs
+    chosen = chosen.drop_duplicates(["scene", "strategy_type"]).sort_values(["scene", "strategy_type"])
+    fig, ax = plt.subplots(figsize=(max(5, 1.4 * len(chosen)), 4.5))
+    labels = [f"{r.scene}\n{r.strategy_type}" for r in chosen.itertuples()]
+    bottom = [0.0] * len(chosen)
+    for column, name in BYTES:
+        values = (chosen[column] / 1e6).tolist()
+        ax.bar(labels, values, bottom=bottom, label=name)
+        bottom = [b + v for b, v in zip(bottom, values)]
+    ax.set_ylabel("bytes read and written per frame (MB)")
+    ax.legend(fontsize=8)
+    ax.set_title(f"Bandwidth by data type (Purcell Fig. 8 style), {size(chosen)}; {device}")
+    save(fig, folder, "bandwidth_by_category", written)
+
+
+def unrolling(runs, device, folder, written):
+    unroll = runs[runs.sweep.str.startswith("unroll")]
+    if unroll.empty:
+        return
+    fig, axes = plt.subplots(1, 3, figsize=(14, 4.2))
+    for suppress, style in ((False, "-"), (True, "--")):
+        part = unroll[unroll.strategy_suppress_finished_reads == suppress]
+        for m, group in part.groupby("strategy_intersections_per_pass"):
+            group = group.sort_values("strategy_traverse_steps_per_pass")
+            label = f"M = {int(m)}" + (", suppressed" if suppress else "")
+            axes[0].plot(group.strategy_traverse_steps_per_pass, group.passes_total, "o" + style, label=label)
+            axes[1].plot(group.strategy_traverse_steps_per_pass, group.bytes_per_ray, "o" + style, label=label)
+            axes[2].plot(group.strategy_traverse_steps_per_pass, (group.bytes_voxel + group.bytes_vertices) / 1e6, "o" + style, label=label)
+    for ax, ylabel in zip(axes, ["passes", "bytes per ray (all categories)", "voxel + vertex data read (MB)"]):
+        ax.set_xscale("log", base=2)
+        ax.set_xlabel("traversal steps per pass K (log2)")
+        ax.set_ylabel(ylabel)
+        ax.legend(fontsize=7)
+    fig.suptitle(f"Loop unrolling: K steps by M intersections per pass — {unroll.scene.iloc[0]}, {size(unroll)}; {device}")
+    save(fig, folder, "unrolling", written)
+
+
+def grid_resolution(runs, device, folder, written):
+    grid = runs[runs.sweep == "grid"] if (runs.sweep == "grid").any() else runs
+    grid = grid[grid.structure_min_dim.notna()]
+    if grid.structure_min_dim.nunique() < 3:
+        return
+    branching = grid[grid.strategy_type == "branching"].sort_values("structure_min_dim")
+    data = branching if not branching.empty else grid.drop_duplicates("structure_min_dim").sort_values("structure_min_dim")
+    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2))
+    left.plot(data.structure_min_dim, data.voxels_per_ray_mean, "o-", label="voxels visited per ray")
+    left.plot(data.structure_min_dim, data.triangles_per_ray_mean, "s-", label="triangle tests per ray")
+    left.set_xscale("log", base=2)
+    left.set_yscale("log")
+    left.set_xlabel("min_dim (cells along the smallest extent, log2)")
+    left.set_ylabel("per ray, mean (log scale)")
+    left.legend(fontsize=8)
+    for method, group in grid.groupby("strategy_type"):
+        group = group.sort_values("structure_min_dim")
+        right.plot(group.structure_min_dim, group.kernel_mrays_s, "o-", label=method, color=COLORS.get(method))
+    right.set_xscale("log", base=2)
+    right.set_yscale("log")
+    right.set_xlabel("min_dim (log2)")
+    right.set_ylabel("speed (Mrays/s, log scale)")
+    right.legend(fontsize=8)
+    fig.suptitle(f"Traversal against intersection by grid resolution — {data.scene.iloc[0]}, {size(data)}; {device}")
+    save(fig, folder, "grid_resolution", written)
+
+
+def kernel_time(runs, device, folder, written):
+    multipass = runs[runs.strategy_type == "multipass"]
+    chosen = multipass[multipass.sweep == "architecture"] if (multipass.sweep == "architecture").any() else multipass
+    if chosen.empty:
+        return
+    chosen = chosen.head(12)
+    fig, ax = plt.subplots(figsize=(max(5, 1.3 * len(chosen)), 4.5))
+    labels = [r.scene + "\n" + (r.label.split(":")[-1][:24] if ":" in r.label else "") for r in chosen.itertuples()]
+    bottom = [0.0] * len(chosen)
+    for column, name in KERNELS:
+        values = chosen[column].fillna(0).tolist()
+        ax.bar(labels, values, bottom=bottom, label=name)
+        bottom = [b + v for b, v in zip(bottom, values)]
+    ax.set_ylabel("GPU time per frame (ms, median)")
+    ax.legend(fontsize=8)
+    ax.set_title(f"Multipass GPU time by kernel, {size(chosen)}; {device}")
+    save(fig, folder, "kernel_time", written)
+
+
+def main() -> int:
+    if len(sys.argv) != 2:
+        print(__doc__)
+        return 2
+    folder = Path(sys.argv[1])
+    runs = pd.read_csv(folder / "runs.csv")
+    runs = runs[runs.status == "ok"].copy()
+    if runs.empty:
+        print(f"{folder}: no successful runs to chart")
+        return 1
+    context = json.loads((folder / "context.json").read_text())
+    device = context["devices"][0]["name"] if context.get("devices") else "?"
+    runs["scene"] = runs.scene_source.map(lambda s: SCENES.get(s, s))
+    runs["sweep"] = runs.label.map(lambda s: s.split(":")[0] if ":" in s else "")
+    for column in ["strategy_scheduling", "strategy_suppress_finished_reads"]:
+        if column not in runs:
+            runs[column] = None
+    written = []
+    for chart in (speed_vs_accuracy, passes_vs_threshold, bandwidth_by_category, unrolling, grid_resolution, kernel_time):
+        chart(runs, device, folder, written)
+    print(f"{folder}: wrote {', '.join(written)} (.png, .svg)")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
