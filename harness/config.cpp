@@ -195,16 +195,18 @@ std::string RunConfig::label() const {
 }
 
 ExperimentPlan loadExperiment(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw Error(path + ": cannot open config file");
+    std::ostringstream text;
+    text << in.rdbuf();
+    return loadExperimentText(text.str(), path, std::filesystem::absolute(path).parent_path().string());
+}
+
+ExperimentPlan loadExperimentText(const std::string& configText, const std::string& path, const std::string& configDir) {
     ExperimentPlan plan;
     plan.configPath = path;
-    {
-        std::ifstream in(path);
-        if (!in) throw Error(path + ": cannot open config file");
-        std::ostringstream text;
-        text << in.rdbuf();
-        plan.configText = text.str();
-    }
-    plan.configDir = std::filesystem::absolute(path).parent_path().string();
+    plan.configText = configText;
+    plan.configDir = configDir;
 
     toml::table root;
     try {

@@ -67,5 +67,7 @@ struct ExperimentPlan {
 // The sections give base values; each [[sweep]] table (optional `name`, then sections of its own)
 // overrides them, and the plan is the union of the sweeps' cartesian products, without duplicates.
 ExperimentPlan loadExperiment(const std::string& path);
+// The same for config text that names `path` in its errors and resolves scenes against configDir.
+ExperimentPlan loadExperimentText(const std::string& configText, const std::string& path, const std::string& configDir);
 
 }  // namespace rtbench

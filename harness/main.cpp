@@ -5,6 +5,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "harness/check.h"
 #include "harness/config.h"
 #include "harness/images.h"
 #include "harness/runner.h"
@@ -40,6 +41,12 @@ int main(int argc, char** argv) {
     std::string plotFolder;
     CLI::App* plot = app.add_subcommand("plot", "Write PNG and SVG charts next to a results folder's runs.csv (scripts/plot.py)");
     plot->add_option("results_dir", plotFolder, "results folder")->required();
+
+    std::string checkFolder;
+    double tolerance = 0.5;
+    CLI::App* check = app.add_subcommand("check", "Re-run a results folder's config and compare: counts exactly (exit 1 on a difference), timings within a tolerance");
+    check->add_option("results_dir", checkFolder, "results folder (runs.csv and context.json)")->required();
+    check->add_option("--tolerance", tolerance, "relative tolerance for timing columns (default 0.5 = 50%)");
 
     CLI::App* keys = app.add_subcommand("keys", "List every config key with its type, default and meaning");
 
@@ -84,6 +91,10 @@ int main(int argc, char** argv) {
             const int n = rtbench::writeImagesForFolder(imagesFolder);
             std::cout << "wrote images for " << n << " run(s) in " << imagesFolder << "\n";
             return 0;
+        }
+        if (*check) {
+            const rtbench::CheckResult result = rtbench::checkResults(checkFolder, tolerance, std::cout);
+            return result.deterministicDifferences ? 1 : 0;
         }
         if (*plot) {
             // Debian's python3-matplotlib and python3-pandas (PyPI is not reachable here).
