@@ -244,7 +244,13 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
         }
     };
     Given base;
-    std::vector<std::pair<std::string, Given>> sweeps;  // name, overrides
+    struct Sweep {
+        std::string name;
+        Given overrides;
+        // Skip rules: a run matching every "section.key=value" of one rule is left out.
+        std::vector<std::vector<std::pair<std::string, std::string>>> skip;
+    };
+    std::vector<Sweep> sweeps;
     for (auto&& [sectionKey, sectionNode] : root) {
         if (sectionKey.str() != "sweep") {
             readSection(sectionKey, sectionNode, base);
@@ -254,25 +260,48 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
         if (!list || !list->is_array_of_tables())
             throw Error(where(path, sectionKey.source()) + ": 'sweep' must be an array of tables ([[sweep]])");
         for (const toml::node& element : *list) {
-            std::pair<std::string, Given> sweep;
+            Sweep sweep;
             for (auto&& [key, node] : *element.as_table()) {
                 if (key.str() == "name") {
                     if (!node.is_string())
                         throw Error(where(path, key.source()) + ": key 'sweep.name': expected a string");
-                    sweep.first = node.as_string()->get();
+                    sweep.name = node.as_string()->get();
+                } else if (key.str() == "skip") {
+                    const toml::array* rules = node.as_array();
+                    if (!rules) throw Error(where(path, key.source()) + ": key 'sweep.skip': expected a list of strings");
+                    for (const toml::node& rule : *rules) {
+                        if (!rule.is_string())
+                            throw Error(where(path, rule.source()) + ": key 'sweep.skip': expected strings such as "
+                                        "\"strategy.traverse_steps_per_pass=1 strategy.suppress_finished_reads=true\"");
+                        std::vector<std::pair<std::string, std::string>> conditions;
+                        std::istringstream words(rule.as_string()->get());
+                        std::string word;
+                        while (words >> word) {
+                            const std::size_t eq = word.find('=');
+                            const std::string name = word.substr(0, eq);
+                            if (eq == std::string::npos ||
+                                std::none_of(schema.begin(), schema.end(), [&](const KeySpec& k) { return k.name == name; }))
+                                throw Error(where(path, rule.source()) + ": key 'sweep.skip': '" + word +
+                                            "' is not section.key=value for a known key");
+                            conditions.emplace_back(name, word.substr(eq + 1));
+                        }
+                        sweep.skip.push_back(std::move(conditions));
+                    }
                 } else {
-                    readSection(key, node, sweep.second);
+                    readSection(key, node, sweep.overrides);
                 }
             }
             sweeps.push_back(std::move(sweep));
         }
     }
-    if (sweeps.empty()) sweeps.emplace_back("", Given{});
+    if (sweeps.empty()) sweeps.push_back(Sweep{});
 
     const std::vector<std::string> rules = {"structure.min_dim", "structure.resolution", "structure.cells_per_triangle"};
     std::map<std::string, const toml::node*> unread;  // given keys no run has read yet
     std::set<std::string> seen;                        // canonical runs, to drop duplicates
-    for (const auto& [sweepName, overrides] : sweeps) {
+    for (const Sweep& sweep : sweeps) {
+        const std::string& sweepName = sweep.name;
+        const Given& overrides = sweep.overrides;
         // A sweep that sets a grid resolution rule replaces the base's rule.
         Given given = base;
         if (std::any_of(rules.begin(), rules.end(), [&](const std::string& r) { return overrides.count(r); }))
@@ -331,6 +360,12 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
                 });
                 if (!applies) run.values.erase(spec.name);
             }
+            const bool skipped = std::any_of(sweep.skip.begin(), sweep.skip.end(), [&](const auto& rule) {
+                return std::all_of(rule.begin(), rule.end(), [&](const auto& condition) {
+                    return run.has(condition.first) && formatValue(run.values.at(condition.first)) == condition.second;
+                });
+            });
+            if (skipped) continue;
             for (const auto& [key, value] : run.values) unread.erase(key);
             for (const std::string& key : swept)
                 if (run.has(key)) run.sweptKeys.push_back(key);

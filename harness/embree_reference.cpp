@@ -76,6 +76,14 @@ EmbreeReference::~EmbreeReference() {
 
 int EmbreeReference::threads() const { return tbb::info::default_concurrency(); }
 
+std::string EmbreeReference::isa() const {
+    // Embree 3 exposes no ISA name; its native packet widths tell SSE (4), AVX/AVX2 (8), AVX-512 (16).
+    if (rtcGetDeviceProperty(device_, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED)) return "native ray16 (AVX-512)";
+    if (rtcGetDeviceProperty(device_, RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED)) return "native ray8 (AVX/AVX2)";
+    if (rtcGetDeviceProperty(device_, RTC_DEVICE_PROPERTY_NATIVE_RAY4_SUPPORTED)) return "native ray4 (SSE)";
+    return "no native packets";
+}
+
 double EmbreeReference::trace(const std::vector<gpu::Ray>& rays, EmbreeMode mode,
                               std::vector<gpu::HitRecord>& hits) {
     hits.resize(rays.size());

@@ -27,6 +27,8 @@ public:
 
     double buildMs() const { return buildMs_; }
     int threads() const;
+    // What Embree reports of the ISA it chose: the widest native packet ("native ray16" ...).
+    std::string isa() const;
     static std::string version() { return RTC_VERSION_STRING; }
 
 private:

@@ -50,7 +50,7 @@ const std::vector<std::string> kMetricColumns = {
     "kernel_ms_median", "kernel_ms_min", "kernel_ms_max", "kernel_mrays_s",
     "embree1_ms_median", "embree1_ms_min", "embree1_ms_max", "embree1_mrays_s",
     "embree16_ms_median", "embree16_ms_min", "embree16_ms_max", "embree16_mrays_s",
-    "embree_threads", "embree_build_ms", "speed_ratio_vs_embree1",
+    "embree_threads", "embree_isa", "embree_build_ms", "speed_ratio_vs_embree1",
     "hits", "hit_miss_agreement", "same_primitive_agreement", "rel_distance_error_mean",
     "rel_distance_error_max", "hit_miss_mismatches", "primitive_mismatches",
     "voxels_per_ray_mean", "voxels_per_ray_max", "triangles_per_ray_mean", "triangles_per_ray_max",
@@ -260,6 +260,7 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
         if (mode == EmbreeMode::Intersect1) embree1Mrays = mrays;
     }
     row["embree_threads"] = std::to_string(embree.threads());
+    row["embree_isa"] = embree.isa();
     row["embree_build_ms"] = num(embree.buildMs(), 4);
     row["speed_ratio_vs_embree1"] = num(kernelMrays / embree1Mrays, 4);
 

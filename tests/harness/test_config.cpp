@@ -172,3 +172,29 @@ TEST_F(Config, UnknownKeyInASweep) {
 
 }  // namespace
 }  // namespace rtbench
+
+namespace rtbench {
+namespace {
+
+TEST_F(Config, SkipRulesLeaveOutInvalidCombinations) {
+    const ExperimentPlan plan = loadExperiment(write(kMinimal + R"(
+[strategy]
+type = "multipass"
+
+[[sweep]]
+name = "unroll"
+strategy.traverse_steps_per_pass = [1, 2]
+strategy.intersections_per_pass = [1, 2]
+strategy.suppress_finished_reads = [false, true]
+skip = ["strategy.traverse_steps_per_pass=1 strategy.intersections_per_pass=1 strategy.suppress_finished_reads=true"]
+)"));
+    ASSERT_EQ(plan.runs.size(), 7u);  // 8 combinations, one with nothing to suppress
+    for (const RunConfig& run : plan.runs)
+        EXPECT_FALSE(run.getInt("strategy.traverse_steps_per_pass") == 1 && run.getInt("strategy.intersections_per_pass") == 1 &&
+                     run.getBool("strategy.suppress_finished_reads"));
+    EXPECT_EQ(errorOf(kMinimal + "[[sweep]]\nskip = [\"strategy.kk=1\"]\n"),
+              path_ + ":6: key 'sweep.skip': 'strategy.kk=1' is not section.key=value for a known key");
+}
+
+}  // namespace
+}  // namespace rtbench
