@@ -5,7 +5,6 @@ usage: scripts/plot.py RESULTS_DIR      (or: build/rtbench plot RESULTS_DIR)
 Charts whose runs are absent from the folder are skipped. Uses Debian's python3-matplotlib and
 python3-pandas only.
 """
-import json
 import sys
 from pathlib import Path
 
@@ -13,9 +12,7 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-import pandas as pd  # noqa: E402
-
-SCENES = {"cgal:bunny00": "bunny", "procedural:christen_a": "scene A", "procedural:christen_b": "scene B"}
+from rtbench_results import load  # noqa: E402
 COLORS = {"branching": "tab:blue", "multipass": "tab:orange", "Embree rtcIntersect1": "tab:green"}
 BYTES = [("bytes_stencil", "stencil"), ("bytes_state", "state variables"), ("bytes_voxel", "voxel data"),
          ("bytes_triangle_list", "triangle lists"), ("bytes_vertices", "triangle vertices"), ("bytes_output", "output")]
@@ -29,6 +26,16 @@ def save(fig, folder: Path, name: str, written: list):
         fig.savefig(folder / f"{name}.{ext}", dpi=110)
     plt.close(fig)
     written.append(name)
+
+
+def stacked_bars(ax, labels, frame, columns, scale=1.0):
+    """One bar per row of `frame`, stacked over (column, legend name) pairs."""
+    bottom = [0.0] * len(frame)
+    for column, name in columns:
+        values = (frame[column].fillna(0) * scale).tolist()
+        ax.bar(labels, values, bottom=bottom, label=name)
+        bottom = [b + v for b, v in zip(bottom, values)]
+    ax.legend(fontsize=8)
 
 
 def size(frame) -> str:
@@ -98,14 +105,8 @@ def bandwidth_by_category(runs, device, folder, written):
     chosen = runs[runs.sweep == "architecture"] if (runs.sweep == "architecture").any() else runs
     chosen = chosen.drop_duplicates(["scene", "strategy_type"]).sort_values(["scene", "strategy_type"])
     fig, ax = plt.subplots(figsize=(max(5, 1.4 * len(chosen)), 4.5))
-    labels = [f"{r.scene}\n{r.strategy_type}" for r in chosen.itertuples()]
-    bottom = [0.0] * len(chosen)
-    for column, name in BYTES:
-        values = (chosen[column] / 1e6).tolist()
-        ax.bar(labels, values, bottom=bottom, label=name)
-        bottom = [b + v for b, v in zip(bottom, values)]
+    stacked_bars(ax, [f"{r.scene}\n{r.strategy_type}" for r in chosen.itertuples()], chosen, BYTES, 1e-6)
     ax.set_ylabel("bytes read and written per frame (MB)")
-    ax.legend(fontsize=8)
     ax.set_title(f"Bandwidth by data type (Purcell Fig. 8 style), {size(chosen)}; {device}")
     save(fig, folder, "bandwidth_by_category", written)
 
@@ -165,16 +166,12 @@ def kernel_time(runs, device, folder, written):
     if chosen.empty:
         return
     chosen = chosen.head(12)
-    fig, ax = plt.subplots(figsize=(max(5, 1.3 * len(chosen)), 4.5))
-    labels = [r.scene + "\n" + (r.label.split(":")[-1][:24] if ":" in r.label else "") for r in chosen.itertuples()]
-    bottom = [0.0] * len(chosen)
-    for column, name in KERNELS:
-        values = chosen[column].fillna(0).tolist()
-        ax.bar(labels, values, bottom=bottom, label=name)
-        bottom = [b + v for b, v in zip(bottom, values)]
+    fig, ax = plt.subplots(figsize=(max(7, 1.6 * len(chosen)), 4.5))
+    unique = chosen.scene.nunique() == len(chosen)
+    labels = [r.scene if unique else f"{r.scene}\nrun {int(r.run):03d}" for r in chosen.itertuples()]
+    stacked_bars(ax, labels, chosen, KERNELS)
     ax.set_ylabel("GPU time per frame (ms, median)")
-    ax.legend(fontsize=8)
-    ax.set_title(f"Multipass GPU time by kernel, {size(chosen)}; {device}")
+    ax.set_title(f"Multipass GPU time by kernel, {size(chosen)}\n{device}")
     save(fig, folder, "kernel_time", written)
 
 
@@ -183,18 +180,10 @@ def main() -> int:
         print(__doc__)
         return 2
     folder = Path(sys.argv[1])
-    runs = pd.read_csv(folder / "runs.csv")
-    runs = runs[runs.status == "ok"].copy()
+    runs, _, _, device = load(folder)
     if runs.empty:
         print(f"{folder}: no successful runs to chart")
         return 1
-    context = json.loads((folder / "context.json").read_text())
-    device = context["devices"][0]["name"] if context.get("devices") else "?"
-    runs["scene"] = runs.scene_source.map(lambda s: SCENES.get(s, s))
-    runs["sweep"] = runs.label.map(lambda s: s.split(":")[0] if ":" in s else "")
-    for column in ["strategy_scheduling", "strategy_suppress_finished_reads"]:
-        if column not in runs:
-            runs[column] = None
     written = []
     for chart in (speed_vs_accuracy, passes_vs_threshold, bandwidth_by_category, unrolling, grid_resolution, kernel_time):
         chart(runs, device, folder, written)

@@ -4,16 +4,12 @@
 usage: scripts/purcell_tables.py RESULTS_DIR   (reads runs.csv and context.json, writes tables.md)
 Uses Debian's python3-pandas only.
 """
-import json
 import sys
 from pathlib import Path
 
 import pandas as pd
 
-
-def scene_name(source: str) -> str:
-    return {"cgal:bunny00": "bunny", "procedural:christen_a": "scene A",
-            "procedural:christen_b": "scene B"}.get(source, source)
+from rtbench_results import load
 
 
 def mb(value) -> str:
@@ -35,13 +31,7 @@ def main() -> int:
         print(__doc__)
         return 2
     folder = Path(sys.argv[1])
-    runs = pd.read_csv(folder / "runs.csv")
-    context = json.loads((folder / "context.json").read_text())
-    failed = runs[runs.status != "ok"]
-    runs = runs[runs.status == "ok"].copy()
-    runs["scene"] = runs.scene_source.map(scene_name)
-    runs["sweep"] = runs.label.str.split(":").str[0]
-    device = context["devices"][0]["name"] if context["devices"] else "?"
+    runs, failed, context, device = load(folder)
     out = [f"# Results: {folder.name}", "",
            f"Device: {device}; CPU: {context['cpu']} ({context['cpu_threads']} threads); "
            f"Embree {context['embree_version']}; commit {context['git_commit']}; {context['date_utc']}.",

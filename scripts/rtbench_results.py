@@ -1,0 +1,29 @@
+"""Loading an rtbench results folder for the scripts (Debian's python3-pandas)."""
+import json
+from pathlib import Path
+
+import pandas as pd
+
+SCENES = {"cgal:bunny00": "bunny", "procedural:christen_a": "scene A", "procedural:christen_b": "scene B"}
+
+
+def sweep_of(label: str) -> str:
+    """The [[sweep]] name in a run label: "name:key=value ...", "name", "key=value ..." or "single run"."""
+    if ":" in label:
+        return label.split(":")[0]
+    return "" if "=" in label or label == "single run" else label
+
+
+def load(folder: Path):
+    """(ok runs with `scene` and `sweep` columns added, failed runs, context dict, device name)."""
+    runs = pd.read_csv(folder / "runs.csv")
+    context = json.loads((folder / "context.json").read_text())
+    failed = runs[runs.status != "ok"]
+    runs = runs[runs.status == "ok"].copy()
+    runs["scene"] = runs.scene_source.map(lambda s: SCENES.get(s, s))
+    runs["sweep"] = runs.label.map(sweep_of)
+    for column in ["strategy_scheduling", "strategy_suppress_finished_reads"]:
+        if column not in runs:
+            runs[column] = None
+    device = context["devices"][0]["name"] if context.get("devices") else "?"
+    return runs, failed, context, device
