@@ -67,8 +67,9 @@ int main(int argc, char** argv) {
             const rtbench::ExperimentResult result = rtbench::runExperiment(plan, options);
             std::cout << "\n" << rtbench::summaryTable(result.rows);
             if (result.reused) std::cout << "(" << result.reused << " run(s) kept from an earlier invocation; --force re-runs them)\n";
-            std::cout << "\nresults: " << result.folder << "/" << rtbench::runsFileName(options) << " (with context.json and "
-                      << (rtbench::imagesSupported() ? "PNG images" : "hit records for `rtbench images`") << ") — "
+            std::cout << "\nresults: " << result.folder << "/" << rtbench::runsFileName(options) << " (with context.json"
+                      << (rtbench::imagesSupported() ? "; PNGs where output.images" : "; hit records for `rtbench images`")
+                      << ") — "
                       << result.rows.size() - result.failed << " ok, " << result.failed << " failed\n";
             return result.failed ? 1 : 0;
         }
