@@ -27,6 +27,10 @@ if ((${#missing[@]})); then
 fi
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DRTBENCH_WITH_OIIO="${RTBENCH_WITH_OIIO:-ON}" >/dev/null
-cmake --build build -j"$(nproc)" 2>&1 | grep -E "error|warning|Error" || true
-test -x build/rtbench || { echo "[setup] build failed: run 'cmake --build build' to see why" >&2; exit 1; }
+if ! cmake --build build -j"$(nproc)" >build/build.log 2>&1; then
+  grep -E -A5 "error|Error" build/build.log | head -60 >&2
+  echo "[setup] build failed; the whole log is build/build.log" >&2
+  exit 1
+fi
+grep -E "warning" build/build.log | head -20 || true
 echo "[setup] built build/rtbench"
