@@ -44,9 +44,10 @@ std::string jsonField(const std::string& json, const std::string& key) {
     throw Error("context.json: unterminated \"" + key + "\"");
 }
 
-// Columns that describe where and when, not what: never compared.
-bool isProvenanceColumn(const std::string& column) {
-    return column == "git_commit" || column == "experiment_output";
+// Columns that describe where and when, not what: a difference is reported, never a failure.
+bool isContextColumn(const std::string& column) {
+    return column == "git_commit" || column == "experiment_output" || column == "device" || column == "driver" ||
+           column == "embree_threads" || column == "embree_isa";
 }
 
 }  // namespace
@@ -64,8 +65,12 @@ CheckResult checkResults(const std::string& folder, double timingTolerance, std:
     text << in.rdbuf();
     const std::string json = text.str();
     const std::string configPath = jsonField(json, "config_path");
-    const ExperimentPlan plan = loadExperimentText(jsonField(json, "config_text"), configPath,
-                                                   fs::absolute(configPath).parent_path().string());
+    // Relative scene paths resolve against the recorded config's folder: where it was when run if
+    // that still exists, else where the path points from here.
+    std::string configDir = fs::absolute(configPath).parent_path().string();
+    if (json.find("\"config_dir\"") != std::string::npos && fs::is_directory(jsonField(json, "config_dir")))
+        configDir = jsonField(json, "config_dir");
+    const ExperimentPlan plan = loadExperimentText(jsonField(json, "config_text"), configPath, configDir);
     const std::vector<Row> recorded = readCsv((fs::path(folder) / "runs.csv").string());
 
     const fs::path scratch = fs::temp_directory_path() / ("rtbench-check-" + std::to_string(::getpid()));
@@ -102,11 +107,12 @@ CheckResult checkResults(const std::string& folder, double timingTolerance, std:
         }
         const Row& fresh = *found->second;
         for (const auto& [column, value] : old) {
-            if (isProvenanceColumn(column)) continue;
             const auto it = fresh.find(column);
             const std::string again = it == fresh.end() ? "" : it->second;
-            if (again == value) continue;
-            if (isTimingColumn(column)) {
+            if (again == value || column == "git_commit" || column == "experiment_output") continue;
+            if (isContextColumn(column)) {
+                report(old.at("run"), column, value, again, "context");
+            } else if (isTimingColumn(column)) {
                 const double a = std::atof(value.c_str()), b = std::atof(again.c_str());
                 if (std::abs(b - a) <= timingTolerance * std::max(std::abs(a), 1e-9)) continue;
                 report(old.at("run"), column, value, again, "timing");
@@ -124,7 +130,7 @@ CheckResult checkResults(const std::string& folder, double timingTolerance, std:
     out << "rtbench check " << folder << ": " << result.runs << " runs re-run; " << result.deterministicDifferences
         << " deterministic difference(s), " << result.timingDifferences << " timing(s) outside " << timingTolerance * 100
         << "%\n";
-    if (result.deterministicDifferences + result.timingDifferences > 0) {
+    if (!table.str().empty()) {
         out << std::left << std::setw(6) << "run" << std::setw(30) << "column" << std::setw(22) << "recorded" << std::setw(22)
             << "now" << "kind\n"
             << table.str();

@@ -16,7 +16,9 @@ struct CheckResult {
 
 // Re-runs <folder>/context.json's config text (scenes resolve against the recorded config's
 // folder) into a temporary folder and compares it row by row with <folder>/runs.csv. Prints a
-// table of what differs to `out`. `timingTolerance` is relative (0.5 = within 50%).
+// table of what differs to `out`. `timingTolerance` is relative (0.5 = within 50%). Where the
+// machine differs (device, driver, Embree's threads or ISA) that is reported as context; counts
+// that depend on it (lane counts depend on the subgroup size) then differ too.
 CheckResult checkResults(const std::string& folder, double timingTolerance, std::ostream& out);
 
 }  // namespace rtbench

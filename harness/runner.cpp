@@ -297,6 +297,7 @@ std::string contextJson(const ExperimentPlan& plan, const RunnerOptions& options
     j << "  \"command\": " << jsonString(options.commandLine) << ",\n";
     j << "  \"config_path\": " << jsonString(plan.configPath) << ",\n";
     j << "  \"config_text\": " << jsonString(plan.configText) << ",\n";
+    j << "  \"config_dir\": " << jsonString(plan.configDir) << ",\n";
     j << "  \"git_commit\": " << jsonString(gitCommit()) << ",\n";
     j << "  \"date_utc\": " << jsonString(utcNow()) << ",\n";
     j << "  \"host\": " << jsonString(hostName()) << ",\n";
