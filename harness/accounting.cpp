@@ -4,30 +4,17 @@
 
 namespace rtbench {
 
-namespace {
-void addWork(ArchitectureMetrics& m, const std::vector<gpu::HitRecord>& hits) {
-    for (const gpu::HitRecord& h : hits) {
-        m.voxelsTotal += h.voxelsVisited;
-        m.testsTotal += h.trianglesTested;
-        m.stepsTotal += h.traversalSteps;
-        m.voxelsMax = std::max(m.voxelsMax, h.voxelsVisited);
-        m.testsMax = std::max(m.testsMax, h.trianglesTested);
-        m.stepsMax = std::max(m.stepsMax, h.traversalSteps);
-    }
-}
-}  // namespace
-
 ArchitectureMetrics branchingMetrics(const std::vector<gpu::HitRecord>& hits, std::uint64_t activeLanes,
                                      std::uint64_t laneSlots) {
     ArchitectureMetrics m;
-    addWork(m, hits);
+    m.work = workStats(hits);
     m.passes = 1;
     m.simdEfficiency = laneSlots ? double(activeLanes) / double(laneSlots) : 0.0;
     const std::uint64_t rays = hits.size();
     m.bytes.state = rays * bytes::kBranchingState;
-    m.bytes.voxel = m.voxelsTotal * 2 * bytes::kCellOffset;
-    m.bytes.triangleList = m.testsTotal * bytes::kListEntry;
-    m.bytes.vertices = m.testsTotal * bytes::kTriangle;
+    m.bytes.voxel = m.work.voxelsTotal * 2 * bytes::kCellOffset;
+    m.bytes.triangleList = m.work.trianglesTotal * bytes::kListEntry;
+    m.bytes.vertices = m.work.trianglesTotal * bytes::kTriangle;
     m.bytes.output = rays * bytes::kOutput;
     return m;
 }
@@ -35,7 +22,7 @@ ArchitectureMetrics branchingMetrics(const std::vector<gpu::HitRecord>& hits, st
 ArchitectureMetrics multipassMetrics(const std::vector<gpu::HitRecord>& hits, const MultipassCounts& counts,
                                      const MultipassOptions& options) {
     ArchitectureMetrics m;
-    addWork(m, hits);
+    m.work = workStats(hits);
     const std::uint64_t rays = hits.size();
     m.passes = counts.totalPasses();
     m.passesSetup = counts.passes[static_cast<int>(PassKind::Setup)];
@@ -44,7 +31,7 @@ ArchitectureMetrics multipassMetrics(const std::vector<gpu::HitRecord>& hits, co
     m.passesWrite = counts.passes[static_cast<int>(PassKind::Write)];
     // Purcell: max steps / K + max tests / M, each rounded up.
     const std::uint64_t k = options.traverseStepsPerPass, mm = options.intersectionsPerPass;
-    m.passesLowerBound = (m.stepsMax + k - 1) / k + (m.testsMax + mm - 1) / mm;
+    m.passesLowerBound = (m.work.stepsPerRayMax + k - 1) / k + (m.work.trianglesPerRayMax + mm - 1) / mm;
     const std::uint64_t loopPasses = m.passesTraverse + m.passesIntersect;
     m.simdEfficiency = loopPasses ? double(counts.usefulTraverse + counts.usefulIntersect) / double(loopPasses * rays) : 1.0;
     // Every traverse and intersect pass reads every ray's stencil byte; changes are written.

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "kernels/gpu_layout.h"
+#include "metrics.h"
 #include "structures/multipass_reference.h"
 
 namespace rtbench {
@@ -35,8 +36,7 @@ struct ArchitectureMetrics {
     std::uint64_t passesLowerBound = 0;  // multipass only (Purcell): traverse + intersect passes
     double simdEfficiency = 0.0;
     Bandwidth bytes;
-    std::uint64_t voxelsTotal = 0, testsTotal = 0, stepsTotal = 0;
-    std::uint32_t voxelsMax = 0, testsMax = 0, stepsMax = 0;
+    WorkStats work;  // per-ray counters of the run's hit records
 };
 
 // Branching: one pass; SIMD efficiency = active lanes / lane slots over subgroup ballots.

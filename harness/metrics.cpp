@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace rtbench {
 
@@ -38,6 +39,8 @@ WorkStats workStats(const std::vector<gpu::HitRecord>& hits) {
         w.hits += h.primitive != gpu::kNoHit;
         w.voxelsTotal += h.voxelsVisited;
         w.trianglesTotal += h.trianglesTested;
+        w.stepsTotal += h.traversalSteps;
+        w.stepsPerRayMax = std::max(w.stepsPerRayMax, h.traversalSteps);
         w.voxelsPerRayMax = std::max(w.voxelsPerRayMax, h.voxelsVisited);
         w.trianglesPerRayMax = std::max(w.trianglesPerRayMax, h.trianglesTested);
     }
@@ -46,6 +49,12 @@ WorkStats workStats(const std::vector<gpu::HitRecord>& hits) {
         w.trianglesPerRayMean = double(w.trianglesTotal) / double(hits.size());
     }
     return w;
+}
+
+std::uint64_t recordMismatches(const std::vector<gpu::HitRecord>& a, const std::vector<gpu::HitRecord>& b) {
+    std::uint64_t mismatches = 0;
+    for (std::size_t i = 0; i < a.size(); ++i) mismatches += std::memcmp(&a[i], &b[i], sizeof(gpu::HitRecord)) != 0;
+    return mismatches;
 }
 
 TimingStats timingStats(std::vector<double> samples) {

@@ -28,9 +28,14 @@ struct WorkStats {
     std::uint32_t trianglesPerRayMax = 0;
     std::uint64_t voxelsTotal = 0;
     std::uint64_t trianglesTotal = 0;
+    std::uint64_t stepsTotal = 0;  // DDA step attempts
+    std::uint32_t stepsPerRayMax = 0;
 };
 
 WorkStats workStats(const std::vector<gpu::HitRecord>& hits);
+
+// Rays whose hit records differ in any bit (distance, primitive, barycentrics, counters).
+std::uint64_t recordMismatches(const std::vector<gpu::HitRecord>& a, const std::vector<gpu::HitRecord>& b);
 
 struct TimingStats {
     double median = 0.0, min = 0.0, max = 0.0;

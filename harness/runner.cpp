@@ -93,14 +93,6 @@ glm::vec3 toVec3(const std::array<double, 3>& a) { return glm::vec3(float(a[0]),
 
 std::string num(double v, int significant = 6) { return formatNumber(v, significant); }
 
-// Rays whose GPU record differs in any field from the CPU reference's.
-std::uint64_t recordMismatches(const std::vector<gpu::HitRecord>& gpuHits, const std::vector<gpu::HitRecord>& cpuHits) {
-    std::uint64_t mismatches = 0;
-    for (std::size_t i = 0; i < gpuHits.size(); ++i)
-        mismatches += std::memcmp(&gpuHits[i], &cpuHits[i], sizeof(gpu::HitRecord)) != 0;
-    return mismatches;
-}
-
 MultipassOptions multipassOptions(const RunConfig& run) {
     MultipassOptions o;
     o.traverseStepsPerPass = unsigned(run.getInt("strategy.traverse_steps_per_pass"));
@@ -113,8 +105,8 @@ MultipassOptions multipassOptions(const RunConfig& run) {
 }
 
 void writeArchitectureColumns(const ArchitectureMetrics& m, std::uint64_t rays, Row& row) {
-    row["traversal_steps_per_ray_mean"] = num(double(m.stepsTotal) / double(rays));
-    row["traversal_steps_per_ray_max"] = std::to_string(m.stepsMax);
+    row["traversal_steps_per_ray_mean"] = num(double(m.work.stepsTotal) / double(rays));
+    row["traversal_steps_per_ray_max"] = std::to_string(m.work.stepsPerRayMax);
     row["passes_total"] = std::to_string(m.passes);
     if (m.passesSetup) {  // multipass only
         row["passes_setup"] = std::to_string(m.passesSetup);
@@ -266,7 +258,7 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
 
     // Accuracy and work.
     const Agreement a = compareHits(kernelHits, embreeHits);
-    const WorkStats w = workStats(kernelHits);
+    const WorkStats& w = metrics.work;
     row["hits"] = std::to_string(w.hits);
     row["hit_miss_agreement"] = num(a.hitMissAgreement, 8);
     row["same_primitive_agreement"] = num(a.samePrimitiveAgreement, 8);

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 
+#include "harness/check.h"
 #include "harness/images.h"
 #include "harness/runner.h"
 #include "tests/kernels/test_device.h"
@@ -18,12 +19,6 @@ RunnerOptions quietOptions() {
     RunnerOptions options;
     options.quiet = true;
     return options;
-}
-
-// Columns that are measurements of time, not counts: they may differ between runs.
-bool isTiming(const std::string& column) {
-    return column.find("_ms") != std::string::npos || column.find("mrays") != std::string::npos ||
-           column == "speed_ratio_vs_embree1" || column == "wall_s";
 }
 
 class EndToEnd : public ::testing::Test {
@@ -185,7 +180,9 @@ TEST_F(EndToEnd, ThreeShardsMergedEqualTheUnshardedRun) {
     ASSERT_EQ(merged.size(), unsharded.size());
     for (std::size_t r = 0; r < merged.size(); ++r)
         for (const auto& [column, value] : unsharded[r])
-            if (!isTiming(column)) EXPECT_EQ(merged[r].at(column), value) << "run " << r << " column " << column;
+            if (!isTimingColumn(column)) {
+                EXPECT_EQ(merged[r].at(column), value) << "run " << r << " column " << column;
+            }
 
     // A missing or doubled shard is an error.
     std::filesystem::copy_file(whole.folder + "/runs.shard-0-of-3.csv", whole.folder + "/runs.shard-3-of-3.csv");

@@ -80,11 +80,8 @@ TEST_F(BranchingKernel, PrimaryRaysOnSceneBAgreeWithEmbree) {
     GridResolutionRule rule;
     rule.minDim = 16;
     const UniformGrid grid = buildUniformGrid(mesh, rule);
-    PinholeCamera camera;
-    camera.position = {0.0f, 3.0f, 9.5f};  // inside the room, looking at its far wall
-    camera.lookAt = {0.0f, 2.5f, 0.0f};
-    camera.verticalFovDegrees = 70.0f;
-    const std::vector<gpu::Ray> rays = generatePrimaryRays(camera, 160, 120);
+    // Scene B's own viewpoint: inside the room, looking at its far wall.
+    const std::vector<gpu::Ray> rays = generatePrimaryRays(*proceduralCamera("christen_b", 70.0f), 160, 120);
     const KernelRun run = runBranching(*vk_, grid, rays, {32, 1, 2});
     EXPECT_EQ(run.gpuMs.size(), 2u);
     EmbreeReference embree(mesh, "");

@@ -58,12 +58,6 @@ MultipassOptions oracle(double threshold, unsigned k = 1, unsigned m = 1, bool s
     return o;
 }
 
-std::size_t recordMismatches(const std::vector<gpu::HitRecord>& a, const std::vector<gpu::HitRecord>& b) {
-    std::size_t n = 0;
-    for (std::size_t i = 0; i < a.size(); ++i) n += std::memcmp(&a[i], &b[i], sizeof(gpu::HitRecord)) != 0;
-    return n;
-}
-
 class MultipassKernels : public VulkanTest {
 protected:
     static MultipassRun run(const UniformGrid& grid, const std::vector<gpu::Ray>& rays, const MultipassOptions& o) {
@@ -149,11 +143,7 @@ TEST_F(MultipassKernels, AgreesWithBranchingAndTheCpuSimulatorForEveryUnrollAndT
     GridResolutionRule rule;
     rule.minDim = 8;
     const UniformGrid grid = buildUniformGrid(scene, rule);
-    PinholeCamera camera;
-    camera.position = {0.0f, 3.0f, 9.5f};
-    camera.lookAt = {0.0f, 2.5f, 0.0f};
-    camera.verticalFovDegrees = 70.0f;
-    const std::vector<gpu::Ray> rays = generatePrimaryRays(camera, 48, 40);
+    const std::vector<gpu::Ray> rays = generatePrimaryRays(*proceduralCamera("christen_b", 70.0f), 48, 40);
     const KernelRun branching = runBranching(*vk_, grid, rays, {64, 0, 1});
     for (unsigned k : {1u, 2u, 4u, 8u})
         for (unsigned m : {1u, 2u, 4u})
