@@ -1,15 +1,28 @@
 #include "branching_strategy.h"
 
+#include <cmath>
+
 #include "structures/error.h"
+#include "structures/scene_limits.h"
 
 namespace rtbench {
 
 void expectSameHits(const std::vector<gpu::HitRecord>& timed, const std::vector<gpu::HitRecord>& counted,
                     const char* strategy) {
-    for (std::size_t i = 0; i < timed.size(); ++i)
-        if (timed[i].primitive != counted[i].primitive || timed[i].t != counted[i].t)
-            throw Error(std::string(strategy) + ": the timed run's hit for ray " + std::to_string(i) +
-                        " differs from the instrumented one (nondeterministic kernel?)");
+    std::uint64_t differing = 0;
+    std::size_t first = 0;
+    for (std::size_t i = 0; i < timed.size(); ++i) {
+        if (std::isnan(timed[i].t) || std::isnan(counted[i].t))
+            throw Error(std::string(strategy) + ": ray " + std::to_string(i) +
+                        " has a NaN hit distance: its ray-triangle arithmetic overflowed, so the scene or the ray "
+                        "lies outside the range the kernels handle (" + rayRangeText() + ")");
+        if ((timed[i].primitive != counted[i].primitive || timed[i].t != counted[i].t) && differing++ == 0) first = i;
+    }
+    if (differing)
+        throw Error(std::string(strategy) + ": the timed run's hits differ from the instrumented run's on " +
+                    std::to_string(differing) + " of " + std::to_string(timed.size()) + " rays (first: ray " +
+                    std::to_string(first) + ", t " + std::to_string(timed[first].t) + " vs " +
+                    std::to_string(counted[first].t) + "): the kernel gives different results on the same input");
 }
 
 KernelRun runBranching(VulkanContext& vk, const UniformGrid& grid, const std::vector<gpu::Ray>& rays,

@@ -4,12 +4,13 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <map>
 #include <sstream>
 
+#include "columns.h"
 #include "config.h"
+#include "embree_config.h"
 #include "runner.h"
 #include "structures/error.h"
 #include "writers.h"
@@ -19,69 +20,48 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// The value of a top-level string field of context.json (written by runner.cpp's contextJson).
-std::string jsonField(const std::string& json, const std::string& key) {
-    const std::string marker = "\"" + key + "\": \"";
-    const std::size_t start = json.find(marker);
-    if (start == std::string::npos) throw Error("context.json: no \"" + key + "\"");
-    std::string value;
-    for (std::size_t i = start + marker.size(); i < json.size(); ++i) {
-        const char c = json[i];
-        if (c == '"') return value;
-        if (c != '\\') {
-            value += c;
-            continue;
-        }
-        const char e = json[++i];
-        switch (e) {
-            case 'n': value += '\n'; break;
-            case 't': value += '\t'; break;
-            case 'r': value += '\r'; break;
-            case 'u': value += static_cast<char>(std::stoi(json.substr(i + 1, 4), nullptr, 16)), i += 4; break;
-            default: value += e;
-        }
-    }
-    throw Error("context.json: unterminated \"" + key + "\"");
+std::string contextString(const Json& context, const std::string& path, const char* key) {
+    const auto it = context.find(key);
+    if (it == context.end() || !it->is_string()) throw Error(path + ": no string field \"" + std::string(key) + "\"");
+    return it->get<std::string>();
 }
 
-// Columns that describe where and when, not what: a difference is reported, never a failure.
-bool isContextColumn(const std::string& column) {
-    return column == "git_commit" || column == "experiment_output" || column == "device" || column == "driver" ||
-           column == "embree_threads" || column == "embree_isa";
-}
+double number(const std::string& s) { return s.empty() ? std::nan("") : std::strtod(s.c_str(), nullptr); }
 
 }  // namespace
 
-bool isTimingColumn(const std::string& column) {
-    return column.find("_ms") != std::string::npos || column.find("mrays_s") != std::string::npos ||
-           column == "speed_ratio_vs_embree1" || column == "wall_s";
-}
-
-CheckResult checkResults(const std::string& folder, double timingTolerance, std::ostream& out) {
-    const fs::path contextPath = fs::path(folder) / "context.json";
-    std::ifstream in(contextPath);
-    if (!in) throw Error(contextPath.string() + ": cannot open (is this a results folder?)");
-    std::stringstream text;
-    text << in.rdbuf();
-    const std::string json = text.str();
-    const std::string configPath = jsonField(json, "config_path");
+CheckResult checkResults(const std::string& folder, const CheckOptions& options, std::ostream& out) {
+    const std::string contextPath = (fs::path(folder) / "context.json").string();
+    if (!fs::exists(contextPath)) throw Error(contextPath + ": not found (is this a results folder?)");
+    const Json context = readJson(contextPath);
+    const std::string configPath = contextString(context, contextPath, "config_path");
     // Relative scene paths resolve against the recorded config's folder: where it was when run if
     // that still exists, else where the path points from here.
     std::string configDir = fs::absolute(configPath).parent_path().string();
-    if (json.find("\"config_dir\"") != std::string::npos && fs::is_directory(jsonField(json, "config_dir")))
-        configDir = jsonField(json, "config_dir");
-    const ExperimentPlan plan = loadExperimentText(jsonField(json, "config_text"), configPath, configDir);
-    const std::vector<Row> recorded = readCsv((fs::path(folder) / "runs.csv").string());
+    if (context.contains("config_dir") && fs::is_directory(contextString(context, contextPath, "config_dir")))
+        configDir = contextString(context, contextPath, "config_dir");
+    ExperimentPlan plan = loadExperimentText(contextString(context, contextPath, "config_text"), configPath, configDir);
+    const std::vector<Row> recorded = readRunsCsv((fs::path(folder) / "runs.csv").string());
+    if (!options.embreeConfigOverride.empty()) {
+        try {
+            checkEmbreeConfig(options.embreeConfigOverride);
+        } catch (const Error& e) {
+            throw Error("--embree-config: " + std::string(e.what()));
+        }
+    }
+    if (!options.embreeConfigOverride.empty())
+        for (RunConfig& run : plan.runs) run.values["baseline.embree_config"] = options.embreeConfigOverride;
 
+    RunnerOptions runner;
+    runner.quiet = true;
+    runner.force = true;
+    for (const Row& row : recorded) runner.onlyRuns.insert(row.at("run"));
     const fs::path scratch = fs::temp_directory_path() / ("rtbench-check-" + std::to_string(::getpid()));
     fs::remove_all(scratch);
-    RunnerOptions options;
-    options.quiet = true;
-    options.force = true;
-    options.outputOverride = scratch.string();
+    runner.outputOverride = scratch.string();
     ExperimentResult now;
     try {
-        now = runExperiment(plan, options);
+        now = runExperiment(plan, runner);
     } catch (...) {
         fs::remove_all(scratch);
         throw;
@@ -93,45 +73,72 @@ CheckResult checkResults(const std::string& folder, double timingTolerance, std:
     for (const Row& row : now.rows) byRun[row.at("run")] = &row;
     std::ostringstream table;
     auto report = [&](const std::string& run, const std::string& column, const std::string& then,
-                      const std::string& again, const char* kind) {
-        table << std::left << std::setw(6) << run << std::setw(30) << column << std::setw(22) << then << std::setw(22)
+                      const std::string& again, const std::string& kind) {
+        table << std::left << std::setw(6) << run << std::setw(30) << column << std::setw(24) << then << std::setw(24)
               << again << kind << "\n";
     };
     for (const Row& old : recorded) {
         ++result.runs;
         const auto found = byRun.find(old.at("run"));
         if (found == byRun.end()) {
-            report(old.at("run"), "(run)", "present", "missing", "count");
+            report(old.at("run"), "(run)", "present", "not in the plan", "parameter");
             ++result.deterministicDifferences;
             continue;
         }
         const Row& fresh = *found->second;
+        const double rays = number(old.at("rays"));
         for (const auto& [column, value] : old) {
-            const auto it = fresh.find(column);
-            const std::string again = it == fresh.end() ? "" : it->second;
-            if (again == value || column == "git_commit" || column == "experiment_output") continue;
-            if (isContextColumn(column)) {
-                report(old.at("run"), column, value, again, "context");
-            } else if (isTimingColumn(column)) {
-                const double a = std::atof(value.c_str()), b = std::atof(again.c_str());
-                if (std::abs(b - a) <= timingTolerance * std::max(std::abs(a), 1e-9)) continue;
-                report(old.at("run"), column, value, again, "timing");
-                ++result.timingDifferences;
-            } else {
-                report(old.at("run"), column, value, again, "count");
-                ++result.deterministicDifferences;
+            const std::string again = fresh.count(column) ? fresh.at(column) : "";
+            if (again == value) continue;
+            const ColumnSpec& spec = columnSpec(column);
+            if (!options.embreeConfigOverride.empty() &&
+                (column == "baseline_embree_config" || column == "config_hash"))
+                continue;  // changed on purpose by the override
+            switch (spec.kind) {
+                case ColumnKind::Parameter:
+                case ColumnKind::Count:
+                    report(old.at("run"), column, value, again, columnKindName(spec.kind));
+                    ++result.deterministicDifferences;
+                    break;
+                case ColumnKind::Reference: {
+                    const double a = number(value), b = number(again);
+                    const double tolerance = spec.perRay ? spec.tolerance * rays : spec.tolerance;
+                    std::ostringstream kind;
+                    kind << "reference (tolerance " << tolerance << ")";
+                    if (std::abs(a - b) <= tolerance) {
+                        ++result.referenceDifferences;
+                        report(old.at("run"), column, value, again, kind.str() + ": within");
+                    } else {
+                        ++result.deterministicDifferences;
+                        report(old.at("run"), column, value, again, kind.str() + ": BEYOND");
+                    }
+                    break;
+                }
+                case ColumnKind::Timing: {
+                    const double a = number(value), b = number(again);
+                    if (std::abs(b - a) <= options.timingTolerance * std::max(std::abs(a), 1e-9)) break;
+                    report(old.at("run"), column, value, again, "timing");
+                    ++result.timingDifferences;
+                    break;
+                }
+                case ColumnKind::Context:
+                    if (column == "git_commit") break;  // differs by design
+                    report(old.at("run"), column, value, again, "context");
+                    ++result.contextDifferences;
+                    break;
             }
         }
     }
-    if (now.rows.size() > recorded.size()) {
-        report("-", "(runs)", std::to_string(recorded.size()), std::to_string(now.rows.size()), "count");
-        ++result.deterministicDifferences;
-    }
-    out << "rtbench check " << folder << ": " << result.runs << " runs re-run; " << result.deterministicDifferences
-        << " deterministic difference(s), " << result.timingDifferences << " timing(s) outside " << timingTolerance * 100
-        << "%\n";
+    out << "rtbench check " << folder << ": " << result.runs << " runs re-run"
+        << (options.embreeConfigOverride.empty() ? "" : " with baseline.embree_config = \"" + options.embreeConfigOverride + "\"")
+        << "; " << result.deterministicDifferences << " deterministic difference(s), " << result.referenceDifferences
+        << " reference-dependent within tolerance, " << result.timingDifferences << " timing(s) outside "
+        << options.timingTolerance * 100 << "%, " << result.contextDifferences << " context\n";
+    if (context.contains("complete") && context["complete"] == false)
+        out << "(the recorded sweep was interrupted: " << recorded.size() << " of " << plan.runs.size()
+            << " runs were recorded and checked)\n";
     if (!table.str().empty()) {
-        out << std::left << std::setw(6) << "run" << std::setw(30) << "column" << std::setw(22) << "recorded" << std::setw(22)
+        out << std::left << std::setw(6) << "run" << std::setw(30) << "column" << std::setw(24) << "recorded" << std::setw(24)
             << "now" << "kind\n"
             << table.str();
     }

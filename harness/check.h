@@ -1,24 +1,34 @@
-// Reproducibility: re-run the config recorded in a results folder and compare every column.
+// Reproducibility: re-run the config recorded in a results folder and compare every column, each
+// by its kind (harness/columns.h): parameters and counts exactly, reference-dependent values
+// within their declared tolerance, timings within a relative tolerance (reported, never a
+// failure), context (device, driver, Embree's threads and ISA) reported.
 #pragma once
 #include <ostream>
 #include <string>
 
 namespace rtbench {
 
-// Columns that measure time (compared within a tolerance) rather than count (compared exactly).
-bool isTimingColumn(const std::string& column);
+struct CheckOptions {
+    double timingTolerance = 0.5;  // relative: 0.5 = within 50%
+    // When non-empty, replaces baseline.embree_config in every run (e.g. "isa=sse4.2"): the
+    // counts must not change with Embree's code path.
+    std::string embreeConfigOverride;
+};
 
 struct CheckResult {
     int runs = 0;
-    int deterministicDifferences = 0;  // counts, passes, bytes, agreement, grid stats, status ...
+    int deterministicDifferences = 0;  // parameters, counts, and reference values beyond tolerance
+    int referenceDifferences = 0;      // reference-dependent values that differ within tolerance
     int timingDifferences = 0;         // timings outside the tolerance (reported, not failures)
+    int contextDifferences = 0;        // reported, not failures
+    bool failed() const { return deterministicDifferences > 0; }
 };
 
 // Re-runs <folder>/context.json's config text (scenes resolve against the recorded config's
-// folder) into a temporary folder and compares it row by row with <folder>/runs.csv. Prints a
-// table of what differs to `out`. `timingTolerance` is relative (0.5 = within 50%). Where the
-// machine differs (device, driver, Embree's threads or ISA) that is reported as context; counts
-// that depend on it (lane counts depend on the subgroup size) then differ too.
-CheckResult checkResults(const std::string& folder, double timingTolerance, std::ostream& out);
+// folder) into a temporary folder, for the runs recorded in <folder>/runs.csv (an interrupted
+// sweep checks what it finished), and compares row by row. Prints a table of what differs, with
+// each difference's kind, to `out`. A malformed runs.csv (missing column, cut row, duplicate run,
+// unclosed quote) is an error, not a pass.
+CheckResult checkResults(const std::string& folder, const CheckOptions& options, std::ostream& out);
 
 }  // namespace rtbench

@@ -9,6 +9,8 @@
 #include <set>
 #include <sstream>
 
+#include "embree_config.h"
+#include "output_folder.h"
 #include "structures/error.h"
 
 namespace rtbench {
@@ -44,7 +46,8 @@ const std::vector<KeySpec>& configSchema() {
     static const std::vector<KeySpec> schema = [] {
         std::vector<KeySpec> s;
         auto add = [&](KeySpec k) { s.push_back(std::move(k)); };
-        add({"experiment.name", ValueType::String, "experiment name; results go to <output>/<name>/", {}, true});
+        add({"experiment.name", ValueType::String, "experiment name, a plain folder name; results go to <output>/<name>/", {}, true, -1e300, 1e300, {}, {},
+             [](const std::string& name) { experimentFolder("", name); }});
         add({"experiment.output", ValueType::String, "output folder (relative to the working directory)", std::string("out")});
         add({"experiment.repetitions", ValueType::Int, "timed repetitions per run (median reported)", std::int64_t(5), false, 1, 1000});
         add({"experiment.warmups", ValueType::Int, "untimed warm-up dispatches before timing", std::int64_t(1), false, 0, 100});
@@ -68,7 +71,7 @@ const std::vector<KeySpec>& configSchema() {
         add({"strategy.scheduling", ValueType::String, "multipass: oracle (threshold on the waiting fraction) or naive (traverse until none traverses, then intersect until none waits)", std::string("oracle"), false, -1e300, 1e300, {"oracle", "naive"}, multipass});
         add({"strategy.oracle_threshold", ValueType::Float, "multipass: intersect when waiting / active rays >= this (0: as soon as any waits; Purcell: 0.2)", 0.2, false, 0, 1, {}, {"strategy.type=multipass", "strategy.scheduling=oracle"}});
         add({"strategy.max_passes", ValueType::Int, "multipass: pass cap (0: derived from the grid); reaching it fails the run", std::int64_t(0), false, 0, 1e9, {}, multipass});
-        add({"baseline.embree_config", ValueType::String, "Embree device config string, e.g. \"isa=avx2\"", std::string("")});
+        add({"baseline.embree_config", ValueType::String, "Embree device config string, e.g. \"isa=avx2\" (keys isa, max_isa, threads, start_threads, set_affinity, verbose)", std::string(""), false, -1e300, 1e300, {}, {}, checkEmbreeConfig});
         add({"device.name", ValueType::String, "\"auto\" (discrete GPU, else lavapipe) or a substring of the device name", std::string("auto")});
         add({"device.validation", ValueType::Bool, "enable the Vulkan validation layer (a run fails on any message)", false});
         add({"output.images", ValueType::Bool, "write PNGs (needs OpenImageIO; else hit records are kept)", true});
@@ -131,6 +134,13 @@ ConfigValue convert(const std::string& file, const KeySpec& spec, const toml::no
             if (!spec.choices.empty() &&
                 std::find(spec.choices.begin(), spec.choices.end(), v) == spec.choices.end())
                 throw Error(at + "'" + v + "' is not allowed (allowed: " + join(spec.choices) + ")");
+            if (spec.check) {
+                try {
+                    spec.check(v);
+                } catch (const Error& e) {
+                    throw Error(at + e.what());
+                }
+            }
             return v;
         }
         case ValueType::Bool:
@@ -249,6 +259,7 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
         Given overrides;
         // Skip rules: a run matching every "section.key=value" of one rule is left out.
         std::vector<std::vector<std::pair<std::string, std::string>>> skip;
+        std::string at;  // file:line of the [[sweep]] table
     };
     std::vector<Sweep> sweeps;
     for (auto&& [sectionKey, sectionNode] : root) {
@@ -261,6 +272,7 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
             throw Error(where(path, sectionKey.source()) + ": 'sweep' must be an array of tables ([[sweep]])");
         for (const toml::node& element : *list) {
             Sweep sweep;
+            sweep.at = where(path, element.source());
             for (auto&& [key, node] : *element.as_table()) {
                 if (key.str() == "name") {
                     if (!node.is_string())
@@ -345,6 +357,7 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
             total *= values.size();
             if (total > 100000) throw Error(path + ": the sweep expands to over 100000 runs");
         }
+        std::size_t skippedRuns = 0;
         for (std::size_t r = 0; r < total; ++r) {
             RunConfig run;
             run.sweep = sweepName;
@@ -365,7 +378,10 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
                     return run.has(condition.first) && formatValue(run.values.at(condition.first)) == condition.second;
                 });
             });
-            if (skipped) continue;
+            if (skipped) {
+                ++skippedRuns;
+                continue;
+            }
             for (const auto& [key, value] : run.values) unread.erase(key);
             for (const std::string& key : swept)
                 if (run.has(key)) run.sweptKeys.push_back(key);
@@ -373,6 +389,9 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
             run.index = plan.runs.size();
             plan.runs.push_back(std::move(run));
         }
+        if (skippedRuns == total)
+            throw Error(sweep.at + ": every one of the " + std::to_string(total) + " runs of sweep '" + sweepName +
+                        "' matches a skip rule: the sweep runs nothing");
     }
     if (!unread.empty()) {
         const auto& [key, node] = *unread.begin();

@@ -4,6 +4,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -27,6 +28,9 @@ struct KeySpec {
     // "section.key=value" conditions under which the key is read (all must hold); a run where
     // one fails drops the key, and a key given but read by no run is an error.
     std::vector<std::string> appliesWhen = {};
+    // Strings: a further check that throws rtbench::Error saying what is wrong (the loader adds
+    // the file, line and key).
+    std::function<void(const std::string&)> check = {};
 };
 
 // Every key rtbench reads. Unknown keys are errors.

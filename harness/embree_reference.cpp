@@ -8,6 +8,7 @@
 #include <cstring>
 
 #include "structures/error.h"
+#include "structures/scene_limits.h"
 
 namespace rtbench {
 
@@ -46,6 +47,7 @@ void EmbreeReference::checkDevice(const char* what) const {
 }
 
 EmbreeReference::EmbreeReference(const TriangleMesh& mesh, const std::string& deviceConfig) {
+    validateSceneRange(mesh);  // Embree silently drops vertices beyond 1.844e18 (FLT_LARGE)
     device_ = rtcNewDevice(deviceConfig.empty() ? nullptr : deviceConfig.c_str());
     if (!device_)
         throw Error("Embree: rtcNewDevice(\"" + deviceConfig + "\") failed: " +
@@ -86,6 +88,7 @@ std::string EmbreeReference::isa() const {
 
 double EmbreeReference::trace(const std::vector<gpu::Ray>& rays, EmbreeMode mode,
                               std::vector<gpu::HitRecord>& hits) {
+    validateRays(rays);  // Embree asserts (and aborts the process) on origins beyond 1.844e18
     hits.resize(rays.size());
     const std::size_t n = rays.size();
     const auto start = std::chrono::steady_clock::now();

@@ -15,7 +15,8 @@ enum class EmbreeMode { Intersect1, Intersect16 };
 class EmbreeReference {
 public:
     // deviceConfig: Embree's device config string, e.g. "isa=avx2" (Debian's 3.13 crashes with
-    // its default ISA on some AVX-512 machines). Builds a RTC_SCENE_FLAG_ROBUST scene.
+    // its default ISA on some AVX-512 machines). Builds a RTC_SCENE_FLAG_ROBUST scene. Throws
+    // rtbench::Error for a scene outside the range of structures/scene_limits.h.
     EmbreeReference(const TriangleMesh& mesh, const std::string& deviceConfig);
     ~EmbreeReference();
     EmbreeReference(const EmbreeReference&) = delete;
@@ -23,6 +24,7 @@ public:
 
     // Traces all rays (TBB parallel_for over chunks); returns wall time in ms. hits[i] gets
     // t, primitive and barycentrics (work counters 0); t = kNoHitT, primitive = kNoHit on a miss.
+    // Throws rtbench::Error, before tracing, for a ray outside the range of scene_limits.h.
     double trace(const std::vector<gpu::Ray>& rays, EmbreeMode mode, std::vector<gpu::HitRecord>& hits);
 
     double buildMs() const { return buildMs_; }

@@ -1,12 +1,65 @@
 #include "gpu_buffers.h"
 
+#include <unistd.h>
+
 #include <chrono>
 #include <cstring>
 
+#include "structures/error.h"
+
+#include "embedded_kernels.h"
+
 namespace rtbench {
 
+std::vector<BufferSize> rayBufferSizes(std::uint64_t rays, bool multipassState) {
+    const std::uint64_t perRay = multipassState ? rays : 1;  // unused slots get a minimal buffer
+    const std::string n = " (" + std::to_string(rays) + " rays)";
+    return {{"ray" + n, rays * sizeof(gpu::Ray)},
+            {"hit record" + n, rays * sizeof(gpu::HitRecord)},
+            {"ray state", perRay},
+            {"traversal state" + n, perRay * sizeof(gpu::RayTraversalState)},
+            {"hit state" + n, perRay * sizeof(gpu::RayHitState)},
+            {"ray counter" + n, perRay * sizeof(gpu::RayCounters)}};
+}
+
+std::vector<BufferSize> gridBufferSizes(const std::array<unsigned, 3>& resolution, std::uint64_t references,
+                                        std::uint64_t triangles) {
+    const std::uint64_t cells = std::uint64_t(resolution[0]) * resolution[1] * resolution[2];
+    const std::string res = std::to_string(resolution[0]) + "x" + std::to_string(resolution[1]) + "x" +
+                            std::to_string(resolution[2]);
+    return {{"grid cell offset (" + res + " = " + std::to_string(cells) + " cells)", (cells + 1) * 4},
+            {"grid triangle list (" + std::to_string(references) + " references)", references * 4},
+            {"triangle vertex (" + std::to_string(triangles) + " triangles)", triangles * sizeof(gpu::Triangle)}};
+}
+
+void refuseOversizedBuffers(const DeviceInfo& device, const std::vector<BufferSize>& buffers) {
+    std::uint64_t total = 0;
+    for (const BufferSize& b : buffers) {
+        if (b.bytes > device.maxStorageBufferRange)
+            throw Error("the " + b.what + " buffer would be " + std::to_string(b.bytes) + " bytes, over " +
+                        device.name + "'s maxStorageBufferRange of " + std::to_string(device.maxStorageBufferRange) +
+                        " bytes for one binding");
+        total += b.bytes;
+    }
+    if (device.deviceLocalBytes && total > device.deviceLocalBytes)
+        throw Error("the run's buffers would take " + std::to_string(total) + " bytes, over " + device.name +
+                    "'s largest device-local heap of " + std::to_string(device.deviceLocalBytes) + " bytes");
+}
+
+std::uint64_t hostMemoryLimit() {
+    return std::uint64_t(sysconf(_SC_PHYS_PAGES)) * std::uint64_t(sysconf(_SC_PAGE_SIZE)) / 2;
+}
+
+void refuseOversizedRayStream(std::uint64_t rays) {
+    const std::uint64_t bytes = rays * kHostBytesPerRay;
+    if (bytes > hostMemoryLimit())
+        throw Error(std::to_string(rays) + " rays need " + std::to_string(bytes) + " bytes of host memory (" +
+                    std::to_string(kHostBytesPerRay) + " per ray), over the limit of " +
+                    std::to_string(hostMemoryLimit()) + " bytes (half the physical memory)");
+}
+
 ComputePipeline createKernel(VulkanContext& vk, const std::string& name, const KernelSpec& spec) {
-    return vk.createComputePipeline(std::string(RTBENCH_SPIRV_DIR) + "/" + name + ".spv", gpu::kBindingCount,
+    return vk.createComputePipeline(embeddedKernel(name), gpu::kBindingCount,
                                     sizeof(gpu::GridParams), spec.workgroupSize,
                                     {{gpu::kSpecWorkgroupSize, spec.workgroupSize},
                                      {gpu::kSpecInstrument, spec.instrument ? 1u : 0u},
@@ -19,21 +72,15 @@ GpuBuffers::GpuBuffers(VulkanContext& vk, const UniformGrid& grid, const std::ve
                        bool multipassState)
     : vk_(vk), rayCount_(rays.size()) {
     const auto start = std::chrono::steady_clock::now();
-    const std::string res = std::to_string(grid.stats.resolution[0]) + "x" + std::to_string(grid.stats.resolution[1]) +
-                            "x" + std::to_string(grid.stats.resolution[2]);
     const std::size_t n = rays.size();
-    const std::size_t perRay = multipassState ? n : 1;  // unused slots get a minimal buffer
+    std::vector<BufferSize> sizes = rayBufferSizes(n, multipassState);
+    const std::vector<BufferSize> gridSizes =
+        gridBufferSizes(grid.stats.resolution, grid.triangleList.size(), grid.triangles.size());
+    sizes.insert(sizes.begin() + 1, gridSizes.begin(), gridSizes.end());  // in binding order
+    refuseOversizedBuffers(vk.info(), sizes);
     try {
-        buffers_[gpu::kBindingRays] = vk.createStorageBuffer(n * sizeof(gpu::Ray), "ray (" + std::to_string(n) + " rays)");
-        buffers_[gpu::kBindingCellOffsets] = vk.createStorageBuffer(grid.cellOffsets.size() * 4, "grid cell offset (" + res + " cells)");
-        buffers_[gpu::kBindingTriangleList] = vk.createStorageBuffer(
-            grid.triangleList.size() * 4, "grid triangle list (" + std::to_string(grid.triangleList.size()) + " references)");
-        buffers_[gpu::kBindingVertices] = vk.createStorageBuffer(grid.triangles.size() * sizeof(gpu::Triangle), "triangle vertex");
-        buffers_[gpu::kBindingHits] = vk.createStorageBuffer(n * sizeof(gpu::HitRecord), "hit record");
-        buffers_[gpu::kBindingStencil] = vk.createStorageBuffer(perRay, "ray state");
-        buffers_[gpu::kBindingTraversal] = vk.createStorageBuffer(perRay * sizeof(gpu::RayTraversalState), "traversal state");
-        buffers_[gpu::kBindingHitState] = vk.createStorageBuffer(perRay * sizeof(gpu::RayHitState), "hit state");
-        buffers_[gpu::kBindingRayCounters] = vk.createStorageBuffer(perRay * sizeof(gpu::RayCounters), "ray counter");
+        for (std::uint32_t b = gpu::kBindingRays; b <= gpu::kBindingRayCounters; ++b)
+            buffers_[b] = vk.createStorageBuffer(sizes[b].bytes, sizes[b].what);
         buffers_[gpu::kBindingPassCounters] = vk.createHostStorageBuffer(sizeof(gpu::PassCounters));
         vk.upload(buffers_[gpu::kBindingRays], rays.data(), n * sizeof(gpu::Ray));
         vk.upload(buffers_[gpu::kBindingCellOffsets], grid.cellOffsets.data(), grid.cellOffsets.size() * 4);
@@ -77,6 +124,12 @@ std::vector<gpu::HitRecord> GpuBuffers::downloadHits() {
     std::vector<gpu::HitRecord> hits(rayCount_);
     vk_.download(buffers_[gpu::kBindingHits], hits.data(), hits.size() * sizeof(gpu::HitRecord));
     return hits;
+}
+
+std::vector<gpu::RayTraversalState> GpuBuffers::downloadTraversalStates() {
+    std::vector<gpu::RayTraversalState> states(rayCount_);
+    vk_.download(buffers_[gpu::kBindingTraversal], states.data(), states.size() * sizeof(gpu::RayTraversalState));
+    return states;
 }
 
 }  // namespace rtbench

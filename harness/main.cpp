@@ -2,15 +2,44 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 
 #include "harness/check.h"
+#include "harness/columns.h"
 #include "harness/config.h"
 #include "harness/images.h"
 #include "harness/runner.h"
 #include "harness/vulkan_context.h"
 #include "structures/error.h"
+
+namespace {
+
+std::string shellQuote(const std::string& s) {
+    std::string out = "'";
+    for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+// scripts/plot.py beside the binary (build/rtbench -> scripts/, or a bundle's scripts/), else in
+// the source tree the binary was built from.
+std::string findPlotScript() {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+    std::vector<fs::path> candidates;
+    if (!ec) candidates = {exe.parent_path() / "scripts" / "plot.py", exe.parent_path().parent_path() / "scripts" / "plot.py"};
+    candidates.push_back(fs::path(RTBENCH_SOURCE_DIR) / "scripts" / "plot.py");
+    std::string tried;
+    for (const fs::path& p : candidates) {
+        if (fs::is_regular_file(p, ec)) return p.string();
+        tried += (tried.empty() ? "" : ", ") + p.string();
+    }
+    throw rtbench::Error("scripts/plot.py not found (looked at " + tried + ")");
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"rtbench: GPU ray tracing strategies (Purcell 2002, Christen 2005) measured against Embree"};
@@ -43,12 +72,15 @@ int main(int argc, char** argv) {
     plot->add_option("results_dir", plotFolder, "results folder")->required();
 
     std::string checkFolder;
-    double tolerance = 0.5;
+    rtbench::CheckOptions checkOptions;
     CLI::App* check = app.add_subcommand("check", "Re-run a results folder's config and compare: counts exactly (exit 1 on a difference), timings within a tolerance");
     check->add_option("results_dir", checkFolder, "results folder (runs.csv and context.json)")->required();
-    check->add_option("--tolerance", tolerance, "relative tolerance for timing columns (default 0.5 = 50%)");
+    check->add_option("--tolerance", checkOptions.timingTolerance, "relative tolerance for timing columns (default 0.5 = 50%)");
+    check->add_option("--embree-config", checkOptions.embreeConfigOverride,
+                      "re-run with this Embree config string (e.g. isa=sse4.2): counts must not change");
 
     CLI::App* keys = app.add_subcommand("keys", "List every config key with its type, default and meaning");
+    CLI::App* columns = app.add_subcommand("columns", "List the metric columns of runs.csv: kind, unit, meaning (Markdown)");
 
     CLI11_PARSE(app, argc, argv);
     for (int i = 0; i < argc; ++i) options.commandLine += (i ? " " : "") + std::string(argv[i]);
@@ -94,13 +126,18 @@ int main(int argc, char** argv) {
             return 0;
         }
         if (*check) {
-            const rtbench::CheckResult result = rtbench::checkResults(checkFolder, tolerance, std::cout);
-            return result.deterministicDifferences ? 1 : 0;
+            const rtbench::CheckResult result = rtbench::checkResults(checkFolder, checkOptions, std::cout);
+            return result.failed() ? 1 : 0;
         }
         if (*plot) {
             // Debian's python3-matplotlib and python3-pandas (PyPI is not reachable here).
-            const std::string command = "/usr/bin/python3 '" + std::string(RTBENCH_SOURCE_DIR) + "/scripts/plot.py' '" + plotFolder + "'";
+            const std::string script = findPlotScript();
+            const std::string command = "/usr/bin/python3 " + shellQuote(script) + " " + shellQuote(plotFolder);
             return std::system(command.c_str()) == 0 ? 0 : 1;
+        }
+        if (*columns) {
+            std::cout << rtbench::columnsMarkdown();
+            return 0;
         }
         if (*keys) {
             for (const rtbench::KeySpec& k : rtbench::configSchema())

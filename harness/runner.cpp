@@ -17,9 +17,11 @@
 
 #include "accounting.h"
 #include "branching_strategy.h"
+#include "columns.h"
 #include "multipass_strategy.h"
 #include "embree_reference.h"
 #include "images.h"
+#include "output_folder.h"
 #include "metrics.h"
 #include "structures/camera.h"
 #include "structures/error.h"
@@ -34,32 +36,6 @@ namespace rtbench {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string paramColumn(const std::string& key) {
-    std::string c = key;
-    for (char& ch : c)
-        if (ch == '.') ch = '_';
-    return c;
-}
-
-const std::vector<std::string> kMetricColumns = {
-    "run", "label", "status", "error", "config_hash", "git_commit", "device", "driver",
-    "scene_triangles", "scene_degenerate", "rays",
-    "grid_res_x", "grid_res_y", "grid_res_z", "grid_cells", "grid_empty_fraction", "grid_references",
-    "grid_refs_per_triangle", "grid_max_refs_in_cell", "grid_bytes", "grid_build_ms",
-    "kernel_ms_median", "kernel_ms_min", "kernel_ms_max", "kernel_mrays_s",
-    "embree1_ms_median", "embree1_ms_min", "embree1_ms_max", "embree1_mrays_s",
-    "embree16_ms_median", "embree16_ms_min", "embree16_ms_max", "embree16_mrays_s",
-    "embree_threads", "embree_isa", "embree_build_ms", "speed_ratio_vs_embree1",
-    "hits", "hit_miss_agreement", "same_primitive_agreement", "rel_distance_error_mean",
-    "rel_distance_error_max", "hit_miss_mismatches", "primitive_mismatches",
-    "voxels_per_ray_mean", "voxels_per_ray_max", "triangles_per_ray_mean", "triangles_per_ray_max",
-    "traversal_steps_per_ray_mean", "traversal_steps_per_ray_max",
-    "passes_total", "passes_setup", "passes_traverse", "passes_intersect", "passes_write", "passes_lower_bound",
-    "simd_efficiency", "bytes_stencil", "bytes_state", "bytes_voxel", "bytes_triangle_list", "bytes_vertices",
-    "bytes_output", "bytes_total", "bytes_per_ray",
-    "kernel_ms_setup", "kernel_ms_traverse", "kernel_ms_intersect", "kernel_ms_write",
-    "cpu_reference_mismatches", "cpu_counts_match", "branching_mismatches", "wall_s"};
 
 TriangleMesh loadScene(const std::string& source, const std::string& configDir) {
     if (source.rfind("procedural:", 0) == 0) return proceduralScene(source.substr(11));
@@ -150,7 +126,16 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
     if (!caches.meshes.count(source)) caches.meshes[source] = std::make_shared<TriangleMesh>(loadScene(source, plan.configDir));
     const TriangleMesh& mesh = *caches.meshes[source];
     row["scene_triangles"] = std::to_string(mesh.triangles.size());
-    row["scene_degenerate"] = std::to_string(mesh.degenerateCount());
+    validateSceneRange(mesh);  // before the grid, the camera fit or Embree see it
+    const std::size_t degenerate = mesh.degenerateCount();
+    row["scene_degenerate"] = std::to_string(degenerate);
+    // What makes the scene differ from what its file describes, in the row and on the console.
+    std::vector<std::string> warnings;
+    if (degenerate)  // never hit by any method
+        warnings.push_back(std::to_string(degenerate) + " of " + std::to_string(mesh.triangles.size()) +
+                           " triangles are degenerate (zero area in float) and are never hit");
+    if (mesh.elementsSkipped) warnings.push_back("skipped " + mesh.elementsSkippedWhat + " (not surfaces)");
+    for (const std::string& w : warnings) row["warnings"] += (row["warnings"].empty() ? "" : "; ") + w;
     PinholeCamera camera = fitCamera(mesh.bounds(), float(run.getFloat("camera.fov_deg")));
     if (source.rfind("procedural:", 0) == 0 && !run.has("camera.position") && !run.has("camera.look_at"))
         camera = proceduralCamera(source.substr(11), camera.verticalFovDegrees).value_or(camera);
@@ -158,12 +143,18 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
     if (run.has("camera.position")) camera.position = toVec3(run.getVec3("camera.position"));
     camera.up = toVec3(run.getVec3("camera.up"));
     const unsigned width = unsigned(run.getInt("camera.width")), height = unsigned(run.getInt("camera.height"));
+    // Refuse before allocating: the per-ray buffers on the device and the per-ray data on the host.
+    const bool multipass = run.getString("strategy.type") == "multipass";
+    refuseOversizedBuffers(vk.info(), rayBufferSizes(std::uint64_t(width) * height, multipass));
+    refuseOversizedRayStream(std::uint64_t(width) * height);
     const std::vector<gpu::Ray> rays = generatePrimaryRays(camera, width, height);
+    validateRays(rays);
     row["rays"] = std::to_string(rays.size());
 
-    // Grid: refuse before building what the device cannot hold in one binding.
+    // Grid: refuse before building what the device cannot hold in one binding (the triangle list,
+    // known only once built, is checked with every other buffer before allocation, in GpuBuffers).
     const GridResolutionRule rule = resolutionRule(run);
-    const auto res = chooseGridResolution(gridBounds(mesh.bounds()), mesh.triangles.size(), rule);
+    const auto res = chooseGridResolution(mesh.bounds(), mesh.triangles.size(), rule);
     const std::uint64_t cells = std::uint64_t(res[0]) * res[1] * res[2];
     const std::uint64_t offsetBytes = (cells + 1) * 4;
     if (offsetBytes > vk.info().maxStorageBufferRange)
@@ -171,6 +162,7 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
                     " (" + std::to_string(cells) + " cells) needs " + std::to_string(offsetBytes) +
                     " bytes of cell offsets, over " + vk.info().name + "'s maxStorageBufferRange of " +
                     std::to_string(vk.info().maxStorageBufferRange) + " bytes");
+    refuseOversizedBuffers(vk.info(), {gridBufferSizes(res, 0, mesh.triangles.size()).back()});  // the vertices
     const UniformGrid grid = buildUniformGrid(mesh, rule);
     const GridStats& g = grid.stats;
     row["grid_res_x"] = std::to_string(g.resolution[0]);
@@ -193,15 +185,17 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
     std::vector<gpu::HitRecord> kernelHits;
     std::vector<double> kernelMs;
     ArchitectureMetrics metrics;
-    if (run.getString("strategy.type") == "branching") {
+    std::uint64_t cpuMismatches = 0, branchingMismatches = 0;
+    bool cpuCountsMatch = true;
+    if (!multipass) {
         if (timing.workgroupSize % vk.info().subgroupSize)
             throw Error("strategy.workgroup_size " + std::to_string(timing.workgroupSize) +
                         " is not a multiple of the subgroup size " + std::to_string(vk.info().subgroupSize));
         KernelRun kernel = runBranching(vk, grid, rays, timing);
         metrics = branchingMetrics(kernel.hits, kernel.activeLanes, kernel.laneSlots);
         const LaneCounts lanes = branchingLaneCounts(grid, rays, vk.info().subgroupSize);
-        row["cpu_reference_mismatches"] = std::to_string(recordMismatches(kernel.hits, traceGridReference(grid, rays)));
-        row["cpu_counts_match"] = lanes.activeLanes == kernel.activeLanes && lanes.laneSlots == kernel.laneSlots ? "1" : "0";
+        cpuMismatches = recordMismatches(kernel.hits, traceGridReference(grid, rays));
+        cpuCountsMatch = lanes.activeLanes == kernel.activeLanes && lanes.laneSlots == kernel.laneSlots;
         kernelHits = std::move(kernel.hits);
         kernelMs = std::move(kernel.gpuMs);
     } else {
@@ -209,10 +203,11 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
         MultipassRun kernel = runMultipass(vk, grid, rays, options, timing);
         metrics = multipassMetrics(kernel.hits, kernel.counts, options);
         const MultipassResult cpu = simulateMultipass(grid, rays, options);
-        row["cpu_reference_mismatches"] = std::to_string(recordMismatches(kernel.hits, cpu.hits));
-        row["cpu_counts_match"] = cpu.counts == kernel.counts ? "1" : "0";
+        cpuMismatches = recordMismatches(kernel.hits, cpu.hits);
+        cpuCountsMatch = cpu.counts == kernel.counts;
         // The two architectures must produce identical hit records (and work counters).
-        row["branching_mismatches"] = std::to_string(recordMismatches(kernel.hits, traceGridReference(grid, rays)));
+        branchingMismatches = recordMismatches(kernel.hits, traceGridReference(grid, rays));
+        row["branching_mismatches"] = std::to_string(branchingMismatches);
         const char* kindColumns[kPassKinds] = {"kernel_ms_setup", "kernel_ms_traverse", "kernel_ms_intersect", "kernel_ms_write"};
         for (int k = 0; k < kPassKinds; ++k) {
             std::vector<double> ms;
@@ -222,6 +217,8 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
         kernelHits = std::move(kernel.hits);
         kernelMs = std::move(kernel.gpuMs);
     }
+    row["cpu_reference_mismatches"] = std::to_string(cpuMismatches);
+    row["cpu_counts_match"] = cpuCountsMatch ? "1" : "0";
     writeArchitectureColumns(metrics, rays.size(), row);
     const TimingStats kt = timingStats(kernelMs);
     row["kernel_ms_median"] = num(kt.median);
@@ -280,56 +277,57 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
 
     if (vk.validationMessages().size() != messagesBefore)
         throw Error("the Vulkan validation layer reported: " + vk.validationMessages()[messagesBefore]);
+    // The row is complete; a kernel that disagrees with its CPU reference fails it all the same.
+    if (cpuMismatches)
+        throw Error("the kernel's hit records differ from the CPU reference's on " + std::to_string(cpuMismatches) +
+                    " of " + std::to_string(rays.size()) + " rays");
+    if (!cpuCountsMatch)
+        throw Error(std::string("the kernel's ") + (multipass ? "pass sequence or event counts differ" : "subgroup lane counts differ") +
+                    " from the CPU reference's");
+    if (branchingMismatches)
+        throw Error("the multipass hit records differ from the branching caster's on " +
+                    std::to_string(branchingMismatches) + " of " + std::to_string(rays.size()) + " rays");
 }
 
-std::string contextJson(const ExperimentPlan& plan, const RunnerOptions& options, const std::vector<Row>& rows,
-                        const Caches& caches) {
-    std::ostringstream j;
-    j << "{\n";
-    j << "  \"command\": " << jsonString(options.commandLine) << ",\n";
-    j << "  \"config_path\": " << jsonString(plan.configPath) << ",\n";
-    j << "  \"config_text\": " << jsonString(plan.configText) << ",\n";
-    j << "  \"config_dir\": " << jsonString(plan.configDir) << ",\n";
-    j << "  \"git_commit\": " << jsonString(gitCommit()) << ",\n";
-    j << "  \"date_utc\": " << jsonString(utcNow()) << ",\n";
-    j << "  \"host\": " << jsonString(hostName()) << ",\n";
-    j << "  \"cpu\": " << jsonString(cpuModel()) << ",\n";
-    j << "  \"cpu_threads\": " << std::thread::hardware_concurrency() << ",\n";
-    j << "  \"embree_version\": " << jsonString(EmbreeReference::version()) << ",\n";
-    j << "  \"images\": " << (imagesSupported() ? "\"OpenImageIO\"" : "\"hit records only\"") << ",\n";
-    j << "  \"devices\": [";
-    bool first = true;
+// What is needed to re-run and to judge the experiment; written when the sweep starts (complete:
+// false) and rewritten after every run, so `rtbench check` works on an interrupted sweep.
+Json contextJson(const ExperimentPlan& plan, const RunnerOptions& options, const std::vector<Row>& rows,
+                 const Caches& caches, const std::string& startedUtc, bool complete) {
+    Json j;
+    j["command"] = options.commandLine;
+    j["config_path"] = plan.configPath;
+    j["config_text"] = plan.configText;
+    j["config_dir"] = plan.configDir;
+    j["git_commit"] = gitCommit();
+    j["date_utc"] = startedUtc;
+    j["complete"] = complete;
+    j["host"] = hostName();
+    j["cpu"] = cpuModel();
+    j["cpu_threads"] = std::thread::hardware_concurrency();
+    j["embree_version"] = EmbreeReference::version();
+    j["images"] = imagesSupported() ? "OpenImageIO" : "hit records only";
+    j["devices"] = Json::array();
     for (const auto& [key, vk] : caches.devices) {
         const DeviceInfo& d = vk->info();
-        j << (first ? "\n" : ",\n") << "    {\"name\": " << jsonString(d.name) << ", \"driver\": " << jsonString(d.driver)
-          << ", \"api\": " << jsonString(d.apiVersion) << ", \"type\": " << jsonString(d.type)
-          << ", \"subgroup_size\": " << d.subgroupSize << ", \"max_storage_buffer_range\": " << d.maxStorageBufferRange
-          << ", \"timestamp_period_ns\": " << d.timestampPeriodNs << "}";
-        first = false;
+        j["devices"].push_back({{"name", d.name}, {"driver", d.driver}, {"api", d.apiVersion}, {"type", d.type},
+                                {"subgroup_size", d.subgroupSize}, {"max_storage_buffer_range", d.maxStorageBufferRange},
+                                {"timestamp_period_ns", d.timestampPeriodNs}});
     }
-    j << "\n  ],\n  \"plan\": [";
-    for (std::size_t i = 0; i < plan.runs.size(); ++i) {
-        char index[16];
-        std::snprintf(index, sizeof index, "%03zu", plan.runs[i].index);
-        j << (i ? ",\n" : "\n") << "    {\"run\": \"" << index << "\", \"config_hash\": \"" << plan.runs[i].hash() << "\"}";
-    }
-    j << "\n  ],\n  \"runs\": [";
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-        const Row& r = rows[i];
-        j << (i ? ",\n" : "\n") << "    {\"run\": " << jsonString(r.at("run")) << ", \"label\": " << jsonString(r.at("label"))
-          << ", \"config_hash\": " << jsonString(r.at("config_hash")) << ", \"status\": " << jsonString(r.at("status")) << "}";
-    }
-    j << "\n  ]\n}\n";
-    return j.str();
+    j["plan"] = Json::array();
+    for (const RunConfig& run : plan.runs) j["plan"].push_back({{"run", runNumber(run)}, {"config_hash", run.hash()}});
+    j["runs"] = Json::array();
+    for (const Row& r : rows)
+        j["runs"].push_back({{"run", r.at("run")}, {"label", r.at("label")}, {"config_hash", r.at("config_hash")},
+                             {"status", r.at("status")}});
+    return j;
 }
 
 }  // namespace
 
-std::vector<std::string> runColumns() {
-    std::vector<std::string> columns;
-    for (const KeySpec& k : configSchema()) columns.push_back(paramColumn(k.name));
-    columns.insert(columns.end(), kMetricColumns.begin(), kMetricColumns.end());
-    return columns;
+std::string runNumber(const RunConfig& run) {
+    char index[16];
+    std::snprintf(index, sizeof index, "%03zu", run.index);
+    return index;
 }
 
 std::string summaryTable(const std::vector<Row>& rows) {
@@ -356,35 +354,60 @@ std::string summaryTable(const std::vector<Row>& rows) {
     return out.str();
 }
 
-std::string runsFileName(const RunnerOptions& options) {
-    if (options.shardCount <= 1) return "runs.csv";
-    return "runs.shard-" + std::to_string(options.shardIndex) + "-of-" + std::to_string(options.shardCount) + ".csv";
+namespace {
+std::string shardSuffix(const RunnerOptions& options) {
+    if (options.shardCount <= 1) return "";
+    return ".shard-" + std::to_string(options.shardIndex) + "-of-" + std::to_string(options.shardCount);
 }
+}  // namespace
+
+std::string runsFileName(const RunnerOptions& options) { return "runs" + shardSuffix(options) + ".csv"; }
+std::string contextFileName(const RunnerOptions& options) { return "context" + shardSuffix(options) + ".json"; }
 
 ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& options) {
     ExperimentResult result;
     if (options.shardCount == 0 || options.shardIndex >= options.shardCount)
         throw Error("--shard " + std::to_string(options.shardIndex) + "/" + std::to_string(options.shardCount) +
                     ": expected i/N with 0 <= i < N");
+    if (plan.runs.empty()) throw Error(plan.configPath + ": the plan has no runs");
     const RunConfig& first = plan.runs.front();
     const std::string output = options.outputOverride.empty() ? first.getString("experiment.output") : options.outputOverride;
-    result.folder = (fs::path(output) / first.getString("experiment.name")).string();
-    fs::create_directories(result.folder);
+    result.folder = experimentFolder(output, first.getString("experiment.name"));
+    std::error_code ec;
+    fs::create_directories(result.folder, ec);
+    if (ec || !fs::is_directory(result.folder))
+        throw Error(result.folder + ": cannot create the results folder" + (ec ? ": " + ec.message() : std::string()));
+    // Everything below writes the folder: one process at a time, checked before any run.
+    const OutputFolderLock lock(result.folder);
     const std::string csvName = runsFileName(options);
     const std::string csvPath = (fs::path(result.folder) / csvName).string();
+    const std::string contextPath = (fs::path(result.folder) / contextFileName(options)).string();
+    checkWritableFile(csvPath);
+    checkWritableFile(contextPath);
     const std::vector<std::string> columns = runColumns();
 
     // Rows of an earlier invocation that can stand: ok, same run, same parameters, same commit.
     std::map<std::string, Row> earlier;
-    if (!options.force && fs::exists(csvPath))
-        for (const Row& row : readCsv(csvPath))
-            if (row.count("status") && row.at("status") == "ok")
+    if (!options.force && fs::exists(csvPath)) {
+        std::vector<Row> rows;
+        try {
+            rows = readRunsCsv(csvPath);
+        } catch (const Error& e) {
+            throw Error(std::string(e.what()) + "; cannot resume from it (--force re-runs every run and replaces it)");
+        }
+        for (const Row& row : rows)
+            if (row.at("status") == "ok")
                 earlier[row.at("run") + "|" + row.at("config_hash") + "|" + row.at("git_commit")] = row;
+    }
 
     std::vector<const RunConfig*> mine;
     for (const RunConfig& run : plan.runs)
-        if (run.index % options.shardCount == options.shardIndex) mine.push_back(&run);
+        if (run.index % options.shardCount == options.shardIndex &&
+            (options.onlyRuns.empty() || options.onlyRuns.count(runNumber(run))))
+            mine.push_back(&run);
     Caches caches;
+    const std::string started = utcNow();
+    writeJson(contextPath, contextJson(plan, options, result.rows, caches, started, false));
     if (!options.quiet)
         std::cout << "[rtbench] " << plan.configPath << ": " << mine.size() << " run" << (mine.size() == 1 ? "" : "s")
                   << (options.shardCount > 1 ? " (shard " + std::to_string(options.shardIndex) + "/" +
@@ -399,9 +422,7 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
         const RunConfig& run = *mine[k];
         Row row;
         for (const auto& [key, value] : run.values) row[paramColumn(key)] = formatValue(value);
-        char index[16];
-        std::snprintf(index, sizeof index, "%03zu", run.index);
-        row["run"] = index;
+        row["run"] = runNumber(run);
         row["label"] = run.label();
         row["config_hash"] = run.hash();
         row["git_commit"] = gitCommit();
@@ -439,47 +460,43 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
             else
                 std::cout << " FAILED: " << row["error"] << "\n";
         }
+        if (!row["warnings"].empty()) std::cerr << "[rtbench] run " << row["run"] << " warning: " << row["warnings"] << "\n";
         result.rows.push_back(row);
-        writeCsv(csvPath, columns, result.rows);  // after every run: an interrupt loses nothing done
+        // After every run: an interrupt loses nothing done, and the context names what ran.
+        writeCsv(csvPath, columns, result.rows);
+        writeJson(contextPath, contextJson(plan, options, result.rows, caches, started, false));
     }
     writeCsv(csvPath, columns, result.rows);
-    const std::string contextName = options.shardCount > 1 ? "context.shard-" + std::to_string(options.shardIndex) +
-                                                                 "-of-" + std::to_string(options.shardCount) + ".json"
-                                                           : "context.json";
-    writeFileAtomically((fs::path(result.folder) / contextName).string(), contextJson(plan, options, result.rows, caches));
+    writeJson(contextPath, contextJson(plan, options, result.rows, caches, started, true));
     return result;
 }
 
 std::vector<Row> mergeShards(const std::string& folder) {
     if (!fs::is_directory(folder)) throw Error(folder + ": not a results folder");
+    const OutputFolderLock lock(folder);
     std::vector<Row> rows;
     std::set<std::string> planned;  // "run|config_hash" of every run in the plan
-    std::string firstContext;
+    fs::path firstContext;
     int shards = 0;
     for (const auto& entry : fs::directory_iterator(folder)) {
         const std::string name = entry.path().filename().string();
         if (name.rfind("runs.shard-", 0) == 0 && entry.path().extension() == ".csv") {
             ++shards;
-            for (const Row& row : readCsv(entry.path().string())) rows.push_back(row);
+            for (const Row& row : readRunsCsv(entry.path().string())) rows.push_back(row);
         }
-        if (name.rfind("context.shard-", 0) == 0) {
-            std::ifstream in(entry.path());
-            std::stringstream text;
-            text << in.rdbuf();
-            const std::string json = text.str();
-            if (firstContext.empty() || name < firstContext) firstContext = name;
-            // The plan list: {"run": "000", "config_hash": "..."} entries after "plan".
-            std::size_t at = json.find("\"plan\"");
-            while (at != std::string::npos && (at = json.find("{\"run\": \"", at)) != std::string::npos) {
-                const std::size_t runStart = at + 9, runEnd = json.find('"', runStart);
-                const std::size_t hashStart = json.find("\"config_hash\": \"", runEnd) + 16;
-                planned.insert(json.substr(runStart, runEnd - runStart) + "|" +
-                               json.substr(hashStart, json.find('"', hashStart) - hashStart));
-                at = runEnd;
+        if (name.rfind("context.shard-", 0) == 0 && entry.path().extension() == ".json") {
+            if (firstContext.empty() || entry.path() < firstContext) firstContext = entry.path();
+            const Json context = readJson(entry.path().string());
+            try {
+                for (const Json& run : context.at("plan"))
+                    planned.insert(run.at("run").get<std::string>() + "|" + run.at("config_hash").get<std::string>());
+            } catch (const Json::exception& e) {
+                throw Error(entry.path().string() + ": no valid \"plan\" list: " + e.what());
             }
         }
     }
     if (shards == 0) throw Error(folder + ": no runs.shard-*.csv files to merge");
+    if (planned.empty()) throw Error(folder + ": no context.shard-*.json with the plan");
     std::map<std::string, Row> byRun;
     for (const Row& row : rows) {
         const std::string key = row.at("run") + "|" + row.at("config_hash");
@@ -491,8 +508,16 @@ std::vector<Row> mergeShards(const std::string& folder) {
         if (!byRun.count(key)) throw Error(folder + ": run " + key.substr(0, key.find('|')) + " is missing from the shards");
     std::vector<Row> merged;
     for (const auto& [key, row] : byRun) merged.push_back(row);
-    writeCsv((fs::path(folder) / "runs.csv").string(), runColumns(), merged);
-    fs::copy_file(fs::path(folder) / firstContext, fs::path(folder) / "context.json", fs::copy_options::overwrite_existing);
+    const std::string csvPath = (fs::path(folder) / "runs.csv").string();
+    checkWritableFile(csvPath);
+    writeCsv(csvPath, runColumns(), merged);
+    Json context = readJson(firstContext.string());
+    context["complete"] = true;
+    context["runs"] = Json::array();
+    for (const Row& r : merged)
+        context["runs"].push_back({{"run", r.at("run")}, {"label", r.at("label")}, {"config_hash", r.at("config_hash")},
+                                   {"status", r.at("status")}});
+    writeJson((fs::path(folder) / "context.json").string(), context);
     return merged;
 }
 

@@ -2,9 +2,11 @@
 // rays -> metrics -> one CSV row (+ context JSON, images). A failing run writes a row with
 // status=failed and its reason; the other runs go on.
 #pragma once
+#include <set>
 #include <string>
 #include <vector>
 
+#include "columns.h"
 #include "config.h"
 #include "writers.h"
 
@@ -22,6 +24,8 @@ struct RunnerOptions {
     // Sharding: run only the runs whose index % shardCount == shardIndex, into
     // runs.shard-<i>-of-<n>.csv (`rtbench merge` joins the shards).
     unsigned shardIndex = 0, shardCount = 1;
+    // Run only these run numbers ("007"); empty: all (rtbench check re-runs what was recorded).
+    std::set<std::string> onlyRuns;
 };
 
 struct ExperimentResult {
@@ -33,11 +37,13 @@ struct ExperimentResult {
 
 ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& options);
 
-// Column order of runs.csv: parameters first, then metrics.
-std::vector<std::string> runColumns();
-
-// The CSV file a run writes: runs.csv, or runs.shard-<i>-of-<n>.csv for a shard.
+// The files a run writes: runs.csv and context.json, or runs.shard-<i>-of-<n>.csv and
+// context.shard-<i>-of-<n>.json for a shard.
 std::string runsFileName(const RunnerOptions& options);
+std::string contextFileName(const RunnerOptions& options);
+
+// A run's number as it appears in the CSV and file names: "000", "001", ...
+std::string runNumber(const RunConfig& run);
 
 // Joins the shards' CSVs of a results folder into runs.csv; checks that every run of the plan
 // (from the shards' context files) is there exactly once. Returns the merged rows.

@@ -165,15 +165,6 @@ DeviceInfo describe(VkPhysicalDevice device) {
     return info;
 }
 
-std::vector<char> readFile(const std::string& path) {
-    std::ifstream in(path, std::ios::binary | std::ios::ate);
-    if (!in) throw Error(path + ": cannot open SPIR-V (was the build complete?)");
-    std::vector<char> bytes(static_cast<std::size_t>(in.tellg()));
-    in.seekg(0);
-    in.read(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    return bytes;
-}
-
 }  // namespace
 
 std::vector<DeviceInfo> VulkanContext::listDevices() {
@@ -409,7 +400,7 @@ void VulkanContext::download(const Buffer& b, void* data, VkDeviceSize size) {
     destroy(staging);
 }
 
-ComputePipeline VulkanContext::createComputePipeline(const std::string& spirvPath,
+ComputePipeline VulkanContext::createComputePipeline(std::span<const std::uint32_t> spirv,
                                                      std::uint32_t bindingCount,
                                                      std::uint32_t pushConstantBytes,
                                                      std::uint32_t workgroupSize,
@@ -434,10 +425,9 @@ ComputePipeline VulkanContext::createComputePipeline(const std::string& spirvPat
     layoutInfo.pPushConstantRanges = &range;
     VK_CHECK(vkCreatePipelineLayout(device_, &layoutInfo, nullptr, &p.layout));
 
-    const std::vector<char> code = readFile(spirvPath);
     VkShaderModuleCreateInfo moduleInfo{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
-    moduleInfo.codeSize = code.size();
-    moduleInfo.pCode = reinterpret_cast<const std::uint32_t*>(code.data());
+    moduleInfo.codeSize = spirv.size_bytes();
+    moduleInfo.pCode = spirv.data();
     VkShaderModule module;
     VK_CHECK(vkCreateShaderModule(device_, &moduleInfo, nullptr, &module));
 

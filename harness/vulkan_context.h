@@ -5,6 +5,7 @@
 #include <vulkan/vulkan.h>
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -73,7 +74,7 @@ public:
     void download(const Buffer& buffer, void* data, VkDeviceSize size);
     void destroy(Buffer& buffer);
 
-    ComputePipeline createComputePipeline(const std::string& spirvPath, std::uint32_t bindingCount,
+    ComputePipeline createComputePipeline(std::span<const std::uint32_t> spirv, std::uint32_t bindingCount,
                                           std::uint32_t pushConstantBytes,
                                           std::uint32_t workgroupSize,
                                           const std::vector<SpecializationConstant>& constants);

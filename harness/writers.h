@@ -1,6 +1,8 @@
 // Result writers: the per-experiment CSV (one row per run, rewritten atomically after every
-// run so an interrupted sweep leaves a complete file) and small JSON helpers.
+// run so an interrupted sweep leaves a complete file) JSON files.
 #pragma once
+#include <nlohmann/json.hpp>
+
 #include <map>
 #include <string>
 #include <vector>
@@ -9,16 +11,26 @@ namespace rtbench {
 
 using Row = std::map<std::string, std::string>;
 
-// Writes `rows` under `columns` (missing cells empty) to path via path.tmp + rename.
+// Writes `rows` under `columns` (missing cells empty) to path via path.tmp + rename; a row that
+// sets a column not in `columns` is an error (a typo never silently drops a value).
 void writeCsv(const std::string& path, const std::vector<std::string>& columns, const std::vector<Row>& rows);
 
-// Reads a CSV written by writeCsv (quoted fields with "" escapes) into rows keyed by header.
+// Reads a CSV as RFC 4180 (quoted fields with "" escapes and line breaks, LF or CRLF) into rows
+// keyed by the header. Throws rtbench::Error naming the file and line on an unclosed quote, a
+// duplicated header name, or a row with more or fewer fields than the header.
 std::vector<Row> readCsv(const std::string& path);
 
-// Writes text to path via path.tmp + rename.
+// `s` with every byte that is not part of well-formed UTF-8 written as \xNN.
+std::string validUtf8(const std::string& s);
+
+// Writes text to path via path.tmp + rename; on failure the .tmp is removed and path unchanged.
 void writeFileAtomically(const std::string& path, const std::string& text);
 
-std::string jsonString(const std::string& s);  // quoted, escaped
+// JSON files (nlohmann::json, keys kept in the order written): written atomically; a read that
+// fails names the file.
+using Json = nlohmann::ordered_json;
+void writeJson(const std::string& path, const Json& json);
+Json readJson(const std::string& path);
 
 std::string formatNumber(double value, int significant = 6);
 

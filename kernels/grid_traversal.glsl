@@ -140,12 +140,15 @@ RtDda rtDdaSetup(vec3 o, vec3 d, vec3 invD, float tEnter, float tLeave) {
 float rtDdaVoxelExit(RtDda s) { return min(min(min(s.tMaxAxis.x, s.tMaxAxis.y), s.tMaxAxis.z), s.tLeave); }
 
 // Steps to the next voxel; false when the ray leaves the grid (or ends) instead.
-// Ties (the ray crosses an edge or a corner) step the lowest axis first.
+// Ties (the ray crosses an edge or a corner) step the lowest axis first. Every step moves the
+// voxel one cell along an axis the ray moves along, so a walk takes at most resX + resY + resZ
+// steps; an axis it does not move along ends the walk (only a NaN distance, from inputs outside
+// structures/scene_limits.h, could pick one, and would otherwise loop forever).
 bool rtDdaStep(RT_INOUT(RtDda) s) {
     int axis = 0;
     if (s.tMaxAxis.y < s.tMaxAxis[axis]) axis = 1;
     if (s.tMaxAxis.z < s.tMaxAxis[axis]) axis = 2;
-    if (s.tMaxAxis[axis] >= s.tLeave) return false;
+    if (s.tMaxAxis[axis] >= s.tLeave || s.stepDir[axis] == 0) return false;
     s.cell[axis] += s.stepDir[axis];
     if (s.cell[axis] < 0 || s.cell[axis] >= int(params.resolution[axis])) return false;
     precise float next = s.tMaxAxis[axis] + s.tDelta[axis];

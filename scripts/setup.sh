@@ -11,7 +11,7 @@ packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
   libembree-dev libtbb-dev
   libcgal-dev libcgal-demo libgmp-dev libmpfr-dev libboost-dev
-  libopenimageio-dev libglm-dev libtomlplusplus-dev libcli11-dev libgtest-dev
+  libopenimageio-dev libglm-dev libtomlplusplus-dev libcli11-dev libgtest-dev nlohmann-json3-dev
   python3-matplotlib python3-pandas
 )
 missing=()

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "error.h"
+#include "scene_limits.h"
 
 namespace rtbench {
 
@@ -10,7 +11,7 @@ PinholeCamera fitCamera(const Bounds3& bounds, float verticalFovDegrees) {
     PinholeCamera camera;
     camera.verticalFovDegrees = verticalFovDegrees;
     const glm::vec3 centre = 0.5f * (bounds.min + bounds.max);
-    const float radius = std::max(0.5f * glm::length(bounds.extent()), 1e-6f);
+    const float radius = 0.5f * glm::length(bounds.extent());  // > 0 for a box within scene_limits.h
     const float halfFov = glm::radians(0.5f * verticalFovDegrees);
     const float distance = radius / std::sin(halfFov);
     const glm::vec3 view = glm::normalize(glm::vec3(0.0f, 0.25f, 1.0f));
@@ -21,6 +22,15 @@ PinholeCamera fitCamera(const Bounds3& bounds, float verticalFovDegrees) {
 
 std::vector<gpu::Ray> generatePrimaryRays(const PinholeCamera& camera, unsigned width,
                                           unsigned height) {
+    // Range first: beyond it the view direction itself overflows (and would read as a bad `up`).
+    auto inRange = [](glm::vec3 p) { return glm::all(glm::lessThanEqual(glm::abs(p), glm::vec3(kMaxRayOrigin))); };
+    if (!inRange(camera.position) || !inRange(camera.lookAt))
+        throw Error("camera: position (" + formatFloat(camera.position.x) + ", " + formatFloat(camera.position.y) + ", " +
+                    formatFloat(camera.position.z) + ") or look_at (" + formatFloat(camera.lookAt.x) + ", " +
+                    formatFloat(camera.lookAt.y) + ", " + formatFloat(camera.lookAt.z) + ") is out of range: " +
+                    rayRangeText());
+    if (!std::isfinite(glm::length(camera.up)) || glm::length(camera.up) == 0.0f)
+        throw Error("camera: up must be a finite, non-zero vector");
     const glm::vec3 forward = camera.lookAt - camera.position;
     if (glm::length(forward) == 0.0f) throw Error("camera: position equals look_at");
     const glm::vec3 w = glm::normalize(forward);

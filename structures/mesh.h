@@ -22,6 +22,8 @@ struct TriangleMesh {
     std::vector<glm::vec3> vertices;
     std::vector<glm::uvec3> triangles;  // indices into vertices
     std::size_t polygonsRead = 0;       // polygons before triangulation
+    std::size_t elementsSkipped = 0;    // file elements that are not surfaces (OBJ 'l', 'p')
+    std::string elementsSkippedWhat;    // what they were, e.g. "2 line elements ('l')"; "" if none
 
     Bounds3 bounds() const;
     // Zero-area triangles (repeated vertices or collinear): kept, counted, never hit by any method.

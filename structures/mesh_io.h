@@ -1,17 +1,25 @@
-// Mesh files through CGAL's polygon-soup reader (OFF, OBJ, PLY, STL), validated so that a bad
-// file is a clear rtbench::Error naming it (and the line where one is known), never a crash or a
-// silent partial load. Polygons are fan-triangulated (exact for convex polygons).
+// Mesh files through CGAL's readers (OFF, OBJ, PLY, STL), validated before CGAL sees them
+// (mesh_validate.h) so that a bad file is a clear rtbench::Error naming it and the line or byte
+// where the problem is, never a crash, a huge allocation, output on stdout/stderr or a silent
+// partial load. Polygons are triangulated by polygon_triangulation.h.
 #pragma once
 #include <string>
+#include <string_view>
 
 #include "mesh.h"
 
 namespace rtbench {
 
 // Reads a mesh file. Throws rtbench::Error on: a missing or unreadable file, an unknown
-// extension, a reader failure, fewer elements than the header declares (OFF, PLY), a polygon
-// with fewer than 3 vertices, an index out of range, a NaN or infinite coordinate, no triangles.
+// extension, a declared count the file cannot hold, fewer or more elements than declared, a
+// polygon with fewer than 3 vertices, a non-integer or out-of-range index, a NaN, infinite or
+// beyond-single-precision coordinate, no faces (point clouds), a polygon that cannot be
+// triangulated, anything the format does not allow.
 TriangleMesh readMeshFile(const std::string& path);
+
+// The same on a file's bytes; the extension of `nameWithExtension` selects the format, and the
+// name is used in messages (an entry point for fuzzing).
+TriangleMesh readMeshBytes(std::string_view bytes, const std::string& nameWithExtension);
 
 // Resolves `cgal:NAME` to Debian libcgal-demo's data/meshes/NAME.off, extracting the package's
 // data.tar.gz once into the cache folder (RTBENCH_CACHE, else $XDG_CACHE_HOME/rtbench, else

@@ -6,8 +6,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
 
 #include "error.h"
+#include "scene_limits.h"
 
 namespace rtbench {
 
@@ -16,7 +20,8 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 
 // Candidate cell range of [vmin, vmax] on one axis. The float cell computation may be off by one
 // within rounding of a boundary, so a coordinate that close to one widens the range by a cell;
-// the exact predicate then decides.
+// the exact predicate then decides. Clamped with fmax/fmin, which also send a NaN to the grid's
+// edge, so the range is always within [0, resolution - 1].
 void candidateRange(float vmin, float vmax, float boxMin, float invCellSize, unsigned resolution,
                     int& lo, int& hi) {
     constexpr double kNear = 1e-4;  // in cells; rounding errors are ~1e-6 cells
@@ -26,8 +31,18 @@ void candidateRange(float vmin, float vmax, float boxMin, float invCellSize, uns
     if (localMin - cellMin < kNear) cellMin -= 1.0;
     if (cellMax + 1.0 - localMax < kNear) cellMax += 1.0;
     const double last = static_cast<double>(resolution) - 1.0;
-    lo = static_cast<int>(std::clamp(cellMin, 0.0, last));
-    hi = static_cast<int>(std::clamp(cellMax, 0.0, last));
+    lo = static_cast<int>(std::fmin(std::fmax(cellMin, 0.0), last));
+    hi = static_cast<int>(std::fmax(std::fmin(cellMax, last), 0.0));
+}
+
+std::string boxText(const glm::dvec3& e) {
+    return formatFloat(e.x) + " x " + formatFloat(e.y) + " x " + formatFloat(e.z);
+}
+
+std::string resolutionText(const std::array<double, 3>& r) {
+    char text[96];
+    std::snprintf(text, sizeof text, "%.0fx%.0fx%.0f", r[0], r[1], r[2]);
+    return text;
 }
 }  // namespace
 
@@ -36,40 +51,46 @@ Bounds3 gridBounds(const Bounds3& meshBounds) {
     Bounds3 box = meshBounds;
     const glm::vec3 e = box.extent();
     const float largest = std::max({e.x, e.y, e.z});
+    if (!(largest >= kMinSceneExtent))  // a point, a subnormal or a non-finite box
+        throw Error("grid: the scene box is " + boxText(e) + ": " + sceneRangeText());
     for (int a = 0; a < 3; ++a) {
         if (e[a] > 0.0f) continue;
-        const float pad = largest > 0.0f ? 0.5e-4f * largest : 0.5f;
+        const float pad = 0.5e-4f * largest;
         box.min[a] -= pad;
         box.max[a] += pad;
     }
     return box;
 }
 
-std::array<unsigned, 3> chooseGridResolution(const Bounds3& box, std::size_t triangleCount,
+std::array<unsigned, 3> chooseGridResolution(const Bounds3& sceneBounds, std::size_t triangleCount,
                                              const GridResolutionRule& rule) {
-    const glm::dvec3 e(box.extent());
-    std::array<unsigned, 3> res{1, 1, 1};
-    auto atLeastOne = [](double cells) {
-        return static_cast<unsigned>(std::max(1.0, std::round(cells)));
-    };
-    switch (rule.kind) {
-        case GridResolutionRule::Kind::Explicit:
-            for (int a = 0; a < 3; ++a) res[a] = std::max(1u, rule.resolution[a]);
-            break;
-        case GridResolutionRule::Kind::MinDim: {  // Purcell et al. 2002 §4.2
-            const double smallest = std::min({e.x, e.y, e.z});
-            for (int a = 0; a < 3; ++a) res[a] = atLeastOne(rule.minDim * e[a] / smallest);
-            break;
-        }
-        case GridResolutionRule::Kind::Density: {  // cube-root rule (Cleary & Wyvill 1988)
-            const double volume = e.x * e.y * e.z;
-            const double cells = rule.cellsPerTriangle * static_cast<double>(triangleCount);
-            const double cellSize = std::cbrt(volume / cells);
-            for (int a = 0; a < 3; ++a) res[a] = atLeastOne(e[a] / cellSize);
-            break;
-        }
+    if (rule.kind == GridResolutionRule::Kind::Explicit)
+        return {std::max(1u, rule.resolution[0]), std::max(1u, rule.resolution[1]), std::max(1u, rule.resolution[2])};
+    // A zero extent is a flat axis: it gets one cell and the rules work on the other axes.
+    const glm::dvec3 e(sceneBounds.extent());
+    double smallest = std::numeric_limits<double>::infinity(), measure = 1.0;
+    int dimensions = 0;
+    for (int a = 0; a < 3; ++a)
+        if (e[a] > 0.0) smallest = std::min(smallest, e[a]), measure *= e[a], ++dimensions;
+    if (dimensions == 0) throw Error("grid: the scene box is a single point");
+    std::array<double, 3> cells{1.0, 1.0, 1.0};
+    if (rule.kind == GridResolutionRule::Kind::MinDim) {  // Purcell et al. 2002 §4.2
+        for (int a = 0; a < 3; ++a)
+            if (e[a] > 0.0) cells[a] = std::max(1.0, std::round(rule.minDim * e[a] / smallest));
+    } else {  // cube-root rule (Cleary & Wyvill 1988): volume, or area or length of a flat box
+        const double wanted = rule.cellsPerTriangle * static_cast<double>(triangleCount);
+        const double perCell = measure / wanted;
+        const double cellSize = dimensions == 3 ? std::cbrt(perCell) : dimensions == 2 ? std::sqrt(perCell) : perCell;
+        for (int a = 0; a < 3; ++a)
+            if (e[a] > 0.0) cells[a] = std::max(1.0, std::round(e[a] / cellSize));
     }
-    return res;
+    // The kernels index cells with int: refuse what does not fit before converting.
+    constexpr double kMaxCellsPerAxis = 2147483647.0;
+    for (int a = 0; a < 3; ++a)
+        if (!(cells[a] <= kMaxCellsPerAxis))
+            throw Error("grid: resolution " + resolutionText(cells) + " has more than 2147483647 cells along " +
+                        std::string(1, "xyz"[a]) + ", the most the kernels index (the scene box is " + boxText(e) + ")");
+    return {unsigned(cells[0]), unsigned(cells[1]), unsigned(cells[2])};
 }
 
 Bounds3 UniformGrid::voxelBounds(unsigned x, unsigned y, unsigned z) const {
@@ -102,9 +123,11 @@ bool triangleOverlapsBox(const gpu::Triangle& t, const Bounds3& box) {
 UniformGrid buildUniformGrid(const TriangleMesh& mesh, const GridResolutionRule& rule,
                              std::uint64_t maxCells) {
     const auto start = std::chrono::steady_clock::now();
+    validateSceneRange(mesh);
     UniformGrid grid;
-    const Bounds3 box = gridBounds(mesh.bounds());
-    const std::array<unsigned, 3> res = chooseGridResolution(box, mesh.triangles.size(), rule);
+    const Bounds3 sceneBounds = mesh.bounds();
+    const Bounds3 box = gridBounds(sceneBounds);
+    const std::array<unsigned, 3> res = chooseGridResolution(sceneBounds, mesh.triangles.size(), rule);
     const std::uint64_t cells = std::uint64_t(res[0]) * res[1] * res[2];
     if (cells > maxCells)
         throw Error("grid: resolution " + std::to_string(res[0]) + "x" + std::to_string(res[1]) +
@@ -144,6 +167,9 @@ UniformGrid buildUniformGrid(const TriangleMesh& mesh, const GridResolutionRule&
                     if (triangleOverlapsBox(t, grid.voxelBounds(x, y, z)))
                         pairs.emplace_back(
                             static_cast<std::uint32_t>(x + res[0] * (y + std::uint64_t(res[1]) * z)), i);
+        if (pairs.size() > std::numeric_limits<std::uint32_t>::max())  // the cell offsets are uint32
+            throw Error("grid: resolution " + resolutionText({double(res[0]), double(res[1]), double(res[2])}) +
+                        " gives more than 4294967295 triangle references, more than its 32-bit offsets hold");
     }
     // Pass 2: counting sort by cell (stable: ids ascend within a voxel).
     grid.cellOffsets.assign(cells + 1, 0);

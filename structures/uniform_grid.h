@@ -7,6 +7,7 @@
 
 #include "../kernels/gpu_layout.h"
 #include "mesh.h"
+#include "scene_limits.h"
 
 namespace rtbench {
 
@@ -14,21 +15,26 @@ namespace rtbench {
 struct GridResolutionRule {
     enum class Kind { MinDim, Explicit, Density };
     Kind kind = Kind::MinDim;
-    // MinDim (Purcell): the smallest extent of the scene box gets minDim cells, the other axes
-    // proportionally (rounded, at least 1), so voxels stay near cubic.
+    // A flat axis (zero extent) always gets one cell; the rules below apply to the others.
+    // MinDim (Purcell): the smallest non-zero extent of the scene box gets minDim cells, the
+    // other axes proportionally (rounded to nearest, at least 1), so voxels stay near cubic.
     unsigned minDim = 64;
     // Explicit: cells per axis.
     std::array<unsigned, 3> resolution{64, 64, 64};
-    // Density (cube-root rule): about cellsPerTriangle * triangles cubic cells in the box.
+    // Density (cube-root rule): about cellsPerTriangle * triangles cubic cells in the box; in a
+    // flat box square cells over its area (one zero extent) or cells along its length (two).
     double cellsPerTriangle = 1.0;
 };
 
-// The grid's box: the mesh bounds, with a degenerate (flat) extent widened to 1e-4 of the
-// largest extent (or 1 when all are zero) so every axis has a positive size.
+// The grid's box: the mesh bounds, with a flat (zero) extent widened to 1e-4 of the largest
+// extent so every axis has a positive size. Throws rtbench::Error for a box whose largest extent
+// is below kMinSceneExtent (a point, a subnormal box) or not finite.
 Bounds3 gridBounds(const Bounds3& meshBounds);
 
-// Cells per axis for a grid box and triangle count. Each axis gets at least 1.
-std::array<unsigned, 3> chooseGridResolution(const Bounds3& box, std::size_t triangleCount,
+// Cells per axis for the scene's own bounds (not the widened grid box: a zero extent marks a flat
+// axis) and triangle count. Each axis gets at least 1. Throws rtbench::Error, naming the
+// resolution, when an axis would get more cells than the kernels' int indices hold.
+std::array<unsigned, 3> chooseGridResolution(const Bounds3& sceneBounds, std::size_t triangleCount,
                                              const GridResolutionRule& rule);
 
 struct GridStats {
@@ -57,7 +63,8 @@ struct UniformGrid {
 // Builds the grid: each triangle's bounding box gives a candidate cell range (widened by one
 // cell where it lies on a boundary), and CGAL's exact triangle-box predicate decides membership
 // for every candidate (closed boxes: a triangle touching a voxel's face belongs to it).
-// Throws rtbench::Error when the cell count would exceed maxCells.
+// Throws rtbench::Error when the scene is outside the range of structures/scene_limits.h or the
+// cell count would exceed maxCells.
 UniformGrid buildUniformGrid(const TriangleMesh& mesh, const GridResolutionRule& rule,
                              std::uint64_t maxCells = 1ull << 31);
 

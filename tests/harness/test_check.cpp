@@ -1,53 +1,193 @@
-// rtbench check: a deliberately changed count in a golden folder must fail, with the difference named.
+// rtbench check: each column compared by its kind; the goldens reproduce under every Embree ISA
+// this CPU runs; a changed count, a malformed CSV or a missing column fails with its name.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "harness/check.h"
+#include "harness/embree_config.h"
 #include "harness/runner.h"
+#include "structures/error.h"
 #include "tests/temp_dir.h"
 
 namespace rtbench {
 namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
+using ::testing::Not;
 
-TEST(Check, TimingColumnsAreToldApartFromCounts) {
-    EXPECT_TRUE(isTimingColumn("kernel_ms_median"));
-    EXPECT_TRUE(isTimingColumn("embree16_mrays_s"));
-    EXPECT_TRUE(isTimingColumn("grid_build_ms"));
-    EXPECT_FALSE(isTimingColumn("passes_total"));
-    EXPECT_FALSE(isTimingColumn("bytes_stencil"));
-    EXPECT_FALSE(isTimingColumn("hit_miss_agreement"));
+TEST(Check, EveryColumnHasTheKindItsValueHas) {
+    EXPECT_EQ(columnSpec("kernel_ms_median").kind, ColumnKind::Timing);
+    EXPECT_EQ(columnSpec("embree16_mrays_s").kind, ColumnKind::Timing);
+    EXPECT_EQ(columnSpec("grid_build_ms").kind, ColumnKind::Timing);
+    EXPECT_EQ(columnSpec("passes_total").kind, ColumnKind::Count);
+    EXPECT_EQ(columnSpec("bytes_stencil").kind, ColumnKind::Count);
+    EXPECT_EQ(columnSpec("hits").kind, ColumnKind::Count);
+    // Derived from Embree's floating point: never an exact count.
+    EXPECT_EQ(columnSpec("hit_miss_agreement").kind, ColumnKind::Reference);
+    EXPECT_EQ(columnSpec("rel_distance_error_mean").kind, ColumnKind::Reference);
+    EXPECT_EQ(columnSpec("primitive_mismatches").kind, ColumnKind::Reference);
+    EXPECT_EQ(columnSpec("embree_isa").kind, ColumnKind::Context);
+    EXPECT_EQ(columnSpec("structure_min_dim").kind, ColumnKind::Parameter);
+    EXPECT_THROW(columnSpec("hitz"), Error);
 }
 
-TEST(Check, TheGoldenFolderReproducesAndAChangedCountFails) {
-    TempDir dir;
-    const fs::path golden = fs::path(RTBENCH_SOURCE_DIR) / "results" / "golden";
-    const fs::path copy = dir.path() / "golden";
-    fs::copy(golden, copy);
-    // The recorded config resolves against its folder; run from the source tree as CI does.
-    const fs::path previous = fs::current_path();
-    fs::current_path(RTBENCH_SOURCE_DIR);
+// A copy of results/golden to tamper with; the check runs from the source tree as CI does.
+class Golden : public ::testing::Test {
+protected:
+    void SetUp() override {
+        fs::copy(fs::path(RTBENCH_SOURCE_DIR) / "results" / "golden", copy_);
+        previous_ = fs::current_path();
+        fs::current_path(RTBENCH_SOURCE_DIR);
+    }
+    void TearDown() override { fs::current_path(previous_); }
+    std::string csv() const { return (copy_ / "runs.csv").string(); }
+    std::string text() const {
+        std::ifstream in(csv(), std::ios::binary);
+        std::stringstream s;
+        s << in.rdbuf();
+        return s.str();
+    }
+    void setText(const std::string& t) const { std::ofstream(csv(), std::ios::binary) << t; }
+    CheckResult check(std::ostream& out, const std::string& embreeConfig = "") const {
+        return checkResults(copy_.string(), {.timingTolerance = 10.0, .embreeConfigOverride = embreeConfig}, out);
+    }
+    std::string errorOfCheck() const {
+        std::ostringstream out;
+        try {
+            check(out);
+        } catch (const Error& e) {
+            return e.what();
+        }
+        return "(no error) " + out.str();
+    }
+    TempDir dir_;
+    fs::path copy_ = dir_.path() / "golden";
+    fs::path previous_;
+};
+
+TEST_F(Golden, ReproducesAndAChangedCountFails) {
     std::ostringstream clean;
-    const CheckResult same = checkResults(copy.string(), 10.0, clean);
-    EXPECT_EQ(same.deterministicDifferences, 0) << clean.str();
+    const CheckResult same = check(clean);
+    EXPECT_FALSE(same.failed()) << clean.str();
     EXPECT_EQ(same.runs, 8);
 
-    std::vector<Row> rows = readCsv((copy / "runs.csv").string());
+    std::vector<Row> rows = readCsv(csv());
     ASSERT_EQ(rows.size(), 8u);
     const std::string recorded = rows[3].at("passes_total");
     rows[3]["passes_total"] = std::to_string(std::stoull(recorded) + 1);
-    writeCsv((copy / "runs.csv").string(), runColumns(), rows);
+    writeCsv(csv(), runColumns(), rows);
     std::ostringstream report;
-    const CheckResult changed = checkResults(copy.string(), 10.0, report);
-    fs::current_path(previous);
+    const CheckResult changed = check(report);
     EXPECT_EQ(changed.deterministicDifferences, 1);
     EXPECT_THAT(report.str(), HasSubstr("1 deterministic difference(s)"));
     EXPECT_THAT(report.str(), HasSubstr("passes_total"));
     EXPECT_THAT(report.str(), HasSubstr(recorded));
+    EXPECT_THAT(report.str(), HasSubstr("count"));
+}
+
+TEST_F(Golden, AReferenceValueBeyondItsToleranceFailsAndSaysItsKind) {
+    std::vector<Row> rows = readCsv(csv());
+    rows[0]["hit_miss_agreement"] = "0.9";  // Embree-dependent, but no ISA moves it this far
+    writeCsv(csv(), runColumns(), rows);
+    std::ostringstream report;
+    EXPECT_TRUE(check(report).failed());
+    EXPECT_THAT(report.str(), HasSubstr("hit_miss_agreement"));
+    EXPECT_THAT(report.str(), HasSubstr("reference (tolerance 0.0001): BEYOND"));
+}
+
+// Embree takes another code path per ISA; the counts must not notice.
+TEST_F(Golden, ReproducesWithEmbreeForcedToEveryIsaThisCpuRuns) {
+    const std::vector<std::string> isas = embreeIsasSupportedHere();
+    ASSERT_FALSE(isas.empty());
+    for (const std::string& isa : isas) {
+        std::ostringstream report;
+        const CheckResult r = check(report, "isa=" + isa);
+        EXPECT_FALSE(r.failed()) << "isa=" << isa << "\n" << report.str();
+        EXPECT_EQ(r.runs, 8) << isa;
+    }
+}
+
+TEST_F(Golden, CrlfLineEndingsReadTheSame) {
+    std::string t = text(), crlf;
+    for (char c : t) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+    setText(crlf);
+    std::ostringstream report;
+    const CheckResult r = check(report);
+    EXPECT_FALSE(r.failed()) << report.str();
+    EXPECT_THAT(report.str(), Not(HasSubstr("\r")));
+}
+
+TEST_F(Golden, AMissingColumnIsAnErrorNamingIt) {
+    std::vector<Row> rows = readCsv(csv());
+    std::vector<std::string> columns = runColumns();
+    std::erase(columns, "hits");
+    for (Row& r : rows) r.erase("hits");
+    writeCsv(csv(), columns, rows);
+    EXPECT_THAT(errorOfCheck(), HasSubstr("missing column(s) hits"));
+
+    columns = runColumns();
+    std::erase(columns, "run");
+    rows = readCsv((fs::path(RTBENCH_SOURCE_DIR) / "results/golden/runs.csv").string());
+    for (Row& r : rows) r.erase("run");
+    writeCsv(csv(), columns, rows);
+    EXPECT_THAT(errorOfCheck(), HasSubstr("missing column(s) run"));
+}
+
+TEST_F(Golden, ACutRowIsAnErrorNamingItsLine) {
+    const std::string t = text();
+    std::size_t third = t.find('\n', t.find('\n', t.find('\n') + 1) + 1);  // end of line 3
+    std::size_t lineStart = t.rfind('\n', third - 1) + 1;
+    std::string cut = t.substr(0, lineStart);
+    std::size_t fields = 0, at = lineStart;
+    while (fields < 40) at = t.find(',', at) + 1, ++fields;  // 40 commas: one is inside the quoted device
+    cut += t.substr(lineStart, at - 1 - lineStart) + t.substr(third);
+    setText(cut);
+    EXPECT_THAT(errorOfCheck(), HasSubstr("runs.csv:3: row 2 has 39 of the header's"));
+}
+
+TEST_F(Golden, ADuplicatedRowIsAnError) {
+    std::vector<Row> rows = readCsv(csv());
+    rows.push_back(rows[2]);
+    writeCsv(csv(), runColumns(), rows);
+    EXPECT_THAT(errorOfCheck(), HasSubstr("run 002 appears more than once"));
+}
+
+TEST_F(Golden, AnUnclosedQuoteIsAnErrorNamingItsLine) {
+    const std::string original = text();
+    std::string t = original;
+    t.insert(t.find('\n', t.find('\n') + 1) + 1, "\"");  // start of line 3: closes at the next quote
+    setText(t);
+    EXPECT_THAT(errorOfCheck(), HasSubstr("runs.csv:3: text after a closing quote"));
+    t = original;
+    t.insert(t.find('\n', t.find('\n') + 1) + 4, "\"");  // inside the first field of line 3
+    setText(t);
+    EXPECT_THAT(errorOfCheck(), HasSubstr("runs.csv:3: a quote inside an unquoted field"));
+    setText(original + "\"never closed");
+    EXPECT_THAT(errorOfCheck(), HasSubstr("a quoted field is never closed"));
+}
+
+TEST_F(Golden, AnInterruptedSweepChecksTheRunsItFinished) {
+    std::vector<Row> rows = readCsv(csv());
+    rows.resize(3);
+    writeCsv(csv(), runColumns(), rows);
+    std::ostringstream report;
+    const CheckResult r = check(report);
+    EXPECT_FALSE(r.failed()) << report.str();
+    EXPECT_EQ(r.runs, 3);
+}
+
+TEST(CheckOptions, ABogusEmbreeConfigIsRefused) {
+    std::ostringstream out;
+    try {
+        checkResults(RTBENCH_SOURCE_DIR "/results/golden", {.embreeConfigOverride = "isa=bogus"}, out);
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_THAT(e.what(), HasSubstr("--embree-config: isa=bogus: unknown ISA (allowed: sse2, sse4.2, avx, avx2, avx512)"));
+    }
 }
 
 }  // namespace

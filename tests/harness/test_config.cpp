@@ -196,5 +196,23 @@ skip = ["strategy.traverse_steps_per_pass=1 strategy.intersections_per_pass=1 st
               path_ + ":6: key 'sweep.skip': 'strategy.kk=1' is not section.key=value for a known key");
 }
 
+TEST_F(Config, ASweepWhoseEveryRunIsSkippedIsAnErrorNamingIt) {
+    EXPECT_EQ(errorOf(kMinimal + "[[sweep]]\nname = \"all\"\nskip = [\"device.name=auto\"]\n" +
+                      "[sweep.camera]\nheight = [8, 16]\n"),
+              path_ + ":5: every one of the 2 runs of sweep 'all' matches a skip rule: the sweep runs nothing");
+}
+
+TEST_F(Config, TheEmbreeConfigIsCheckedBeforeEmbreeSeesIt) {
+    const std::string base = kMinimal + "[baseline]\nembree_config = ";
+    EXPECT_EQ(errorOf(base + "\"isa=bogus,threads=-5\"\n"),
+              path_ + ":6: key 'baseline.embree_config': isa=bogus: unknown ISA (allowed: sse2, sse4.2, avx, avx2, avx512)");
+    EXPECT_EQ(errorOf(base + "\"threads=-5\"\n"),
+              path_ + ":6: key 'baseline.embree_config': threads=-5: expected an integer >= 0 (0: all)");
+    EXPECT_EQ(errorOf(base + "\"isa\"\n"),
+              path_ + ":6: key 'baseline.embree_config': 'isa' is not key=value (e.g. \"isa=avx2,threads=2\")");
+    EXPECT_THAT(errorOf(base + "\"tesselation=3\"\n"), HasSubstr("unknown Embree config key 'tesselation'"));
+    EXPECT_NO_THROW(loadExperiment(write(base + "\"isa=sse2,threads=2\"\n")));
+}
+
 }  // namespace
 }  // namespace rtbench

@@ -180,7 +180,7 @@ TEST_F(EndToEnd, ThreeShardsMergedEqualTheUnshardedRun) {
     ASSERT_EQ(merged.size(), unsharded.size());
     for (std::size_t r = 0; r < merged.size(); ++r)
         for (const auto& [column, value] : unsharded[r])
-            if (!isTimingColumn(column)) {
+            if (columnSpec(column).kind != ColumnKind::Timing) {
                 EXPECT_EQ(merged[r].at(column), value) << "run " << r << " column " << column;
             }
 
@@ -195,6 +195,26 @@ TEST_F(EndToEnd, ThreeShardsMergedEqualTheUnshardedRun) {
     } catch (const std::exception& e) {
         EXPECT_THAT(e.what(), HasSubstr("run 001 is missing from the shards"));
     }
+}
+
+TEST_F(EndToEnd, AResumeReRunsFailedRunsAndKeepsOkOnes) {
+    const std::string sweep =
+        "[scene]\nsource = \"procedural:christen_a\"\n[camera]\nwidth = 16\nheight = 12\n"
+        "[structure]\nresolution = [[4, 4, 4], [4096, 4096, 4096]]\n[output]\nimages = false\n";
+    const ExperimentResult first = run(sweep);
+    ASSERT_EQ(first.failed, 1);
+    const ExperimentResult again = run(sweep);
+    EXPECT_EQ(again.reused, 1);  // the ok run; the failed one is run again, and fails again
+    EXPECT_EQ(again.failed, 1);
+}
+
+TEST_F(EndToEnd, ContextJsonIsCompleteOnlyAfterTheLastRun) {
+    const ExperimentResult result = run(kSweep);
+    const Json context = readJson(result.folder + "/context.json");
+    EXPECT_EQ(context.at("complete"), true);
+    EXPECT_EQ(context.at("plan").size(), 8u);
+    EXPECT_EQ(context.at("runs").size(), 8u);
+    EXPECT_EQ(context.at("runs")[7].at("status"), "ok");
 }
 
 }  // namespace

@@ -89,6 +89,33 @@ TEST(GridBuild, TriangleOnAVoxelFaceBelongsToBothVoxels) {
     EXPECT_EQ(listed(1, 12), 1);
 }
 
+// Memberships worked out by hand on a 2x2x2 grid over [0, 2]^3 (voxel index x + 2 (y + 2 z)),
+// independent of the predicate under test.
+TEST(GridBuild, MembershipEqualsHandComputedVoxels) {
+    TriangleMesh mesh;
+    auto tri = [&](glm::vec3 a, glm::vec3 b, glm::vec3 c) {
+        const unsigned base = unsigned(mesh.vertices.size());
+        mesh.vertices.insert(mesh.vertices.end(), {a, b, c});
+        mesh.triangles.emplace_back(base, base + 1, base + 2);
+    };
+    tri({0, 0, 0}, {0.1f, 0, 0}, {0, 0.1f, 0});  // 0: a corner of the box, voxel (0,0,0) only
+    tri({2, 2, 2}, {1.9f, 2, 2}, {2, 1.9f, 2});  // 1: the opposite corner, voxel (1,1,1) only
+    // 2: in the plane x + y = 1.5. Its bounding box [0.1, 1.4]^2 x [0.2, 0.8] overlaps voxel
+    // (1,1,0), where x + y >= 2: the triangle itself does not touch that voxel.
+    tri({1.4f, 0.1f, 0.2f}, {0.1f, 1.4f, 0.2f}, {0.75f, 0.75f, 0.8f});
+    tri({1, 0.2f, 0.2f}, {1, 0.8f, 0.2f}, {1, 0.2f, 0.8f});  // 3: on the face x = 1: both voxels
+    GridResolutionRule rule;
+    rule.kind = GridResolutionRule::Kind::Explicit;
+    rule.resolution = {2, 2, 2};
+    const UniformGrid grid = buildUniformGrid(mesh, rule);
+    const std::vector<std::vector<std::uint32_t>> expected = {{0, 2, 3}, {2, 3}, {2}, {}, {}, {}, {}, {1}};
+    for (unsigned cell = 0; cell < 8; ++cell)
+        EXPECT_EQ(std::vector<std::uint32_t>(grid.triangleList.begin() + grid.cellOffsets[cell],
+                                             grid.triangleList.begin() + grid.cellOffsets[cell + 1]),
+                  expected[cell])
+            << "voxel " << cell;
+}
+
 TEST(GridBuild, StatsAreConsistentWithTheLayout) {
     const TriangleMesh mesh = christenSceneB();
     GridResolutionRule rule;

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include "structures/error.h"
 #include "structures/uniform_grid.h"
 
 namespace rtbench {
@@ -47,15 +48,59 @@ TEST(GridResolution, DensityRuleUsesTheCubeRootOfVolumePerCell) {
     EXPECT_EQ(chooseGridResolution(box({0, 0, 0}, {1, 2, 4}), 4000, rule), (Res{10, 20, 40}));
 }
 
-TEST(GridResolution, FlatSceneBoxIsWidenedSoEveryAxisHasExtent) {
-    const Bounds3 flat = gridBounds(box({0, 0, 0}, {2, 0, 1}));
-    EXPECT_GT(flat.extent().y, 0.0f);
-    EXPECT_NEAR(flat.extent().y, 2e-4f, 1e-6f);
+TEST(GridResolution, MinDimRoundsToNearestNotDown) {
+    GridResolutionRule rule;
+    rule.minDim = 10;
+    // 1.26 / 1 * 10 = 12.6: 13 cells (rounding down would give 12); 1.24 * 10 = 12.4: 12.
+    EXPECT_EQ(chooseGridResolution(box({0, 0, 0}, {1.26f, 1.0f, 1.24f}), 1, rule), (Res{13, 10, 12}));
+}
+
+TEST(GridResolution, FlatAxisGetsOneCellAndMinDimAppliesToTheSmallestNonZeroExtent) {
     GridResolutionRule rule;
     rule.minDim = 4;
-    const Res res = chooseGridResolution(flat, 2, rule);
-    EXPECT_EQ(res[1], 4u);  // the flat axis is the smallest extent
-    EXPECT_EQ(res[0], 40000u);
+    // All triangles in the plane y = 0 (a 2 x 1 floor): y gets 1 cell, z (1) gets 4, x 8.
+    EXPECT_EQ(chooseGridResolution(box({0, 0, 0}, {2, 0, 1}), 2, rule), (Res{8, 1, 4}));
+    // Two zero extents: a segment along z.
+    EXPECT_EQ(chooseGridResolution(box({1, 1, 0}, {1, 1, 3}), 2, rule), (Res{1, 1, 4}));
+    // The grid box still gets a positive extent on the flat axis: 1e-4 of the largest.
+    const Bounds3 flat = gridBounds(box({0, 0, 0}, {2, 0, 1}));
+    EXPECT_NEAR(flat.extent().y, 2e-4f, 1e-6f);
+}
+
+TEST(GridResolution, DensityRuleUsesTheAreaOfAFlatBoxAndTheLengthOfALine) {
+    GridResolutionRule rule;
+    rule.kind = GridResolutionRule::Kind::Density;
+    rule.cellsPerTriangle = 1.0;
+    // 128 triangles on a 16 x 8 plane (z = 0): 128 square cells of side 1, not 93 per triangle.
+    EXPECT_EQ(chooseGridResolution(box({0, 0, 0}, {16, 8, 0}), 128, rule), (Res{16, 8, 1}));
+    // 50 triangles along a 10-long line in x: 50 cells of length 0.2.
+    EXPECT_EQ(chooseGridResolution(box({0, 0, 0}, {10, 0, 0}), 50, rule), (Res{50, 1, 1}));
+}
+
+TEST(GridResolution, AResolutionTheKernelsCannotIndexIsAnErrorNamingIt) {
+    GridResolutionRule rule;
+    rule.minDim = 2048;
+    // A sliver 2^21 times longer than it is wide: 2^32 cells along x would wrap to 0.
+    try {
+        chooseGridResolution(box({0, 0, 0}, {2097152.0f, 1.0f, 1.0f}), 1, rule);
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("resolution 4294967296x2048x2048 has more than 2147483647 cells along x"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
+TEST(GridResolution, ASinglePointOrASubnormalBoxIsAClearError) {
+    GridResolutionRule rule;
+    EXPECT_THROW(chooseGridResolution(box({1, 2, 3}, {1, 2, 3}), 1, rule), Error);
+    try {
+        gridBounds(box({0, 0, 0}, {1e-40f, 1e-40f, 1e-40f}));
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("largest extent is at least 1.49e-08 (2^-26)"), std::string::npos)
+            << e.what();
+    }
 }
 
 }  // namespace

@@ -1,0 +1,173 @@
+#include "columns.h"
+
+#include <map>
+#include <set>
+
+#include "config.h"
+#include "structures/error.h"
+
+namespace rtbench {
+
+const char* columnKindName(ColumnKind kind) {
+    switch (kind) {
+        case ColumnKind::Parameter: return "parameter";
+        case ColumnKind::Count: return "count";
+        case ColumnKind::Reference: return "reference";
+        case ColumnKind::Timing: return "timing";
+        case ColumnKind::Context: return "context";
+    }
+    return "?";
+}
+
+std::string paramColumn(const std::string& key) {
+    std::string column = key;
+    for (char& c : column)
+        if (c == '.') c = '_';
+    return column;
+}
+
+const std::vector<ColumnSpec>& runColumnSpecs() {
+    static const std::vector<ColumnSpec> specs = [] {
+        using K = ColumnKind;
+        std::vector<ColumnSpec> s;
+        for (const KeySpec& key : configSchema())
+            s.push_back({paramColumn(key.name), key.name == "experiment.output" ? K::Context : K::Parameter, "", key.help});
+        auto add = [&](std::string name, K kind, std::string unit, std::string help, double tolerance = 0.0,
+                       bool perRay = false) {
+            s.push_back({std::move(name), kind, std::move(unit), std::move(help), tolerance, perRay});
+        };
+        // Identity and outcome.
+        add("run", K::Parameter, "", "run number in the plan (000, 001, ...)");
+        add("label", K::Parameter, "", "the swept parameters of the run");
+        add("status", K::Count, "", "ok or failed");
+        add("error", K::Count, "", "why the run failed");
+        add("warnings", K::Count, "", "what the run did that may surprise (e.g. triangles degenerate in float)");
+        add("config_hash", K::Parameter, "", "FNV-1a 64 of the run's parameters");
+        add("git_commit", K::Context, "", "commit of the binary");
+        add("device", K::Context, "", "Vulkan device name");
+        add("driver", K::Context, "", "Vulkan driver name and version");
+        // Scene, rays, structure.
+        add("scene_triangles", K::Count, "triangles", "triangles after triangulation");
+        add("scene_degenerate", K::Count, "triangles", "zero-area triangles in float (never hit)");
+        add("rays", K::Count, "rays", "rays traced");
+        add("grid_res_x", K::Count, "cells", "grid resolution along x");
+        add("grid_res_y", K::Count, "cells", "grid resolution along y");
+        add("grid_res_z", K::Count, "cells", "grid resolution along z");
+        add("grid_cells", K::Count, "cells", "voxels in the grid");
+        add("grid_empty_fraction", K::Count, "fraction", "voxels with no triangle");
+        add("grid_references", K::Count, "references", "(voxel, triangle) pairs");
+        add("grid_refs_per_triangle", K::Count, "references", "references per triangle");
+        add("grid_max_refs_in_cell", K::Count, "references", "largest voxel list");
+        add("grid_bytes", K::Count, "bytes", "grid memory (offsets, lists, vertices)");
+        add("grid_build_ms", K::Timing, "ms", "CPU build time of the grid");
+        // Time.
+        add("kernel_ms_median", K::Timing, "ms", "GPU time of the kernel(s), median of the repetitions");
+        add("kernel_ms_min", K::Timing, "ms", "GPU time, fastest repetition");
+        add("kernel_ms_max", K::Timing, "ms", "GPU time, slowest repetition");
+        add("kernel_mrays_s", K::Timing, "Mrays/s", "rays / median GPU time");
+        for (const char* mode : {"embree1", "embree16"}) {
+            const std::string m = mode;
+            add(m + "_ms_median", K::Timing, "ms", "Embree " + m + " on the same rays, median");
+            add(m + "_ms_min", K::Timing, "ms", "Embree " + m + ", fastest repetition");
+            add(m + "_ms_max", K::Timing, "ms", "Embree " + m + ", slowest repetition");
+            add(m + "_mrays_s", K::Timing, "Mrays/s", "rays / Embree's median time");
+        }
+        add("embree_threads", K::Context, "threads", "TBB threads Embree ran on");
+        add("embree_isa", K::Context, "", "Embree's native packet width (its ISA path)");
+        add("embree_build_ms", K::Timing, "ms", "Embree BVH build time");
+        add("speed_ratio_vs_embree1", K::Timing, "ratio", "kernel Mrays/s / Embree rtcIntersect1 Mrays/s");
+        // Accuracy against Embree: depends on Embree's floating-point path (its ISA).
+        add("hits", K::Count, "rays", "rays the kernel hit");
+        add("hit_miss_agreement", K::Reference, "fraction", "rays whose hit/miss equals Embree's", 1e-4);
+        add("same_primitive_agreement", K::Reference, "fraction", "rays both hit on the same triangle", 1e-4);
+        add("rel_distance_error_mean", K::Reference, "", "|t - t_Embree| / t_Embree, mean over rays both hit", 1e-6);
+        add("rel_distance_error_max", K::Reference, "", "|t - t_Embree| / t_Embree, max", 1e-6);
+        add("hit_miss_mismatches", K::Reference, "rays", "rays where one hit and the other missed", 1e-4, true);
+        add("primitive_mismatches", K::Reference, "rays", "rays both hit on different triangles", 1e-4, true);
+        // Work and accounting (exact, from instrumented kernels; equal to the CPU reference).
+        add("voxels_per_ray_mean", K::Count, "voxels", "voxels visited per ray, mean");
+        add("voxels_per_ray_max", K::Count, "voxels", "voxels visited per ray, max");
+        add("triangles_per_ray_mean", K::Count, "tests", "ray-triangle tests per ray, mean");
+        add("triangles_per_ray_max", K::Count, "tests", "ray-triangle tests per ray, max");
+        add("traversal_steps_per_ray_mean", K::Count, "steps", "DDA step attempts per ray, mean");
+        add("traversal_steps_per_ray_max", K::Count, "steps", "DDA step attempts per ray, max");
+        add("passes_total", K::Count, "passes", "kernel dispatches over the ray stream");
+        add("passes_setup", K::Count, "passes", "multipass setup passes");
+        add("passes_traverse", K::Count, "passes", "multipass traverse passes");
+        add("passes_intersect", K::Count, "passes", "multipass intersect passes");
+        add("passes_write", K::Count, "passes", "multipass write passes");
+        add("passes_lower_bound", K::Count, "passes", "Purcell's lower bound on traverse + intersect passes");
+        add("simd_efficiency", K::Count, "fraction", "useful lanes / lanes (Purcell for multipass, Aila & Laine for branching)");
+        add("bytes_stencil", K::Count, "bytes", "ray-state byte reads and writes");
+        add("bytes_state", K::Count, "bytes", "per-ray state saved and restored");
+        add("bytes_voxel", K::Count, "bytes", "voxel offsets read");
+        add("bytes_triangle_list", K::Count, "bytes", "triangle-list entries read");
+        add("bytes_vertices", K::Count, "bytes", "triangle vertices read");
+        add("bytes_output", K::Count, "bytes", "hit records written");
+        add("bytes_total", K::Count, "bytes", "all categories");
+        add("bytes_per_ray", K::Count, "bytes", "bytes_total / rays");
+        add("kernel_ms_setup", K::Timing, "ms", "multipass: GPU time of the setup passes, median");
+        add("kernel_ms_traverse", K::Timing, "ms", "multipass: GPU time of the traverse passes, median");
+        add("kernel_ms_intersect", K::Timing, "ms", "multipass: GPU time of the intersect passes, median");
+        add("kernel_ms_write", K::Timing, "ms", "multipass: GPU time of the write pass, median");
+        // Self-checks (a mismatch fails the run).
+        add("cpu_reference_mismatches", K::Count, "rays", "rays whose GPU hit record differs from the CPU reference's");
+        add("cpu_counts_match", K::Count, "", "1 when pass and lane counts equal the CPU reference's");
+        add("branching_mismatches", K::Count, "rays", "multipass: rays whose hit record differs from the branching caster's");
+        add("wall_s", K::Timing, "s", "wall time of the whole run");
+        return s;
+    }();
+    return specs;
+}
+
+std::vector<std::string> runColumns() {
+    std::vector<std::string> names;
+    for (const ColumnSpec& c : runColumnSpecs()) names.push_back(c.name);
+    return names;
+}
+
+const ColumnSpec& columnSpec(const std::string& name) {
+    static const std::map<std::string, const ColumnSpec*> byName = [] {
+        std::map<std::string, const ColumnSpec*> m;
+        for (const ColumnSpec& c : runColumnSpecs()) m[c.name] = &c;
+        return m;
+    }();
+    const auto it = byName.find(name);
+    if (it == byName.end()) throw Error("column '" + name + "' is not declared (harness/columns.cpp)");
+    return *it->second;
+}
+
+std::string columnsMarkdown() {
+    std::string out = "| column | kind | unit | meaning |\n|---|---|---|---|\n";
+    for (const ColumnSpec& c : runColumnSpecs()) {
+        if (c.kind == ColumnKind::Parameter && c.name != "run" && c.name != "label" && c.name != "config_hash") continue;
+        if (c.name == "experiment_output") continue;  // a config key, recorded as context
+        out += "| `" + c.name + "` | " + columnKindName(c.kind) + " | " + c.unit + " | " + c.help + " |\n";
+    }
+    return out;
+}
+
+std::vector<Row> readRunsCsv(const std::string& path) {
+    const std::vector<Row> rows = readCsv(path);
+    const std::vector<std::string> declared = runColumns();
+    const std::set<std::string> declaredSet(declared.begin(), declared.end());
+    if (!rows.empty()) {
+        std::string missing, unknown;
+        for (const std::string& c : declared)
+            if (!rows[0].count(c)) missing += (missing.empty() ? "" : ", ") + c;
+        for (const auto& [c, value] : rows[0])
+            if (!declaredSet.count(c)) unknown += (unknown.empty() ? "" : ", ") + c;
+        if (!missing.empty())
+            throw Error(path + ": missing column(s) " + missing + " (written by another rtbench version?)");
+        if (!unknown.empty()) throw Error(path + ": unknown column(s) " + unknown);
+    }
+    std::set<std::string> runs;
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+        const std::string& run = rows[r].at("run");
+        if (run.empty()) throw Error(path + ": row " + std::to_string(r + 1) + " has no run number");
+        if (!runs.insert(run).second) throw Error(path + ": run " + run + " appears more than once");
+    }
+    return rows;
+}
+
+}  // namespace rtbench

@@ -1,0 +1,51 @@
+// The columns of runs.csv, each declared once with its kind and unit. The kind says how a value
+// may differ between two runs of the same config, and so how `rtbench check` compares it:
+//   parameter  a config key or the run's identity: equal by construction;
+//   count      deterministic: equal on every machine with the same device (checked exactly);
+//   reference  derived from another library's floating point (Embree's ISA path): compared
+//              within a declared tolerance, never as an exact count;
+//   timing     seconds and rates: reported when outside a relative tolerance, never a failure;
+//   context    where and when (commit, device, driver, Embree's threads and ISA): reported.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "writers.h"
+
+namespace rtbench {
+
+enum class ColumnKind { Parameter, Count, Reference, Timing, Context };
+
+const char* columnKindName(ColumnKind kind);
+
+struct ColumnSpec {
+    std::string name;
+    ColumnKind kind;
+    std::string unit;  // "" for a dimensionless or text value
+    std::string help;
+    // Reference columns: the largest difference that still counts as the same result, absolute,
+    // or as a fraction of the run's rays when perRay (mismatch counts).
+    double tolerance = 0.0;
+    bool perRay = false;
+};
+
+// Every column of runs.csv in order: one per config key (kind parameter), then the metrics.
+const std::vector<ColumnSpec>& runColumnSpecs();
+std::vector<std::string> runColumns();
+
+// The spec of a column; throws rtbench::Error naming the column when it is not declared.
+const ColumnSpec& columnSpec(const std::string& name);
+
+// Reads a runs CSV (runs.csv or a shard's) and checks it is whole: its header holds exactly the
+// declared columns, and every row has a run number, unique in the file. Throws rtbench::Error
+// naming the file and the missing or unknown column, or the row and run.
+std::vector<Row> readRunsCsv(const std::string& path);
+
+// The metric columns (all but the config keys) as a Markdown table: column, kind, unit, meaning.
+// The README holds this table; a test keeps the two equal.
+std::string columnsMarkdown();
+
+// The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".
+std::string paramColumn(const std::string& key);
+
+}  // namespace rtbench

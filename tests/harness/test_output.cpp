@@ -1,0 +1,141 @@
+// The results folder and its files: one writer at a time, nothing outside -o, nothing computed
+// and then lost, nothing half-written, nothing undeclared, text that is valid UTF-8.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <sys/resource.h>
+
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "harness/columns.h"
+#include "harness/config.h"
+#include "harness/output_folder.h"
+#include "harness/runner.h"
+#include "harness/writers.h"
+#include "structures/error.h"
+#include "tests/temp_dir.h"
+
+namespace rtbench {
+namespace {
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+template <class F>
+std::string errorOf(F&& f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "(no error)";
+}
+
+TEST(OutputFolder, ASecondWriterFailsAtOnceNamingTheHoldersPid) {
+    TempDir dir;
+    const OutputFolderLock first(dir.path().string());
+    EXPECT_THAT(errorOf([&] { OutputFolderLock second(dir.path().string()); }),
+                HasSubstr("another rtbench process (pid " + std::to_string(::getpid()) + ") is writing this results folder"));
+}
+
+TEST(OutputFolder, TheLockEndsWithItsHolder) {
+    TempDir dir;
+    { const OutputFolderLock first(dir.path().string()); }
+    EXPECT_NO_THROW(OutputFolderLock again(dir.path().string()));
+}
+
+TEST(OutputFolder, TheExperimentNameIsAPlainFolderName) {
+    EXPECT_EQ(experimentFolder("out", "bunny"), "out/bunny");
+    for (const std::string& bad : std::vector<std::string>{"../../escape", "/tmp/abs", "a/b", "..", ".", "", "x\ny"})
+        EXPECT_THAT(errorOf([&] { experimentFolder("out", bad); }), HasSubstr("is not a plain folder name")) << bad;
+}
+
+TEST(OutputFolder, TheNameIsCheckedWhenTheConfigIsLoaded) {
+    TempDir dir;
+    const std::string path = dir.write("c.toml", "[experiment]\nname = \"../../escape\"\n[scene]\nsource = \"procedural:christen_a\"\n");
+    EXPECT_THAT(errorOf([&] { loadExperiment(path); }),
+                HasSubstr("c.toml:2: key 'experiment.name': experiment.name '../../escape' is not a plain folder name"));
+}
+
+TEST(OutputFolder, ARunsCsvThatIsAFolderIsRefusedBeforeAnyRun) {
+    TempDir dir;
+    fs::create_directories(dir.path() / "out" / "t" / "runs.csv");
+    const std::string path = dir.write("c.toml", "[experiment]\nname = \"t\"\noutput = \"" + dir.file("out") +
+                                                     "\"\n[scene]\nsource = \"procedural:christen_a\"\n");
+    RunnerOptions options;
+    options.quiet = true;
+    EXPECT_THAT(errorOf([&] { runExperiment(loadExperiment(path), options); }),
+                HasSubstr("runs.csv: exists but is not a regular file"));
+    EXPECT_FALSE(fs::exists(dir.path() / "out" / "t" / "context.json"));  // refused before anything ran
+}
+
+TEST(Writers, AFailedWriteLeavesNoTmpAndTheOldFileIntact) {
+    TempDir dir;
+    const std::string path = dir.write("runs.csv", "old\n");
+    // A file-size limit makes the write fail as a full disk would (EFBIG instead of ENOSPC).
+    std::signal(SIGXFSZ, SIG_IGN);
+    rlimit saved{};
+    getrlimit(RLIMIT_FSIZE, &saved);
+    rlimit small = saved;
+    small.rlim_cur = 64;
+    setrlimit(RLIMIT_FSIZE, &small);
+    const std::string error = errorOf([&] { writeFileAtomically(path, std::string(100000, 'x')); });
+    setrlimit(RLIMIT_FSIZE, &saved);
+    EXPECT_THAT(error, HasSubstr("write failed (disk full?)"));
+    EXPECT_FALSE(fs::exists(path + ".tmp"));
+    std::ifstream in(path);
+    std::string content;
+    std::getline(in, content);
+    EXPECT_EQ(content, "old");
+}
+
+TEST(Writers, ARowWithAnUndeclaredColumnIsAnError) {
+    TempDir dir;
+    EXPECT_THAT(errorOf([&] { writeCsv(dir.file("r.csv"), {"run", "hits"}, {{{"run", "000"}, {"hitz", "3"}}}); }),
+                HasSubstr("row 1 sets column 'hitz', which is not declared"));
+}
+
+TEST(Writers, TextThatIsNotUtf8IsEscaped) {
+    EXPECT_EQ(validUtf8("caf\xc3\xa9"), "caf\xc3\xa9");
+    EXPECT_EQ(validUtf8("bad\xff\xfe end"), "bad\\xFF\\xFE end");
+    EXPECT_EQ(validUtf8("\xc3"), "\\xC3");          // cut sequence
+    EXPECT_EQ(validUtf8("\xc0\xaf"), "\\xC0\\xAF");  // overlong '/'
+    EXPECT_EQ(validUtf8("\xed\xa0\x80"), "\\xED\\xA0\\x80");  // surrogate
+    TempDir dir;
+    writeCsv(dir.file("r.csv"), {"error"}, {{{"error", "mesh says \xff"}}});
+    EXPECT_EQ(readCsv(dir.file("r.csv"))[0].at("error"), "mesh says \\xFF");
+}
+
+TEST(Writers, QuotedFieldsWithCommasQuotesAndLineBreaksRoundTrip) {
+    TempDir dir;
+    const Row row = {{"a", "x,y"}, {"b", "say \"hi\""}, {"c", "two\nlines\r\n"}};
+    writeCsv(dir.file("r.csv"), {"a", "b", "c"}, {row});
+    EXPECT_EQ(readCsv(dir.file("r.csv")).at(0), row);
+}
+
+// The README documents every column of runs.csv, with the kind `rtbench check` compares it by.
+TEST(Columns, TheReadmeTableIsTheDeclaredColumns) {
+    std::ifstream in(RTBENCH_SOURCE_DIR "/README.md");
+    std::stringstream text;
+    text << in.rdbuf();
+    const std::string readme = text.str();
+    const std::string begin = "<!-- columns: begin (rtbench columns) -->\n", end = "<!-- columns: end -->";
+    const std::size_t from = readme.find(begin), to = readme.find(end);
+    ASSERT_NE(from, std::string::npos) << "README.md has no columns table";
+    ASSERT_NE(to, std::string::npos);
+    EXPECT_EQ(readme.substr(from + begin.size(), to - from - begin.size()), columnsMarkdown());
+}
+
+TEST(Columns, TheCsvHeaderIsEveryConfigKeyThenEveryMetric) {
+    const std::vector<std::string> columns = runColumns();
+    std::size_t k = 0;
+    for (const KeySpec& key : configSchema()) EXPECT_EQ(columns.at(k++), paramColumn(key.name));
+    EXPECT_EQ(columns.at(k), "run");
+    EXPECT_EQ(columns.back(), "wall_s");
+    EXPECT_EQ(std::set<std::string>(columns.begin(), columns.end()).size(), columns.size());  // no duplicates
+}
+
+}  // namespace
+}  // namespace rtbench
