@@ -63,6 +63,13 @@ TEST_F(Config, OutOfRange) {
               path_ + ":6: key 'structure.min_dim': value 0 is out of range [1, 2048]");
     EXPECT_EQ(errorOf(kMinimal + "[camera]\nwidth = [64, -1]\n"),
               path_ + ":6: key 'camera.width': value -1 is out of range [1, 16384]");
+    // The upper bounds too, for integers, numbers and each component of a 3-vector.
+    EXPECT_EQ(errorOf(kMinimal + "[camera]\nheight = 16385\n"),
+              path_ + ":6: key 'camera.height': value 16385 is out of range [1, 16384]");
+    EXPECT_EQ(errorOf(kMinimal + "[camera]\nfov_deg = 180.0\n"),
+              path_ + ":6: key 'camera.fov_deg': value 180 is out of range [1, 179]");
+    EXPECT_EQ(errorOf(kMinimal + "[structure]\nresolution = [8, 4097, 8]\n"),
+              path_ + ":6: key 'structure.resolution': value 4097 is out of range [1, 4096]");
 }
 
 TEST_F(Config, ValueNotInTheAllowedSet) {

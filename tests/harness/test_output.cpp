@@ -16,22 +16,13 @@
 #include "harness/runner.h"
 #include "harness/writers.h"
 #include "structures/error.h"
+#include "tests/error_of.h"
 #include "tests/temp_dir.h"
 
 namespace rtbench {
 namespace {
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
-
-template <class F>
-std::string errorOf(F&& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "(no error)";
-}
 
 TEST(OutputFolder, ASecondWriterFailsAtOnceNamingTheHoldersPid) {
     TempDir dir;

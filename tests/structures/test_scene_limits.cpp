@@ -8,6 +8,7 @@
 #include "structures/procedural.h"
 #include "structures/scene_limits.h"
 #include "structures/uniform_grid.h"
+#include "tests/error_of.h"
 
 namespace rtbench {
 namespace {
@@ -19,15 +20,6 @@ TriangleMesh tetrahedron(float scale) {
                   glm::vec3(0, 0, 1) * scale};
     m.triangles = {{0, 1, 2}, {0, 1, 3}, {0, 2, 3}, {1, 2, 3}};
     return m;
-}
-
-std::string errorOf(auto&& f) {
-    try {
-        f();
-    } catch (const Error& e) {
-        return e.what();
-    }
-    return "no error";
 }
 
 TEST(SceneLimits, AHugeSceneIsRefusedWithTheRangeNamed) {
