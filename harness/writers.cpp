@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "structures/error.h"
+#include "structures/text.h"
 
 namespace rtbench {
 
@@ -20,35 +21,6 @@ std::string csvField(const std::string& raw) {
     return out + "\"";
 }
 }  // namespace
-
-std::string validUtf8(const std::string& s) {
-    std::string out;
-    out.reserve(s.size());
-    for (std::size_t i = 0; i < s.size();) {
-        const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(s[k]); };
-        const unsigned char c = byte(i);
-        // Length of a well-formed sequence starting at i (RFC 3629: no overlongs, no surrogates).
-        std::size_t n = 0;
-        if (c < 0x80) n = 1;
-        else if (c >= 0xC2 && c <= 0xDF) n = 2;
-        else if (c >= 0xE0 && c <= 0xEF) n = 3;
-        else if (c >= 0xF0 && c <= 0xF4) n = 4;
-        bool ok = n > 0 && i + n <= s.size();
-        for (std::size_t k = 1; ok && k < n; ++k) ok = (byte(i + k) & 0xC0) == 0x80;
-        if (ok && n == 3) ok = !(c == 0xE0 && byte(i + 1) < 0xA0) && !(c == 0xED && byte(i + 1) >= 0xA0);
-        if (ok && n == 4) ok = !(c == 0xF0 && byte(i + 1) < 0x90) && !(c == 0xF4 && byte(i + 1) >= 0x90);
-        if (ok) {
-            out.append(s, i, n);
-            i += n;
-        } else {
-            char escaped[8];
-            std::snprintf(escaped, sizeof escaped, "\\x%02X", c);
-            out += escaped;
-            ++i;
-        }
-    }
-    return out;
-}
 
 void writeFileAtomically(const std::string& path, const std::string& text) {
     const std::string tmp = path + ".tmp";

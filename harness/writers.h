@@ -20,9 +20,6 @@ void writeCsv(const std::string& path, const std::vector<std::string>& columns, 
 // duplicated header name, or a row with more or fewer fields than the header.
 std::vector<Row> readCsv(const std::string& path);
 
-// `s` with every byte that is not part of well-formed UTF-8 written as \xNN.
-std::string validUtf8(const std::string& s);
-
 // Writes text to path via path.tmp + rename; on failure the .tmp is removed and path unchanged.
 void writeFileAtomically(const std::string& path, const std::string& text);
 

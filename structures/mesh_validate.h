@@ -5,6 +5,8 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+
+#include "text.h"
 #include <string_view>
 #include <vector>
 
@@ -31,8 +33,5 @@ struct ValidatedMesh {
 
 // `name` is the file name used in messages; its extension (any case) selects the format.
 ValidatedMesh validateMesh(std::string_view bytes, const std::string& name);
-
-// `text` with every byte that is not printable ASCII or part of valid UTF-8 written as \xNN.
-std::string printable(std::string_view text);
 
 }  // namespace rtbench

@@ -57,6 +57,7 @@ std::string triangulateWeaklySimple(const std::vector<Point2>& points,
         if (times % 2 == 1) cdt.insert_constraint(edge.first, edge.second);
     if (cdt.number_of_vertices() != vertices)
         return "it is self-intersecting (two of its edges cross)";
+    if (cdt.dimension() < 2) return "its corners are collinear in its plane, yet it is not convex";
 
     for (Cdt::Face_handle f : cdt.all_face_handles()) f->info() = -1;
     std::queue<Cdt::Face_handle> frontier;  // breadth-first over faces, by nesting level
@@ -104,10 +105,14 @@ std::string triangulatePolygon(const std::vector<glm::vec3>& vertices,
     };
     if (n == 3) return fan();
 
-    // Newell's normal: twice the vector area, robust for non-planar polygons.
-    glm::dvec3 normal(0.0), centroid(0.0), lo(vertices[indices[0]]), hi(lo);
+    // Newell's normal: twice the vector area, robust for non-planar polygons. Summed relative to
+    // the first corner: on absolute coordinates far from the origin its terms cancel
+    // catastrophically and the wrong axis would be dropped below.
+    const glm::dvec3 origin(vertices[indices[0]]);
+    glm::dvec3 normal(0.0), centroid(0.0), lo(0.0), hi(0.0);  // centroid and box relative too
     for (std::size_t i = 0; i < n; ++i) {
-        const glm::dvec3 p(vertices[indices[i]]), q(vertices[indices[(i + 1) % n]]);
+        const glm::dvec3 p = glm::dvec3(vertices[indices[i]]) - origin;
+        const glm::dvec3 q = glm::dvec3(vertices[indices[(i + 1) % n]]) - origin;
         normal += glm::dvec3((p.y - q.y) * (p.z + q.z), (p.z - q.z) * (p.x + q.x),
                              (p.x - q.x) * (p.y + q.y));
         centroid += p / double(n);
@@ -156,7 +161,7 @@ std::string triangulatePolygon(const std::vector<glm::vec3>& vertices,
     std::size_t farthest = 0;
     double distance = 0.0;
     for (std::size_t i = 0; i < n; ++i)
-        if (const double d = std::abs(glm::dot(glm::dvec3(vertices[indices[i]]) - centroid, unit));
+        if (const double d = std::abs(glm::dot(glm::dvec3(vertices[indices[i]]) - origin - centroid, unit));
             d > distance)
             farthest = i, distance = d;
     if (distance > kPolygonPlanarityTolerance * size)

@@ -16,6 +16,7 @@
 #include "harness/runner.h"
 #include "harness/writers.h"
 #include "structures/error.h"
+#include "structures/text.h"
 #include "tests/error_of.h"
 #include "tests/temp_dir.h"
 

@@ -316,6 +316,20 @@ TEST_F(MeshIo, ConvexPolygonsKeepTheirFan) {
     EXPECT_THAT(errorOf(nonPlanar), HasSubstr(nonPlanar + ":8: face 0 (5 vertices) cannot be triangulated: it is not planar and not convex: its corner 3 (of 5) lies"));
 }
 
+// Found by fuzz_mesh (tests/corpus/fuzz/fuzz_mesh/obj_degenerate_quad_cdt_null_face.obj): a
+// planar face with a repeated corner and one coordinate of 3e17. Newell's normal on absolute
+// coordinates cancelled, the wrong axis was dropped, the projection was a line and the
+// triangulation of a line was walked as if it had faces (a null dereference).
+TEST_F(MeshIo, APolygonFarFromTheOriginIsProjectedAlongItsRealNormal) {
+    const std::string path = write("far.obj",
+        "v 0 0 5\nv -.5 5 -.5\nv 0 .5 -.5\nv 5 5 0\nv 0 0 5\nv 0 333333333333333333 -.5\nv -.5 5 -.5\nf 3 7 6 2\n");
+    EXPECT_THAT(errorOf(path), HasSubstr(path + ":8: face 0 (4 vertices) cannot be triangulated: it overlaps itself"));
+    // The same L-shape far along y triangulates as it does at the origin.
+    const TriangleMesh far = readMeshFile(write("farL.obj",
+        "v 0 1e15 0\nv 2 1e15 0\nv 2 1e15 1\nv 1 1e15 1\nv 1 1e15 2\nv 0 1e15 2\nf 1 2 3 4 5 6\n"));
+    EXPECT_EQ(far.triangles.size(), 4u);
+}
+
 TEST_F(MeshIo, LineAndPointElementsAreSkippedAndCounted) {
     const TriangleMesh mesh = readMeshFile(write("mixed.obj",
         "v 0 0 0\nv 1 0 0\nv 0 1 0\nl 1 2\np 3\nl 2 3\nf 1 2 3\n"));
