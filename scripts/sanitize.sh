@@ -1,0 +1,45 @@
+#!/usr/bin/env bash
+# The whole test suite under AddressSanitizer + UndefinedBehaviorSanitizer (GCC): installs what is
+# missing (scripts/packages.sh), configures build-asan/ (CMake option RTBENCH_SANITIZE=ON:
+# -fsanitize=address,undefined,float-cast-overflow,float-divide-by-zero -fno-sanitize-recover=all
+# -fno-omit-frame-pointer, -O1 -g), builds it and runs ctest there. Any sanitizer report fails the
+# test that triggered it; LeakSanitizer is on, with scripts/lsan.supp silencing leaks that
+# belong to the Vulkan loader, Mesa (lavapipe), LLVM and TBB only (each entry says why).
+#   scripts/sanitize.sh                 build + whole suite
+#   scripts/sanitize.sh -R Corpus       extra arguments go to ctest
+#   JOBS=N                              build and ctest parallelism (default: nproc)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+start=$(date +%s)
+
+source scripts/packages.sh
+install_missing sanitize "${rtbench_packages[@]}"
+
+build=build-asan
+jobs=${JOBS:-$(nproc)}
+mkdir -p "$build"
+printf '*\n' >"$build/.gitignore"  # the whole folder stays out of git
+cmake -S . -B "$build" -DRTBENCH_SANITIZE=ON -DRTBENCH_WITH_OIIO="${RTBENCH_WITH_OIIO:-ON}" \
+  -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g -DNDEBUG" >"$build/configure.log" ||
+  { cat "$build/configure.log" >&2; exit 1; }
+echo "[sanitize] building $build/ with ASan + UBSan (log: $build/build.log)"
+if ! cmake --build "$build" -j"$jobs" >"$build/build.log" 2>&1; then
+  grep -E -A5 "error|Error" "$build/build.log" | head -60 >&2
+  echo "[sanitize] build failed; the whole log is $build/build.log" >&2
+  exit 1
+fi
+built=$(date +%s)
+echo "[sanitize] built in $((built - start)) s; running ctest"
+
+supp=$PWD/scripts/lsan.supp
+export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1:check_initialization_order=1}"
+export LSAN_OPTIONS="${LSAN_OPTIONS:-suppressions=$supp:print_suppressions=0}"
+export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
+status=0
+(cd "$build" && ctest --output-on-failure -j"$jobs" --timeout 1800 "$@") || status=$?
+end=$(date +%s)
+echo "[sanitize] build $((built - start)) s, tests $((end - built)) s, total $((end - start)) s"
+if [ "$status" -ne 0 ]; then
+  echo "[sanitize] FAILED: see the sanitizer reports above (build-asan/Testing/Temporary/LastTest.log)" >&2
+fi
+exit "$status"
