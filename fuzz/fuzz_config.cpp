@@ -10,24 +10,13 @@
 #include <typeinfo>
 
 #include "harness/config.h"
+#include "fuzz_common.h"
 #include "structures/error.h"
 
 namespace {
 
-[[noreturn]] void finding(const std::string& what) {
-    std::fprintf(stderr, "\n==fuzz_config== FINDING: %s\n", what.c_str());
-    std::fflush(stderr);
-    std::abort();
-}
-
-// RTBENCH_FUZZ_VERBOSE=1: print the rtbench::Error of each input (triage: build-fuzz/fuzz/TARGET FILE).
-bool verbose() {
-    static const bool on = [] {
-        const char* v = std::getenv("RTBENCH_FUZZ_VERBOSE");
-        return v && *v && std::string(v) != "0";
-    }();
-    return on;
-}
+[[noreturn]] void finding(const std::string& what) { fuzz::finding("fuzz_config", what); }
+using fuzz::verbose;
 
 }  // namespace
 
