@@ -22,25 +22,32 @@ namespace {
 
 std::string contextString(const Json& context, const std::string& path, const char* key) {
     const auto it = context.find(key);
-    if (it == context.end() || !it->is_string()) throw Error(path + ": no string field \"" + std::string(key) + "\"");
+    if (it == context.end() || !it->is_string())
+        throw Error(path + ": no string field \"" + std::string(key) + "\"");
     return it->get<std::string>();
 }
 
-double number(const std::string& s) { return s.empty() ? std::nan("") : std::strtod(s.c_str(), nullptr); }
+double number(const std::string& s) {
+    return s.empty() ? std::nan("") : std::strtod(s.c_str(), nullptr);
+}
 
 }  // namespace
 
-CheckResult checkResults(const std::string& folder, const CheckOptions& options, std::ostream& out) {
+CheckResult checkResults(const std::string& folder, const CheckOptions& options,
+                         std::ostream& out) {
     const std::string contextPath = (fs::path(folder) / "context.json").string();
-    if (!fs::exists(contextPath)) throw Error(contextPath + ": not found (is this a results folder?)");
+    if (!fs::exists(contextPath))
+        throw Error(contextPath + ": not found (is this a results folder?)");
     const Json context = readJson(contextPath);
     const std::string configPath = contextString(context, contextPath, "config_path");
     // Relative scene paths resolve against the recorded config's folder: where it was when run if
     // that still exists, else where the path points from here.
     std::string configDir = fs::absolute(configPath).parent_path().string();
-    if (context.contains("config_dir") && fs::is_directory(contextString(context, contextPath, "config_dir")))
+    if (context.contains("config_dir") &&
+        fs::is_directory(contextString(context, contextPath, "config_dir")))
         configDir = contextString(context, contextPath, "config_dir");
-    ExperimentPlan plan = loadExperimentText(contextString(context, contextPath, "config_text"), configPath, configDir);
+    ExperimentPlan plan = loadExperimentText(contextString(context, contextPath, "config_text"),
+                                             configPath, configDir);
     const std::vector<Row> recorded = readRunsCsv((fs::path(folder) / "runs.csv").string());
     if (!options.embreeConfigOverride.empty()) {
         try {
@@ -50,13 +57,15 @@ CheckResult checkResults(const std::string& folder, const CheckOptions& options,
         }
     }
     if (!options.embreeConfigOverride.empty())
-        for (RunConfig& run : plan.runs) run.values["baseline.embree_config"] = options.embreeConfigOverride;
+        for (RunConfig& run : plan.runs)
+            run.values["baseline.embree_config"] = options.embreeConfigOverride;
 
     RunnerOptions runner;
     runner.quiet = true;
     runner.force = true;
     for (const Row& row : recorded) runner.onlyRuns.insert(row.at("run"));
-    const fs::path scratch = fs::temp_directory_path() / ("rtbench-check-" + std::to_string(::getpid()));
+    const fs::path scratch =
+        fs::temp_directory_path() / ("rtbench-check-" + std::to_string(::getpid()));
     fs::remove_all(scratch);
     runner.outputOverride = scratch.string();
     ExperimentResult now;
@@ -74,8 +83,8 @@ CheckResult checkResults(const std::string& folder, const CheckOptions& options,
     std::ostringstream table;
     auto report = [&](const std::string& run, const std::string& column, const std::string& then,
                       const std::string& again, const std::string& kind) {
-        table << std::left << std::setw(6) << run << std::setw(30) << column << std::setw(24) << then << std::setw(24)
-              << again << kind << "\n";
+        table << std::left << std::setw(6) << run << std::setw(30) << column << std::setw(24)
+              << then << std::setw(24) << again << kind << "\n";
     };
     for (const Row& old : recorded) {
         ++result.runs;
@@ -116,7 +125,8 @@ CheckResult checkResults(const std::string& folder, const CheckOptions& options,
                 }
                 case ColumnKind::Timing: {
                     const double a = number(value), b = number(again);
-                    if (std::abs(b - a) <= options.timingTolerance * std::max(std::abs(a), 1e-9)) break;
+                    if (std::abs(b - a) <= options.timingTolerance * std::max(std::abs(a), 1e-9))
+                        break;
                     report(old.at("run"), column, value, again, "timing");
                     ++result.timingDifferences;
                     break;
@@ -130,16 +140,20 @@ CheckResult checkResults(const std::string& folder, const CheckOptions& options,
         }
     }
     out << "rtbench check " << folder << ": " << result.runs << " runs re-run"
-        << (options.embreeConfigOverride.empty() ? "" : " with baseline.embree_config = \"" + options.embreeConfigOverride + "\"")
-        << "; " << result.deterministicDifferences << " deterministic difference(s), " << result.referenceDifferences
-        << " reference-dependent within tolerance, " << result.timingDifferences << " timing(s) outside "
-        << options.timingTolerance * 100 << "%, " << result.contextDifferences << " context\n";
+        << (options.embreeConfigOverride.empty()
+                ? ""
+                : " with baseline.embree_config = \"" + options.embreeConfigOverride + "\"")
+        << "; " << result.deterministicDifferences << " deterministic difference(s), "
+        << result.referenceDifferences << " reference-dependent within tolerance, "
+        << result.timingDifferences << " timing(s) outside " << options.timingTolerance * 100
+        << "%, " << result.contextDifferences << " context\n";
     if (context.contains("complete") && context["complete"] == false)
-        out << "(the recorded sweep was interrupted: " << recorded.size() << " of " << plan.runs.size()
-            << " runs were recorded and checked)\n";
+        out << "(the recorded sweep was interrupted: " << recorded.size() << " of "
+            << plan.runs.size() << " runs were recorded and checked)\n";
     if (!table.str().empty()) {
-        out << std::left << std::setw(6) << "run" << std::setw(30) << "column" << std::setw(24) << "recorded" << std::setw(24)
-            << "now" << "kind\n"
+        out << std::left << std::setw(6) << "run" << std::setw(30) << "column" << std::setw(24)
+            << "recorded" << std::setw(24) << "now"
+            << "kind\n"
             << table.str();
     }
     return result;

@@ -10,11 +10,16 @@ namespace rtbench {
 
 const char* columnKindName(ColumnKind kind) {
     switch (kind) {
-        case ColumnKind::Parameter: return "parameter";
-        case ColumnKind::Count: return "count";
-        case ColumnKind::Reference: return "reference";
-        case ColumnKind::Timing: return "timing";
-        case ColumnKind::Context: return "context";
+        case ColumnKind::Parameter:
+            return "parameter";
+        case ColumnKind::Count:
+            return "count";
+        case ColumnKind::Reference:
+            return "reference";
+        case ColumnKind::Timing:
+            return "timing";
+        case ColumnKind::Context:
+            return "context";
     }
     return "?";
 }
@@ -31,17 +36,21 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         using K = ColumnKind;
         std::vector<ColumnSpec> s;
         for (const KeySpec& key : configSchema())
-            s.push_back({paramColumn(key.name), key.name == "experiment.output" ? K::Context : K::Parameter, "", key.help});
-        auto add = [&](std::string name, K kind, std::string unit, std::string help, double tolerance = 0.0,
-                       bool perRay = false) {
-            s.push_back({std::move(name), kind, std::move(unit), std::move(help), tolerance, perRay});
+            s.push_back({paramColumn(key.name),
+                         key.name == "experiment.output" ? K::Context : K::Parameter, "",
+                         key.help});
+        auto add = [&](std::string name, K kind, std::string unit, std::string help,
+                       double tolerance = 0.0, bool perRay = false) {
+            s.push_back(
+                {std::move(name), kind, std::move(unit), std::move(help), tolerance, perRay});
         };
         // Identity and outcome.
         add("run", K::Parameter, "", "run number in the plan (000, 001, ...)");
         add("label", K::Parameter, "", "the swept parameters of the run");
         add("status", K::Count, "", "ok or failed");
         add("error", K::Count, "", "why the run failed");
-        add("warnings", K::Count, "", "what the run did that may surprise (e.g. triangles degenerate in float)");
+        add("warnings", K::Count, "",
+            "what the run did that may surprise (e.g. triangles degenerate in float)");
         add("config_hash", K::Parameter, "", "FNV-1a 64 of the run's parameters");
         add("git_commit", K::Context, "", "commit of the binary");
         add("device", K::Context, "", "Vulkan device name");
@@ -61,7 +70,8 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("grid_bytes", K::Count, "bytes", "grid memory (offsets, lists, vertices)");
         add("grid_build_ms", K::Timing, "ms", "CPU build time of the grid");
         // Time.
-        add("kernel_ms_median", K::Timing, "ms", "GPU time of the kernel(s), median of the repetitions");
+        add("kernel_ms_median", K::Timing, "ms",
+            "GPU time of the kernel(s), median of the repetitions");
         add("kernel_ms_min", K::Timing, "ms", "GPU time, fastest repetition");
         add("kernel_ms_max", K::Timing, "ms", "GPU time, slowest repetition");
         add("kernel_mrays_s", K::Timing, "Mrays/s", "rays / median GPU time");
@@ -75,15 +85,21 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("embree_threads", K::Context, "threads", "TBB threads Embree ran on");
         add("embree_isa", K::Context, "", "Embree's native packet width (its ISA path)");
         add("embree_build_ms", K::Timing, "ms", "Embree BVH build time");
-        add("speed_ratio_vs_embree1", K::Timing, "ratio", "kernel Mrays/s / Embree rtcIntersect1 Mrays/s");
+        add("speed_ratio_vs_embree1", K::Timing, "ratio",
+            "kernel Mrays/s / Embree rtcIntersect1 Mrays/s");
         // Accuracy against Embree: depends on Embree's floating-point path (its ISA).
         add("hits", K::Count, "rays", "rays the kernel hit");
-        add("hit_miss_agreement", K::Reference, "fraction", "rays whose hit/miss equals Embree's", 1e-4);
-        add("same_primitive_agreement", K::Reference, "fraction", "rays both hit on the same triangle", 1e-4);
-        add("rel_distance_error_mean", K::Reference, "", "|t - t_Embree| / t_Embree, mean over rays both hit", 1e-6);
+        add("hit_miss_agreement", K::Reference, "fraction", "rays whose hit/miss equals Embree's",
+            1e-4);
+        add("same_primitive_agreement", K::Reference, "fraction",
+            "rays both hit on the same triangle", 1e-4);
+        add("rel_distance_error_mean", K::Reference, "",
+            "|t - t_Embree| / t_Embree, mean over rays both hit", 1e-6);
         add("rel_distance_error_max", K::Reference, "", "|t - t_Embree| / t_Embree, max", 1e-6);
-        add("hit_miss_mismatches", K::Reference, "rays", "rays where one hit and the other missed", 1e-4, true);
-        add("primitive_mismatches", K::Reference, "rays", "rays both hit on different triangles", 1e-4, true);
+        add("hit_miss_mismatches", K::Reference, "rays", "rays where one hit and the other missed",
+            1e-4, true);
+        add("primitive_mismatches", K::Reference, "rays", "rays both hit on different triangles",
+            1e-4, true);
         // Work and accounting (exact, from instrumented kernels; equal to the CPU reference).
         add("voxels_per_ray_mean", K::Count, "voxels", "voxels visited per ray, mean");
         add("voxels_per_ray_max", K::Count, "voxels", "voxels visited per ray, max");
@@ -96,8 +112,10 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("passes_traverse", K::Count, "passes", "multipass traverse passes");
         add("passes_intersect", K::Count, "passes", "multipass intersect passes");
         add("passes_write", K::Count, "passes", "multipass write passes");
-        add("passes_lower_bound", K::Count, "passes", "Purcell's lower bound on traverse + intersect passes");
-        add("simd_efficiency", K::Count, "fraction", "useful lanes / lanes (Purcell for multipass, Aila & Laine for branching)");
+        add("passes_lower_bound", K::Count, "passes",
+            "Purcell's lower bound on traverse + intersect passes");
+        add("simd_efficiency", K::Count, "fraction",
+            "useful lanes / lanes (Purcell for multipass, Aila & Laine for branching)");
         add("bytes_stencil", K::Count, "bytes", "ray-state byte reads and writes");
         add("bytes_state", K::Count, "bytes", "per-ray state saved and restored");
         add("bytes_voxel", K::Count, "bytes", "voxel offsets read");
@@ -107,13 +125,18 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("bytes_total", K::Count, "bytes", "all categories");
         add("bytes_per_ray", K::Count, "bytes", "bytes_total / rays");
         add("kernel_ms_setup", K::Timing, "ms", "multipass: GPU time of the setup passes, median");
-        add("kernel_ms_traverse", K::Timing, "ms", "multipass: GPU time of the traverse passes, median");
-        add("kernel_ms_intersect", K::Timing, "ms", "multipass: GPU time of the intersect passes, median");
+        add("kernel_ms_traverse", K::Timing, "ms",
+            "multipass: GPU time of the traverse passes, median");
+        add("kernel_ms_intersect", K::Timing, "ms",
+            "multipass: GPU time of the intersect passes, median");
         add("kernel_ms_write", K::Timing, "ms", "multipass: GPU time of the write pass, median");
         // Self-checks (a mismatch fails the run).
-        add("cpu_reference_mismatches", K::Count, "rays", "rays whose GPU hit record differs from the CPU reference's");
-        add("cpu_counts_match", K::Count, "", "1 when pass and lane counts equal the CPU reference's");
-        add("branching_mismatches", K::Count, "rays", "multipass: rays whose hit record differs from the branching caster's");
+        add("cpu_reference_mismatches", K::Count, "rays",
+            "rays whose GPU hit record differs from the CPU reference's");
+        add("cpu_counts_match", K::Count, "",
+            "1 when pass and lane counts equal the CPU reference's");
+        add("branching_mismatches", K::Count, "rays",
+            "multipass: rays whose hit record differs from the branching caster's");
         add("wall_s", K::Timing, "s", "wall time of the whole run");
         return s;
     }();
@@ -133,16 +156,20 @@ const ColumnSpec& columnSpec(const std::string& name) {
         return m;
     }();
     const auto it = byName.find(name);
-    if (it == byName.end()) throw Error("column '" + name + "' is not declared (harness/columns.cpp)");
+    if (it == byName.end())
+        throw Error("column '" + name + "' is not declared (harness/columns.cpp)");
     return *it->second;
 }
 
 std::string columnsMarkdown() {
     std::string out = "| column | kind | unit | meaning |\n|---|---|---|---|\n";
     for (const ColumnSpec& c : runColumnSpecs()) {
-        if (c.kind == ColumnKind::Parameter && c.name != "run" && c.name != "label" && c.name != "config_hash") continue;
+        if (c.kind == ColumnKind::Parameter && c.name != "run" && c.name != "label" &&
+            c.name != "config_hash")
+            continue;
         if (c.name == "experiment_output") continue;  // a config key, recorded as context
-        out += "| `" + c.name + "` | " + columnKindName(c.kind) + " | " + c.unit + " | " + c.help + " |\n";
+        out += "| `" + c.name + "` | " + columnKindName(c.kind) + " | " + c.unit + " | " + c.help +
+               " |\n";
     }
     return out;
 }
@@ -158,14 +185,17 @@ std::vector<Row> readRunsCsv(const std::string& path) {
         for (const auto& [c, value] : rows[0])
             if (!declaredSet.count(c)) unknown += (unknown.empty() ? "" : ", ") + c;
         if (!missing.empty())
-            throw Error(path + ": missing column(s) " + missing + " (written by another rtbench version?)");
+            throw Error(path + ": missing column(s) " + missing +
+                        " (written by another rtbench version?)");
         if (!unknown.empty()) throw Error(path + ": unknown column(s) " + unknown);
     }
     std::set<std::string> runs;
     for (std::size_t r = 0; r < rows.size(); ++r) {
         const std::string& run = rows[r].at("run");
-        if (run.empty()) throw Error(path + ": row " + std::to_string(r + 1) + " has no run number");
-        if (!runs.insert(run).second) throw Error(path + ": run " + run + " appears more than once");
+        if (run.empty())
+            throw Error(path + ": row " + std::to_string(r + 1) + " has no run number");
+        if (!runs.insert(run).second)
+            throw Error(path + ": run " + run + " appears more than once");
     }
     return rows;
 }

@@ -29,7 +29,8 @@ std::string join(const std::vector<std::string>& items) {
 }
 
 bool isInteger(const std::string& s, long lo, long hi) {
-    if (s.empty() || s.size() > 9 || !std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; }))
+    if (s.empty() || s.size() > 9 ||
+        !std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; }))
         return false;
     const long v = std::stol(s);
     return v >= lo && v <= hi;
@@ -54,7 +55,8 @@ void checkEmbreeConfig(const std::string& config) {
     std::string item;
     while (std::getline(items, item, ',')) {
         const std::size_t eq = item.find('=');
-        const std::string key = item.substr(0, eq), value = eq == std::string::npos ? "" : item.substr(eq + 1);
+        const std::string key = item.substr(0, eq),
+                          value = eq == std::string::npos ? "" : item.substr(eq + 1);
         if (eq == std::string::npos || key.empty())
             throw Error("'" + item + "' is not key=value (e.g. \"isa=avx2,threads=2\")");
         if (key == "isa" || key == "max_isa") {
@@ -65,7 +67,8 @@ void checkEmbreeConfig(const std::string& config) {
                 throw Error(key + "=" + value + ": this CPU cannot run it (supported here: " +
                             join(embreeIsasSupportedHere()) + ")");
         } else if (key == "threads") {
-            if (!isInteger(value, 0, 1 << 20)) throw Error("threads=" + value + ": expected an integer >= 0 (0: all)");
+            if (!isInteger(value, 0, 1 << 20))
+                throw Error("threads=" + value + ": expected an integer >= 0 (0: all)");
         } else if (key == "start_threads" || key == "set_affinity") {
             if (value != "0" && value != "1") throw Error(key + "=" + value + ": expected 0 or 1");
         } else if (key == "verbose") {

@@ -16,11 +16,13 @@ namespace rtbench {
 namespace fs = std::filesystem;
 
 std::string experimentFolder(const std::string& output, const std::string& name) {
-    const bool control = std::any_of(name.begin(), name.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20; });
+    const bool control = std::any_of(name.begin(), name.end(),
+                                     [](char c) { return static_cast<unsigned char>(c) < 0x20; });
     if (name.empty() || name == "." || name == ".." || name.find('/') != std::string::npos ||
         name.find('\\') != std::string::npos || control)
         throw Error("experiment.name '" + name +
-                    "' is not a plain folder name (no '/', not '.' or '..'): results go to <output>/<name>/");
+                    "' is not a plain folder name (no '/', not '.' or '..'): results go to "
+                    "<output>/<name>/");
     return (fs::path(output) / name).string();
 }
 
@@ -35,8 +37,10 @@ OutputFolderLock::OutputFolderLock(const std::string& folder) {
         ::close(fd_);
         fd_ = -1;
         if (why == EWOULDBLOCK)
-            throw Error(folder + ": another rtbench process (pid " + (n > 0 ? std::string(holder, std::size_t(n)) : "?") +
-                        ") is writing this results folder; wait for it or use another -o / experiment.name");
+            throw Error(folder + ": another rtbench process (pid " +
+                        (n > 0 ? std::string(holder, std::size_t(n)) : "?") +
+                        ") is writing this results folder; wait for it or use another -o / "
+                        "experiment.name");
         throw Error(path + ": cannot lock: " + std::strerror(why));
     }
     const std::string pid = std::to_string(::getpid());
@@ -52,7 +56,8 @@ void checkWritableFile(const std::string& path) {
     std::error_code ec;
     const fs::file_status status = fs::symlink_status(path, ec);
     if (!fs::exists(status)) return;
-    if (!fs::is_regular_file(status)) throw Error(path + ": exists but is not a regular file; move it away first");
+    if (!fs::is_regular_file(status))
+        throw Error(path + ": exists but is not a regular file; move it away first");
     if (::access(path.c_str(), W_OK) != 0 && errno != ENOENT)
         throw Error(path + ": not writable: " + std::strerror(errno));
 }

@@ -13,13 +13,13 @@ std::string experimentFolder(const std::string& output, const std::string& name)
 // for the lifetime of the object. A second process fails at once, naming the holder's pid. The
 // lock ends with the process, so a killed run never leaves the folder locked.
 class OutputFolderLock {
-public:
+  public:
     explicit OutputFolderLock(const std::string& folder);
     ~OutputFolderLock();
     OutputFolderLock(const OutputFolderLock&) = delete;
     OutputFolderLock& operator=(const OutputFolderLock&) = delete;
 
-private:
+  private:
     int fd_ = -1;
 };
 

@@ -46,7 +46,11 @@ std::string escapeBytes(std::string_view text, bool controls) {
 }
 }  // namespace
 
-std::string printable(std::string_view text) { return escapeBytes(text, true); }
-std::string validUtf8(std::string_view text) { return escapeBytes(text, false); }
+std::string printable(std::string_view text) {
+    return escapeBytes(text, true);
+}
+std::string validUtf8(std::string_view text) {
+    return escapeBytes(text, false);
+}
 
 }  // namespace rtbench

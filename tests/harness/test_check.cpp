@@ -37,7 +37,7 @@ TEST(Check, EveryColumnHasTheKindItsValueHas) {
 
 // A copy of results/golden to tamper with; the check runs from the source tree as CI does.
 class Golden : public ::testing::Test {
-protected:
+  protected:
     void SetUp() override {
         fs::copy(fs::path(RTBENCH_SOURCE_DIR) / "results" / "golden", copy_);
         previous_ = fs::current_path();
@@ -53,7 +53,8 @@ protected:
     }
     void setText(const std::string& t) const { std::ofstream(csv(), std::ios::binary) << t; }
     CheckResult check(std::ostream& out, const std::string& embreeConfig = "") const {
-        return checkResults(copy_.string(), {.timingTolerance = 10.0, .embreeConfigOverride = embreeConfig}, out);
+        return checkResults(copy_.string(),
+                            {.timingTolerance = 10.0, .embreeConfigOverride = embreeConfig}, out);
     }
     std::string errorOfCheck() const {
         std::ostringstream out;
@@ -143,7 +144,8 @@ TEST_F(Golden, ACutRowIsAnErrorNamingItsLine) {
     std::size_t lineStart = t.rfind('\n', third - 1) + 1;
     std::string cut = t.substr(0, lineStart);
     std::size_t fields = 0, at = lineStart;
-    while (fields < 40) at = t.find(',', at) + 1, ++fields;  // 40 commas: one is inside the quoted device
+    while (fields < 40)
+        at = t.find(',', at) + 1, ++fields;  // 40 commas: one is inside the quoted device
     cut += t.substr(lineStart, at - 1 - lineStart) + t.substr(third);
     setText(cut);
     EXPECT_THAT(errorOfCheck(), HasSubstr("runs.csv:3: row 2 has 39 of the header's"));
@@ -159,7 +161,8 @@ TEST_F(Golden, ADuplicatedRowIsAnError) {
 TEST_F(Golden, AnUnclosedQuoteIsAnErrorNamingItsLine) {
     const std::string original = text();
     std::string t = original;
-    t.insert(t.find('\n', t.find('\n') + 1) + 1, "\"");  // start of line 3: closes at the next quote
+    t.insert(t.find('\n', t.find('\n') + 1) + 1,
+             "\"");  // start of line 3: closes at the next quote
     setText(t);
     EXPECT_THAT(errorOfCheck(), HasSubstr("runs.csv:3: text after a closing quote"));
     t = original;
@@ -183,10 +186,12 @@ TEST_F(Golden, AnInterruptedSweepChecksTheRunsItFinished) {
 TEST(CheckOptions, ABogusEmbreeConfigIsRefused) {
     std::ostringstream out;
     try {
-        checkResults(RTBENCH_SOURCE_DIR "/results/golden", {.embreeConfigOverride = "isa=bogus"}, out);
+        checkResults(RTBENCH_SOURCE_DIR "/results/golden", {.embreeConfigOverride = "isa=bogus"},
+                     out);
         FAIL();
     } catch (const Error& e) {
-        EXPECT_THAT(e.what(), HasSubstr("--embree-config: isa=bogus: unknown ISA (allowed: sse2, sse4.2, avx, avx2, avx512)"));
+        EXPECT_THAT(e.what(), HasSubstr("--embree-config: isa=bogus: unknown ISA (allowed: sse2, "
+                                        "sse4.2, avx, avx2, avx512)"));
     }
 }
 

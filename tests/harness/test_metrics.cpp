@@ -9,7 +9,8 @@
 namespace rtbench {
 namespace {
 
-gpu::HitRecord hit(std::uint32_t primitive, float t, std::uint32_t steps = 0, std::uint32_t tests = 0) {
+gpu::HitRecord hit(std::uint32_t primitive, float t, std::uint32_t steps = 0,
+                   std::uint32_t tests = 0) {
     gpu::HitRecord h{};
     h.primitive = primitive;
     h.t = primitive == gpu::kNoHit ? gpu::kNoHitT : t;
@@ -21,7 +22,8 @@ gpu::HitRecord hit(std::uint32_t primitive, float t, std::uint32_t steps = 0, st
 TEST(Oracle, IntersectsWhenTheWaitingFractionReachesTheThresholdExactly) {
     MultipassOptions o;
     o.oracleThreshold = 0.25;
-    // 1 of 4 active rays waits: 0.25 >= 0.25 (Purcell §3.2: intersect once the fraction is reached).
+    // 1 of 4 active rays waits: 0.25 >= 0.25 (Purcell §3.2: intersect once the fraction is
+    // reached).
     EXPECT_EQ(PassScheduler(o).next(3, 1), PassKind::Intersect);
     // 1 of 5: 0.2 < 0.25.
     EXPECT_EQ(PassScheduler(o).next(4, 1), PassKind::Traverse);
@@ -75,7 +77,8 @@ TEST(PassLoop, ThePassCapTurnsARunawayIntoAnError) {
 
 TEST(LowerBound, RoundsEachTermUp) {
     // Max 5 steps with K = 2 -> 3 passes; max 7 tests with M = 3 -> 3 passes: bound 6.
-    const std::vector<gpu::HitRecord> hits = {hit(0, 1.0f, 5, 1), hit(gpu::kNoHit, 0, 2, 7), hit(1, 2.0f, 4, 6)};
+    const std::vector<gpu::HitRecord> hits = {hit(0, 1.0f, 5, 1), hit(gpu::kNoHit, 0, 2, 7),
+                                              hit(1, 2.0f, 4, 6)};
     MultipassOptions o;
     o.traverseStepsPerPass = 2;
     o.intersectionsPerPass = 3;
@@ -88,14 +91,16 @@ TEST(LowerBound, RoundsEachTermUp) {
 TEST(Agreement, FractionsUseTheirOwnDenominators) {
     // 5 rays: ray 1 is a hit/miss mismatch; rays 0, 2, 3 both hit, ray 3 on another triangle;
     // ray 4 both miss.
-    const std::vector<gpu::HitRecord> mine = {hit(7, 2.0f), hit(1, 1.0f), hit(3, 4.0f), hit(9, 1.5f), hit(gpu::kNoHit, 0)};
-    const std::vector<gpu::HitRecord> ref = {hit(7, 2.0f), hit(gpu::kNoHit, 0), hit(3, 5.0f), hit(8, 1.0f), hit(gpu::kNoHit, 0)};
+    const std::vector<gpu::HitRecord> mine = {hit(7, 2.0f), hit(1, 1.0f), hit(3, 4.0f),
+                                              hit(9, 1.5f), hit(gpu::kNoHit, 0)};
+    const std::vector<gpu::HitRecord> ref = {hit(7, 2.0f), hit(gpu::kNoHit, 0), hit(3, 5.0f),
+                                             hit(8, 1.0f), hit(gpu::kNoHit, 0)};
     const Agreement a = compareHits(mine, ref);
     EXPECT_EQ(a.hitMissMismatches, 1u);
     EXPECT_EQ(a.bothHit, 3u);
     EXPECT_EQ(a.primitiveMismatches, 1u);
-    EXPECT_DOUBLE_EQ(a.hitMissAgreement, 4.0 / 5.0);       // of all rays
-    EXPECT_DOUBLE_EQ(a.samePrimitiveAgreement, 2.0 / 3.0); // of rays both hit
+    EXPECT_DOUBLE_EQ(a.hitMissAgreement, 4.0 / 5.0);        // of all rays
+    EXPECT_DOUBLE_EQ(a.samePrimitiveAgreement, 2.0 / 3.0);  // of rays both hit
     // |4 - 5| / 5 = 0.2 and |1.5 - 1| / 1 = 0.5 over 3 rays both hit.
     EXPECT_DOUBLE_EQ(a.relDistanceErrorMean, (0.0 + 0.2 + 0.5) / 3.0);
     EXPECT_DOUBLE_EQ(a.relDistanceErrorMax, 0.5);

@@ -29,7 +29,8 @@ TEST(OutputFolder, ASecondWriterFailsAtOnceNamingTheHoldersPid) {
     TempDir dir;
     const OutputFolderLock first(dir.path().string());
     EXPECT_THAT(errorOf([&] { OutputFolderLock second(dir.path().string()); }),
-                HasSubstr("another rtbench process (pid " + std::to_string(::getpid()) + ") is writing this results folder"));
+                HasSubstr("another rtbench process (pid " + std::to_string(::getpid()) +
+                          ") is writing this results folder"));
 }
 
 TEST(OutputFolder, TheLockEndsWithItsHolder) {
@@ -40,27 +41,35 @@ TEST(OutputFolder, TheLockEndsWithItsHolder) {
 
 TEST(OutputFolder, TheExperimentNameIsAPlainFolderName) {
     EXPECT_EQ(experimentFolder("out", "bunny"), "out/bunny");
-    for (const std::string& bad : std::vector<std::string>{"../../escape", "/tmp/abs", "a/b", "..", ".", "", "x\ny"})
-        EXPECT_THAT(errorOf([&] { experimentFolder("out", bad); }), HasSubstr("is not a plain folder name")) << bad;
+    for (const std::string& bad :
+         std::vector<std::string>{"../../escape", "/tmp/abs", "a/b", "..", ".", "", "x\ny"})
+        EXPECT_THAT(errorOf([&] { experimentFolder("out", bad); }),
+                    HasSubstr("is not a plain folder name"))
+            << bad;
 }
 
 TEST(OutputFolder, TheNameIsCheckedWhenTheConfigIsLoaded) {
     TempDir dir;
-    const std::string path = dir.write("c.toml", "[experiment]\nname = \"../../escape\"\n[scene]\nsource = \"procedural:christen_a\"\n");
+    const std::string path = dir.write(
+        "c.toml",
+        "[experiment]\nname = \"../../escape\"\n[scene]\nsource = \"procedural:christen_a\"\n");
     EXPECT_THAT(errorOf([&] { loadExperiment(path); }),
-                HasSubstr("c.toml:2: key 'experiment.name': experiment.name '../../escape' is not a plain folder name"));
+                HasSubstr("c.toml:2: key 'experiment.name': experiment.name '../../escape' is not "
+                          "a plain folder name"));
 }
 
 TEST(OutputFolder, ARunsCsvThatIsAFolderIsRefusedBeforeAnyRun) {
     TempDir dir;
     fs::create_directories(dir.path() / "out" / "t" / "runs.csv");
-    const std::string path = dir.write("c.toml", "[experiment]\nname = \"t\"\noutput = \"" + dir.file("out") +
-                                                     "\"\n[scene]\nsource = \"procedural:christen_a\"\n");
+    const std::string path =
+        dir.write("c.toml", "[experiment]\nname = \"t\"\noutput = \"" + dir.file("out") +
+                                "\"\n[scene]\nsource = \"procedural:christen_a\"\n");
     RunnerOptions options;
     options.quiet = true;
     EXPECT_THAT(errorOf([&] { runExperiment(loadExperiment(path), options); }),
                 HasSubstr("runs.csv: exists but is not a regular file"));
-    EXPECT_FALSE(fs::exists(dir.path() / "out" / "t" / "context.json"));  // refused before anything ran
+    EXPECT_FALSE(
+        fs::exists(dir.path() / "out" / "t" / "context.json"));  // refused before anything ran
 }
 
 TEST(Writers, AFailedWriteLeavesNoTmpAndTheOldFileIntact) {
@@ -85,15 +94,17 @@ TEST(Writers, AFailedWriteLeavesNoTmpAndTheOldFileIntact) {
 
 TEST(Writers, ARowWithAnUndeclaredColumnIsAnError) {
     TempDir dir;
-    EXPECT_THAT(errorOf([&] { writeCsv(dir.file("r.csv"), {"run", "hits"}, {{{"run", "000"}, {"hitz", "3"}}}); }),
+    EXPECT_THAT(errorOf([&] {
+                    writeCsv(dir.file("r.csv"), {"run", "hits"}, {{{"run", "000"}, {"hitz", "3"}}});
+                }),
                 HasSubstr("row 1 sets column 'hitz', which is not declared"));
 }
 
 TEST(Writers, TextThatIsNotUtf8IsEscaped) {
     EXPECT_EQ(validUtf8("caf\xc3\xa9"), "caf\xc3\xa9");
     EXPECT_EQ(validUtf8("bad\xff\xfe end"), "bad\\xFF\\xFE end");
-    EXPECT_EQ(validUtf8("\xc3"), "\\xC3");          // cut sequence
-    EXPECT_EQ(validUtf8("\xc0\xaf"), "\\xC0\\xAF");  // overlong '/'
+    EXPECT_EQ(validUtf8("\xc3"), "\\xC3");                    // cut sequence
+    EXPECT_EQ(validUtf8("\xc0\xaf"), "\\xC0\\xAF");           // overlong '/'
     EXPECT_EQ(validUtf8("\xed\xa0\x80"), "\\xED\\xA0\\x80");  // surrogate
     TempDir dir;
     writeCsv(dir.file("r.csv"), {"error"}, {{{"error", "mesh says \xff"}}});
@@ -113,7 +124,8 @@ TEST(Columns, TheReadmeTableIsTheDeclaredColumns) {
     std::stringstream text;
     text << in.rdbuf();
     const std::string readme = text.str();
-    const std::string begin = "<!-- columns: begin (rtbench columns) -->\n", end = "<!-- columns: end -->";
+    const std::string begin = "<!-- columns: begin (rtbench columns) -->\n",
+                      end = "<!-- columns: end -->";
     const std::size_t from = readme.find(begin), to = readme.find(end);
     ASSERT_NE(from, std::string::npos) << "README.md has no columns table";
     ASSERT_NE(to, std::string::npos);
@@ -126,7 +138,8 @@ TEST(Columns, TheCsvHeaderIsEveryConfigKeyThenEveryMetric) {
     for (const KeySpec& key : configSchema()) EXPECT_EQ(columns.at(k++), paramColumn(key.name));
     EXPECT_EQ(columns.at(k), "run");
     EXPECT_EQ(columns.back(), "wall_s");
-    EXPECT_EQ(std::set<std::string>(columns.begin(), columns.end()).size(), columns.size());  // no duplicates
+    EXPECT_EQ(std::set<std::string>(columns.begin(), columns.end()).size(),
+              columns.size());  // no duplicates
 }
 
 }  // namespace
