@@ -35,10 +35,7 @@ std::vector<BufferSize> gridBufferSizes(const std::array<unsigned, 3>& resolutio
 void refuseOversizedBuffers(const DeviceInfo& device, const std::vector<BufferSize>& buffers) {
     std::uint64_t total = 0;
     for (const BufferSize& b : buffers) {
-        if (b.bytes > device.maxStorageBufferRange)
-            throw Error("the " + b.what + " buffer would be " + std::to_string(b.bytes) + " bytes, over " +
-                        device.name + "'s maxStorageBufferRange of " + std::to_string(device.maxStorageBufferRange) +
-                        " bytes for one binding");
+        checkBindingSize(device, b.what, b.bytes);
         total += b.bytes;
     }
     if (device.deviceLocalBytes && total > device.deviceLocalBytes)

@@ -306,11 +306,15 @@ Buffer VulkanContext::createBuffer(VkDeviceSize size, VkBufferUsageFlags usage,
     return b;
 }
 
+void checkBindingSize(const DeviceInfo& device, const std::string& what, std::uint64_t bytes) {
+    if (bytes > device.maxStorageBufferRange)
+        throw Error("the " + what + " buffer would be " + std::to_string(bytes) + " bytes, over " + device.name +
+                    "'s maxStorageBufferRange of " + std::to_string(device.maxStorageBufferRange) +
+                    " bytes for one binding");
+}
+
 Buffer VulkanContext::createStorageBuffer(VkDeviceSize size, const std::string& what) {
-    if (size > info_.maxStorageBufferRange)
-        throw Error("Vulkan: the " + what + " buffer would be " + std::to_string(size) +
-                    " bytes, over " + info_.name + "'s maxStorageBufferRange of " +
-                    std::to_string(info_.maxStorageBufferRange) + " bytes");
+    checkBindingSize(info_, what, size);
     return createBuffer(size,
                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
                             VK_BUFFER_USAGE_TRANSFER_DST_BIT,

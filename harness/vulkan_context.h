@@ -30,6 +30,10 @@ struct DeviceInfo {
 
 std::string vkResultName(VkResult result);
 
+// Throws rtbench::Error naming the buffer (`what`), its size and the device's limit when `bytes`
+// exceed what one storage binding can hold (maxStorageBufferRange).
+void checkBindingSize(const DeviceInfo& device, const std::string& what, std::uint64_t bytes);
+
 struct Buffer {
     VkBuffer buffer = VK_NULL_HANDLE;
     VkDeviceMemory memory = VK_NULL_HANDLE;

@@ -101,7 +101,7 @@ TEST_F(EndToEnd, AFailingRunWritesItsReasonAndTheOthersGoOn) {
     EXPECT_EQ(result.rows[0].at("status"), "ok");
     EXPECT_EQ(result.rows[1].at("status"), "failed");
     EXPECT_THAT(result.rows[1].at("error"),
-                HasSubstr("grid 2048x2048x2048 (8589934592 cells) needs 34359738372 bytes of cell offsets, over "));
+                HasSubstr("the grid cell offset (2048x2048x2048 = 8589934592 cells) buffer would be 34359738372 bytes, over "));
     EXPECT_THAT(result.rows[1].at("error"), HasSubstr("maxStorageBufferRange"));
     EXPECT_EQ(result.rows[2].at("status"), "ok");
     EXPECT_EQ(readCsv(result.folder + "/runs.csv").size(), 3u);
