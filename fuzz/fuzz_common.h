@@ -2,7 +2,11 @@
 #pragma once
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <string>
+#include <typeinfo>
+
+#include "structures/error.h"
 
 namespace fuzz {
 
@@ -21,6 +25,22 @@ inline bool verbose() {
         return v && *v && std::string(v) != "0";
     }();
     return on;
+}
+
+// Runs `body`: rtbench::Error is the expected outcome for a bad input (printed when verbose());
+// any other exception escaping `entry` (the function under test) is a finding.
+template <class Body>
+void expectOnlyRtbenchErrors(const char* target, const char* entry, Body&& body) {
+    try {
+        body();
+    } catch (const rtbench::Error& e) {
+        if (verbose()) std::fprintf(stderr, "rtbench::Error: %s\n", e.what());
+    } catch (const std::exception& e) {
+        finding(target, std::string("exception other than rtbench::Error from ") + entry + ": " +
+                            typeid(e).name() + ": " + e.what());
+    } catch (...) {
+        finding(target, std::string("a non-std exception escaped ") + entry);
+    }
 }
 
 }  // namespace fuzz
