@@ -55,10 +55,8 @@ CheckResult checkResults(const std::string& folder, const CheckOptions& options,
         } catch (const Error& e) {
             throw Error("--embree-config: " + std::string(e.what()));
         }
+        for (RunConfig& run : plan.runs) run.values["baseline.embree_config"] = options.embreeConfigOverride;
     }
-    if (!options.embreeConfigOverride.empty())
-        for (RunConfig& run : plan.runs)
-            run.values["baseline.embree_config"] = options.embreeConfigOverride;
 
     RunnerOptions runner;
     runner.quiet = true;

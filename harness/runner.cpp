@@ -282,6 +282,15 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
                     std::to_string(branchingMismatches) + " of " + std::to_string(rays.size()) + " rays");
 }
 
+// The runs done so far, as context.json lists them.
+Json runsJson(const std::vector<Row>& rows) {
+    Json runs = Json::array();
+    for (const Row& r : rows)
+        runs.push_back({{"run", r.at("run")}, {"label", r.at("label")}, {"config_hash", r.at("config_hash")},
+                        {"status", r.at("status")}});
+    return runs;
+}
+
 // What is needed to re-run and to judge the experiment; written when the sweep starts (complete:
 // false) and rewritten after every run, so `rtbench check` works on an interrupted sweep.
 Json contextJson(const ExperimentPlan& plan, const RunnerOptions& options, const std::vector<Row>& rows,
@@ -308,10 +317,7 @@ Json contextJson(const ExperimentPlan& plan, const RunnerOptions& options, const
     }
     j["plan"] = Json::array();
     for (const RunConfig& run : plan.runs) j["plan"].push_back({{"run", runNumber(run)}, {"config_hash", run.hash()}});
-    j["runs"] = Json::array();
-    for (const Row& r : rows)
-        j["runs"].push_back({{"run", r.at("run")}, {"label", r.at("label")}, {"config_hash", r.at("config_hash")},
-                             {"status", r.at("status")}});
+    j["runs"] = runsJson(rows);
     return j;
 }
 
@@ -506,10 +512,7 @@ std::vector<Row> mergeShards(const std::string& folder) {
     writeCsv(csvPath, runColumns(), merged);
     Json context = readJson(firstContext.string());
     context["complete"] = true;
-    context["runs"] = Json::array();
-    for (const Row& r : merged)
-        context["runs"].push_back({{"run", r.at("run")}, {"label", r.at("label")}, {"config_hash", r.at("config_hash")},
-                                   {"status", r.at("status")}});
+    context["runs"] = runsJson(merged);
     writeJson((fs::path(folder) / "context.json").string(), context);
     return merged;
 }
