@@ -4,32 +4,10 @@
 #include <set>
 
 #include "config.h"
+#include "methods/registry.h"
 #include "structures/error.h"
 
 namespace rtbench {
-
-const char* columnKindName(ColumnKind kind) {
-    switch (kind) {
-        case ColumnKind::Parameter:
-            return "parameter";
-        case ColumnKind::Count:
-            return "count";
-        case ColumnKind::Reference:
-            return "reference";
-        case ColumnKind::Timing:
-            return "timing";
-        case ColumnKind::Context:
-            return "context";
-    }
-    return "?";
-}
-
-std::string paramColumn(const std::string& key) {
-    std::string column = key;
-    for (char& c : column)
-        if (c == '.') c = '_';
-    return column;
-}
 
 const std::vector<ColumnSpec>& runColumnSpecs() {
     static const std::vector<ColumnSpec> specs = [] {
@@ -59,16 +37,12 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("scene_triangles", K::Count, "triangles", "triangles after triangulation");
         add("scene_degenerate", K::Count, "triangles", "zero-area triangles in float (never hit)");
         add("rays", K::Count, "rays", "rays traced");
-        add("grid_res_x", K::Count, "cells", "grid resolution along x");
-        add("grid_res_y", K::Count, "cells", "grid resolution along y");
-        add("grid_res_z", K::Count, "cells", "grid resolution along z");
-        add("grid_cells", K::Count, "cells", "voxels in the grid");
-        add("grid_empty_fraction", K::Count, "fraction", "voxels with no triangle");
-        add("grid_references", K::Count, "references", "(voxel, triangle) pairs");
-        add("grid_refs_per_triangle", K::Count, "references", "references per triangle");
-        add("grid_max_refs_in_cell", K::Count, "references", "largest voxel list");
-        add("grid_bytes", K::Count, "bytes", "grid memory (offsets, lists, vertices)");
-        add("grid_build_ms", K::Timing, "ms", "CPU build time of the grid");
+        add("structure_bytes", K::Count, "bytes", "device memory of the structure (its buffers, triangle vertices included)");
+        add("structure_bytes_per_triangle", K::Count, "bytes", "structure_bytes / scene_triangles");
+        add("structure_build_ms", K::Timing, "ms", "CPU build time of the structure");
+        // Each structure's own columns (methods/registry.cpp).
+        for (const StructureType* t : structureTypes())
+            for (const ColumnSpec& c : t->columns) s.push_back(c);
         // Time.
         add("kernel_ms_median", K::Timing, "ms",
             "GPU time of the kernel(s), median of the repetitions");
@@ -101,43 +75,33 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("primitive_mismatches", K::Reference, "rays", "rays both hit on different triangles",
             1e-4, true);
         // Work and accounting (exact, from instrumented kernels; equal to the CPU reference).
-        add("voxels_per_ray_mean", K::Count, "voxels", "voxels visited per ray, mean");
-        add("voxels_per_ray_max", K::Count, "voxels", "voxels visited per ray, max");
         add("triangles_per_ray_mean", K::Count, "tests", "ray-triangle tests per ray, mean");
         add("triangles_per_ray_max", K::Count, "tests", "ray-triangle tests per ray, max");
-        add("traversal_steps_per_ray_mean", K::Count, "steps", "DDA step attempts per ray, mean");
-        add("traversal_steps_per_ray_max", K::Count, "steps", "DDA step attempts per ray, max");
+        add("traversal_steps_per_ray_mean", K::Count, "steps", "traversal step attempts per ray (grid: DDA steps; BVH: nodes popped), mean");
+        add("traversal_steps_per_ray_max", K::Count, "steps", "traversal step attempts per ray, max");
         add("passes_total", K::Count, "passes", "kernel dispatches over the ray stream");
-        add("passes_setup", K::Count, "passes", "multipass setup passes");
-        add("passes_traverse", K::Count, "passes", "multipass traverse passes");
-        add("passes_intersect", K::Count, "passes", "multipass intersect passes");
-        add("passes_write", K::Count, "passes", "multipass write passes");
-        add("passes_lower_bound", K::Count, "passes",
-            "Purcell's lower bound on traverse + intersect passes");
         add("simd_efficiency", K::Count, "fraction",
             "useful lanes / lanes (Purcell for multipass, Aila & Laine for branching)");
         add("bytes_stencil", K::Count, "bytes", "ray-state byte reads and writes");
         add("bytes_state", K::Count, "bytes", "per-ray state saved and restored");
-        add("bytes_voxel", K::Count, "bytes", "voxel offsets read");
+        add("bytes_stack", K::Count, "bytes", "multipass: per-ray node stack saved and restored (BVH)");
         add("bytes_triangle_list", K::Count, "bytes", "triangle-list entries read");
         add("bytes_vertices", K::Count, "bytes", "triangle vertices read");
         add("bytes_output", K::Count, "bytes", "hit records written");
         add("bytes_total", K::Count, "bytes", "all categories");
         add("bytes_per_ray", K::Count, "bytes", "bytes_total / rays");
-        add("kernel_ms_setup", K::Timing, "ms", "multipass: GPU time of the setup passes, median");
-        add("kernel_ms_traverse", K::Timing, "ms",
-            "multipass: GPU time of the traverse passes, median");
-        add("kernel_ms_intersect", K::Timing, "ms",
-            "multipass: GPU time of the intersect passes, median");
-        add("kernel_ms_write", K::Timing, "ms", "multipass: GPU time of the write pass, median");
+        // Each strategy's own columns.
+        for (const StrategyType* t : strategyTypes())
+            for (const ColumnSpec& c : t->columns) s.push_back(c);
         // Self-checks (a mismatch fails the run).
         add("cpu_reference_mismatches", K::Count, "rays",
             "rays whose GPU hit record differs from the CPU reference's");
         add("cpu_counts_match", K::Count, "",
             "1 when pass and lane counts equal the CPU reference's");
-        add("branching_mismatches", K::Count, "rays",
-            "multipass: rays whose hit record differs from the branching caster's");
         add("wall_s", K::Timing, "s", "wall time of the whole run");
+        std::set<std::string> names;
+        for (const ColumnSpec& c : s)
+            if (!names.insert(c.name).second) throw Error("column '" + c.name + "' is declared twice");
         return s;
     }();
     return specs;
@@ -157,7 +121,7 @@ const ColumnSpec& columnSpec(const std::string& name) {
     }();
     const auto it = byName.find(name);
     if (it == byName.end())
-        throw Error("column '" + name + "' is not declared (harness/columns.cpp)");
+        throw Error("column '" + name + "' is not declared (harness/columns.cpp or a method's own columns)");
     return *it->second;
 }
 

@@ -10,24 +10,10 @@
 #include <string>
 #include <vector>
 
+#include "plan/columns.h"
 #include "writers.h"
 
 namespace rtbench {
-
-enum class ColumnKind { Parameter, Count, Reference, Timing, Context };
-
-const char* columnKindName(ColumnKind kind);
-
-struct ColumnSpec {
-    std::string name;
-    ColumnKind kind;
-    std::string unit;  // "" for a dimensionless or text value
-    std::string help;
-    // Reference columns: the largest difference that still counts as the same result, absolute,
-    // or as a fraction of the run's rays when perRay (mismatch counts).
-    double tolerance = 0.0;
-    bool perRay = false;
-};
 
 // Every column of runs.csv in order: one per config key (kind parameter), then the metrics.
 const std::vector<ColumnSpec>& runColumnSpecs();
@@ -44,8 +30,5 @@ std::vector<Row> readRunsCsv(const std::string& path);
 // The metric columns (all but the config keys) as a Markdown table: column, kind, unit, meaning.
 // The README holds this table; a test keeps the two equal.
 std::string columnsMarkdown();
-
-// The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".
-std::string paramColumn(const std::string& key);
 
 }  // namespace rtbench

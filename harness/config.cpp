@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "embree_config.h"
+#include "methods/registry.h"
 #include "output_folder.h"
 #include "structures/error.h"
 
@@ -58,19 +59,30 @@ const std::vector<KeySpec>& configSchema() {
         add({"camera.look_at", ValueType::Float3, "point looked at (default: the scene box centre)", {}});
         add({"camera.up", ValueType::Float3, "up vector", std::array<double, 3>{0, 1, 0}});
         add({"camera.fov_deg", ValueType::Float, "vertical field of view in degrees", 45.0, false, 1, 179});
-        add({"structure.type", ValueType::String, "acceleration structure", std::string("uniform_grid"), false, -1e300, 1e300, {"uniform_grid"}});
-        add({"structure.min_dim", ValueType::Int, "Purcell's heuristic: cells along the smallest extent (default 64 when no rule is given)", {}, false, 1, 2048});
-        add({"structure.resolution", ValueType::Int3, "explicit cells per axis [x, y, z]", {}, false, 1, 4096});
-        add({"structure.cells_per_triangle", ValueType::Float, "density rule: about this many cubic cells per triangle", {}, false, 1e-3, 1e3});
-        add({"strategy.type", ValueType::String, "branching: one kernel per ray stream (Purcell's branching architecture); multipass: a pass per traverse/intersect step with a ray-state stencil and an oracle", std::string("branching"), false, -1e300, 1e300, {"branching", "multipass"}});
+        // Each structure's and strategy's own keys, read only when it is chosen (methods/registry.cpp).
+        auto addMethodKeys = [&](const std::string& typeKey, const std::string& name, const std::vector<KeySpec>& keys) {
+            for (KeySpec k : keys) {
+                k.appliesWhen.insert(k.appliesWhen.begin(), typeKey + "=" + name);
+                add(std::move(k));
+            }
+        };
+        std::vector<std::string> structures, strategies;
+        std::string structureHelp = "acceleration structure:", strategyHelp = "how the GPU runs the traversal:";
+        for (const StructureType* t : structureTypes()) {
+            structures.push_back(t->name);
+            structureHelp += " " + t->name + " (" + t->help + ");";
+        }
+        for (const StrategyType* t : strategyTypes()) {
+            strategies.push_back(t->name);
+            strategyHelp += " " + t->name + " (" + t->help + ");";
+        }
+        structureHelp.pop_back();
+        strategyHelp.pop_back();
+        add({"structure.type", ValueType::String, structureHelp, structures.front(), false, -1e300, 1e300, structures});
+        for (const StructureType* t : structureTypes()) addMethodKeys("structure.type", t->name, t->keys);
+        add({"strategy.type", ValueType::String, strategyHelp, strategies.front(), false, -1e300, 1e300, strategies});
         add({"strategy.workgroup_size", ValueType::Int, "invocations per workgroup (specialization constant)", std::int64_t(64), false, 1, 1024});
-        const std::vector<std::string> multipass = {"strategy.type=multipass"};
-        add({"strategy.traverse_steps_per_pass", ValueType::Int, "multipass: DDA steps per traverse pass (loop unrolling; Purcell used 4)", std::int64_t(1), false, 1, 64, {}, multipass});
-        add({"strategy.intersections_per_pass", ValueType::Int, "multipass: triangle tests per intersect pass (Purcell used 2)", std::int64_t(1), false, 1, 64, {}, multipass});
-        add({"strategy.suppress_finished_reads", ValueType::Bool, "multipass: rays that finish mid-pass skip the unrolled rest's reads", false, false, -1e300, 1e300, {}, multipass});
-        add({"strategy.scheduling", ValueType::String, "multipass: oracle (threshold on the waiting fraction) or naive (traverse until none traverses, then intersect until none waits)", std::string("oracle"), false, -1e300, 1e300, {"oracle", "naive"}, multipass});
-        add({"strategy.oracle_threshold", ValueType::Float, "multipass: intersect when waiting / active rays >= this (0: as soon as any waits; Purcell: 0.2)", 0.2, false, 0, 1, {}, {"strategy.type=multipass", "strategy.scheduling=oracle"}});
-        add({"strategy.max_passes", ValueType::Int, "multipass: pass cap (0: derived from the grid); reaching it fails the run", std::int64_t(0), false, 0, 1e9, {}, multipass});
+        for (const StrategyType* t : strategyTypes()) addMethodKeys("strategy.type", t->name, t->keys);
         add({"baseline.embree_config", ValueType::String, "Embree device config string, e.g. \"isa=avx2\" (keys isa, max_isa, threads, start_threads, set_affinity, verbose)", std::string(""), false, -1e300, 1e300, {}, {}, checkEmbreeConfig});
         add({"device.name", ValueType::String, "\"auto\" (discrete GPU, else lavapipe) or a substring of the device name", std::string("auto")});
         add({"device.validation", ValueType::Bool, "enable the Vulkan validation layer (a run fails on any message)", false});
@@ -81,23 +93,6 @@ const std::vector<KeySpec>& configSchema() {
     return schema;
 }
 
-std::string formatValue(const ConfigValue& value) {
-    struct Visitor {
-        std::string operator()(std::int64_t v) const { return std::to_string(v); }
-        std::string operator()(double v) const {
-            std::ostringstream s;
-            s.precision(9);
-            s << v;
-            return s.str();
-        }
-        std::string operator()(const std::string& v) const { return v; }
-        std::string operator()(bool v) const { return v ? "true" : "false"; }
-        std::string operator()(const std::array<double, 3>& v) const {
-            return "[" + (*this)(v[0]) + " " + (*this)(v[1]) + " " + (*this)(v[2]) + "]";
-        }
-    };
-    return std::visit(Visitor{}, value);
-}
 
 namespace {
 
@@ -174,35 +169,6 @@ bool isSweep(const KeySpec& spec, const toml::node& node) {
 }
 
 }  // namespace
-
-std::int64_t RunConfig::getInt(const std::string& key) const { return std::get<std::int64_t>(values.at(key)); }
-double RunConfig::getFloat(const std::string& key) const { return std::get<double>(values.at(key)); }
-const std::string& RunConfig::getString(const std::string& key) const { return std::get<std::string>(values.at(key)); }
-bool RunConfig::getBool(const std::string& key) const { return std::get<bool>(values.at(key)); }
-std::array<double, 3> RunConfig::getVec3(const std::string& key) const {
-    return std::get<std::array<double, 3>>(values.at(key));
-}
-
-std::string RunConfig::canonical() const {
-    std::string out;
-    for (const auto& [key, value] : values) out += key + "=" + formatValue(value) + ";";
-    return out;
-}
-
-std::string RunConfig::hash() const {
-    std::uint64_t h = 1469598103934665603ull;  // FNV-1a 64
-    for (unsigned char c : canonical()) h = (h ^ c) * 1099511628211ull;
-    char buf[17];
-    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-    return buf;
-}
-
-std::string RunConfig::label() const {
-    std::string params;
-    for (const std::string& key : sweptKeys) params += (params.empty() ? "" : " ") + key + "=" + formatValue(values.at(key));
-    if (sweep.empty()) return params.empty() ? "single run" : params;
-    return params.empty() ? sweep : sweep + ":" + params;
-}
 
 ExperimentPlan loadExperiment(const std::string& path) {
     std::ifstream in(path);
@@ -308,25 +274,33 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
     }
     if (sweeps.empty()) sweeps.push_back(Sweep{});
 
-    const std::vector<std::string> rules = {"structure.min_dim", "structure.resolution", "structure.cells_per_triangle"};
+    // Alternative keys by group (KeySpec::group), in schema order.
+    std::map<std::string, std::vector<std::string>> groups;
+    for (const KeySpec& spec : schema)
+        if (!spec.group.empty()) groups[spec.group].push_back(spec.name);
     std::map<std::string, const toml::node*> unread;  // given keys no run has read yet
     std::set<std::string> seen;                        // canonical runs, to drop duplicates
     for (const Sweep& sweep : sweeps) {
         const std::string& sweepName = sweep.name;
         const Given& overrides = sweep.overrides;
-        // A sweep that sets a grid resolution rule replaces the base's rule.
+        // A sweep that gives one key of a group replaces the base's choice in that group.
         Given given = base;
-        if (std::any_of(rules.begin(), rules.end(), [&](const std::string& r) { return overrides.count(r); }))
-            for (const std::string& r : rules) given.erase(r);
+        for (const auto& [group, keys] : groups)
+            if (std::any_of(keys.begin(), keys.end(), [&](const std::string& k) { return overrides.count(k); }))
+                for (const std::string& k : keys) given.erase(k);
         for (const auto& [key, node] : overrides) given[key] = node;
         for (const auto& [key, node] : given) unread.emplace(key, node);
 
-        std::vector<std::string> rulesGiven;
-        for (const std::string& r : rules)
-            if (given.count(r)) rulesGiven.push_back(r);
-        if (rulesGiven.size() > 1)
-            throw Error(where(path, given[rulesGiven[1]]->source()) + ": keys " + join(rulesGiven, " and ") +
-                        " both set the grid resolution; give exactly one");
+        std::set<std::string> groupsGiven;
+        for (const auto& [group, keys] : groups) {
+            std::vector<std::string> inGroup;
+            for (const std::string& k : keys)
+                if (given.count(k)) inGroup.push_back(k);
+            if (inGroup.size() > 1)
+                throw Error(where(path, given[inGroup[1]]->source()) + ": keys " + join(inGroup, " and ") +
+                            " both set the " + group + "; give exactly one");
+            if (!inGroup.empty()) groupsGiven.insert(group);
+        }
 
         // Each key: a single value, a default, or a list of values (an axis of the sweep).
         std::vector<std::pair<std::string, std::vector<ConfigValue>>> axes;
@@ -337,7 +311,7 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
                 if (spec.required)
                     throw Error(path + ": missing required key '" + spec.name + "' (" + spec.help + ")");
                 if (spec.defaultValue) values.push_back(*spec.defaultValue);
-                if (spec.name == "structure.min_dim" && rulesGiven.empty()) values.push_back(std::int64_t(64));
+                if (spec.groupDefault && !groupsGiven.count(spec.group)) values.push_back(*spec.groupDefault);
             } else if (isSweep(spec, *it->second)) {
                 const toml::array& list = *it->second->as_array();
                 if (list.empty())

@@ -18,7 +18,7 @@ constexpr char kMagic[8] = {'R', 'T', 'B', 'H', 'I', 'T', 'S', '1'};
 }
 
 HitImage makeHitImage(std::uint32_t width, std::uint32_t height, const std::vector<gpu::Ray>& rays,
-                      const std::vector<gpu::Triangle>& triangles, const std::vector<gpu::HitRecord>& kernel,
+                      const TriangleMesh& mesh, const std::vector<gpu::HitRecord>& kernel,
                       const std::vector<gpu::HitRecord>& embree) {
     HitImage image;
     image.width = width;
@@ -34,8 +34,9 @@ HitImage makeHitImage(std::uint32_t width, std::uint32_t height, const std::vect
                                                                  : HitDiff::OtherPrimitive;
         image.diff[i] = static_cast<std::uint8_t>(d);
         if (!hit) continue;
-        const gpu::Triangle& t = triangles[kernel[i].primitive];
-        const glm::vec3 n = glm::cross(glm::vec3(t.v1 - t.v0), glm::vec3(t.v2 - t.v0));
+        const glm::uvec3 t = mesh.triangles[kernel[i].primitive];
+        const glm::vec3 v0 = mesh.vertices[t.x], v1 = mesh.vertices[t.y], v2 = mesh.vertices[t.z];
+        const glm::vec3 n = glm::cross(v1 - v0, v2 - v0);
         const glm::vec3 dir(rays[i].directionTMax);
         const float len = glm::length(n) * glm::length(dir);
         image.shade[i] = len > 0.0f ? std::abs(glm::dot(n, dir)) / len : 0.0f;

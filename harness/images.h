@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "kernels/gpu_layout.h"
+#include "structures/mesh.h"
 
 namespace rtbench {
 
@@ -20,7 +21,7 @@ struct HitImage {
 };
 
 HitImage makeHitImage(std::uint32_t width, std::uint32_t height, const std::vector<gpu::Ray>& rays,
-                      const std::vector<gpu::Triangle>& triangles, const std::vector<gpu::HitRecord>& kernel,
+                      const TriangleMesh& mesh, const std::vector<gpu::HitRecord>& kernel,
                       const std::vector<gpu::HitRecord>& embree);
 
 void writeHitRecords(const std::string& path, const HitImage& image);

@@ -11,7 +11,7 @@
 #include "harness/config.h"
 #include "harness/images.h"
 #include "harness/runner.h"
-#include "harness/vulkan_context.h"
+#include "device/vulkan_context.h"
 #include "structures/error.h"
 
 namespace {

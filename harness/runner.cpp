@@ -15,22 +15,19 @@
 #include <sstream>
 #include <thread>
 
-#include "accounting.h"
-#include "branching_strategy.h"
 #include "columns.h"
-#include "multipass_strategy.h"
+#include "device/gpu_buffers.h"
+#include "device/vulkan_context.h"
 #include "embree_reference.h"
 #include "images.h"
+#include "methods/registry.h"
 #include "output_folder.h"
-#include "metrics.h"
 #include "structures/camera.h"
 #include "structures/error.h"
-#include "structures/grid_reference.h"
 #include "structures/mesh_io.h"
 #include "structures/procedural.h"
-#include "structures/uniform_grid.h"
+#include "structures/scene_limits.h"
 #include "version.h"
-#include "vulkan_context.h"
 
 namespace rtbench {
 namespace fs = std::filesystem;
@@ -49,52 +46,22 @@ TriangleMesh loadScene(const std::string& source, const std::string& configDir) 
     return readMeshFile(p.lexically_normal().string());
 }
 
-GridResolutionRule resolutionRule(const RunConfig& run) {
-    GridResolutionRule rule;
-    if (run.has("structure.resolution")) {
-        rule.kind = GridResolutionRule::Kind::Explicit;
-        const auto r = run.getVec3("structure.resolution");
-        rule.resolution = {unsigned(r[0]), unsigned(r[1]), unsigned(r[2])};
-    } else if (run.has("structure.cells_per_triangle")) {
-        rule.kind = GridResolutionRule::Kind::Density;
-        rule.cellsPerTriangle = run.getFloat("structure.cells_per_triangle");
-    } else {
-        rule.kind = GridResolutionRule::Kind::MinDim;
-        rule.minDim = unsigned(run.getInt("structure.min_dim"));
-    }
-    return rule;
-}
-
 glm::vec3 toVec3(const std::array<double, 3>& a) { return glm::vec3(float(a[0]), float(a[1]), float(a[2])); }
 
 std::string num(double v, int significant = 6) { return formatNumber(v, significant); }
 
-MultipassOptions multipassOptions(const RunConfig& run) {
-    MultipassOptions o;
-    o.traverseStepsPerPass = unsigned(run.getInt("strategy.traverse_steps_per_pass"));
-    o.intersectionsPerPass = unsigned(run.getInt("strategy.intersections_per_pass"));
-    o.suppressFinishedReads = run.getBool("strategy.suppress_finished_reads");
-    o.scheduling = run.getString("strategy.scheduling");
-    if (run.has("strategy.oracle_threshold")) o.oracleThreshold = run.getFloat("strategy.oracle_threshold");
-    o.maxPasses = std::uint64_t(run.getInt("strategy.max_passes"));
-    return o;
-}
-
-void writeArchitectureColumns(const ArchitectureMetrics& m, std::uint64_t rays, Row& row) {
-    row["traversal_steps_per_ray_mean"] = num(double(m.work.stepsTotal) / double(rays));
-    row["traversal_steps_per_ray_max"] = std::to_string(m.work.stepsPerRayMax);
+void writeArchitectureColumns(const ArchitectureMetrics& m, const Structure& structure, std::uint64_t rays, Row& row) {
+    const WorkStats& w = m.work;
+    structure.writeWorkColumns(w.cellsPerRayMean, w.cellsPerRayMax, m.bytes.cells, row);
+    row["triangles_per_ray_mean"] = num(w.trianglesPerRayMean);
+    row["triangles_per_ray_max"] = std::to_string(w.trianglesPerRayMax);
+    row["traversal_steps_per_ray_mean"] = num(double(w.stepsTotal) / double(rays));
+    row["traversal_steps_per_ray_max"] = std::to_string(w.stepsPerRayMax);
     row["passes_total"] = std::to_string(m.passes);
-    if (m.passesSetup) {  // multipass only
-        row["passes_setup"] = std::to_string(m.passesSetup);
-        row["passes_traverse"] = std::to_string(m.passesTraverse);
-        row["passes_intersect"] = std::to_string(m.passesIntersect);
-        row["passes_write"] = std::to_string(m.passesWrite);
-        row["passes_lower_bound"] = std::to_string(m.passesLowerBound);
-    }
     row["simd_efficiency"] = num(m.simdEfficiency);
     row["bytes_stencil"] = std::to_string(m.bytes.stencil);
     row["bytes_state"] = std::to_string(m.bytes.state);
-    row["bytes_voxel"] = std::to_string(m.bytes.voxel);
+    if (m.bytes.stack) row["bytes_stack"] = std::to_string(m.bytes.stack);
     row["bytes_triangle_list"] = std::to_string(m.bytes.triangleList);
     row["bytes_vertices"] = std::to_string(m.bytes.vertices);
     row["bytes_output"] = std::to_string(m.bytes.output);
@@ -109,9 +76,7 @@ struct Caches {
     std::map<std::string, std::shared_ptr<EmbreeReference>> embree;
 };
 
-void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOptions& options,
-                const std::string& folder, Caches& caches, Row& row) {
-    // Device.
+VulkanContext& deviceFor(const RunConfig& run, const RunnerOptions& options, Caches& caches, Row& row) {
     const std::string deviceName = options.deviceOverride.empty() ? run.getString("device.name") : options.deviceOverride;
     const bool validation = options.validationOverride || run.getBool("device.validation");
     const std::string deviceKey = deviceName + (validation ? "+validation" : "");
@@ -119,14 +84,15 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
     VulkanContext& vk = *caches.devices[deviceKey];
     row["device"] = vk.info().name;
     row["driver"] = vk.info().driver;
-    const std::size_t messagesBefore = vk.validationMessages().size();
+    return vk;
+}
 
-    // Scene and rays.
+const TriangleMesh& sceneFor(const ExperimentPlan& plan, const RunConfig& run, Caches& caches, Row& row) {
     const std::string source = run.getString("scene.source");
     if (!caches.meshes.count(source)) caches.meshes[source] = std::make_shared<TriangleMesh>(loadScene(source, plan.configDir));
     const TriangleMesh& mesh = *caches.meshes[source];
     row["scene_triangles"] = std::to_string(mesh.triangles.size());
-    validateSceneRange(mesh);  // before the grid, the camera fit or Embree see it
+    validateSceneRange(mesh);  // before the structure, the camera fit or Embree see it
     const std::size_t degenerate = mesh.degenerateCount();
     row["scene_degenerate"] = std::to_string(degenerate);
     // What makes the scene differ from what its file describes, in the row and on the console.
@@ -136,97 +102,28 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
                            " triangles are degenerate (zero area in float) and are never hit");
     if (mesh.elementsSkipped) warnings.push_back("skipped " + mesh.elementsSkippedWhat + " (not surfaces)");
     for (const std::string& w : warnings) row["warnings"] += (row["warnings"].empty() ? "" : "; ") + w;
+    return mesh;
+}
+
+PinholeCamera cameraFor(const RunConfig& run, const TriangleMesh& mesh) {
+    const std::string source = run.getString("scene.source");
     PinholeCamera camera = fitCamera(mesh.bounds(), float(run.getFloat("camera.fov_deg")));
     if (source.rfind("procedural:", 0) == 0 && !run.has("camera.position") && !run.has("camera.look_at"))
         camera = proceduralCamera(source.substr(11), camera.verticalFovDegrees).value_or(camera);
     if (run.has("camera.look_at")) camera.lookAt = toVec3(run.getVec3("camera.look_at"));
     if (run.has("camera.position")) camera.position = toVec3(run.getVec3("camera.position"));
     camera.up = toVec3(run.getVec3("camera.up"));
-    const unsigned width = unsigned(run.getInt("camera.width")), height = unsigned(run.getInt("camera.height"));
-    // Refuse before allocating: the per-ray buffers on the device and the per-ray data on the host.
-    const bool multipass = run.getString("strategy.type") == "multipass";
-    refuseOversizedBuffers(vk.info(), rayBufferSizes(std::uint64_t(width) * height, multipass));
-    refuseOversizedRayStream(std::uint64_t(width) * height);
-    const std::vector<gpu::Ray> rays = generatePrimaryRays(camera, width, height);
-    validateRays(rays);
-    row["rays"] = std::to_string(rays.size());
+    return camera;
+}
 
-    // Grid: refuse before building what the device cannot hold (the cell offsets and vertices; the
-    // triangle list, known only once built, is checked with every other buffer in GpuBuffers).
-    const GridResolutionRule rule = resolutionRule(run);
-    const auto res = chooseGridResolution(mesh.bounds(), mesh.triangles.size(), rule);
-    refuseOversizedBuffers(vk.info(), gridBufferSizes(res, 0, mesh.triangles.size()));
-    const UniformGrid grid = buildUniformGrid(mesh, rule);
-    const GridStats& g = grid.stats;
-    row["grid_res_x"] = std::to_string(g.resolution[0]);
-    row["grid_res_y"] = std::to_string(g.resolution[1]);
-    row["grid_res_z"] = std::to_string(g.resolution[2]);
-    row["grid_cells"] = std::to_string(g.cells);
-    row["grid_empty_fraction"] = num(g.emptyFraction);
-    row["grid_references"] = std::to_string(g.references);
-    row["grid_refs_per_triangle"] = num(g.referencesPerTriangle);
-    row["grid_max_refs_in_cell"] = std::to_string(g.maxReferencesInCell);
-    row["grid_bytes"] = std::to_string(g.bytes);
-    row["grid_build_ms"] = num(g.buildMs, 4);
-
-    // Kernel, then the CPU reference on the same rays: hits, per-ray counters and pass/lane
-    // counts must be identical.
-    TimingOptions timing;
-    timing.workgroupSize = unsigned(run.getInt("strategy.workgroup_size"));
-    timing.warmups = int(run.getInt("experiment.warmups"));
-    timing.repetitions = int(run.getInt("experiment.repetitions"));
-    std::vector<gpu::HitRecord> kernelHits;
-    std::vector<double> kernelMs;
-    ArchitectureMetrics metrics;
-    std::uint64_t cpuMismatches = 0, branchingMismatches = 0;
-    bool cpuCountsMatch = true;
-    if (!multipass) {
-        if (timing.workgroupSize % vk.info().subgroupSize)
-            throw Error("strategy.workgroup_size " + std::to_string(timing.workgroupSize) +
-                        " is not a multiple of the subgroup size " + std::to_string(vk.info().subgroupSize));
-        KernelRun kernel = runBranching(vk, grid, rays, timing);
-        metrics = branchingMetrics(kernel.hits, kernel.activeLanes, kernel.laneSlots);
-        const LaneCounts lanes = branchingLaneCounts(grid, rays, vk.info().subgroupSize);
-        cpuMismatches = recordMismatches(kernel.hits, traceGridReference(grid, rays));
-        cpuCountsMatch = lanes.activeLanes == kernel.activeLanes && lanes.laneSlots == kernel.laneSlots;
-        kernelHits = std::move(kernel.hits);
-        kernelMs = std::move(kernel.gpuMs);
-    } else {
-        const MultipassOptions options = multipassOptions(run);
-        MultipassRun kernel = runMultipass(vk, grid, rays, options, timing);
-        metrics = multipassMetrics(kernel.hits, kernel.counts, options);
-        const MultipassResult cpu = simulateMultipass(grid, rays, options);
-        cpuMismatches = recordMismatches(kernel.hits, cpu.hits);
-        cpuCountsMatch = cpu.counts == kernel.counts;
-        // The two architectures must produce identical hit records (and work counters).
-        branchingMismatches = recordMismatches(kernel.hits, traceGridReference(grid, rays));
-        row["branching_mismatches"] = std::to_string(branchingMismatches);
-        const char* kindColumns[kPassKinds] = {"kernel_ms_setup", "kernel_ms_traverse", "kernel_ms_intersect", "kernel_ms_write"};
-        for (int k = 0; k < kPassKinds; ++k) {
-            std::vector<double> ms;
-            for (const auto& byKind : kernel.gpuMsByKind) ms.push_back(byKind[k]);
-            row[kindColumns[k]] = num(timingStats(ms).median);
-        }
-        kernelHits = std::move(kernel.hits);
-        kernelMs = std::move(kernel.gpuMs);
-    }
-    row["cpu_reference_mismatches"] = std::to_string(cpuMismatches);
-    row["cpu_counts_match"] = cpuCountsMatch ? "1" : "0";
-    writeArchitectureColumns(metrics, rays.size(), row);
-    const TimingStats kt = timingStats(kernelMs);
-    row["kernel_ms_median"] = num(kt.median);
-    row["kernel_ms_min"] = num(kt.min);
-    row["kernel_ms_max"] = num(kt.max);
-    const double kernelMrays = kt.median > 0 ? double(rays.size()) / (kt.median * 1e3) : 0.0;
-    row["kernel_mrays_s"] = num(kernelMrays);
-
-    // Embree on the same rays.
+// Embree on the same rays: timings for rtcIntersect1 and rtcIntersect16; returns rtcIntersect1's hits.
+std::vector<gpu::HitRecord> traceEmbree(const RunConfig& run, const TriangleMesh& mesh, const std::vector<gpu::Ray>& rays,
+                                        const TimingOptions& timing, Caches& caches, Row& row) {
     const std::string embreeConfig = run.getString("baseline.embree_config");
-    const std::string embreeKey = source + "|" + embreeConfig;
+    const std::string embreeKey = run.getString("scene.source") + "|" + embreeConfig;
     if (!caches.embree.count(embreeKey)) caches.embree[embreeKey] = std::make_shared<EmbreeReference>(mesh, embreeConfig);
     EmbreeReference& embree = *caches.embree[embreeKey];
     std::vector<gpu::HitRecord> embreeHits, scratch;
-    double embree1Mrays = 0.0;
     for (EmbreeMode mode : {EmbreeMode::Intersect1, EmbreeMode::Intersect16}) {
         const std::string prefix = mode == EmbreeMode::Intersect1 ? "embree1" : "embree16";
         for (int i = 0; i < timing.warmups; ++i) embree.trace(rays, mode, scratch);
@@ -234,36 +131,78 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
         for (int i = 0; i < timing.repetitions; ++i)
             ms.push_back(embree.trace(rays, mode, mode == EmbreeMode::Intersect1 ? embreeHits : scratch));
         const TimingStats et = timingStats(ms);
-        const double mrays = double(rays.size()) / (et.median * 1e3);
         row[prefix + "_ms_median"] = num(et.median);
         row[prefix + "_ms_min"] = num(et.min);
         row[prefix + "_ms_max"] = num(et.max);
-        row[prefix + "_mrays_s"] = num(mrays);
-        if (mode == EmbreeMode::Intersect1) embree1Mrays = mrays;
+        row[prefix + "_mrays_s"] = num(double(rays.size()) / (et.median * 1e3));
     }
     row["embree_threads"] = std::to_string(embree.threads());
     row["embree_isa"] = embree.isa();
     row["embree_build_ms"] = num(embree.buildMs(), 4);
-    row["speed_ratio_vs_embree1"] = num(kernelMrays / embree1Mrays, 4);
+    return embreeHits;
+}
 
-    // Accuracy and work.
-    const Agreement a = compareHits(kernelHits, embreeHits);
-    const WorkStats& w = metrics.work;
-    row["hits"] = std::to_string(w.hits);
+// One run, as the data flows: scene -> rays -> structure -> method (strategy on the device, checked
+// against the structure's CPU reference) -> Embree on the same rays -> metrics -> images. Every
+// value goes to `row`; a self-check that fails throws after the row is complete.
+void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOptions& options,
+                const std::string& folder, Caches& caches, Row& row) {
+    VulkanContext& vk = deviceFor(run, options, caches, row);
+    const std::size_t messagesBefore = vk.validationMessages().size();
+    const StructureType& structureKind = structureType(run.getString("structure.type"));
+    const StrategyType& strategy = strategyType(run.getString("strategy.type"));
+
+    // Scene and rays. Refuse before allocating: the per-ray buffers on the device (the largest
+    // traversal state a structure keeps is checked again at upload) and the per-ray host data.
+    const TriangleMesh& mesh = sceneFor(plan, run, caches, row);
+    const PinholeCamera camera = cameraFor(run, mesh);
+    const unsigned width = unsigned(run.getInt("camera.width")), height = unsigned(run.getInt("camera.height"));
+    refuseOversizedBuffers(vk.info(), rayBufferSizes(std::uint64_t(width) * height, strategy.perRayState ? 16 : 0));
+    refuseOversizedRayStream(std::uint64_t(width) * height);
+    const std::vector<gpu::Ray> rays = generatePrimaryRays(camera, width, height);
+    validateRays(rays);
+    row["rays"] = std::to_string(rays.size());
+
+    // Structure.
+    const std::unique_ptr<Structure> structure = structureKind.build(mesh, run, vk.info());
+    structure->writeColumns(row);
+    row["structure_bytes"] = std::to_string(structure->memoryBytes);
+    row["structure_bytes_per_triangle"] = num(double(structure->memoryBytes) / double(std::max<std::size_t>(mesh.triangles.size(), 1)));
+    row["structure_build_ms"] = num(structure->buildMs, 4);
+
+    // Method: the strategy runs the structure's kernels and checks them against its CPU reference.
+    TimingOptions timing;
+    timing.workgroupSize = unsigned(run.getInt("strategy.workgroup_size"));
+    timing.warmups = int(run.getInt("experiment.warmups"));
+    timing.repetitions = int(run.getInt("experiment.repetitions"));
+    const StrategyRun method = strategy.run(vk, *structure, rays, run, timing, row);
+    row["cpu_reference_mismatches"] = std::to_string(method.cpuMismatches);
+    row["cpu_counts_match"] = method.countsMismatch.empty() ? "1" : "0";
+    writeArchitectureColumns(method.metrics, *structure, rays.size(), row);
+    const TimingStats kt = timingStats(method.gpuMs);
+    row["kernel_ms_median"] = num(kt.median);
+    row["kernel_ms_min"] = num(kt.min);
+    row["kernel_ms_max"] = num(kt.max);
+    const double kernelMrays = kt.median > 0 ? double(rays.size()) / (kt.median * 1e3) : 0.0;
+    row["kernel_mrays_s"] = num(kernelMrays);
+
+    // Reference: Embree on the same rays.
+    const std::vector<gpu::HitRecord> embreeHits = traceEmbree(run, mesh, rays, timing, caches, row);
+    row["speed_ratio_vs_embree1"] = num(kernelMrays / std::stod(row["embree1_mrays_s"]), 4);
+
+    // Metrics: accuracy against Embree.
+    const Agreement a = compareHits(method.hits, embreeHits);
+    row["hits"] = std::to_string(method.metrics.work.hits);
     row["hit_miss_agreement"] = num(a.hitMissAgreement, 8);
     row["same_primitive_agreement"] = num(a.samePrimitiveAgreement, 8);
     row["rel_distance_error_mean"] = num(a.relDistanceErrorMean, 4);
     row["rel_distance_error_max"] = num(a.relDistanceErrorMax, 4);
     row["hit_miss_mismatches"] = std::to_string(a.hitMissMismatches);
     row["primitive_mismatches"] = std::to_string(a.primitiveMismatches);
-    row["voxels_per_ray_mean"] = num(w.voxelsPerRayMean);
-    row["voxels_per_ray_max"] = std::to_string(w.voxelsPerRayMax);
-    row["triangles_per_ray_mean"] = num(w.trianglesPerRayMean);
-    row["triangles_per_ray_max"] = std::to_string(w.trianglesPerRayMax);
 
-    // Images, or the per-ray records to make them later.
+    // Writers: images, or the per-ray records to make them later.
     const std::string prefix = (fs::path(folder) / ("run-" + row["run"])).string();
-    const HitImage image = makeHitImage(width, height, rays, grid.triangles, kernelHits, embreeHits);
+    const HitImage image = makeHitImage(width, height, rays, mesh, method.hits, embreeHits);
     const bool wantImages = run.getBool("output.images");
     if (run.getBool("output.hit_records") || (wantImages && !imagesSupported())) writeHitRecords(prefix + ".hits", image);
     if (wantImages && imagesSupported()) writeImages(prefix, image);
@@ -271,15 +210,14 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
     if (vk.validationMessages().size() != messagesBefore)
         throw Error("the Vulkan validation layer reported: " + vk.validationMessages()[messagesBefore]);
     // The row is complete; a kernel that disagrees with its CPU reference fails it all the same.
-    if (cpuMismatches)
-        throw Error("the kernel's hit records differ from the CPU reference's on " + std::to_string(cpuMismatches) +
+    if (method.cpuMismatches)
+        throw Error("the kernel's hit records differ from the CPU reference's on " + std::to_string(method.cpuMismatches) +
                     " of " + std::to_string(rays.size()) + " rays");
-    if (!cpuCountsMatch)
-        throw Error(std::string("the kernel's ") + (multipass ? "pass sequence or event counts differ" : "subgroup lane counts differ") +
-                    " from the CPU reference's");
-    if (branchingMismatches)
+    if (!method.countsMismatch.empty())
+        throw Error("the kernel's " + method.countsMismatch + " from the CPU reference's");
+    if (method.branchingMismatches)
         throw Error("the multipass hit records differ from the branching caster's on " +
-                    std::to_string(branchingMismatches) + " of " + std::to_string(rays.size()) + " rays");
+                    std::to_string(method.branchingMismatches) + " of " + std::to_string(rays.size()) + " rays");
 }
 
 // The runs done so far, as context.json lists them.

@@ -164,11 +164,5 @@ Json readJson(const std::string& path) {
     }
 }
 
-std::string formatNumber(double value, int significant) {
-    std::ostringstream s;
-    s.precision(significant);
-    s << value;
-    return s.str();
-}
 
 }  // namespace rtbench

@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-namespace rtbench {
+#include "plan/columns.h"
 
-using Row = std::map<std::string, std::string>;
+namespace rtbench {
 
 // Writes `rows` under `columns` (missing cells empty) to path via path.tmp + rename; a row that
 // sets a column not in `columns` is an error (a typo never silently drops a value).
@@ -28,7 +28,5 @@ void writeFileAtomically(const std::string& path, const std::string& text);
 using Json = nlohmann::ordered_json;
 void writeJson(const std::string& path, const Json& json);
 Json readJson(const std::string& path);
-
-std::string formatNumber(double value, int significant = 6);
 
 }  // namespace rtbench

@@ -1,5 +1,8 @@
-// The one header of GPU-visible layouts, binding slots and specialization-constant ids.
-// Included by C++ (harness, tests) and by GLSL (kernels/*.comp). Never retype these in a shader.
+// GPU-visible layouts shared by every method: rays, triangles, hit records, the multipass ray
+// state and counters, the common binding slots and the specialization-constant ids. Included by
+// C++ (harness, methods, tests) and by GLSL (kernels/*.comp). Each structure adds its own layout
+// header (methods/<structure>/<structure>_layout.h) with its buffers in the slots from
+// kBindingStructure on. Never retype these in a shader.
 // All structs use vec4/uvec4 or 4-byte scalars so that std430 and C++ agree byte for byte.
 #ifndef RTBENCH_GPU_LAYOUT_H
 #define RTBENCH_GPU_LAYOUT_H
@@ -20,37 +23,34 @@ using uint64 = std::uint64_t;
 
 // ---- descriptor set 0 binding slots (all storage buffers) ----
 RTBENCH_CONST kBindingRays = 0;         // Ray[rayCount]
-RTBENCH_CONST kBindingCellOffsets = 1;  // uint[cellCount + 1]: Purcell Fig. 4 voxel -> list start
-RTBENCH_CONST kBindingTriangleList = 2; // uint[references]: triangle ids, grouped by voxel
-RTBENCH_CONST kBindingVertices = 3;     // Triangle[triangleCount]
-RTBENCH_CONST kBindingHits = 4;         // HitRecord[rayCount]
-RTBENCH_CONST kBindingStencil = 5;      // uint8_t[rayCount]: multipass ray state (kState*)
-RTBENCH_CONST kBindingTraversal = 6;    // RayTraversalState[rayCount]: multipass DDA state
-RTBENCH_CONST kBindingHitState = 7;     // RayHitState[rayCount]: multipass best hit so far
-RTBENCH_CONST kBindingRayCounters = 8;  // RayCounters[rayCount]: per-ray work (instrumentation)
-RTBENCH_CONST kBindingPassCounters = 9; // PassCounters: oracle query + event counts of a pass
-RTBENCH_CONST kBindingCount = 10;       // every kernel uses the same set layout
+RTBENCH_CONST kBindingHits = 1;         // HitRecord[rayCount]
+RTBENCH_CONST kBindingStencil = 2;      // uint8_t[rayCount]: multipass ray state (kState*)
+RTBENCH_CONST kBindingTraversal = 3;    // the structure's traversal state [rayCount]: multipass
+RTBENCH_CONST kBindingHitState = 4;     // RayHitState[rayCount]: multipass best hit so far
+RTBENCH_CONST kBindingRayCounters = 5;  // RayCounters[rayCount]: per-ray work (instrumentation)
+RTBENCH_CONST kBindingPassCounters = 6; // PassCounters: oracle query + event counts of a pass
+RTBENCH_CONST kBindingStructure = 7;    // first slot of the structure's own buffers
 
 // ---- specialization-constant ids ----
 RTBENCH_CONST kSpecWorkgroupSize = 0;    // local_size_x of every kernel (default 64)
 RTBENCH_CONST kSpecInstrument = 1;       // 1: count work and bytes; 0: timing runs
-RTBENCH_CONST kSpecTraverseSteps = 2;    // multipass: DDA steps per traverse pass (K)
+RTBENCH_CONST kSpecTraverseSteps = 2;    // multipass: traversal steps per traverse pass (K)
 RTBENCH_CONST kSpecIntersections = 3;    // multipass: triangle tests per intersect pass (M)
 RTBENCH_CONST kSpecSuppress = 4;         // multipass: 1 = rays done mid-pass skip the rest's reads
 
 // ---- multipass ray states: the one-byte "stencil" (Purcell et al. 2002 §3.2) ----
-RTBENCH_CONST kStateTraversing = 0;  // active: step through the grid
-RTBENCH_CONST kStateWaiting = 1;     // active: triangles of the current voxel to intersect
+RTBENCH_CONST kStateTraversing = 0;  // active: step through the structure
+RTBENCH_CONST kStateWaiting = 1;     // active: triangles of the current voxel or leaf to intersect
 RTBENCH_CONST kStateDoneHit = 2;     // done: nearest hit found
-RTBENCH_CONST kStateLeftGrid = 3;    // done: left the grid without a hit
-RTBENCH_CONST kStateMissedBox = 4;   // done: never entered the grid box
+RTBENCH_CONST kStateLeftGrid = 3;    // done: left the structure without a hit
+RTBENCH_CONST kStateMissedBox = 4;   // done: never entered the structure's box
 
 // ---- PassCounters.counts indices (64-bit, summed over a dispatch) ----
 RTBENCH_CONST kCountTraversing = 0;     // rays traversing after the pass (oracle; always on)
 RTBENCH_CONST kCountWaiting = 1;        // rays waiting after the pass (oracle; always on)
 RTBENCH_CONST kCountUsefulRays = 2;     // rays whose state the kernel serves (did useful work)
 RTBENCH_CONST kCountStencilWrites = 3;  // ray-state bytes written (state changed)
-RTBENCH_CONST kCountOffsetReads = 4;    // cell offsets read (4 bytes each; a voxel entered reads two)
+RTBENCH_CONST kCountStructureReads = 4; // structure records read (grid: cell offsets; BVH: nodes)
 RTBENCH_CONST kCountTriangleReads = 5;  // triangle-list entries read, each with its vertices
 RTBENCH_CONST kCountActiveLanes = 6;    // branching: sum of active lanes over subgroup ballots
 RTBENCH_CONST kCountLaneSlots = 7;      // branching: sum of subgroup size over subgroup ballots
@@ -75,25 +75,15 @@ struct HitRecord {
     uint primitive;       // byte 4: triangle id, kNoHit when none
     float u;              // byte 8: barycentric of v1
     float v;              // byte 12: barycentric of v2
-    uint voxelsVisited;   // byte 16: DDA steps taken (voxels entered), 0 if the box is missed
+    uint cellsVisited;    // byte 16: grid voxels entered / BVH nodes visited (0: box missed)
     uint trianglesTested; // byte 20: ray-triangle tests executed
-    uint traversalSteps;  // byte 24: DDA step attempts (voxelsVisited - 1, +1 if it left the grid)
+    uint traversalSteps;  // byte 24: traversal step attempts (grid: DDA steps; BVH: node pops)
     uint pad;             // byte 28
 };
 
-// Uniform grid and stream parameters, as push constants (80 bytes, within the 128-byte minimum).
-struct GridParams {
-    vec4 boundsMin;    // byte 0: xyz grid box min, w unused
-    vec4 boundsMax;    // byte 16: xyz grid box max, w unused
-    vec4 cellSize;     // byte 32: xyz voxel extent, w unused
-    vec4 invCellSize;  // byte 48: xyz 1 / cellSize (computed once on the host), w unused
-    uvec4 resolution;  // byte 64: xyz cells per axis, w = ray count
-};
-
-// Multipass per-ray traversal state, saved at the end of a pass and restored at the next.
-struct RayTraversalState {
-    vec4 tMaxAxisLeave;  // byte 0: xyz DDA tMax per axis, w = distance where the ray leaves the grid
-    uvec4 cellList;      // byte 16: xyz current voxel, w = position in its triangle list
+// Push constants common to every kernel, followed by the structure's own parameters.
+struct StreamParams {
+    uvec4 stream;  // byte 0: x = ray count, yzw unused
 };
 
 // Multipass best hit so far (Purcell's "hit" texture).
@@ -106,9 +96,9 @@ struct RayHitState {
 
 // Per-ray work, kept only by instrumented kernels (not charged as bandwidth).
 struct RayCounters {
-    uint voxelsVisited;    // byte 0
+    uint cellsVisited;     // byte 0
     uint trianglesTested;  // byte 4
-    uint traversalSteps;   // byte 8: DDA step attempts (each traverse iteration that did work)
+    uint traversalSteps;   // byte 8: traversal step attempts (each traverse iteration that did work)
     uint pad;              // byte 12
 };
 
@@ -123,8 +113,7 @@ constexpr float kNoHitT = 3.402823466e38f;  // FLT_MAX
 static_assert(sizeof(Ray) == 32);
 static_assert(sizeof(Triangle) == 48);
 static_assert(sizeof(HitRecord) == 32);
-static_assert(sizeof(GridParams) == 80);
-static_assert(sizeof(RayTraversalState) == 32);
+static_assert(sizeof(StreamParams) == 16);
 static_assert(sizeof(RayHitState) == 16);
 static_assert(sizeof(RayCounters) == 16);
 static_assert(sizeof(PassCounters) == 64);

@@ -1,8 +1,8 @@
-// What every multipass kernel does around its per-ray work: the stencil test (early exit of rays
-// in other states, Purcell's early fragment kill), saving the new state, and counting.
+// What every multipass kernel does around the structure's per-ray work: the stencil test (early
+// exit of rays in other states, Purcell's early fragment kill), saving the new state, and counting.
 #include "bindings.glsl"
-#include "grid_traversal.glsl"
-#include "multipass_steps.glsl"
+#include "multipass_events.glsl"
+#include "structure.glsl"
 
 // Counts a served ray's events and new state. The oracle's counts are always kept (the host
 // needs them to choose the next pass); the rest only when instrumented.
@@ -12,10 +12,10 @@ void mpReport(uint rayIndex, uint oldState, uint newState, MpEvents e) {
     if (instrument != 0u) {
         rtCount(kCountUsefulRays, 1u);
         rtCount(kCountStencilWrites, newState != oldState ? 1u : 0u);
-        rtCount(kCountOffsetReads, e.offsetReads);
+        rtCount(kCountStructureReads, e.structureReads);
         rtCount(kCountTriangleReads, e.triangleReads);
         RayCounters c = rayCounters[rayIndex];
-        c.voxelsVisited += e.visited;
+        c.cellsVisited += e.visited;
         c.trianglesTested += e.tested;
         c.traversalSteps += e.steps;
         rayCounters[rayIndex] = c;

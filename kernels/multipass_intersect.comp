@@ -5,10 +5,10 @@
 
 void main() {
     uint rayIndex = rtRayIndex();
-    if (rayIndex >= params.resolution.w) return;
+    if (rayIndex >= rtRayCount()) return;
     if (uint(stencil[rayIndex]) != kStateWaiting) return;  // the stencil test
     MpEvents e = mpNoEvents();
-    RayTraversalState ts = traversalStates[rayIndex];
+    RtTraversalState ts = traversalStates[rayIndex];
     RayHitState hit = hitStates[rayIndex];
     uint state = mpIntersect(rays[rayIndex], ts, hit, e);
     traversalStates[rayIndex] = ts;

@@ -1,14 +1,15 @@
-// Multipass traverse pass: rays in state traversing take up to traverseStepsPerPass DDA steps.
+// Multipass traverse pass: rays in state traversing take up to traverseStepsPerPass traversal steps
+// (grid: DDA steps).
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "multipass_common.glsl"
 
 void main() {
     uint rayIndex = rtRayIndex();
-    if (rayIndex >= params.resolution.w) return;
+    if (rayIndex >= rtRayCount()) return;
     if (uint(stencil[rayIndex]) != kStateTraversing) return;  // the stencil test
     MpEvents e = mpNoEvents();
-    RayTraversalState ts = traversalStates[rayIndex];
+    RtTraversalState ts = traversalStates[rayIndex];
     uint state = mpTraverse(rays[rayIndex], ts, hitStates[rayIndex], e);
     traversalStates[rayIndex] = ts;
     if (state != kStateTraversing) stencil[rayIndex] = uint8_t(state);

@@ -5,7 +5,7 @@
 
 void main() {
     uint rayIndex = rtRayIndex();
-    if (rayIndex >= params.resolution.w) return;
+    if (rayIndex >= rtRayCount()) return;
     RayCounters c = RayCounters(0u, 0u, 0u, 0u);
     if (instrument != 0u) c = rayCounters[rayIndex];
     hits[rayIndex] = mpHitRecord(hitStates[rayIndex], c);

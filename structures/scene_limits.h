@@ -18,7 +18,7 @@
 namespace rtbench {
 
 // |vertex coordinate| <= 2^38 (about 2.7e11) and |ray origin| <= 2^40 (about 1.1e12), |ray
-// direction component| <= 2^24. Then in Moller-Trumbore (kernels/grid_traversal.glsl) the
+// direction component| <= 2^24. Then in Moller-Trumbore (kernels/ray_math.glsl) the
 // edges are below 2^39, s = o - v0 below 1.25 * 2^40, q = s x e1 below 1.25 * 2^80, and the
 // largest dot products, e2 . q and det = e1 . (d x e2), below 3.75 * 2^119 (about 2.5e36) and
 // 3 * 2^103: under FLT_MAX (3.4e38) with a margin. Embree's bound on origins and vertices

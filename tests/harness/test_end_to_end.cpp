@@ -7,7 +7,7 @@
 #include "harness/check.h"
 #include "harness/images.h"
 #include "harness/runner.h"
-#include "tests/kernels/test_device.h"
+#include "tests/device/test_device.h"
 #include "tests/temp_dir.h"
 
 namespace rtbench {

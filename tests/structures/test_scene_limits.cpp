@@ -7,7 +7,7 @@
 #include "structures/camera.h"
 #include "structures/procedural.h"
 #include "structures/scene_limits.h"
-#include "structures/uniform_grid.h"
+#include "methods/grid/uniform_grid.h"
 #include "tests/error_of.h"
 
 namespace rtbench {

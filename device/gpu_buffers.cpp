@@ -1,0 +1,128 @@
+#include "gpu_buffers.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+
+#include "structures/error.h"
+
+#include "embedded_kernels.h"
+
+namespace rtbench {
+
+std::vector<BufferSize> rayBufferSizes(std::uint64_t rays, std::uint64_t traversalStateBytes) {
+    const std::uint64_t perRay = traversalStateBytes ? rays : 1;  // unused slots get a minimal buffer
+    const std::string n = " (" + std::to_string(rays) + " rays)";
+    return {{"ray" + n, rays * sizeof(gpu::Ray)},
+            {"hit record" + n, rays * sizeof(gpu::HitRecord)},
+            {"ray state", perRay},
+            {"traversal state" + n, perRay * std::max<std::uint64_t>(traversalStateBytes, 1)},
+            {"hit state" + n, perRay * sizeof(gpu::RayHitState)},
+            {"ray counter" + n, perRay * sizeof(gpu::RayCounters)}};
+}
+
+void refuseOversizedBuffers(const DeviceInfo& device, const std::vector<BufferSize>& buffers) {
+    std::uint64_t total = 0;
+    for (const BufferSize& b : buffers) {
+        checkBindingSize(device, b.what, b.bytes);
+        total += b.bytes;
+    }
+    if (device.deviceLocalBytes && total > device.deviceLocalBytes)
+        throw Error("the run's buffers would take " + std::to_string(total) + " bytes, over " + device.name +
+                    "'s largest device-local heap of " + std::to_string(device.deviceLocalBytes) + " bytes");
+}
+
+std::uint64_t hostMemoryLimit() {
+    return std::uint64_t(sysconf(_SC_PHYS_PAGES)) * std::uint64_t(sysconf(_SC_PAGE_SIZE)) / 2;
+}
+
+void refuseOversizedRayStream(std::uint64_t rays) {
+    const std::uint64_t bytes = rays * kHostBytesPerRay;
+    if (bytes > hostMemoryLimit())
+        throw Error(std::to_string(rays) + " rays need " + std::to_string(bytes) + " bytes of host memory (" +
+                    std::to_string(kHostBytesPerRay) + " per ray), over the limit of " +
+                    std::to_string(hostMemoryLimit()) + " bytes (half the physical memory)");
+}
+
+GpuBuffers::GpuBuffers(VulkanContext& vk, const std::vector<gpu::Ray>& rays, std::uint64_t traversalStateBytes,
+                       const std::vector<BufferData>& structureBuffers, const std::vector<std::uint8_t>& structureParams)
+    : vk_(vk), rayCount_(rays.size()) {
+    const auto start = std::chrono::steady_clock::now();
+    const std::size_t n = rays.size();
+    std::vector<BufferSize> sizes = rayBufferSizes(n, traversalStateBytes);  // slots kBindingRays..kBindingRayCounters
+    for (const BufferData& b : structureBuffers) sizes.push_back({b.what, b.bytes});
+    refuseOversizedBuffers(vk.info(), sizes);
+    buffers_.resize(gpu::kBindingStructure + structureBuffers.size());
+    try {
+        for (std::uint32_t b = gpu::kBindingRays; b <= gpu::kBindingRayCounters; ++b)
+            buffers_[b] = vk.createStorageBuffer(sizes[b].bytes, sizes[b].what);
+        buffers_[gpu::kBindingPassCounters] = vk.createHostStorageBuffer(sizeof(gpu::PassCounters));
+        vk.upload(buffers_[gpu::kBindingRays], rays.data(), n * sizeof(gpu::Ray));
+        for (std::size_t i = 0; i < structureBuffers.size(); ++i) {
+            const BufferData& b = structureBuffers[i];
+            buffers_[gpu::kBindingStructure + i] = vk.createStorageBuffer(b.bytes, b.what);
+            vk.upload(buffers_[gpu::kBindingStructure + i], b.data, b.bytes);
+        }
+    } catch (...) {
+        for (Buffer& b : buffers_) vk.destroy(b);
+        throw;
+    }
+    resetPassCounters();
+    gpu::StreamParams stream{};
+    stream.stream.x = static_cast<std::uint32_t>(n);
+    pushConstants_.resize(sizeof stream);
+    std::memcpy(pushConstants_.data(), &stream, sizeof stream);
+    pushConstants_.insert(pushConstants_.end(), structureParams.begin(), structureParams.end());
+    uploadMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+ComputePipeline GpuBuffers::createKernel(const std::string& name, const KernelSpec& spec) {
+    return vk_.createComputePipeline(embeddedKernel(name), std::uint32_t(buffers_.size()),
+                                     std::uint32_t(pushConstants_.size()), spec.workgroupSize,
+                                     {{gpu::kSpecWorkgroupSize, spec.workgroupSize},
+                                      {gpu::kSpecInstrument, spec.instrument ? 1u : 0u},
+                                      {gpu::kSpecTraverseSteps, spec.traverseStepsPerPass},
+                                      {gpu::kSpecIntersections, spec.intersectionsPerPass},
+                                      {gpu::kSpecSuppress, spec.suppressFinishedReads ? 1u : 0u}});
+}
+
+GpuBuffers::~GpuBuffers() {
+    if (set_) vk_.destroy(set_);
+    for (Buffer& b : buffers_) vk_.destroy(b);
+}
+
+VkDescriptorSet GpuBuffers::descriptorSet(const ComputePipeline& pipeline) {
+    if (!set_) {
+        std::vector<const Buffer*> bound;
+        for (const Buffer& b : buffers_) bound.push_back(&b);
+        set_ = vk_.createDescriptorSet(pipeline, bound);
+    }
+    return set_;
+}
+
+gpu::PassCounters GpuBuffers::readPassCounters() const {
+    gpu::PassCounters c;
+    std::memcpy(&c, buffers_[gpu::kBindingPassCounters].mapped, sizeof c);
+    return c;
+}
+
+void GpuBuffers::resetPassCounters() {
+    std::memset(buffers_[gpu::kBindingPassCounters].mapped, 0, sizeof(gpu::PassCounters));
+}
+
+std::vector<gpu::HitRecord> GpuBuffers::downloadHits() {
+    std::vector<gpu::HitRecord> hits(rayCount_);
+    vk_.download(buffers_[gpu::kBindingHits], hits.data(), hits.size() * sizeof(gpu::HitRecord));
+    return hits;
+}
+
+std::vector<std::uint8_t> GpuBuffers::downloadTraversalStates() {
+    const Buffer& b = buffers_[gpu::kBindingTraversal];
+    std::vector<std::uint8_t> states(b.size);
+    vk_.download(b, states.data(), states.size());
+    return states;
+}
+
+}  // namespace rtbench

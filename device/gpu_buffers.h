@@ -1,0 +1,87 @@
+// The device buffers of one run (a ray stream and a structure), in the slots of
+// kernels/gpu_layout.h, with the one descriptor set every kernel binds; their sizes, known before
+// anything is allocated, and the refusals of what the device or the host cannot hold.
+#pragma once
+#include <array>
+#include <string>
+#include <vector>
+
+#include "kernels/gpu_layout.h"
+#include "vulkan_context.h"
+
+namespace rtbench {
+
+struct KernelSpec {
+    std::uint32_t workgroupSize = 64;
+    bool instrument = true;
+    std::uint32_t traverseStepsPerPass = 1;
+    std::uint32_t intersectionsPerPass = 1;
+    bool suppressFinishedReads = false;
+};
+
+// One device buffer of a run and its size, known from the run's parameters before allocation.
+struct BufferSize {
+    std::string what;
+    std::uint64_t bytes = 0;
+};
+
+// The per-ray buffers (rays, hit records; multipass: stencil, traversal state of
+// `traversalStateBytes` per ray, hit state, counters; 0: no multipass state).
+std::vector<BufferSize> rayBufferSizes(std::uint64_t rays, std::uint64_t traversalStateBytes);
+// Throws rtbench::Error naming the first buffer over the device's maxStorageBufferRange (one
+// binding), or the total over its largest device-local heap; allocates nothing.
+void refuseOversizedBuffers(const DeviceInfo& device, const std::vector<BufferSize>& buffers);
+
+// Host memory a run holds per ray: the ray, and hit records from the kernel (instrumented and
+// timed), the CPU reference (twice for multipass), Embree (and its scratch), and the image's
+// shade and difference per pixel.
+constexpr std::uint64_t kHostBytesPerRay = sizeof(gpu::Ray) + 7 * sizeof(gpu::HitRecord) + 5;
+// The host-memory limit of a run's per-ray data: half the machine's physical memory.
+std::uint64_t hostMemoryLimit();
+// Throws rtbench::Error when `rays` rays need more than hostMemoryLimit(); allocates nothing.
+void refuseOversizedRayStream(std::uint64_t rays);
+
+// One of a structure's buffers, uploaded once: what it is (named in size errors), its size and
+// its host data.
+struct BufferData {
+    std::string what;
+    std::uint64_t bytes = 0;
+    const void* data = nullptr;
+};
+
+// The buffers of one run: the common per-ray slots of kernels/gpu_layout.h, then the structure's
+// buffers from kBindingStructure on; and the push constants (StreamParams, then the structure's).
+class GpuBuffers {
+public:
+    GpuBuffers(VulkanContext& vk, const std::vector<gpu::Ray>& rays, std::uint64_t traversalStateBytes,
+               const std::vector<BufferData>& structureBuffers, const std::vector<std::uint8_t>& structureParams);
+    ~GpuBuffers();
+    GpuBuffers(const GpuBuffers&) = delete;
+    GpuBuffers& operator=(const GpuBuffers&) = delete;
+
+    // A pipeline for the embedded kernel `name` with the specialization constants of `spec`, in
+    // this run's set layout (its binding count and push-constant size).
+    ComputePipeline createKernel(const std::string& name, const KernelSpec& spec);
+    // The descriptor set for pipelines made by createKernel (all share one layout).
+    VkDescriptorSet descriptorSet(const ComputePipeline& pipeline);
+    const void* pushConstants() const { return pushConstants_.data(); }
+    std::uint64_t rayCount() const { return rayCount_; }
+
+    gpu::PassCounters readPassCounters() const;
+    void resetPassCounters();
+    std::vector<gpu::HitRecord> downloadHits();
+    // Multipass: the per-ray traversal state saved by the last pass, as bytes (tests compare it
+    // with the CPU's).
+    std::vector<std::uint8_t> downloadTraversalStates();
+    double uploadMs() const { return uploadMs_; }
+
+private:
+    VulkanContext& vk_;
+    std::vector<Buffer> buffers_;  // by binding slot
+    VkDescriptorSet set_ = VK_NULL_HANDLE;
+    std::vector<std::uint8_t> pushConstants_;
+    std::uint64_t rayCount_ = 0;
+    double uploadMs_ = 0.0;
+};
+
+}  // namespace rtbench

@@ -1,0 +1,71 @@
+// Ray arithmetic shared by every structure's traversal: ONE source for the GPU kernels and the
+// CPU references (each includes it inside a C++ struct, see methods/grid/grid_reference.h), so
+// both run the very same arithmetic, operation by operation.
+// Rules that keep the two bit-identical: float literals carry an `f`; no division except the
+// explicit reciprocals below; dot/cross written out (the driver's built-ins may fuse to FMA);
+// results marked `precise` (no contraction in SPIR-V; the C++ side builds with -ffp-contract=off).
+// Algorithms: slab test (Kay & Kajiya 1986); ray-triangle test of Moller & Trumbore 1997.
+#ifndef RT_RAY_MATH_GLSL
+#define RT_RAY_MATH_GLSL
+
+float rtDot(vec3 a, vec3 b) {
+    precise float r = a.x * b.x + a.y * b.y + a.z * b.z;
+    return r;
+}
+
+vec3 rtCross(vec3 a, vec3 b) {
+    precise vec3 r = vec3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+    return r;
+}
+
+// Per-axis reciprocal of the direction; zero components are never used through it.
+vec3 rtInverseDirection(vec3 d) {
+    precise vec3 r = vec3(d.x != 0.0f ? 1.0f / d.x : 0.0f, d.y != 0.0f ? 1.0f / d.y : 0.0f,
+                          d.z != 0.0f ? 1.0f / d.z : 0.0f);
+    return r;
+}
+
+// Clips [tMin, tMax] of the ray to the box; false when it misses. Axis-parallel rays (a zero
+// direction component) are inside that slab iff the origin is within it (closed interval).
+bool rtClipToBox(vec3 o, vec3 d, vec3 invD, float tMin, float tMax, vec3 boxMin, vec3 boxMax,
+                 RT_OUT(float) tEnter, RT_OUT(float) tLeave) {
+    tEnter = tMin;
+    tLeave = tMax;
+    for (int a = 0; a < 3; ++a) {
+        if (d[a] == 0.0f) {
+            if (o[a] < boxMin[a] || o[a] > boxMax[a]) return false;
+        } else {
+            precise float t0 = (boxMin[a] - o[a]) * invD[a];
+            precise float t1 = (boxMax[a] - o[a]) * invD[a];
+            tEnter = max(tEnter, min(t0, t1));
+            tLeave = min(tLeave, max(t0, t1));
+        }
+    }
+    return tEnter <= tLeave;
+}
+
+// Moller-Trumbore. Updates (tBest, u, v) when the triangle is hit in [tMin, tBest).
+// A degenerate (zero-area) triangle has det == 0 for every ray and is never hit.
+bool rtIntersectTriangle(vec3 o, vec3 d, float tMin, vec3 v0, vec3 v1, vec3 v2,
+                         RT_INOUT(float) tBest, RT_INOUT(float) uBest, RT_INOUT(float) vBest) {
+    precise vec3 e1 = v1 - v0;
+    precise vec3 e2 = v2 - v0;
+    precise vec3 p = rtCross(d, e2);
+    precise float det = rtDot(e1, p);
+    if (det == 0.0f) return false;
+    precise float invDet = 1.0f / det;
+    precise vec3 s = o - v0;
+    precise float u = rtDot(s, p) * invDet;
+    if (u < 0.0f || u > 1.0f) return false;
+    precise vec3 q = rtCross(s, e1);
+    precise float v = rtDot(d, q) * invDet;
+    if (v < 0.0f || u + v > 1.0f) return false;
+    precise float t = rtDot(e2, q) * invDet;
+    if (t < tMin || t >= tBest) return false;
+    tBest = t;
+    uBest = u;
+    vBest = v;
+    return true;
+}
+
+#endif  // RT_RAY_MATH_GLSL

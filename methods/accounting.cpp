@@ -1,0 +1,57 @@
+#include "accounting.h"
+
+#include <algorithm>
+
+namespace rtbench {
+
+ArchitectureMetrics branchingMetrics(const std::vector<gpu::HitRecord>& hits, std::uint64_t activeLanes,
+                                     std::uint64_t laneSlots, const StructureCosts& costs) {
+    ArchitectureMetrics m;
+    m.work = workStats(hits);
+    m.passes = 1;
+    m.simdEfficiency = laneSlots ? double(activeLanes) / double(laneSlots) : 0.0;
+    const std::uint64_t rays = hits.size();
+    m.bytes.state = rays * bytes::kBranchingState;
+    m.bytes.cells = m.work.cellsTotal * costs.bytesPerCellVisit;
+    m.bytes.triangleList = m.work.trianglesTotal * costs.bytesPerListEntry;
+    m.bytes.vertices = m.work.trianglesTotal * bytes::kTriangle;
+    m.bytes.output = rays * bytes::kOutput;
+    return m;
+}
+
+ArchitectureMetrics multipassMetrics(const std::vector<gpu::HitRecord>& hits, const MultipassCounts& counts,
+                                     const MultipassOptions& options, const StructureCosts& costs) {
+    ArchitectureMetrics m;
+    m.work = workStats(hits);
+    const std::uint64_t rays = hits.size();
+    m.passes = counts.totalPasses();
+    m.passesSetup = counts.passes[static_cast<int>(PassKind::Setup)];
+    m.passesTraverse = counts.passes[static_cast<int>(PassKind::Traverse)];
+    m.passesIntersect = counts.passes[static_cast<int>(PassKind::Intersect)];
+    m.passesWrite = counts.passes[static_cast<int>(PassKind::Write)];
+    // Purcell: max steps / K + max tests / M, each rounded up.
+    const std::uint64_t k = options.traverseStepsPerPass, mm = options.intersectionsPerPass;
+    m.passesLowerBound = (m.work.stepsPerRayMax + k - 1) / k + (m.work.trianglesPerRayMax + mm - 1) / mm;
+    const std::uint64_t loopPasses = m.passesTraverse + m.passesIntersect;
+    m.simdEfficiency = loopPasses ? double(counts.usefulTraverse + counts.usefulIntersect) / double(loopPasses * rays) : 1.0;
+    // Every traverse and intersect pass reads every ray's stencil byte; changes are written.
+    m.bytes.stencil = loopPasses * rays * bytes::kStencil + counts.stencilWrites * bytes::kStencil;
+    m.bytes.cells = counts.structureReads * costs.bytesPerStructureRead;
+    m.bytes.triangleList = counts.triangleReads * costs.bytesPerListEntry;
+    m.bytes.vertices = counts.triangleReads * bytes::kTriangle;
+    m.bytes.output = rays * bytes::kOutput;
+    // The per-ray state each pass moves (Purcell's state textures): setup reads the ray and
+    // writes traversal and hit state; traverse reads the ray, traversal and hit state and writes
+    // the traversal state; intersect also writes the hit state; write reads the hit state. The
+    // traversal state's node stack (BVH) is its own category.
+    const std::uint64_t s = costs.traversalStateBytes - costs.stackBytes, stack = costs.stackBytes;
+    const std::uint64_t setup = bytes::kRay + s + bytes::kHitState;
+    const std::uint64_t traverse = bytes::kRay + s + bytes::kHitState + s;
+    const std::uint64_t intersect = traverse + bytes::kHitState;
+    m.bytes.state = rays * setup + counts.usefulTraverse * traverse + counts.usefulIntersect * intersect +
+                    rays * bytes::kHitState;
+    m.bytes.stack = rays * stack + (counts.usefulTraverse + counts.usefulIntersect) * 2 * stack;
+    return m;
+}
+
+}  // namespace rtbench

@@ -1,0 +1,47 @@
+// Passes, SIMD efficiency and bandwidth by data type for both strategies on any structure, from
+// exact counts (definitions: README "Metric definitions"; Purcell et al. 2002 §4, Tables 1-2,
+// Fig. 8). The structure supplies the unit costs of its reads (StructureCosts).
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "kernels/gpu_layout.h"
+#include "methods/metrics.h"
+#include "methods/multipass/multipass_schedule.h"
+#include "methods/structure.h"
+
+namespace rtbench {
+
+// Bytes each kernel moves per ray it serves, besides the counted structure and triangle reads.
+namespace bytes {
+constexpr std::uint64_t kStencil = 1;                        // the ray-state byte
+constexpr std::uint64_t kRay = sizeof(gpu::Ray);             // 32
+constexpr std::uint64_t kHitState = sizeof(gpu::RayHitState);  // 16
+constexpr std::uint64_t kTriangle = sizeof(gpu::Triangle);   // 3 vec4 vertices
+constexpr std::uint64_t kOutput = 16;                        // t, primitive, u, v of the hit record
+constexpr std::uint64_t kBranchingState = kRay;              // read the ray once (the rest lives in registers)
+}  // namespace bytes
+
+struct Bandwidth {
+    std::uint64_t stencil = 0, state = 0, stack = 0, cells = 0, triangleList = 0, vertices = 0, output = 0;
+    std::uint64_t total() const { return stencil + state + stack + cells + triangleList + vertices + output; }
+};
+
+struct ArchitectureMetrics {
+    std::uint64_t passes = 0;  // all dispatches
+    std::uint64_t passesSetup = 0, passesTraverse = 0, passesIntersect = 0, passesWrite = 0;
+    std::uint64_t passesLowerBound = 0;  // multipass only (Purcell): traverse + intersect passes
+    double simdEfficiency = 0.0;
+    Bandwidth bytes;
+    WorkStats work;  // per-ray counters of the run's hit records
+};
+
+// Branching: one pass; SIMD efficiency = active lanes / lane slots over subgroup ballots.
+ArchitectureMetrics branchingMetrics(const std::vector<gpu::HitRecord>& hits, std::uint64_t activeLanes,
+                                     std::uint64_t laneSlots, const StructureCosts& costs);
+
+// Multipass: SIMD efficiency = mean over traverse and intersect passes of useful rays / rays.
+ArchitectureMetrics multipassMetrics(const std::vector<gpu::HitRecord>& hits, const MultipassCounts& counts,
+                                     const MultipassOptions& options, const StructureCosts& costs);
+
+}  // namespace rtbench

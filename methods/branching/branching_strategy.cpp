@@ -1,0 +1,90 @@
+#include "branching_strategy.h"
+
+#include <cmath>
+
+#include "lane_counts.h"
+#include "structures/error.h"
+#include "structures/scene_limits.h"
+
+namespace rtbench {
+
+void expectSameHits(const std::vector<gpu::HitRecord>& timed, const std::vector<gpu::HitRecord>& counted,
+                    const char* strategy) {
+    std::uint64_t differing = 0;
+    std::size_t first = 0;
+    for (std::size_t i = 0; i < timed.size(); ++i) {
+        if (std::isnan(timed[i].t) || std::isnan(counted[i].t))
+            throw Error(std::string(strategy) + ": ray " + std::to_string(i) +
+                        " has a NaN hit distance: its ray-triangle arithmetic overflowed, so the scene or the ray "
+                        "lies outside the range the kernels handle (" + rayRangeText() + ")");
+        if ((timed[i].primitive != counted[i].primitive || timed[i].t != counted[i].t) && differing++ == 0) first = i;
+    }
+    if (differing)
+        throw Error(std::string(strategy) + ": the timed run's hits differ from the instrumented run's on " +
+                    std::to_string(differing) + " of " + std::to_string(timed.size()) + " rays (first: ray " +
+                    std::to_string(first) + ", t " + std::to_string(timed[first].t) + " vs " +
+                    std::to_string(counted[first].t) + "): the kernel gives different results on the same input");
+}
+
+BranchingRun runBranching(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
+                          const TimingOptions& timing) {
+    if (timing.workgroupSize % vk.info().subgroupSize)
+        throw Error("strategy.workgroup_size " + std::to_string(timing.workgroupSize) +
+                    " is not a multiple of the subgroup size " + std::to_string(vk.info().subgroupSize));
+    BranchingRun run;
+    GpuBuffers buffers(vk, rays, /*traversalStateBytes=*/0, structure.buffers(), structure.params());
+    const std::string kernel = structure.kernelPrefix() + "_branching";
+    KernelSpec spec;
+    spec.workgroupSize = timing.workgroupSize;
+    {
+        ComputePipeline counted = buffers.createKernel(kernel, spec);
+        vk.dispatch(counted, buffers.descriptorSet(counted), buffers.pushConstants(), rays.size());
+        vk.destroy(counted);
+        run.hits = buffers.downloadHits();
+        const gpu::PassCounters c = buffers.readPassCounters();
+        run.activeLanes = c.counts[gpu::kCountActiveLanes];
+        run.laneSlots = c.counts[gpu::kCountLaneSlots];
+    }
+    spec.instrument = false;
+    ComputePipeline timed = buffers.createKernel(kernel, spec);
+    for (int i = 0; i < timing.warmups; ++i)
+        vk.dispatch(timed, buffers.descriptorSet(timed), buffers.pushConstants(), rays.size());
+    for (int i = 0; i < timing.repetitions; ++i)
+        run.gpuMs.push_back(vk.dispatch(timed, buffers.descriptorSet(timed), buffers.pushConstants(), rays.size()));
+    vk.destroy(timed);
+    expectSameHits(buffers.downloadHits(), run.hits, "branching kernel");
+    return run;
+}
+
+namespace {
+
+StrategyRun runBranchingStrategy(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
+                                 const RunConfig&, const TimingOptions& timing, Row&) {
+    BranchingRun kernel = runBranching(vk, structure, rays, timing);
+    StrategyRun run;
+    run.metrics = branchingMetrics(kernel.hits, kernel.activeLanes, kernel.laneSlots, structure.costs());
+    run.cpuMismatches = recordMismatches(kernel.hits, structure.trace(rays));
+    const LaneCounts lanes = branchingLaneCounts(structure, rays, vk.info().subgroupSize);
+    if (lanes.activeLanes != kernel.activeLanes || lanes.laneSlots != kernel.laneSlots)
+        run.countsMismatch = "subgroup lane counts differ (" + std::to_string(kernel.activeLanes) + "/" +
+                             std::to_string(kernel.laneSlots) + " on the device, " + std::to_string(lanes.activeLanes) +
+                             "/" + std::to_string(lanes.laneSlots) + " in the CPU model)";
+    run.hits = std::move(kernel.hits);
+    run.gpuMs = std::move(kernel.gpuMs);
+    return run;
+}
+
+}  // namespace
+
+const StrategyType& branchingStrategyType() {
+    static const StrategyType type = [] {
+        StrategyType t;
+        t.name = "branching";
+        t.help = "one kernel per ray stream (Purcell's branching architecture)";
+        t.run = runBranchingStrategy;
+        return t;
+    }();
+    return type;
+}
+
+}  // namespace rtbench

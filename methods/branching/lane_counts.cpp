@@ -1,0 +1,44 @@
+#include "lane_counts.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_reduce.h>
+
+#include <algorithm>
+
+namespace rtbench {
+
+LaneCounts branchingLaneCounts(const Structure& structure, const std::vector<gpu::Ray>& rays,
+                               unsigned subgroupSize) {
+    const std::size_t subgroups = (rays.size() + subgroupSize - 1) / subgroupSize;
+    auto count = [&](const tbb::blocked_range<std::size_t>& range, LaneCounts sum) {
+        std::vector<std::vector<std::uint32_t>> lanes(subgroupSize);  // triangle-loop trips per outer iteration
+        for (std::size_t g = range.begin(); g != range.end(); ++g) {
+            std::size_t longest = 0;
+            for (unsigned l = 0; l < subgroupSize; ++l) {
+                lanes[l].clear();
+                const std::size_t ray = g * subgroupSize + l;
+                if (ray >= rays.size()) continue;  // lanes past the stream return at once
+                structure.traceLoops(rays[ray], lanes[l]);
+                longest = std::max(longest, lanes[l].size());
+            }
+            for (std::size_t j = 0; j < longest; ++j) {  // outer-loop iteration j
+                std::uint32_t inOuterLoop = 0, mostTriangles = 0;
+                for (const auto& lane : lanes)
+                    if (lane.size() > j) ++inOuterLoop, mostTriangles = std::max(mostTriangles, lane[j]);
+                sum.activeLanes += inOuterLoop;
+                sum.laneSlots += subgroupSize;
+                for (std::uint32_t i = 0; i < mostTriangles; ++i) {  // its triangle loop
+                    for (const auto& lane : lanes) sum.activeLanes += lane.size() > j && lane[j] > i;
+                    sum.laneSlots += subgroupSize;
+                }
+            }
+        }
+        return sum;
+    };
+    return tbb::parallel_reduce(tbb::blocked_range<std::size_t>(0, subgroups, 256), LaneCounts{}, count,
+                                [](LaneCounts a, LaneCounts b) {
+                                    return LaneCounts{a.activeLanes + b.activeLanes, a.laneSlots + b.laneSlots};
+                                });
+}
+
+}  // namespace rtbench

@@ -1,0 +1,74 @@
+// Uniform grid over a triangle mesh, laid out as in Purcell et al. 2002 Fig. 4: per voxel an
+// offset into a triangle-index list, the list, and the triangles' vertices.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "grid_layout.h"
+#include "structures/mesh.h"
+#include "structures/scene_limits.h"
+
+namespace rtbench {
+
+// How the grid resolution is chosen. Exactly one rule applies.
+struct GridResolutionRule {
+    enum class Kind { MinDim, Explicit, Density };
+    Kind kind = Kind::MinDim;
+    // A flat axis (zero extent) always gets one cell; the rules below apply to the others.
+    // MinDim (Purcell): the smallest non-zero extent of the scene box gets minDim cells, the
+    // other axes proportionally (rounded to nearest, at least 1), so voxels stay near cubic.
+    unsigned minDim = 64;
+    // Explicit: cells per axis.
+    std::array<unsigned, 3> resolution{64, 64, 64};
+    // Density (cube-root rule): about cellsPerTriangle * triangles cubic cells in the box; in a
+    // flat box square cells over its area (one zero extent) or cells along its length (two).
+    double cellsPerTriangle = 1.0;
+};
+
+// The grid's box: the mesh bounds, with a flat (zero) extent widened to 1e-4 of the largest
+// extent so every axis has a positive size. Throws rtbench::Error for a box whose largest extent
+// is below kMinSceneExtent (a point, a subnormal box) or not finite.
+Bounds3 gridBounds(const Bounds3& meshBounds);
+
+// Cells per axis for the scene's own bounds (not the widened grid box: a zero extent marks a flat
+// axis) and triangle count. Each axis gets at least 1. Throws rtbench::Error, naming the
+// resolution, when an axis would get more cells than the kernels' int indices hold.
+std::array<unsigned, 3> chooseGridResolution(const Bounds3& sceneBounds, std::size_t triangleCount,
+                                             const GridResolutionRule& rule);
+
+struct GridStats {
+    std::array<unsigned, 3> resolution{};
+    std::uint64_t cells = 0;
+    double emptyFraction = 0.0;
+    std::uint64_t references = 0;  // triangle ids over all voxels
+    double referencesPerTriangle = 0.0;
+    std::uint32_t maxReferencesInCell = 0;
+    std::uint64_t bytes = 0;  // cell offsets + triangle list + triangle vertices
+    double buildMs = 0.0;
+};
+
+struct UniformGrid {
+    gpu::GridParams params{};               // box, cell size, resolution (w: ray count, set later)
+    std::vector<std::uint32_t> cellOffsets;  // cells + 1 entries; voxel c lists [off[c], off[c+1])
+    std::vector<std::uint32_t> triangleList;
+    std::vector<gpu::Triangle> triangles;    // vertices per triangle (Purcell's vertex textures)
+    GridStats stats;
+
+    std::uint64_t cellCount() const { return cellOffsets.empty() ? 0 : cellOffsets.size() - 1; }
+    // Box of voxel (x, y, z), computed as the DDA computes boundaries: min + i * cellSize.
+    Bounds3 voxelBounds(unsigned x, unsigned y, unsigned z) const;
+};
+
+// Builds the grid: each triangle's bounding box gives a candidate cell range (widened by one
+// cell where it lies on a boundary), and CGAL's exact triangle-box predicate decides membership
+// for every candidate (closed boxes: a triangle touching a voxel's face belongs to it).
+// Throws rtbench::Error when the scene is outside the range of structures/scene_limits.h or the
+// cell count would exceed maxCells.
+UniformGrid buildUniformGrid(const TriangleMesh& mesh, const GridResolutionRule& rule,
+                             std::uint64_t maxCells = 1ull << 31);
+
+// The exact predicate used by the builder, exposed for tests.
+bool triangleOverlapsBox(const gpu::Triangle& triangle, const Bounds3& box);
+
+}  // namespace rtbench

@@ -1,0 +1,78 @@
+// Which pass the multipass ray caster runs next (Purcell et al. 2002 §3.2; Christen 2005 §5.6):
+// decided on the host from the number of rays in each active state after the last pass (the
+// occlusion query of the theses), shared by the GPU strategy and the CPU simulator.
+#pragma once
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace rtbench {
+
+enum class PassKind { Setup = 0, Traverse = 1, Intersect = 2, Write = 3 };
+constexpr int kPassKinds = 4;
+const char* passKindName(PassKind kind);
+
+struct MultipassOptions {
+    unsigned traverseStepsPerPass = 1;  // K: DDA steps per traverse pass (Purcell: 4)
+    unsigned intersectionsPerPass = 1;  // M: triangle tests per intersect pass (Purcell: 2)
+    bool suppressFinishedReads = false; // rays done mid-pass skip the unrolled rest's reads
+    // "oracle": intersect when waiting / active >= oracleThreshold, else traverse (0: as soon as
+    // any ray waits; 0.2: Purcell's choice). "naive": traverse until no ray traverses, then
+    // intersect until no ray waits, and again.
+    std::string scheduling = "oracle";
+    double oracleThreshold = 0.2;
+    std::uint64_t maxPasses = 0;  // 0: automatic cap from the structure (Structure::multipassPassCap)
+};
+
+class PassScheduler {
+public:
+    explicit PassScheduler(const MultipassOptions& options) : options_(options) {}
+    // The next pass after one that left `traversing` and `waiting` rays active; Write when none.
+    PassKind next(std::uint64_t traversing, std::uint64_t waiting);
+
+private:
+    MultipassOptions options_;
+    PassKind naivePhase_ = PassKind::Traverse;
+};
+
+// What one pass reports about the rays it served (the kernels' atomics, the simulator's sums).
+struct PassSums {
+    std::uint64_t traversing = 0, waiting = 0;  // served rays in each active state after the pass
+    std::uint64_t useful = 0;                   // rays served
+    std::uint64_t stencilWrites = 0, structureReads = 0, triangleReads = 0;
+    PassSums& operator+=(const PassSums& o) {
+        traversing += o.traversing, waiting += o.waiting, useful += o.useful;
+        stencilWrites += o.stencilWrites, structureReads += o.structureReads, triangleReads += o.triangleReads;
+        return *this;
+    }
+};
+
+// Counts of one multipass run, the same whether the GPU or the simulator produced them.
+struct MultipassCounts {
+    std::array<std::uint64_t, kPassKinds> passes{};  // by PassKind
+    std::uint64_t usefulTraverse = 0;   // rays served, summed over traverse passes
+    std::uint64_t usefulIntersect = 0;  // rays served, summed over intersect passes
+    std::uint64_t stencilWrites = 0;  // all passes
+    std::uint64_t structureReads = 0;  // grid: cell offsets; BVH: nodes
+    std::uint64_t triangleReads = 0;
+    std::vector<PassKind> sequence;   // every pass in order (setup first, write last)
+
+    std::uint64_t totalPasses() const { return passes[0] + passes[1] + passes[2] + passes[3]; }
+    bool operator==(const MultipassCounts&) const = default;
+};
+
+// The pass loop of both the GPU strategy and the simulator: setup, then the scheduler's passes
+// until no ray is active, then write. `pass` runs one pass. Throws rtbench::Error when `cap`
+// passes have run and rays are still active.
+MultipassCounts runPassLoop(const MultipassOptions& options, std::uint64_t cap,
+                            const std::function<PassSums(PassKind)>& pass);
+
+// A cap on passes: 4 x (ceil(Vmax / K) + ceil(Vmax * Lmax / M)) + 16, where Vmax bounds the
+// cells (voxels, nodes) one ray visits and Lmax the triangles in one (at least 1). Scheduling
+// makes progress every pass, so only a fault can reach it; it turns that into an error.
+std::uint64_t multipassPassCap(std::uint64_t maxCellsPerRay, std::uint64_t maxTrianglesPerCell,
+                               const MultipassOptions& options);
+
+}  // namespace rtbench

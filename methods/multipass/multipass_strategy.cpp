@@ -1,0 +1,150 @@
+#include "multipass_strategy.h"
+
+#include "structures/error.h"
+
+namespace rtbench {
+
+namespace {
+
+struct Pipelines {
+    VulkanContext& vk;
+    std::array<ComputePipeline, kPassKinds> byKind{};
+    Pipelines(VulkanContext& v, GpuBuffers& buffers, const std::string& prefix, const KernelSpec& spec) : vk(v) {
+        static const char* names[kPassKinds] = {"multipass_setup", "multipass_traverse", "multipass_intersect",
+                                                "multipass_write"};
+        for (int k = 0; k < kPassKinds; ++k) byKind[k] = buffers.createKernel(prefix + "_" + names[k], spec);
+    }
+    ~Pipelines() {
+        for (ComputePipeline& p : byKind) vk.destroy(p);
+    }
+};
+
+// One run of the whole pass loop; the counts beyond the oracle's are filled when instrumented.
+MultipassCounts runPasses(VulkanContext& vk, GpuBuffers& buffers, Pipelines& pipelines, const MultipassOptions& options,
+                          std::uint64_t cap, std::array<double, kPassKinds>& msByKind) {
+    msByKind.fill(0.0);
+    return runPassLoop(options, cap, [&](PassKind kind) {
+        buffers.resetPassCounters();
+        const ComputePipeline& p = pipelines.byKind[static_cast<int>(kind)];
+        msByKind[static_cast<int>(kind)] += vk.dispatch(p, buffers.descriptorSet(p), buffers.pushConstants(), buffers.rayCount());
+        const gpu::PassCounters c = buffers.readPassCounters();
+        PassSums sums;
+        sums.traversing = c.counts[gpu::kCountTraversing];
+        sums.waiting = c.counts[gpu::kCountWaiting];
+        sums.useful = c.counts[gpu::kCountUsefulRays];
+        sums.stencilWrites = c.counts[gpu::kCountStencilWrites];
+        sums.structureReads = c.counts[gpu::kCountStructureReads];
+        sums.triangleReads = c.counts[gpu::kCountTriangleReads];
+        return sums;
+    });
+}
+
+StrategyRun runMultipassStrategy(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
+                                 const RunConfig& config, const TimingOptions& timing, Row& row) {
+    const MultipassOptions options = multipassOptions(config);
+    MultipassRun kernel = runMultipass(vk, structure, rays, options, timing);
+    StrategyRun run;
+    run.metrics = multipassMetrics(kernel.hits, kernel.counts, options, structure.costs());
+    const MultipassResult cpu = structure.simulateMultipass(rays, options);
+    run.cpuMismatches = recordMismatches(kernel.hits, cpu.hits);
+    if (!(cpu.counts == kernel.counts)) run.countsMismatch = "pass sequence or event counts differ";
+    // The two architectures must produce identical hit records (and work counters).
+    run.branchingMismatches = recordMismatches(kernel.hits, structure.trace(rays));
+    row["branching_mismatches"] = std::to_string(run.branchingMismatches);
+    row["passes_setup"] = std::to_string(run.metrics.passesSetup);
+    row["passes_traverse"] = std::to_string(run.metrics.passesTraverse);
+    row["passes_intersect"] = std::to_string(run.metrics.passesIntersect);
+    row["passes_write"] = std::to_string(run.metrics.passesWrite);
+    row["passes_lower_bound"] = std::to_string(run.metrics.passesLowerBound);
+    const char* kindColumns[kPassKinds] = {"kernel_ms_setup", "kernel_ms_traverse", "kernel_ms_intersect",
+                                           "kernel_ms_write"};
+    for (int k = 0; k < kPassKinds; ++k) {
+        std::vector<double> ms;
+        for (const auto& byKind : kernel.gpuMsByKind) ms.push_back(byKind[k]);
+        row[kindColumns[k]] = formatNumber(timingStats(ms).median);
+    }
+    run.hits = std::move(kernel.hits);
+    run.gpuMs = std::move(kernel.gpuMs);
+    return run;
+}
+
+}  // namespace
+
+MultipassOptions multipassOptions(const RunConfig& run) {
+    MultipassOptions o;
+    o.traverseStepsPerPass = unsigned(run.getInt("strategy.traverse_steps_per_pass"));
+    o.intersectionsPerPass = unsigned(run.getInt("strategy.intersections_per_pass"));
+    o.suppressFinishedReads = run.getBool("strategy.suppress_finished_reads");
+    o.scheduling = run.getString("strategy.scheduling");
+    if (run.has("strategy.oracle_threshold")) o.oracleThreshold = run.getFloat("strategy.oracle_threshold");
+    o.maxPasses = std::uint64_t(run.getInt("strategy.max_passes"));
+    return o;
+}
+
+MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
+                          const MultipassOptions& options, const TimingOptions& timing) {
+    if (options.traverseStepsPerPass < 1 || options.intersectionsPerPass < 1)
+        throw Error("multipass: traverse_steps_per_pass and intersections_per_pass must be at least 1");
+    MultipassRun run;
+    GpuBuffers buffers(vk, rays, structure.costs().traversalStateBytes, structure.buffers(), structure.params());
+    const std::uint64_t cap = structure.multipassPassCap(options);
+    KernelSpec spec;
+    spec.workgroupSize = timing.workgroupSize;
+    spec.traverseStepsPerPass = options.traverseStepsPerPass;
+    spec.intersectionsPerPass = options.intersectionsPerPass;
+    spec.suppressFinishedReads = options.suppressFinishedReads;
+    std::array<double, kPassKinds> ms{};
+    {
+        Pipelines counted(vk, buffers, structure.kernelPrefix(), spec);
+        run.counts = runPasses(vk, buffers, counted, options, cap, ms);
+        run.hits = buffers.downloadHits();
+        run.traversalStates = buffers.downloadTraversalStates();
+    }
+    spec.instrument = false;
+    Pipelines timed(vk, buffers, structure.kernelPrefix(), spec);
+    for (int i = 0; i < timing.warmups + timing.repetitions; ++i) {
+        const MultipassCounts again = runPasses(vk, buffers, timed, options, cap, ms);
+        if (again.sequence != run.counts.sequence)
+            throw Error("multipass: the timed run's pass sequence differs from the instrumented run's");
+        if (i < timing.warmups) continue;
+        run.gpuMsByKind.push_back(ms);
+        run.gpuMs.push_back(ms[0] + ms[1] + ms[2] + ms[3]);
+    }
+    expectSameHits(buffers.downloadHits(), run.hits, "multipass kernels");
+    return run;
+}
+
+const StrategyType& multipassStrategyType() {
+    static const StrategyType type = [] {
+        using K = ColumnKind;
+        StrategyType t;
+        t.name = "multipass";
+        t.help = "a pass per traverse/intersect step with a ray-state stencil and an oracle (Purcell et al. 2002 §3.2)";
+        t.perRayState = true;
+        t.keys = {
+            {"strategy.traverse_steps_per_pass", ValueType::Int, "multipass: traversal steps per traverse pass (loop unrolling; Purcell used 4)", std::int64_t(1), false, 1, 64},
+            {"strategy.intersections_per_pass", ValueType::Int, "multipass: triangle tests per intersect pass (Purcell used 2)", std::int64_t(1), false, 1, 64},
+            {"strategy.suppress_finished_reads", ValueType::Bool, "multipass: rays that finish mid-pass skip the unrolled rest's reads", false},
+            {"strategy.scheduling", ValueType::String, "multipass: oracle (threshold on the waiting fraction) or naive (traverse until none traverses, then intersect until none waits)", std::string("oracle"), false, -1e300, 1e300, {"oracle", "naive"}},
+            {"strategy.oracle_threshold", ValueType::Float, "multipass: intersect when waiting / active rays >= this (0: as soon as any waits; Purcell: 0.2)", 0.2, false, 0, 1, {}, {"strategy.scheduling=oracle"}},
+            {"strategy.max_passes", ValueType::Int, "multipass: pass cap (0: derived from the structure); reaching it fails the run", std::int64_t(0), false, 0, 1e9},
+        };
+        t.columns = {
+            {"passes_setup", K::Count, "passes", "multipass setup passes"},
+            {"passes_traverse", K::Count, "passes", "multipass traverse passes"},
+            {"passes_intersect", K::Count, "passes", "multipass intersect passes"},
+            {"passes_write", K::Count, "passes", "multipass write passes"},
+            {"passes_lower_bound", K::Count, "passes", "Purcell's lower bound on traverse + intersect passes"},
+            {"kernel_ms_setup", K::Timing, "ms", "multipass: GPU time of the setup passes, median"},
+            {"kernel_ms_traverse", K::Timing, "ms", "multipass: GPU time of the traverse passes, median"},
+            {"kernel_ms_intersect", K::Timing, "ms", "multipass: GPU time of the intersect passes, median"},
+            {"kernel_ms_write", K::Timing, "ms", "multipass: GPU time of the write pass, median"},
+            {"branching_mismatches", K::Count, "rays", "multipass: rays whose hit record differs from the branching caster's"},
+        };
+        t.run = runMultipassStrategy;
+        return t;
+    }();
+    return type;
+}
+
+}  // namespace rtbench

@@ -1,0 +1,32 @@
+// The multipass (non-branching) strategy, Purcell et al. 2002 §3.2: a setup pass, then traverse
+// or intersect passes chosen by the oracle from the ray-state counts read back after each pass,
+// then a write pass. Each pass is one dispatch of a generic kernel (kernels/multipass_*.comp)
+// over the whole stream, running the structure's per-ray steps.
+#pragma once
+#include <array>
+#include <vector>
+
+#include "methods/strategy.h"
+#include "multipass_schedule.h"
+
+namespace rtbench {
+
+const StrategyType& multipassStrategyType();
+
+// The strategy's options from a run's keys.
+MultipassOptions multipassOptions(const RunConfig& run);
+
+struct MultipassRun {
+    std::vector<gpu::HitRecord> hits;  // instrumented run, per-ray counters filled
+    MultipassCounts counts;            // instrumented run
+    std::vector<double> gpuMs;         // total GPU time of each timed repetition
+    std::vector<std::array<double, kPassKinds>> gpuMsByKind;  // per timed repetition, per PassKind
+    std::vector<std::uint8_t> traversalStates;  // the per-ray state the last pass saved
+};
+
+// One instrumented run, then warm-ups and timed repetitions (instrumentation off; the pass
+// sequence must repeat exactly). Throws rtbench::Error when the pass cap is reached.
+MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
+                          const MultipassOptions& options, const TimingOptions& timing);
+
+}  // namespace rtbench

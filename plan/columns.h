@@ -1,0 +1,40 @@
+// A runs.csv column as the part of rtbench that computes it declares it: name, kind, unit and
+// meaning. The kind says how a value may differ between two runs of the same config, and so how
+// `rtbench check` compares it:
+//   parameter  a config key or the run's identity: equal by construction;
+//   count      deterministic: equal on every machine with the same device (checked exactly);
+//   reference  derived from another library's floating point (Embree's ISA path): compared
+//              within a declared tolerance, never as an exact count;
+//   timing     seconds and rates: reported when outside a relative tolerance, never a failure;
+//   context    where and when (commit, device, driver, Embree's threads and ISA): reported.
+#pragma once
+#include <map>
+#include <string>
+
+namespace rtbench {
+
+enum class ColumnKind { Parameter, Count, Reference, Timing, Context };
+
+const char* columnKindName(ColumnKind kind);
+
+struct ColumnSpec {
+    std::string name;
+    ColumnKind kind;
+    std::string unit;  // "" for a dimensionless or text value
+    std::string help;
+    // Reference columns: the largest difference that still counts as the same result, absolute,
+    // or as a fraction of the run's rays when perRay (mismatch counts).
+    double tolerance = 0.0;
+    bool perRay = false;
+};
+
+// The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".
+std::string paramColumn(const std::string& key);
+
+// One run's values by column name. Writing a column no part declared is an error (writeCsv).
+using Row = std::map<std::string, std::string>;
+
+// Shortest decimal with `significant` digits, as every numeric column is written.
+std::string formatNumber(double value, int significant = 6);
+
+}  // namespace rtbench

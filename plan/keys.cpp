@@ -1,0 +1,55 @@
+#include "keys.h"
+
+#include <cstdio>
+#include <sstream>
+
+namespace rtbench {
+
+std::string formatValue(const ConfigValue& value) {
+    struct Visitor {
+        std::string operator()(std::int64_t v) const { return std::to_string(v); }
+        std::string operator()(double v) const {
+            std::ostringstream s;
+            s.precision(9);
+            s << v;
+            return s.str();
+        }
+        std::string operator()(const std::string& v) const { return v; }
+        std::string operator()(bool v) const { return v ? "true" : "false"; }
+        std::string operator()(const std::array<double, 3>& v) const {
+            return "[" + (*this)(v[0]) + " " + (*this)(v[1]) + " " + (*this)(v[2]) + "]";
+        }
+    };
+    return std::visit(Visitor{}, value);
+}
+
+std::int64_t RunConfig::getInt(const std::string& key) const { return std::get<std::int64_t>(values.at(key)); }
+double RunConfig::getFloat(const std::string& key) const { return std::get<double>(values.at(key)); }
+const std::string& RunConfig::getString(const std::string& key) const { return std::get<std::string>(values.at(key)); }
+bool RunConfig::getBool(const std::string& key) const { return std::get<bool>(values.at(key)); }
+std::array<double, 3> RunConfig::getVec3(const std::string& key) const {
+    return std::get<std::array<double, 3>>(values.at(key));
+}
+
+std::string RunConfig::canonical() const {
+    std::string out;
+    for (const auto& [key, value] : values) out += key + "=" + formatValue(value) + ";";
+    return out;
+}
+
+std::string RunConfig::hash() const {
+    std::uint64_t h = 1469598103934665603ull;  // FNV-1a 64
+    for (unsigned char c : canonical()) h = (h ^ c) * 1099511628211ull;
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+    return buf;
+}
+
+std::string RunConfig::label() const {
+    std::string params;
+    for (const std::string& key : sweptKeys) params += (params.empty() ? "" : " ") + key + "=" + formatValue(values.at(key));
+    if (sweep.empty()) return params.empty() ? "single run" : params;
+    return params.empty() ? sweep : sweep + ":" + params;
+}
+
+}  // namespace rtbench

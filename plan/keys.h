@@ -1,0 +1,65 @@
+// Config keys as every part of rtbench declares and reads them: a key's spec (type, default,
+// range, help, when it applies) and one run's values. The schema (harness/config.h) gathers the
+// common keys and those each structure and strategy declares (methods/registry.h).
+#pragma once
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace rtbench {
+
+using ConfigValue = std::variant<std::int64_t, double, std::string, bool, std::array<double, 3>>;
+
+enum class ValueType { Int, Float, String, Bool, Int3, Float3 };
+
+struct KeySpec {
+    std::string name;  // "section.key"
+    ValueType type;
+    std::string help;
+    std::optional<ConfigValue> defaultValue;  // none: optional without default (or required)
+    bool required = false;
+    double min = -1e300, max = 1e300;   // numeric range (each component for Int3/Float3)
+    std::vector<std::string> choices;   // allowed strings, when a closed set
+    // "section.key=value" conditions under which the key is read (all must hold); a run where
+    // one fails drops the key, and a key given but read by no run is an error.
+    std::vector<std::string> appliesWhen = {};
+    // Strings: a further check that throws rtbench::Error saying what is wrong (the loader adds
+    // the file, line and key).
+    std::function<void(const std::string&)> check = {};
+    // Alternatives: keys with the same group name set the same thing (e.g. the grid resolution
+    // rule) and at most one of them may be given; a [[sweep]] that gives one replaces the base's.
+    // When none is given, the key with a groupDefault takes it.
+    std::string group = {};
+    std::optional<ConfigValue> groupDefault = {};
+};
+
+// One run: every schema key that has a value (given or default), scalar.
+struct RunConfig {
+    std::size_t index = 0;                      // 0-based position in the plan
+    std::string sweep;                          // name of the [[sweep]] it comes from, or ""
+
+    std::map<std::string, ConfigValue> values;  // "section.key" -> value
+    std::vector<std::string> sweptKeys;         // keys that vary across the plan
+
+    bool has(const std::string& key) const { return values.count(key) != 0; }
+    std::int64_t getInt(const std::string& key) const;
+    double getFloat(const std::string& key) const;
+    const std::string& getString(const std::string& key) const;
+    bool getBool(const std::string& key) const;
+    std::array<double, 3> getVec3(const std::string& key) const;
+    // "key=value" pairs joined; stable across runs of the same parameters.
+    std::string canonical() const;
+    // FNV-1a 64-bit of canonical(), hex.
+    std::string hash() const;
+    // A short label naming the swept parameters, e.g. "structure.min_dim=32".
+    std::string label() const;
+};
+
+std::string formatValue(const ConfigValue& value);
+
+}  // namespace rtbench

@@ -1,0 +1,139 @@
+// Whole runs at the edges of what the methods handle (issue 7): every input and every scale gets
+// a correct result or a failed row with a clear error, and the sweep goes on.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <sstream>
+
+#include "methods/branching/branching_strategy.h"
+#include "device/gpu_buffers.h"
+#include "harness/runner.h"
+#include "tests/device/test_device.h"
+#include "structures/error.h"
+#include "tests/temp_dir.h"
+
+namespace rtbench {
+namespace {
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+// A tetrahedron scaled and translated, as an OFF file.
+std::string tetrahedronOff(double scale, double offset = 0.0) {
+    std::ostringstream off;
+    off.precision(17);
+    off << "OFF\n4 4 0\n";
+    for (const char* v : {"0 0 0", "1 0 0", "0 1 0", "0 0 1"}) {
+        double x, y, z;
+        std::istringstream(v) >> x >> y >> z;
+        off << x * scale + offset << " " << y * scale + offset << " " << z * scale + offset << "\n";
+    }
+    off << "3 0 1 2\n3 0 1 3\n3 0 2 3\n3 1 2 3\n";
+    return off.str();
+}
+
+class RunLimits : public ::testing::Test {
+protected:
+    Row runOne(const std::string& scene, const std::string& body) {
+        dir_.write("scene.off", scene);
+        const std::string path = dir_.write(
+            "limits.toml", "[experiment]\nname = \"limits\"\noutput = \"" + dir_.file("out") +
+                               "\"\nrepetitions = 1\nwarmups = 0\n[scene]\nsource = \"scene.off\"\n[device]\nname = \"" +
+                               testDeviceName() + "\"\nvalidation = true\n[output]\nimages = false\n" + body);
+        RunnerOptions options;
+        options.quiet = true;
+        const ExperimentResult result = runExperiment(loadExperiment(path), options);
+        EXPECT_EQ(result.rows.size(), 1u);
+        return result.rows.at(0);
+    }
+    TempDir dir_;
+};
+
+TEST_F(RunLimits, ASceneScaledBy1e18FailsWithTheRangeInsteadOfAbortingInEmbree) {
+    const Row row = runOne(tetrahedronOff(1e18), "[camera]\nwidth = 8\nheight = 8\n");
+    EXPECT_EQ(row.at("status"), "failed");
+    EXPECT_THAT(row.at("error"), HasSubstr("is out of range: the methods handle vertex coordinates within +-2.749e+11 (2^38)"));
+}
+
+TEST_F(RunLimits, ACameraAt1e19FailsWithTheRangeInsteadOfAbortingInEmbree) {
+    const Row row = runOne(tetrahedronOff(1.0), "[camera]\nwidth = 8\nheight = 8\nposition = [1e19, 1, 1]\n");
+    EXPECT_EQ(row.at("status"), "failed");
+    EXPECT_THAT(row.at("error"), HasSubstr("camera: position (1e+19, 1, 1) or look_at"));
+    EXPECT_THAT(row.at("error"), HasSubstr("ray origins within +-1.1e+12 (2^40)"));
+}
+
+TEST_F(RunLimits, ATetrahedronScaledBy1e40FailsAtOnceInsteadOfHanging) {
+    const Row row = runOne(tetrahedronOff(1e-40), "[camera]\nwidth = 8\nheight = 8\n");
+    EXPECT_EQ(row.at("status"), "failed");
+    EXPECT_THAT(row.at("error"), HasSubstr("too small"));
+    EXPECT_THAT(row.at("error"), HasSubstr("at least 1.49e-08 (2^-26)"));
+}
+
+TEST_F(RunLimits, ScenesAtTheEdgesOfTheRangeRenderAndAgreeWithEmbree) {
+    for (double scale : {1e-7, 1e11}) {
+        SCOPED_TRACE(scale);
+        const Row row = runOne(tetrahedronOff(scale), "[camera]\nwidth = 16\nheight = 16\n");
+        EXPECT_EQ(row.at("status"), "ok") << row.at("error");
+        EXPECT_GT(std::stoi(row.at("hits")), 20);
+        EXPECT_EQ(row.at("hit_miss_mismatches"), "0");
+    }
+}
+
+TEST_F(RunLimits, A16384SquaredImageIsRefusedBeforeAnythingIsAllocated) {
+    const Row row = runOne(tetrahedronOff(1.0), "[camera]\nwidth = 16384\nheight = 16384\n");
+    EXPECT_EQ(row.at("status"), "failed");
+    EXPECT_THAT(row.at("error"), HasSubstr("the ray (268435456 rays) buffer would be 8589934592 bytes, over "));
+    EXPECT_THAT(row.at("error"), HasSubstr("maxStorageBufferRange"));
+}
+
+TEST_F(RunLimits, ASliverTooLongForMinDimFailsNamingTheResolution) {
+    // Aspect 2^21: min_dim 2048 asks for 2^32 cells along x.
+    const Row row = runOne("OFF\n3 1 0\n0 0 0\n2097152 0 0\n0 1 1\n3 0 1 2\n",
+                           "[camera]\nwidth = 8\nheight = 8\n[structure]\nmin_dim = 2048\n");
+    EXPECT_EQ(row.at("status"), "failed");
+    EXPECT_THAT(row.at("error"), HasSubstr("resolution 4294967296x2048x2048 has more than 2147483647 cells along x"));
+}
+
+TEST_F(RunLimits, AFlatSceneGetsOneCellAcrossItsPlane) {
+    // 8 triangles in the plane z = 0 at the default min_dim 64: 64 cells along the smaller side.
+    const Row row = runOne("OFF\n9 8 0\n0 0 0\n1 0 0\n2 0 0\n0 1 0\n1 1 0\n2 1 0\n0 2 0\n1 2 0\n2 2 0\n"
+                           "3 0 1 4\n3 0 4 3\n3 1 2 5\n3 1 5 4\n3 3 4 7\n3 3 7 6\n3 4 5 8\n3 4 8 7\n",
+                           "[camera]\nwidth = 16\nheight = 16\nposition = [1, 1, 2]\nlook_at = [1, 1, 0]\n");
+    EXPECT_EQ(row.at("status"), "ok") << row.at("error");
+    EXPECT_EQ(row.at("grid_res_x") + "x" + row.at("grid_res_y") + "x" + row.at("grid_res_z"), "64x64x1");
+    EXPECT_EQ(row.at("hits"), "256");
+}
+
+TEST_F(RunLimits, TrianglesDegenerateInFloatAreCountedAndReported) {
+    // At x = 1e5 float's spacing is 1/128: the second triangle's vertices 0.001 apart coincide.
+    ::testing::internal::CaptureStderr();
+    const Row row = runOne("OFF\n6 2 0\n0 0 0\n1 0 0\n0 1 0\n100000 0 0\n100000.001 0 0\n100000 0.001 0\n3 0 1 2\n3 3 4 5\n",
+                           "[camera]\nwidth = 8\nheight = 8\nposition = [0.2, 0.2, 2]\nlook_at = [0.2, 0.2, 0]\n");
+    const std::string err = ::testing::internal::GetCapturedStderr();
+    EXPECT_EQ(row.at("scene_degenerate"), "1");
+    EXPECT_EQ(row.at("warnings"), "1 of 2 triangles are degenerate (zero area in float) and are never hit");
+    EXPECT_THAT(err, HasSubstr("warning: 1 of 2 triangles are degenerate (zero area in float) and are never hit"));
+}
+
+TEST(HitChecks, ANanDistanceIsNamedAsAnOutOfRangeInputNotNondeterminism) {
+    std::vector<gpu::HitRecord> counted(3, gpu::HitRecord{1.0f, 0, 0, 0, 0, 0, 0, 0}), timed = counted;
+    timed[1].t = counted[1].t = std::nanf("");
+    try {
+        expectSameHits(timed, counted, "branching kernel");
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_THAT(e.what(), HasSubstr("branching kernel: ray 1 has a NaN hit distance"));
+        EXPECT_THAT(e.what(), Not(HasSubstr("nondeterministic")));
+    }
+    timed[1].t = counted[1].t = 1.0f;
+    timed[0].t = timed[2].t = 2.0f;
+    try {
+        expectSameHits(timed, counted, "branching kernel");
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        EXPECT_THAT(e.what(), HasSubstr("differ from the instrumented run's on 2 of 3 rays (first: ray 0"));
+    }
+}
+
+}  // namespace
+}  // namespace rtbench

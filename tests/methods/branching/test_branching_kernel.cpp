@@ -1,0 +1,135 @@
+// The branching kernel on Vulkan against the CPU reference traversal (same rays, same source):
+// hits and per-ray counters must be identical, and the validation layer must stay silent.
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+
+#include "methods/branching/branching_strategy.h"
+#include "harness/embree_reference.h"
+#include "methods/metrics.h"
+#include "structures/camera.h"
+#include "methods/grid/grid_reference.h"
+#include "methods/grid/grid_structure.h"
+#include "structures/procedural.h"
+#include "tests/device/test_device.h"
+
+namespace rtbench {
+namespace {
+
+// Random rays: origins inside and around the scene box, directions random, along an axis, or
+// parallel to an axis plane.
+std::vector<gpu::Ray> randomRays(const Bounds3& box, unsigned count, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f), s(-1.0f, 1.0f);
+    std::vector<gpu::Ray> rays;
+    const glm::vec3 lo = box.min - 0.3f * box.extent(), size = 1.6f * box.extent();
+    for (unsigned i = 0; i < count; ++i) {
+        const glm::vec3 o = lo + glm::vec3(u(rng), u(rng), u(rng)) * size;
+        glm::vec3 d(s(rng), s(rng), s(rng));
+        if (i % 7 == 3) d = glm::vec3(0.0f), d[i % 3] = s(rng) < 0 ? -1.0f : 1.0f;
+        if (i % 7 == 5) d[i % 3] = 0.0f;
+        if (glm::length(d) == 0.0f) d = glm::vec3(0, 1, 0);
+        rays.push_back({glm::vec4(o, 0.0f), glm::vec4(d, gpu::kNoHitT)});
+    }
+    return rays;
+}
+
+void expectIdentical(const std::vector<gpu::HitRecord>& gpuHits, const std::vector<gpu::HitRecord>& cpuHits) {
+    ASSERT_EQ(gpuHits.size(), cpuHits.size());
+    std::size_t differing = 0;
+    for (std::size_t i = 0; i < gpuHits.size(); ++i) {
+        if (std::memcmp(&gpuHits[i], &cpuHits[i], sizeof(gpu::HitRecord)) == 0) continue;
+        if (++differing <= 5)
+            ADD_FAILURE() << "ray " << i << ": GPU t=" << gpuHits[i].t << " prim=" << gpuHits[i].primitive
+                          << " voxels=" << gpuHits[i].cellsVisited << " tests=" << gpuHits[i].trianglesTested
+                          << " | CPU t=" << cpuHits[i].t << " prim=" << cpuHits[i].primitive
+                          << " voxels=" << cpuHits[i].cellsVisited << " tests=" << cpuHits[i].trianglesTested;
+    }
+    EXPECT_EQ(differing, 0u);
+}
+
+using BranchingKernel = VulkanTest;
+
+TEST_F(BranchingKernel, RunsOnLavapipeUnlessAnotherDeviceIsNamed) {
+    if (testDeviceName() == "llvmpipe") {
+        EXPECT_NE(vk_->info().name.find("llvmpipe"), std::string::npos);
+    }
+    EXPECT_GT(vk_->info().subgroupSize, 0u);
+}
+
+TEST_F(BranchingKernel, PerRayHitsAndCountersEqualTheCpuReferenceOnRandomRays) {
+    for (const TriangleMesh& mesh : {christenSceneA(), christenSceneB()}) {
+        for (unsigned minDim : {1u, 4u, 13u, 32u}) {
+            SCOPED_TRACE(mesh.name + " min_dim " + std::to_string(minDim));
+            GridResolutionRule rule;
+            rule.minDim = minDim;
+            const UniformGrid grid = buildUniformGrid(mesh, rule);
+            const std::vector<gpu::Ray> rays = randomRays(mesh.bounds(), 20000, minDim);
+            const BranchingRun run = runBranching(*vk_, *gridStructure(grid), rays, {64, 0, 1});
+            const std::vector<gpu::HitRecord> cpu = traceGridReference(grid, rays);
+            expectIdentical(run.hits, cpu);
+            const WorkStats w = workStats(cpu);
+            EXPECT_GT(w.hits, 1000u);  // the rays do hit things
+            EXPECT_GT(w.cellsTotal, 0u);
+        }
+    }
+}
+
+TEST_F(BranchingKernel, PrimaryRaysOnSceneBAgreeWithEmbree) {
+    const TriangleMesh mesh = christenSceneB();
+    GridResolutionRule rule;
+    rule.minDim = 16;
+    const UniformGrid grid = buildUniformGrid(mesh, rule);
+    // Scene B's own viewpoint: inside the room, looking at its far wall.
+    const std::vector<gpu::Ray> rays = generatePrimaryRays(*proceduralCamera("christen_b", 70.0f), 160, 120);
+    const BranchingRun run = runBranching(*vk_, *gridStructure(grid), rays, {32, 1, 2});
+    EXPECT_EQ(run.gpuMs.size(), 2u);
+    EmbreeReference embree(mesh, "");
+    std::vector<gpu::HitRecord> reference;
+    embree.trace(rays, EmbreeMode::Intersect1, reference);
+    const Agreement a = compareHits(run.hits, reference);
+    EXPECT_GE(a.hitMissAgreement, 0.999);
+    EXPECT_EQ(workStats(run.hits).hits, rays.size());  // inside a closed room every ray hits
+    EXPECT_LT(a.relDistanceErrorMean, 1e-5);
+    std::vector<gpu::HitRecord> packets;
+    embree.trace(rays, EmbreeMode::Intersect16, packets);
+    EXPECT_EQ(compareHits(packets, reference).hitMissMismatches, 0u);
+}
+
+TEST_F(BranchingKernel, DegenerateTrianglesAreNeverHit) {
+    TriangleMesh mesh = christenSceneA();
+    const unsigned base = unsigned(mesh.vertices.size());
+    mesh.vertices.insert(mesh.vertices.end(), {{-4, 0.5f, 3}, {4, 0.5f, 3}, {0, 0.5f, 3}, {0, 1, 3}});
+    mesh.triangles.emplace_back(base, base + 1, base + 2);  // collinear, across the view
+    mesh.triangles.emplace_back(base + 3, base + 3, base + 3);  // a point
+    ASSERT_EQ(mesh.degenerateCount(), 2u);
+    GridResolutionRule rule;
+    rule.minDim = 8;
+    const UniformGrid grid = buildUniformGrid(mesh, rule);
+    const std::vector<gpu::Ray> rays = generatePrimaryRays(fitCamera(mesh.bounds()), 96, 64);
+    const BranchingRun run = runBranching(*vk_, *gridStructure(grid), rays, {64, 0, 1});
+    expectIdentical(run.hits, traceGridReference(grid, rays));
+    std::size_t hits = 0;
+    for (const gpu::HitRecord& h : run.hits) {
+        if (h.primitive == gpu::kNoHit) continue;
+        EXPECT_LT(h.primitive, 36u);  // one of the boxes' triangles, never a degenerate one
+        ++hits;
+    }
+    EXPECT_GT(hits, 100u);
+}
+
+TEST_F(BranchingKernel, BufferOverTheBindingLimitIsAClearError) {
+    try {
+        vk_->createStorageBuffer(vk_->info().maxStorageBufferRange + 4, "test");
+        FAIL();
+    } catch (const std::exception& e) {
+        EXPECT_NE(std::string(e.what()).find("over " + vk_->info().name + "'s maxStorageBufferRange of " +
+                                             std::to_string(vk_->info().maxStorageBufferRange) + " bytes"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace rtbench
