@@ -1,5 +1,6 @@
 #include "columns.h"
 
+#include <algorithm>
 #include <map>
 #include <set>
 
@@ -16,7 +17,7 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         for (const KeySpec& key : configSchema())
             s.push_back({paramColumn(key.name),
                          key.name == "experiment.output" ? K::Context : K::Parameter, "",
-                         key.help});
+                         key.help, 0.0, false, key.appliesWhen});
         auto add = [&](std::string name, K kind, std::string unit, std::string help,
                        double tolerance = 0.0, bool perRay = false) {
             s.push_back(
@@ -42,7 +43,10 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("structure_build_ms", K::Timing, "ms", "CPU build time of the structure");
         // Each structure's own columns (methods/registry.cpp).
         for (const StructureType* t : structureTypes())
-            for (const ColumnSpec& c : t->columns) s.push_back(c);
+            for (ColumnSpec c : t->columns) {
+                c.appliesWhen.insert(c.appliesWhen.begin(), "structure.type=" + t->name);
+                s.push_back(std::move(c));
+            }
         // Time.
         add("kernel_ms_median", K::Timing, "ms",
             "GPU time of the kernel(s), median of the repetitions");
@@ -92,7 +96,10 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("bytes_per_ray", K::Count, "bytes", "bytes_total / rays");
         // Each strategy's own columns.
         for (const StrategyType* t : strategyTypes())
-            for (const ColumnSpec& c : t->columns) s.push_back(c);
+            for (ColumnSpec c : t->columns) {
+                c.appliesWhen.insert(c.appliesWhen.begin(), "strategy.type=" + t->name);
+                s.push_back(std::move(c));
+            }
         // Self-checks (a mismatch fails the run).
         add("cpu_reference_mismatches", K::Count, "rays",
             "rays whose GPU hit record differs from the CPU reference's");
@@ -143,9 +150,20 @@ std::vector<Row> readRunsCsv(const std::string& path) {
     const std::vector<std::string> declared = runColumns();
     const std::set<std::string> declaredSet(declared.begin(), declared.end());
     if (!rows.empty()) {
+        // A column a run of this file would have written must be there; a method's own column may
+        // be absent when no row ran that method.
+        auto needed = [&](const ColumnSpec& c) {
+            return std::any_of(rows.begin(), rows.end(), [&](const Row& row) {
+                return std::all_of(c.appliesWhen.begin(), c.appliesWhen.end(), [&](const std::string& condition) {
+                    const std::size_t eq = condition.find('=');
+                    const auto it = row.find(paramColumn(condition.substr(0, eq)));
+                    return it != row.end() && it->second == condition.substr(eq + 1);
+                });
+            });
+        };
         std::string missing, unknown;
-        for (const std::string& c : declared)
-            if (!rows[0].count(c)) missing += (missing.empty() ? "" : ", ") + c;
+        for (const ColumnSpec& c : runColumnSpecs())
+            if (!rows[0].count(c.name) && needed(c)) missing += (missing.empty() ? "" : ", ") + c.name;
         for (const auto& [c, value] : rows[0])
             if (!declaredSet.count(c)) unknown += (unknown.empty() ? "" : ", ") + c;
         if (!missing.empty())

@@ -1,6 +1,8 @@
 #include "registry.h"
 
 #include "methods/branching/branching_strategy.h"
+#include "methods/brute/brute_structure.h"
+#include "methods/bvh/bvh_structure.h"
 #include "methods/grid/grid_structure.h"
 #include "methods/multipass/multipass_strategy.h"
 #include "structures/error.h"
@@ -8,7 +10,7 @@
 namespace rtbench {
 
 const std::vector<const StructureType*>& structureTypes() {
-    static const std::vector<const StructureType*> types = {&gridStructureType()};
+    static const std::vector<const StructureType*> types = {&gridStructureType(), &bvhStructureType(), &bruteStructureType()};
     return types;
 }
 

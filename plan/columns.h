@@ -10,6 +10,7 @@
 #pragma once
 #include <map>
 #include <string>
+#include <vector>
 
 namespace rtbench {
 
@@ -26,6 +27,10 @@ struct ColumnSpec {
     // or as a fraction of the run's rays when perRay (mismatch counts).
     double tolerance = 0.0;
     bool perRay = false;
+    // "section.key=value" conditions under which a run writes the column (a structure's or a
+    // strategy's own columns, a key read only by some runs); empty: every run. A runs CSV may
+    // leave the column out when no row meets them (a file from before the method existed).
+    std::vector<std::string> appliesWhen = {};
 };
 
 // The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".

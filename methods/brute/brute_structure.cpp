@@ -1,0 +1,151 @@
+#include "brute_structure.h"
+
+#include <chrono>
+#include <cstring>
+
+#include "methods/multipass/multipass_simulator.h"
+#include "methods/brute/brute_layout.h"
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include "structures/error.h"
+
+namespace rtbench {
+
+namespace bruteref {
+// The shared GLSL source as C++ (see methods/grid/grid_reference.h for how).
+using namespace glm;
+using namespace rtbench::gpu;
+#define RT_OUT(T) T&
+#define RT_INOUT(T) T&
+#define RT_ON_OUTER() \
+    if (loopLog) loopLog->push_back(0);
+#define RT_ON_INNER() \
+    if (loopLog) ++loopLog->back();
+#define precise
+struct BruteKernels {
+    using RtTraversalState = BruteTraversalState;
+    const Triangle* triangles;
+    BruteParams params;
+    std::uint32_t traverseStepsPerPass = 1;
+    std::uint32_t intersectionsPerPass = 1;
+    std::uint32_t suppressFinishedReads = 0;
+    std::vector<std::uint32_t>* loopLog = nullptr;
+#include "../../kernels/ray_math.glsl"
+#include "../../kernels/multipass_events.glsl"
+#include "brute_traversal.glsl"
+};
+#undef precise
+#undef RT_ON_INNER
+#undef RT_ON_OUTER
+#undef RT_INOUT
+#undef RT_OUT
+}  // namespace bruteref
+
+namespace {
+
+class BruteStructure final : public Structure {
+public:
+    explicit BruteStructure(const TriangleMesh& mesh) {
+        const auto start = std::chrono::steady_clock::now();
+        triangles_.reserve(mesh.triangles.size());
+        for (const glm::uvec3& t : mesh.triangles)
+            triangles_.push_back({glm::vec4(mesh.vertices[t.x], 0.0f), glm::vec4(mesh.vertices[t.y], 0.0f),
+                                  glm::vec4(mesh.vertices[t.z], 0.0f)});
+        params_.counts = glm::uvec4(std::uint32_t(triangles_.size()), 0, 0, 0);
+        memoryBytes = triangles_.size() * sizeof(gpu::Triangle);
+        buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    }
+
+    std::string kernelPrefix() const override { return "brute"; }
+
+    std::vector<StructureBuffer> buffers() const override {
+        return {{"triangle vertex (" + std::to_string(triangles_.size()) + " triangles)", memoryBytes, triangles_.data()}};
+    }
+
+    std::vector<std::uint8_t> params() const override {
+        std::vector<std::uint8_t> bytes(sizeof params_);
+        std::memcpy(bytes.data(), &params_, sizeof params_);
+        return bytes;
+    }
+
+    StructureCosts costs() const override {
+        StructureCosts c;  // no cells, no lists: only the vertices of every triangle
+        c.traversalStateBytes = sizeof(gpu::BruteTraversalState);
+        return c;
+    }
+
+    bruteref::BruteKernels kernels() const {
+        bruteref::BruteKernels k{};
+        k.triangles = triangles_.data();
+        k.params = params_;
+        return k;
+    }
+
+    std::vector<gpu::HitRecord> trace(const std::vector<gpu::Ray>& rays) const override {
+        std::vector<gpu::HitRecord> hits(rays.size());
+        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 256), [&](const auto& range) {
+            bruteref::BruteKernels k = kernels();
+            for (std::size_t i = range.begin(); i != range.end(); ++i) hits[i] = k.rtTrace(rays[i]);
+        });
+        return hits;
+    }
+
+    void traceLoops(const gpu::Ray& ray, std::vector<std::uint32_t>& loopLog) const override {
+        // One outer iteration whose triangle loop runs over every triangle: no need to trace.
+        (void)ray;
+        loopLog.assign(1, std::uint32_t(triangles_.size()));
+    }
+
+    MultipassResult simulateMultipass(const std::vector<gpu::Ray>& rays, const MultipassOptions& options) const override {
+        bruteref::BruteKernels k = kernels();
+        k.traverseStepsPerPass = options.traverseStepsPerPass;
+        k.intersectionsPerPass = options.intersectionsPerPass;
+        k.suppressFinishedReads = options.suppressFinishedReads ? 1u : 0u;
+        return rtbench::simulateMultipass(k, rays, options, multipassPassCap(options));
+    }
+
+    // One "cell" holding every triangle.
+    std::uint64_t multipassPassCap(const MultipassOptions& options) const override {
+        if (options.maxPasses) return options.maxPasses;
+        return rtbench::multipassPassCap(1, triangles_.size(), options);
+    }
+
+    void writeColumns(Row&) const override {}
+    void writeWorkColumns(double, std::uint32_t, std::uint64_t, Row&) const override {}
+
+private:
+    std::vector<gpu::Triangle> triangles_;
+    gpu::BruteParams params_{};
+};
+
+std::unique_ptr<Structure> buildBrute(const TriangleMesh& mesh, const RunConfig& run, const DeviceInfo& device) {
+    const std::uint64_t rays = std::uint64_t(run.getInt("camera.width")) * std::uint64_t(run.getInt("camera.height"));
+    const std::uint64_t tests = rays * mesh.triangles.size();
+    const auto limit = std::uint64_t(run.getFloat("structure.max_tests"));
+    if (tests > limit)
+        throw Error("brute force: " + std::to_string(rays) + " rays x " + std::to_string(mesh.triangles.size()) +
+                    " triangles = " + std::to_string(tests) + " ray-triangle tests, over structure.max_tests = " +
+                    std::to_string(limit));
+    checkBindingSize(device, "triangle vertex (" + std::to_string(mesh.triangles.size()) + " triangles)",
+                     mesh.triangles.size() * sizeof(gpu::Triangle));
+    return std::make_unique<BruteStructure>(mesh);
+}
+
+}  // namespace
+
+const StructureType& bruteStructureType() {
+    static const StructureType type = [] {
+        StructureType t;
+        t.name = "brute_force";
+        t.help = "no structure: every ray tests every triangle";
+        t.keys = {
+            {"structure.max_tests", ValueType::Float, "brute force: refuse a run of more ray-triangle tests than this (rays x triangles)", 4e9, false, 1, 1e15},
+        };
+        t.build = buildBrute;
+        return t;
+    }();
+    return type;
+}
+
+}  // namespace rtbench

@@ -1,0 +1,10 @@
+// Brute force as a method's structure (methods/structure.h): no structure at all, every ray
+// tests every triangle. The baseline of "no more structure than a scene needs".
+#pragma once
+#include "methods/structure.h"
+
+namespace rtbench {
+
+const StructureType& bruteStructureType();
+
+}  // namespace rtbench

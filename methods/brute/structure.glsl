@@ -1,0 +1,2 @@
+// Brute force's per-ray work for the generic kernels (kernels/*.comp).
+#include "brute_traversal.glsl"

@@ -1,0 +1,195 @@
+#include "bvh_structure.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <cstring>
+
+#include "methods/multipass/multipass_simulator.h"
+#include "structures/error.h"
+
+namespace rtbench {
+
+namespace bvhref {
+// The shared GLSL source as C++ (see methods/grid/grid_reference.h for how).
+using namespace glm;
+using namespace rtbench::gpu;
+#define RT_OUT(T) T&
+#define RT_INOUT(T) T&
+#define RT_ON_OUTER() \
+    if (loopLog) loopLog->push_back(0);
+#define RT_ON_INNER() \
+    if (loopLog) ++loopLog->back();
+#define precise
+struct BvhKernels {
+    using RtTraversalState = BvhTraversalState;
+    const BvhNode* nodes;
+    const std::uint32_t* triangleList;
+    const Triangle* triangles;
+    BvhParams params;
+    std::uint32_t traverseStepsPerPass = 1;
+    std::uint32_t intersectionsPerPass = 1;
+    std::uint32_t suppressFinishedReads = 0;
+    std::vector<std::uint32_t>* loopLog = nullptr;
+#include "../../kernels/ray_math.glsl"
+#include "../../kernels/multipass_events.glsl"
+#include "bvh_traversal.glsl"
+};
+#undef precise
+#undef RT_ON_INNER
+#undef RT_ON_OUTER
+#undef RT_INOUT
+#undef RT_OUT
+}  // namespace bvhref
+
+namespace {
+
+std::string num(double v, int significant = 6) { return formatNumber(v, significant); }
+
+bvhref::BvhKernels kernelsOf(const FlatBvh& bvh) {
+    bvhref::BvhKernels k{};
+    k.nodes = bvh.nodes.data();
+    k.triangleList = bvh.triangleList.data();
+    k.triangles = bvh.triangles.data();
+    k.params = bvh.params;
+    return k;
+}
+
+class BvhStructure final : public Structure {
+public:
+    explicit BvhStructure(FlatBvh bvh) : bvh_(std::move(bvh)) {
+        memoryBytes = bvh_.stats.bytes;
+        buildMs = bvh_.stats.buildMs;
+    }
+
+    std::string kernelPrefix() const override { return "bvh"; }
+
+    std::vector<StructureBuffer> buffers() const override {
+        return {{"BVH node (" + std::to_string(bvh_.nodes.size()) + " nodes)", bvh_.nodes.size() * sizeof(gpu::BvhNode),
+                 bvh_.nodes.data()},
+                {"BVH triangle list (" + std::to_string(bvh_.triangleList.size()) + " references)",
+                 bvh_.triangleList.size() * 4, bvh_.triangleList.data()},
+                {"triangle vertex (" + std::to_string(bvh_.triangles.size()) + " triangles)",
+                 bvh_.triangles.size() * sizeof(gpu::Triangle), bvh_.triangles.data()}};
+    }
+
+    std::vector<std::uint8_t> params() const override {
+        std::vector<std::uint8_t> bytes(sizeof(gpu::BvhParams));
+        std::memcpy(bytes.data(), &bvh_.params, sizeof(gpu::BvhParams));
+        return bytes;
+    }
+
+    StructureCosts costs() const override {
+        StructureCosts c;
+        c.bytesPerCellVisit = sizeof(gpu::BvhNode);      // an inner node visited is one node read
+        c.bytesPerStructureRead = sizeof(gpu::BvhNode);
+        c.bytesPerListEntry = 4;
+        c.traversalStateBytes = sizeof(gpu::BvhTraversalState);
+        c.stackBytes = sizeof(gpu::BvhTraversalState::stack);
+        return c;
+    }
+
+    std::vector<gpu::HitRecord> trace(const std::vector<gpu::Ray>& rays) const override {
+        return traceBvhReference(bvh_, rays);
+    }
+
+    void traceLoops(const gpu::Ray& ray, std::vector<std::uint32_t>& loopLog) const override {
+        bvhref::BvhKernels k = kernelsOf(bvh_);
+        k.loopLog = &loopLog;
+        k.rtTrace(ray);
+    }
+
+    MultipassResult simulateMultipass(const std::vector<gpu::Ray>& rays, const MultipassOptions& options) const override {
+        bvhref::BvhKernels k = kernelsOf(bvh_);
+        k.traverseStepsPerPass = options.traverseStepsPerPass;
+        k.intersectionsPerPass = options.intersectionsPerPass;
+        k.suppressFinishedReads = options.suppressFinishedReads ? 1u : 0u;
+        return rtbench::simulateMultipass(k, rays, options, multipassPassCap(options));
+    }
+
+    // A ray visits each reference at most once: inner nodes + leaves bound its steps; a leaf holds
+    // at most largestLeaf triangles.
+    std::uint64_t multipassPassCap(const MultipassOptions& options) const override {
+        if (options.maxPasses) return options.maxPasses;
+        return rtbench::multipassPassCap(bvh_.stats.innerNodes + bvh_.stats.leaves, bvh_.stats.largestLeaf, options);
+    }
+
+    void writeColumns(Row& row) const override {
+        const BvhStats& s = bvh_.stats;
+        row["bvh_inner_nodes"] = std::to_string(s.innerNodes);
+        row["bvh_leaves"] = std::to_string(s.leaves);
+        row["bvh_depth"] = std::to_string(s.depth);
+        row["bvh_largest_leaf"] = std::to_string(s.largestLeaf);
+        row["bvh_references"] = std::to_string(s.references);
+        row["bvh_sah_cost"] = num(s.sahCost);
+    }
+
+    void writeWorkColumns(double cellsPerRayMean, std::uint32_t cellsPerRayMax, std::uint64_t cellBytes,
+                          Row& row) const override {
+        row["nodes_per_ray_mean"] = num(cellsPerRayMean);
+        row["nodes_per_ray_max"] = std::to_string(cellsPerRayMax);
+        row["bytes_node"] = std::to_string(cellBytes);
+    }
+
+private:
+    FlatBvh bvh_;
+};
+
+BvhBuildOptions buildOptions(const RunConfig& run) {
+    BvhBuildOptions o;
+    o.maxLeafSize = unsigned(run.getInt("structure.leaf_size"));
+    o.quality = run.getString("structure.quality");
+    o.embreeConfig = run.getString("baseline.embree_config");
+    return o;
+}
+
+std::unique_ptr<Structure> buildBvhStructure(const TriangleMesh& mesh, const RunConfig& run, const DeviceInfo& device) {
+    // What the device must hold is known before the build but for the node count (at most
+    // 2n - 1 for n triangles; checked again at upload).
+    const std::uint64_t n = mesh.triangles.size();
+    checkBindingSize(device, "triangle vertex (" + std::to_string(n) + " triangles)", n * sizeof(gpu::Triangle));
+    checkBindingSize(device, "BVH triangle list (" + std::to_string(n) + " references)", n * 4);
+    return bvhStructure(buildBvh(mesh, buildOptions(run)));
+}
+
+}  // namespace
+
+std::vector<gpu::HitRecord> traceBvhReference(const FlatBvh& bvh, const std::vector<gpu::Ray>& rays) {
+    std::vector<gpu::HitRecord> hits(rays.size());
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 4096), [&](const auto& range) {
+        bvhref::BvhKernels k = kernelsOf(bvh);
+        for (std::size_t i = range.begin(); i != range.end(); ++i) hits[i] = k.rtTrace(rays[i]);
+    });
+    return hits;
+}
+
+std::unique_ptr<Structure> bvhStructure(FlatBvh bvh) { return std::make_unique<BvhStructure>(std::move(bvh)); }
+
+const StructureType& bvhStructureType() {
+    static const StructureType type = [] {
+        using K = ColumnKind;
+        StructureType t;
+        t.name = "bvh";
+        t.help = "binary BVH from Embree's builder (rtcBuildBVH), both child boxes per node (Aila & Laine 2009)";
+        t.keys = {
+            {"structure.leaf_size", ValueType::Int, "BVH: most triangles per leaf (Embree's maxLeafSize)", std::int64_t(4), false, 1, double(gpu::kBvhMaxLeafSize)},
+            {"structure.quality", ValueType::String, "BVH: medium (binned SAH) or low (Morton codes: faster build, worse tree)", std::string("medium"), false, -1e300, 1e300, {"medium", "low"}},
+        };
+        t.columns = {
+            {"bvh_inner_nodes", K::Count, "nodes", "BVH inner nodes (80 bytes each)"},
+            {"bvh_leaves", K::Count, "leaves", "BVH leaves"},
+            {"bvh_depth", K::Count, "levels", "deepest leaf's distance from the root"},
+            {"bvh_largest_leaf", K::Count, "triangles", "most triangles in one leaf"},
+            {"bvh_references", K::Count, "references", "triangle-list entries (each triangle once)"},
+            {"bvh_sah_cost", K::Count, "", "SAH cost of the tree (traversal and intersection cost 1)"},
+            {"nodes_per_ray_mean", K::Count, "nodes", "BVH inner nodes visited per ray, mean"},
+            {"nodes_per_ray_max", K::Count, "nodes", "BVH inner nodes visited per ray, max"},
+            {"bytes_node", K::Count, "bytes", "BVH nodes read"},
+        };
+        t.build = buildBvhStructure;
+        return t;
+    }();
+    return type;
+}
+
+}  // namespace rtbench

@@ -1,0 +1,19 @@
+// The BVH as a method's structure (methods/structure.h): Embree's builder, flattened to the
+// layout of bvh_layout.h, traversed per ray with a stack (bvh_traversal.glsl).
+#pragma once
+#include <memory>
+
+#include "bvh_build.h"
+#include "methods/structure.h"
+
+namespace rtbench {
+
+const StructureType& bvhStructureType();
+
+// A built BVH as a Structure (tests run strategies on trees they build themselves).
+std::unique_ptr<Structure> bvhStructure(FlatBvh bvh);
+
+// The CPU reference on its own: every ray through bvh_traversal.glsl compiled as C++.
+std::vector<gpu::HitRecord> traceBvhReference(const FlatBvh& bvh, const std::vector<gpu::Ray>& rays);
+
+}  // namespace rtbench

@@ -1,0 +1,225 @@
+// BVH ray traversal: ONE source for the GPU kernels (through structure.glsl) and the CPU reference
+// (methods/bvh/bvh_structure.cpp), included after kernels/ray_math.glsl and
+// kernels/multipass_events.glsl; the buffers `nodes`, `triangleList`, `triangles` and the push
+// constant `params` are declared by structure_layout.glsl in GLSL, members in C++.
+//
+// Algorithm: a per-ray stack walk of a binary BVH whose nodes hold both children's boxes (Aila &
+// Laine 2009): at an inner node both child boxes are clipped against [tMin, nearest hit so far];
+// the walk continues with the nearer child hit and pushes the other; a leaf's triangles are all
+// tested (Moller-Trumbore, closest hit kept); then the next reference is popped. As in Aila &
+// Laine's kernels the stack holds references only, so a popped subtree is not re-tested against
+// a nearer hit found meanwhile: a popped inner node's child boxes are, a popped leaf's triangles
+// are tested (and rejected by distance).
+//
+// The same walk serves both strategies: the branching kernel keeps its state (the reference to
+// visit next, the stack) in local variables; the multipass kernels keep it, with the position in
+// a leaf's list, in a BvhTraversalState saved in memory between passes. Both order and clip
+// children with rtBvhChildren, and their hit records are identical, counters included.
+// Counters: cellsVisited = inner nodes visited (each one 80-byte node read); traversalSteps =
+// references visited (inner nodes and leaves).
+
+#ifndef RT_ON_OUTER
+#define RT_ON_OUTER()
+#endif
+#ifndef RT_ON_INNER
+#define RT_ON_INNER()
+#endif
+
+bool rtBvhIsLeaf(uint ref) { return (ref & kBvhLeaf) != 0u; }
+uint rtBvhLeafFirst(uint ref) { return ref & 0x00FFFFFFu; }
+uint rtBvhLeafCount(uint ref) { return ((ref >> 24u) & 0x7Fu) + 1u; }
+
+// Clips the ray to the scene box; false when the ray misses it (the walk then visits nothing).
+bool rtBvhEnter(Ray ray) {
+    vec3 o = vec3(ray.originTMin);
+    vec3 d = vec3(ray.directionTMax);
+    vec3 invD = rtInverseDirection(d);
+    float tEnter;
+    float tLeave;
+    return rtClipToBox(o, d, invD, ray.originTMin.w, ray.directionTMax.w, vec3(params.boundsMin),
+                       vec3(params.boundsMax), tEnter, tLeave);
+}
+
+// The children of inner node `n` the ray enters within [tMin, tBest], nearer first (child 0 on a
+// tie): returns how many (0, 1 or 2) and sets `first` (and `second`).
+uint rtBvhChildren(vec3 o, vec3 d, vec3 invD, float tMin, float tBest, BvhNode n, RT_OUT(uint) first,
+                   RT_OUT(uint) second) {
+    float enter0;
+    float leave0;
+    float enter1;
+    float leave1;
+    bool hit0 = n.children.x != kBvhNone &&
+                rtClipToBox(o, d, invD, tMin, tBest, vec3(n.min0), vec3(n.max0), enter0, leave0);
+    bool hit1 = n.children.y != kBvhNone &&
+                rtClipToBox(o, d, invD, tMin, tBest, vec3(n.min1), vec3(n.max1), enter1, leave1);
+    first = hit0 ? n.children.x : n.children.y;
+    second = n.children.y;
+    if (hit0 && hit1 && enter1 < enter0) {
+        first = n.children.y;
+        second = n.children.x;
+    }
+    return (hit0 ? 1u : 0u) + (hit1 ? 1u : 0u);
+}
+
+// The branching ray caster: the whole walk in one loop over local variables (the stack in
+// registers or private memory), one outer iteration per reference visited, the triangle loop
+// inside it for a leaf. A push beyond kBvhStackSize cannot happen (the builder bounds the depth);
+// were it to, the walk would end there, as the multipass walk does.
+HitRecord rtTrace(Ray ray) {
+    HitRecord h;
+    h.t = kNoHitT;
+    h.primitive = kNoHit;
+    h.u = 0.0f;
+    h.v = 0.0f;
+    h.cellsVisited = 0u;
+    h.trianglesTested = 0u;
+    h.traversalSteps = 0u;
+    h.pad = 0u;
+    if (!rtBvhEnter(ray)) return h;
+    vec3 o = vec3(ray.originTMin);
+    vec3 d = vec3(ray.directionTMax);
+    vec3 invD = rtInverseDirection(d);
+    float tMin = ray.originTMin.w;
+    float tBest = ray.directionTMax.w;
+    float uBest = 0.0f;
+    float vBest = 0.0f;
+    uint primBest = kNoHit;
+    uint stack[kBvhStackSize];
+    uint size = 0u;
+    uint ref = 0u;  // the root, always an inner node
+    while (true) {
+        RT_ON_OUTER();
+        h.traversalSteps += 1u;
+        bool next = true;
+        if (rtBvhIsLeaf(ref)) {
+            uint first = rtBvhLeafFirst(ref);
+            uint end = first + rtBvhLeafCount(ref);
+            for (uint i = first; i < end; ++i) {
+                RT_ON_INNER();
+                uint tri = triangleList[i];
+                h.trianglesTested += 1u;
+                if (rtIntersectTriangle(o, d, tMin, vec3(triangles[tri].v0), vec3(triangles[tri].v1),
+                                        vec3(triangles[tri].v2), tBest, uBest, vBest))
+                    primBest = tri;
+            }
+            next = false;
+        } else {
+            h.cellsVisited += 1u;
+            uint first;
+            uint second;
+            uint entered = rtBvhChildren(o, d, invD, tMin, tBest, nodes[ref], first, second);
+            if (entered == 2u) {
+                if (size == kBvhStackSize) break;
+                stack[size] = second;
+                size += 1u;
+            }
+            if (entered > 0u) ref = first;
+            else next = false;
+        }
+        if (!next) {  // pop
+            if (size == 0u) break;
+            size -= 1u;
+            ref = stack[size];
+        }
+    }
+    if (primBest != kNoHit) {
+        h.t = tBest;
+        h.primitive = primBest;
+        h.u = uBest;
+        h.v = vBest;
+    }
+    return h;
+}
+
+// ---- multipass (Purcell et al. 2002 §3.2 on a BVH): traverse passes take walk steps until a
+// leaf is reached (state waiting), intersect passes test its triangles and pop.
+
+uint mpBvhDone(RayHitState hit) { return hit.primitive != kNoHit ? kStateDoneHit : kStateLeftGrid; }
+
+// Continues with the reference on top of the saved stack: traversing, or done when it is empty.
+uint mpBvhPop(RT_INOUT(BvhTraversalState) ts, RayHitState hit) {
+    if (ts.walk.y == 0u) return mpBvhDone(hit);
+    ts.walk.y -= 1u;
+    ts.walk.x = ts.stack[ts.walk.y];
+    return kStateTraversing;
+}
+
+uint mpSetup(Ray ray, RT_OUT(BvhTraversalState) ts, RT_OUT(RayHitState) hit, RT_INOUT(MpEvents) e) {
+    hit.t = ray.directionTMax.w;
+    hit.primitive = kNoHit;
+    hit.u = 0.0f;
+    hit.v = 0.0f;
+    ts.walk = uvec4(0u);  // the root, an empty stack
+    for (uint i = 0u; i < kBvhStackSize; ++i) ts.stack[i] = 0u;
+    return rtBvhEnter(ray) ? kStateTraversing : kStateMissedBox;
+}
+
+// Traverse pass: up to traverseStepsPerPass walk steps (loop unrolling). A step visits an inner
+// node, or enters a leaf (its triangles are then waiting).
+uint mpTraverse(Ray ray, RT_INOUT(BvhTraversalState) ts, RayHitState hit, RT_INOUT(MpEvents) e) {
+    vec3 o = vec3(ray.originTMin);
+    vec3 d = vec3(ray.directionTMax);
+    vec3 invD = rtInverseDirection(d);
+    uint state = kStateTraversing;
+    for (uint i = 0u; i < traverseStepsPerPass; ++i) {
+        if (state == kStateTraversing) {
+            e.steps += 1u;
+            uint ref = ts.walk.x;
+            if (rtBvhIsLeaf(ref)) {
+                ts.walk.z = rtBvhLeafFirst(ref);
+                ts.walk.w = rtBvhLeafFirst(ref) + rtBvhLeafCount(ref);
+                state = kStateWaiting;
+            } else {
+                e.visited += 1u;
+                e.structureReads += 1u;
+                uint first;
+                uint second;
+                uint entered = rtBvhChildren(o, d, invD, ray.originTMin.w, hit.t, nodes[ref], first, second);
+                if (entered == 2u && ts.walk.y == kBvhStackSize) {
+                    state = mpBvhDone(hit);  // cannot happen: see rtTrace
+                } else {
+                    if (entered == 2u) {
+                        ts.stack[ts.walk.y] = second;
+                        ts.walk.y += 1u;
+                    }
+                    if (entered > 0u) ts.walk.x = first;
+                    else state = mpBvhPop(ts, hit);
+                }
+            }
+        } else if (suppressFinishedReads == 0u) {
+            // Non-branching hardware runs the rest of the unrolled loop: it reads, then discards.
+            e.structureReads += 1u;
+            e.sink ^= nodes[0u].children.x ^ floatBitsToUint(nodes[0u].min0.x);
+        }
+    }
+    return state;
+}
+
+// Intersect pass: up to intersectionsPerPass triangles of the current leaf; after its last one
+// the walk pops (traversing) or is done.
+uint mpIntersect(Ray ray, RT_INOUT(BvhTraversalState) ts, RT_INOUT(RayHitState) hit, RT_INOUT(MpEvents) e) {
+    vec3 o = vec3(ray.originTMin);
+    vec3 d = vec3(ray.directionTMax);
+    uint listPos = ts.walk.z;
+    uint listEnd = ts.walk.w;
+    uint state = kStateWaiting;
+    for (uint i = 0u; i < intersectionsPerPass; ++i) {
+        if (state == kStateWaiting) {
+            uint tri = triangleList[listPos];
+            e.triangleReads += 1u;
+            e.tested += 1u;
+            if (rtIntersectTriangle(o, d, ray.originTMin.w, vec3(triangles[tri].v0), vec3(triangles[tri].v1),
+                                    vec3(triangles[tri].v2), hit.t, hit.u, hit.v))
+                hit.primitive = tri;
+            listPos += 1u;
+            if (listPos == listEnd) state = mpBvhPop(ts, hit);
+        } else if (suppressFinishedReads == 0u) {
+            uint tri = triangleList[listEnd - 1u];  // reads, then discards
+            e.triangleReads += 1u;
+            e.sink ^= tri ^ floatBitsToUint(triangles[tri].v0.x) ^ floatBitsToUint(triangles[tri].v1.y) ^
+                      floatBitsToUint(triangles[tri].v2.z);
+        }
+    }
+    ts.walk.z = listPos;
+    return state;
+}
