@@ -132,6 +132,25 @@ TEST_F(Config, AKeyNoRunReadsIsAnError) {
                       "strategy.type=multipass and strategy.scheduling=oracle");
 }
 
+// The registry (methods/registry.cpp) gives structure.type its values and each structure its keys.
+TEST_F(Config, AnUnknownStructureListsTheKnownOnesAndAStructuresKeyGivenToAnotherIsNamed) {
+    EXPECT_EQ(errorOf(kMinimal + "[structure]\ntype = \"octree\"\n"),
+              path_ + ":6: key 'structure.type': 'octree' is not allowed (allowed: uniform_grid, bvh, brute_force)");
+    EXPECT_EQ(errorOf(kMinimal + "[structure]\ntype = \"uniform_grid\"\nleaf_size = 8\n"),
+              path_ + ":7: key 'structure.leaf_size' is never read: it applies only when structure.type=bvh");
+    EXPECT_EQ(errorOf(kMinimal + "[structure]\ntype = \"bvh\"\nmin_dim = 8\n"),
+              path_ + ":7: key 'structure.min_dim' is never read: it applies only when structure.type=uniform_grid");
+    // A sweep over structures gives each its own keys only.
+    const ExperimentPlan plan = loadExperiment(
+        write(kMinimal + "[structure]\ntype = [\"uniform_grid\", \"bvh\", \"brute_force\"]\nmin_dim = 8\nleaf_size = [2, 8]\n"));
+    ASSERT_EQ(plan.runs.size(), 4u);
+    EXPECT_TRUE(plan.runs[0].has("structure.min_dim"));
+    EXPECT_FALSE(plan.runs[0].has("structure.leaf_size"));
+    EXPECT_EQ(plan.runs[2].getInt("structure.leaf_size"), 8);
+    EXPECT_FALSE(plan.runs[3].has("structure.min_dim"));
+    EXPECT_TRUE(plan.runs[3].has("structure.max_tests"));
+}
+
 TEST_F(Config, KeysForOneStrategyAreDroppedFromTheOthersRunsWithoutDuplicates) {
     const ExperimentPlan plan = loadExperiment(
         write(kMinimal + "[strategy]\ntype = [\"branching\", \"multipass\"]\ntraverse_steps_per_pass = [1, 4]\n"));

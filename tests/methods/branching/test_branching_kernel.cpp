@@ -13,41 +13,10 @@
 #include "methods/grid/grid_structure.h"
 #include "structures/procedural.h"
 #include "tests/device/test_device.h"
+#include "tests/methods/test_rays.h"
 
 namespace rtbench {
 namespace {
-
-// Random rays: origins inside and around the scene box, directions random, along an axis, or
-// parallel to an axis plane.
-std::vector<gpu::Ray> randomRays(const Bounds3& box, unsigned count, unsigned seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> u(0.0f, 1.0f), s(-1.0f, 1.0f);
-    std::vector<gpu::Ray> rays;
-    const glm::vec3 lo = box.min - 0.3f * box.extent(), size = 1.6f * box.extent();
-    for (unsigned i = 0; i < count; ++i) {
-        const glm::vec3 o = lo + glm::vec3(u(rng), u(rng), u(rng)) * size;
-        glm::vec3 d(s(rng), s(rng), s(rng));
-        if (i % 7 == 3) d = glm::vec3(0.0f), d[i % 3] = s(rng) < 0 ? -1.0f : 1.0f;
-        if (i % 7 == 5) d[i % 3] = 0.0f;
-        if (glm::length(d) == 0.0f) d = glm::vec3(0, 1, 0);
-        rays.push_back({glm::vec4(o, 0.0f), glm::vec4(d, gpu::kNoHitT)});
-    }
-    return rays;
-}
-
-void expectIdentical(const std::vector<gpu::HitRecord>& gpuHits, const std::vector<gpu::HitRecord>& cpuHits) {
-    ASSERT_EQ(gpuHits.size(), cpuHits.size());
-    std::size_t differing = 0;
-    for (std::size_t i = 0; i < gpuHits.size(); ++i) {
-        if (std::memcmp(&gpuHits[i], &cpuHits[i], sizeof(gpu::HitRecord)) == 0) continue;
-        if (++differing <= 5)
-            ADD_FAILURE() << "ray " << i << ": GPU t=" << gpuHits[i].t << " prim=" << gpuHits[i].primitive
-                          << " voxels=" << gpuHits[i].cellsVisited << " tests=" << gpuHits[i].trianglesTested
-                          << " | CPU t=" << cpuHits[i].t << " prim=" << cpuHits[i].primitive
-                          << " voxels=" << cpuHits[i].cellsVisited << " tests=" << cpuHits[i].trianglesTested;
-    }
-    EXPECT_EQ(differing, 0u);
-}
 
 using BranchingKernel = VulkanTest;
 
