@@ -251,7 +251,7 @@ VulkanContext::VulkanContext(const std::string& deviceChoice, bool validation) {
     if (timestampValidBits_ > 0) {
         VkQueryPoolCreateInfo queryInfo{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
         queryInfo.queryType = VK_QUERY_TYPE_TIMESTAMP;
-        queryInfo.queryCount = 2;
+        queryInfo.queryCount = 2 * kDispatchesPerSubmit;
         VK_CHECK(vkCreateQueryPool(device_, &queryInfo, nullptr, &queryPool_));
     }
     VkFenceCreateInfo fenceInfo{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
@@ -498,44 +498,58 @@ double VulkanContext::dispatch(const ComputePipeline& p, const std::vector<const
 
 double VulkanContext::dispatch(const ComputePipeline& p, VkDescriptorSet set, const void* pushConstants,
                                std::uint64_t invocations) {
-    // Workgroups: a 2D grid of groups when x alone would exceed maxComputeWorkGroupCount[0].
-    const std::uint64_t groups = (invocations + p.workgroupSize - 1) / p.workgroupSize;
-    const std::uint64_t groupsX = std::min<std::uint64_t>(groups, info_.maxWorkGroupCountX);
-    const std::uint64_t groupsY = (groups + groupsX - 1) / groupsX;
+    return dispatchAll({{&p, set, pushConstants, invocations}}).front();
+}
 
-    VkCommandBuffer cmd = beginOneShot();
-    // Orders earlier dispatches' buffer writes (the previous pass) before this kernel's reads.
-    VkMemoryBarrier previous{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-    previous.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
-    previous.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &previous, 0, nullptr, 0, nullptr);
-    if (queryPool_) {
-        vkCmdResetQueryPool(cmd, queryPool_, 0, 2);
-        vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queryPool_, 0);
+std::vector<double> VulkanContext::dispatchAll(const std::vector<DispatchCall>& calls) {
+    std::vector<double> ms;
+    for (std::size_t chunk = 0; chunk < calls.size(); chunk += kDispatchesPerSubmit) {
+        const std::uint32_t n = std::uint32_t(std::min<std::size_t>(kDispatchesPerSubmit, calls.size() - chunk));
+        VkCommandBuffer cmd = beginOneShot();
+        if (queryPool_) vkCmdResetQueryPool(cmd, queryPool_, 0, 2 * n);
+        for (std::uint32_t i = 0; i < n; ++i) {
+            const DispatchCall& call = calls[chunk + i];
+            const ComputePipeline& p = *call.pipeline;
+            // Workgroups: a 2D grid of groups when x alone would exceed maxComputeWorkGroupCount[0].
+            const std::uint64_t groups = (call.invocations + p.workgroupSize - 1) / p.workgroupSize;
+            const std::uint64_t groupsX = std::max<std::uint64_t>(std::min<std::uint64_t>(groups, info_.maxWorkGroupCountX), 1);
+            const std::uint64_t groupsY = (groups + groupsX - 1) / groupsX;
+            // Orders earlier buffer writes (uploads, the previous pass) before this kernel's reads and writes.
+            VkMemoryBarrier previous{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+            previous.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+            previous.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+            vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                                 VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &previous, 0, nullptr, 0, nullptr);
+            if (queryPool_) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, queryPool_, 2 * i);
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline);
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout, 0, 1, &call.set, 0, nullptr);
+            if (p.pushConstantBytes)
+                vkCmdPushConstants(cmd, p.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, p.pushConstantBytes, call.pushConstants);
+            if (groups) vkCmdDispatch(cmd, static_cast<std::uint32_t>(groupsX), static_cast<std::uint32_t>(groupsY), 1);
+            if (queryPool_) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queryPool_, 2 * i + 1);
+        }
+        // Orders the kernels' buffer writes before a read-back copy or a host read of mapped memory.
+        VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+        barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+        barrier.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_HOST_READ_BIT;
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                             VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0,
+                             nullptr, 0, nullptr);
+        submitAndWait(cmd);
+
+        if (!queryPool_) {
+            ms.insert(ms.end(), n, -1.0);
+            continue;
+        }
+        std::vector<std::uint64_t> stamps(2 * n);
+        VK_CHECK(vkGetQueryPoolResults(device_, queryPool_, 0, 2 * n, stamps.size() * sizeof(std::uint64_t),
+                                       stamps.data(), sizeof(std::uint64_t),
+                                       VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+        const std::uint64_t mask = timestampValidBits_ >= 64 ? ~0ull : ((1ull << timestampValidBits_) - 1);
+        for (std::uint32_t i = 0; i < n; ++i)
+            ms.push_back(static_cast<double>((stamps[2 * i + 1] - stamps[2 * i]) & mask) * info_.timestampPeriodNs * 1e-6);
     }
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.pipeline);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout, 0, 1, &set, 0, nullptr);
-    if (p.pushConstantBytes)
-        vkCmdPushConstants(cmd, p.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, p.pushConstantBytes, pushConstants);
-    vkCmdDispatch(cmd, static_cast<std::uint32_t>(groupsX), static_cast<std::uint32_t>(groupsY), 1);
-    if (queryPool_) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queryPool_, 1);
-    // Orders the kernel's buffer writes before a read-back copy or a host read of mapped memory.
-    VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-    barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-    barrier.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_HOST_READ_BIT;
-    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                         VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0,
-                         nullptr, 0, nullptr);
-    submitAndWait(cmd);
-
-    if (!queryPool_) return -1.0;
-    std::uint64_t stamps[2];
-    VK_CHECK(vkGetQueryPoolResults(device_, queryPool_, 0, 2, sizeof(stamps), stamps, sizeof(std::uint64_t),
-                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-    const std::uint64_t mask = timestampValidBits_ >= 64 ? ~0ull : ((1ull << timestampValidBits_) - 1);
-    const std::uint64_t ticks = (stamps[1] - stamps[0]) & mask;
-    return static_cast<double>(ticks) * info_.timestampPeriodNs * 1e-6;
+    return ms;
 }
 
 }  // namespace rtbench

@@ -92,6 +92,17 @@ public:
     // waits, and returns the GPU time in ms from timestamps (or -1 where unsupported).
     double dispatch(const ComputePipeline& pipeline, VkDescriptorSet set, const void* pushConstants,
                     std::uint64_t invocations);
+    // Many dispatches recorded into one command buffer, each ordered after the one before by a
+    // barrier and timed by its own pair of timestamps, submitted once (in chunks of
+    // kDispatchesPerSubmit); returns each one's GPU time in ms (-1 where unsupported).
+    struct DispatchCall {
+        const ComputePipeline* pipeline;
+        VkDescriptorSet set;
+        const void* pushConstants;
+        std::uint64_t invocations;
+    };
+    static constexpr std::uint32_t kDispatchesPerSubmit = 1024;
+    std::vector<double> dispatchAll(const std::vector<DispatchCall>& calls);
     // The same with a descriptor set made for this one dispatch.
     double dispatch(const ComputePipeline& pipeline, const std::vector<const Buffer*>& buffers,
                     const void* pushConstants, std::uint64_t invocations);

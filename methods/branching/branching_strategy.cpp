@@ -47,10 +47,12 @@ BranchingRun runBranching(VulkanContext& vk, const Structure& structure, const s
     }
     spec.instrument = false;
     ComputePipeline timed = buffers.createKernel(kernel, spec);
-    for (int i = 0; i < timing.warmups; ++i)
-        vk.dispatch(timed, buffers.descriptorSet(timed), buffers.pushConstants(), rays.size());
-    for (int i = 0; i < timing.repetitions; ++i)
-        run.gpuMs.push_back(vk.dispatch(timed, buffers.descriptorSet(timed), buffers.pushConstants(), rays.size()));
+    // Warm-ups and timed repetitions recorded into one submission, each timed on its own.
+    const std::vector<VulkanContext::DispatchCall> calls(
+        std::size_t(timing.warmups + timing.repetitions),
+        {&timed, buffers.descriptorSet(timed), buffers.pushConstants(), rays.size()});
+    const std::vector<double> ms = vk.dispatchAll(calls);
+    run.gpuMs.assign(ms.begin() + timing.warmups, ms.end());
     vk.destroy(timed);
     expectSameHits(buffers.downloadHits(), run.hits, "branching kernel");
     return run;

@@ -19,14 +19,14 @@ struct Pipelines {
     }
 };
 
-// One run of the whole pass loop; the counts beyond the oracle's are filled when instrumented.
+// The instrumented run of the pass loop: after each pass the host reads the ray-state counts (the
+// oracle's occlusion query) and the event counts.
 MultipassCounts runPasses(VulkanContext& vk, GpuBuffers& buffers, Pipelines& pipelines, const MultipassOptions& options,
-                          std::uint64_t cap, std::array<double, kPassKinds>& msByKind) {
-    msByKind.fill(0.0);
+                          std::uint64_t cap) {
     return runPassLoop(options, cap, [&](PassKind kind) {
         buffers.resetPassCounters();
         const ComputePipeline& p = pipelines.byKind[static_cast<int>(kind)];
-        msByKind[static_cast<int>(kind)] += vk.dispatch(p, buffers.descriptorSet(p), buffers.pushConstants(), buffers.rayCount());
+        vk.dispatch(p, buffers.descriptorSet(p), buffers.pushConstants(), buffers.rayCount());
         const gpu::PassCounters c = buffers.readPassCounters();
         PassSums sums;
         sums.traversing = c.counts[gpu::kCountTraversing];
@@ -93,22 +93,32 @@ MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const s
     spec.traverseStepsPerPass = options.traverseStepsPerPass;
     spec.intersectionsPerPass = options.intersectionsPerPass;
     spec.suppressFinishedReads = options.suppressFinishedReads;
-    std::array<double, kPassKinds> ms{};
     {
         Pipelines counted(vk, buffers, structure.kernelPrefix(), spec);
-        run.counts = runPasses(vk, buffers, counted, options, cap, ms);
+        run.counts = runPasses(vk, buffers, counted, options, cap);
         run.hits = buffers.downloadHits();
         run.traversalStates = buffers.downloadTraversalStates();
     }
+    // Timed runs: the instrumented run's pass sequence (the oracle's choices, which depend only on
+    // the rays and the structure) replayed without instrumentation, warm-ups and repetitions
+    // recorded into one submission, every pass timed on its own. Their hits must equal the
+    // instrumented run's (checked below), so a replay that strayed would be caught.
     spec.instrument = false;
     Pipelines timed(vk, buffers, structure.kernelPrefix(), spec);
-    for (int i = 0; i < timing.warmups + timing.repetitions; ++i) {
-        const MultipassCounts again = runPasses(vk, buffers, timed, options, cap, ms);
-        if (again.sequence != run.counts.sequence)
-            throw Error("multipass: the timed run's pass sequence differs from the instrumented run's");
-        if (i < timing.warmups) continue;
-        run.gpuMsByKind.push_back(ms);
-        run.gpuMs.push_back(ms[0] + ms[1] + ms[2] + ms[3]);
+    std::vector<VulkanContext::DispatchCall> calls;
+    for (int i = 0; i < timing.warmups + timing.repetitions; ++i)
+        for (PassKind kind : run.counts.sequence) {
+            const ComputePipeline& p = timed.byKind[static_cast<int>(kind)];
+            calls.push_back({&p, buffers.descriptorSet(p), buffers.pushConstants(), buffers.rayCount()});
+        }
+    const std::vector<double> ms = vk.dispatchAll(calls);
+    const std::size_t passes = run.counts.sequence.size();
+    for (int i = timing.warmups; i < timing.warmups + timing.repetitions; ++i) {
+        std::array<double, kPassKinds> byKind{};
+        for (std::size_t p = 0; p < passes; ++p)
+            byKind[static_cast<int>(run.counts.sequence[p])] += ms[std::size_t(i) * passes + p];
+        run.gpuMsByKind.push_back(byKind);
+        run.gpuMs.push_back(byKind[0] + byKind[1] + byKind[2] + byKind[3]);
     }
     expectSameHits(buffers.downloadHits(), run.hits, "multipass kernels");
     return run;

@@ -24,8 +24,9 @@ struct MultipassRun {
     std::vector<std::uint8_t> traversalStates;  // the per-ray state the last pass saved
 };
 
-// One instrumented run, then warm-ups and timed repetitions (instrumentation off; the pass
-// sequence must repeat exactly). Throws rtbench::Error when the pass cap is reached.
+// One instrumented run (the oracle reads the ray-state counts after every pass), then warm-ups
+// and timed repetitions replaying its pass sequence in one submission with instrumentation off;
+// their hits must equal the instrumented run's. Throws rtbench::Error when the pass cap is reached.
 MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
                           const MultipassOptions& options, const TimingOptions& timing);
 
