@@ -52,7 +52,7 @@ const std::vector<KeySpec>& configSchema() {
         add({"experiment.output", ValueType::String, "output folder (relative to the working directory)", std::string("out")});
         add({"experiment.repetitions", ValueType::Int, "timed repetitions per run (median reported)", std::int64_t(5), false, 1, 1000});
         add({"experiment.warmups", ValueType::Int, "untimed warm-up dispatches before timing", std::int64_t(1), false, 0, 100});
-        add({"scene.source", ValueType::String, "mesh file (.off/.obj/.ply/.stl, relative to the config), cgal:NAME, or procedural:christen_a|christen_b", {}, true});
+        add({"scene.source", ValueType::String, "mesh file (.off/.obj/.ply/.stl, relative to the config), scene description (.toml, relative to the config: meshes with transforms and seeded scatters, see structures/scene_description.h), cgal:NAME, or procedural:christen_a|christen_b|christen_b_thesis", {}, true});
         add({"camera.width", ValueType::Int, "image width in pixels", std::int64_t(1024), false, 1, 16384});
         add({"camera.height", ValueType::Int, "image height in pixels", std::int64_t(1024), false, 1, 16384});
         add({"camera.position", ValueType::Float3, "eye position (default: the procedural scene's own viewpoint, else fitted to the scene bounds)", {}});

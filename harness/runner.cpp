@@ -26,6 +26,7 @@
 #include "structures/error.h"
 #include "structures/mesh_io.h"
 #include "structures/procedural.h"
+#include "structures/scene_description.h"
 #include "structures/scene_limits.h"
 #include "version.h"
 
@@ -34,16 +35,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// procedural:NAME, cgal:NAME, a scene description (*.toml) or a mesh file (structures/scene_description.h).
 TriangleMesh loadScene(const std::string& source, const std::string& configDir) {
-    if (source.rfind("procedural:", 0) == 0) return proceduralScene(source.substr(11));
-    if (source.rfind("cgal:", 0) == 0) {
-        TriangleMesh mesh = readMeshFile(resolveCgalMesh(source.substr(5)));
-        mesh.name = source;
-        return mesh;
-    }
-    fs::path p(source);
-    if (p.is_relative()) p = fs::path(configDir) / p;
-    return readMeshFile(p.lexically_normal().string());
+    return loadSceneSource(source, configDir);
 }
 
 glm::vec3 toVec3(const std::array<double, 3>& a) { return glm::vec3(float(a[0]), float(a[1]), float(a[2])); }

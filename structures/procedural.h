@@ -15,9 +15,15 @@ TriangleMesh christenSceneA();
 
 // Scene B: a room (6 inward walls, 12 triangles) with 166 small cubes distributed in it by a
 // fixed-seed generator: 2,004 triangles, many empty voxels and many distinct occluders.
+// Christen's Table 6.1 gives 2,064 (see procedural.cpp for what differs).
 TriangleMesh christenSceneB(std::uint32_t seed = 2005);
 
-// "christen_a" | "christen_b"; throws rtbench::Error listing the names otherwise.
+// Scene B with Table 6.1's 2,064 triangles: the same room and generator, 171 cubes instead of 166
+// (the first 166 are christen_b's cubes, bit for bit). procedural:christen_b_thesis.
+TriangleMesh christenSceneBThesis(std::uint32_t seed = 2005);
+
+// "christen_a" | "christen_b" | "christen_b_thesis"; throws rtbench::Error listing the names
+// otherwise.
 TriangleMesh proceduralScene(const std::string& name);
 
 // The scene's own viewpoint, where fitting to the bounds would not do: scene B is seen from
