@@ -17,6 +17,10 @@ struct DeviceInfo {
     std::string apiVersion;   // "1.3.230"
     std::string type;         // discrete | integrated | virtual | cpu | other
     std::uint32_t subgroupSize = 0;
+    // Loop iterations after which the driver silently ends a kernel invocation (all its loops
+    // together), 0 when none is known: llvmpipe's is 65,535 (Mesa's LP_MAX_TGSI_LOOP_ITERATIONS,
+    // per subgroup: lanes run in lockstep, so the count is the subgroup's).
+    std::uint64_t loopIterationLimit = 0;
     std::uint64_t maxStorageBufferRange = 0;
     std::uint32_t maxWorkGroupCountX = 0;
     std::uint32_t maxPushConstantsSize = 0;

@@ -204,6 +204,7 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
     if (vk.validationMessages().size() != messagesBefore)
         throw Error("the Vulkan validation layer reported: " + vk.validationMessages()[messagesBefore]);
     // The row is complete; a kernel that disagrees with its CPU reference fails it all the same.
+    if (method.truncatedRays) throw Error(method.truncatedWhy);
     if (method.cpuMismatches)
         throw Error("the kernel's hit records differ from the CPU reference's on " + std::to_string(method.cpuMismatches) +
                     " of " + std::to_string(rays.size()) + " rays");

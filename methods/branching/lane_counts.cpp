@@ -7,8 +7,13 @@
 
 namespace rtbench {
 
+LaneCounts operator+(const LaneCounts& a, const LaneCounts& b) {
+    return {a.activeLanes + b.activeLanes, a.laneSlots + b.laneSlots,
+            std::max(a.maxSubgroupIterations, b.maxSubgroupIterations), a.raysInLongSubgroups + b.raysInLongSubgroups};
+}
+
 LaneCounts branchingLaneCounts(const Structure& structure, const std::vector<gpu::Ray>& rays,
-                               unsigned subgroupSize) {
+                               unsigned subgroupSize, std::uint64_t iterationLimit) {
     const std::size_t subgroups = (rays.size() + subgroupSize - 1) / subgroupSize;
     auto count = [&](const tbb::blocked_range<std::size_t>& range, LaneCounts sum) {
         std::vector<std::vector<std::uint32_t>> lanes(subgroupSize);  // triangle-loop trips per outer iteration
@@ -21,24 +26,27 @@ LaneCounts branchingLaneCounts(const Structure& structure, const std::vector<gpu
                 structure.traceLoops(rays[ray], lanes[l]);
                 longest = std::max(longest, lanes[l].size());
             }
+            std::uint64_t iterations = 0;
             for (std::size_t j = 0; j < longest; ++j) {  // outer-loop iteration j
                 std::uint32_t inOuterLoop = 0, mostTriangles = 0;
                 for (const auto& lane : lanes)
                     if (lane.size() > j) ++inOuterLoop, mostTriangles = std::max(mostTriangles, lane[j]);
                 sum.activeLanes += inOuterLoop;
                 sum.laneSlots += subgroupSize;
+                iterations += 1 + mostTriangles;
                 for (std::uint32_t i = 0; i < mostTriangles; ++i) {  // its triangle loop
                     for (const auto& lane : lanes) sum.activeLanes += lane.size() > j && lane[j] > i;
                     sum.laneSlots += subgroupSize;
                 }
             }
+            sum.maxSubgroupIterations = std::max(sum.maxSubgroupIterations, iterations);
+            if (iterationLimit && iterations > iterationLimit)
+                for (const auto& lane : lanes) sum.raysInLongSubgroups += !lane.empty();
         }
         return sum;
     };
     return tbb::parallel_reduce(tbb::blocked_range<std::size_t>(0, subgroups, 256), LaneCounts{}, count,
-                                [](LaneCounts a, LaneCounts b) {
-                                    return LaneCounts{a.activeLanes + b.activeLanes, a.laneSlots + b.laneSlots};
-                                });
+                                [](const LaneCounts& a, const LaneCounts& b) { return a + b; });
 }
 
 }  // namespace rtbench

@@ -13,10 +13,19 @@ namespace rtbench {
 struct LaneCounts {
     std::uint64_t activeLanes = 0;  // sum of active lanes over ballots
     std::uint64_t laneSlots = 0;    // sum of subgroup size over ballots
+    // The most loop iterations one subgroup runs (outer and triangle loops together): what a
+    // device's loop-iteration limit applies to (DeviceInfo::loopIterationLimit).
+    std::uint64_t maxSubgroupIterations = 0;
+    // Rays in subgroups that run more loop iterations than the `iterationLimit` asked about.
+    std::uint64_t raysInLongSubgroups = 0;
 };
 
+// A sum of counts (the parallel reduction's join).
+LaneCounts operator+(const LaneCounts& a, const LaneCounts& b);
+
 // Uses Structure::traceLoops: per ray, the triangle-loop trips of each outer-loop iteration.
+// iterationLimit (0: none) counts the rays of subgroups that run more loop iterations.
 LaneCounts branchingLaneCounts(const Structure& structure, const std::vector<gpu::Ray>& rays,
-                               unsigned subgroupSize);
+                               unsigned subgroupSize, std::uint64_t iterationLimit = 0);
 
 }  // namespace rtbench
