@@ -41,6 +41,8 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("structure_bytes", K::Count, "bytes", "device memory of the structure (its buffers, triangle vertices included)");
         add("structure_bytes_per_triangle", K::Count, "bytes", "structure_bytes / scene_triangles");
         add("structure_build_ms", K::Timing, "ms", "CPU build time of the structure");
+        add("predicted_work_per_ray", K::Count, "operations",
+            "cost model: cells or nodes visited + triangles tested per ray, predicted from the structure alone (SAH-style, no early termination)");
         // Each structure's own columns (methods/registry.cpp).
         for (const StructureType* t : structureTypes())
             for (ColumnSpec c : t->columns) {
@@ -79,6 +81,8 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("primitive_mismatches", K::Reference, "rays", "rays both hit on different triangles",
             1e-4, true);
         // Work and accounting (exact, from instrumented kernels; equal to the CPU reference).
+        add("work_per_ray_mean", K::Count, "operations",
+            "cells or nodes visited + triangles tested per ray, measured: what predicted_work_per_ray predicts");
         add("triangles_per_ray_mean", K::Count, "tests", "ray-triangle tests per ray, mean");
         add("triangles_per_ray_max", K::Count, "tests", "ray-triangle tests per ray, max");
         add("traversal_steps_per_ray_mean", K::Count, "steps", "traversal step attempts per ray (grid: DDA steps; BVH: nodes popped), mean");

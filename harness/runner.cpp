@@ -47,6 +47,7 @@ std::string num(double v, int significant = 6) { return formatNumber(v, signific
 void writeArchitectureColumns(const ArchitectureMetrics& m, const Structure& structure, std::uint64_t rays, Row& row) {
     const WorkStats& w = m.work;
     structure.writeWorkColumns(w.cellsPerRayMean, w.cellsPerRayMax, m.bytes.cells, row);
+    row["work_per_ray_mean"] = num(double(w.cellsTotal + w.trianglesTotal) / double(rays));
     row["triangles_per_ray_mean"] = num(w.trianglesPerRayMean);
     row["triangles_per_ray_max"] = std::to_string(w.trianglesPerRayMax);
     row["traversal_steps_per_ray_mean"] = num(double(w.stepsTotal) / double(rays));
@@ -158,11 +159,12 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
     row["rays"] = std::to_string(rays.size());
 
     // Structure.
-    const std::unique_ptr<Structure> structure = structureKind.build(mesh, run, vk.info());
+    const std::unique_ptr<Structure> structure = structureKind.build(mesh, rays, run, vk.info());
     structure->writeColumns(row);
     row["structure_bytes"] = std::to_string(structure->memoryBytes);
     row["structure_bytes_per_triangle"] = num(double(structure->memoryBytes) / double(std::max<std::size_t>(mesh.triangles.size(), 1)));
     row["structure_build_ms"] = num(structure->buildMs, 4);
+    row["predicted_work_per_ray"] = num(structure->predictedWork(rays) / double(rays.size()));
 
     // Method: the strategy runs the structure's kernels and checks them against its CPU reference.
     TimingOptions timing;

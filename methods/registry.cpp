@@ -1,5 +1,6 @@
 #include "registry.h"
 
+#include "methods/auto/auto_structure.h"
 #include "methods/branching/branching_strategy.h"
 #include "methods/brute/brute_structure.h"
 #include "methods/bvh/bvh_structure.h"
@@ -10,7 +11,8 @@
 namespace rtbench {
 
 const std::vector<const StructureType*>& structureTypes() {
-    static const std::vector<const StructureType*> types = {&gridStructureType(), &bvhStructureType(), &bruteStructureType()};
+    static const std::vector<const StructureType*> types = {&gridStructureType(), &bvhStructureType(), &bruteStructureType(),
+                                                                  &autoStructureType()};
     return types;
 }
 

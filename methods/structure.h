@@ -63,6 +63,10 @@ public:
     // A cap on multipass passes no correct run reaches (a fault that stops progress fails).
     virtual std::uint64_t multipassPassCap(const MultipassOptions& options) const = 0;
 
+    // The cost model (methods/cost_model.h): the cell or node visits plus triangle tests these
+    // rays are predicted to take, from the structure's statistics alone, before any ray is traced.
+    virtual double predictedWork(const std::vector<gpu::Ray>& rays) const = 0;
+
     // The structure's own columns (its statistics), and its words for per-ray work.
     virtual void writeColumns(Row& row) const = 0;
     // Per-ray cells visited under the structure's name ("voxels_per_ray_mean"...); none for brute force.
@@ -79,9 +83,10 @@ struct StructureType {
     std::string help;
     std::vector<KeySpec> keys;        // read only when structure.type is this name
     std::vector<ColumnSpec> columns;  // written only by its runs
-    // Builds the structure for a scene; refuses (throws rtbench::Error naming the size and the
-    // limit) before allocating what the device could not hold.
-    std::unique_ptr<Structure> (*build)(const TriangleMesh& mesh, const RunConfig& run, const DeviceInfo& device);
+    // Builds the structure for a scene and the rays it will trace; refuses (throws rtbench::Error
+    // naming the size and the limit) before allocating what the device could not hold.
+    std::unique_ptr<Structure> (*build)(const TriangleMesh& mesh, const std::vector<gpu::Ray>& rays, const RunConfig& run,
+                                        const DeviceInfo& device);
 };
 
 }  // namespace rtbench

@@ -111,6 +111,11 @@ public:
         return rtbench::multipassPassCap(1, triangles_.size(), options);
     }
 
+    // Every ray tests every triangle.
+    double predictedWork(const std::vector<gpu::Ray>& rays) const override {
+        return double(rays.size()) * double(triangles_.size());
+    }
+
     void writeColumns(Row&) const override {}
     void writeWorkColumns(double, std::uint32_t, std::uint64_t, Row&) const override {}
 
@@ -119,8 +124,9 @@ private:
     gpu::BruteParams params_{};
 };
 
-std::unique_ptr<Structure> buildBrute(const TriangleMesh& mesh, const RunConfig& run, const DeviceInfo& device) {
-    const std::uint64_t rays = std::uint64_t(run.getInt("camera.width")) * std::uint64_t(run.getInt("camera.height"));
+std::unique_ptr<Structure> buildBrute(const TriangleMesh& mesh, const std::vector<gpu::Ray>& rayStream, const RunConfig& run,
+                                      const DeviceInfo& device) {
+    const std::uint64_t rays = rayStream.size();
     const std::uint64_t tests = rays * mesh.triangles.size();
     const auto limit = std::uint64_t(run.getFloat("structure.max_tests"));
     if (tests > limit)

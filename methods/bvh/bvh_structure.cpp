@@ -5,6 +5,7 @@
 
 #include <cstring>
 
+#include "methods/cost_model.h"
 #include "methods/multipass/multipass_simulator.h"
 #include "structures/error.h"
 
@@ -114,6 +115,12 @@ public:
         return rtbench::multipassPassCap(bvh_.stats.innerNodes + bvh_.stats.leaves, bvh_.stats.largestLeaf, options);
     }
 
+    // The tree's SAH cost (computed by the flattener with both costs 1) per ray entering its box.
+    double predictedWork(const std::vector<gpu::Ray>& rays) const override {
+        return double(raysEnteringBox(rays, glm::vec3(bvh_.params.boundsMin), glm::vec3(bvh_.params.boundsMax))) *
+               bvh_.stats.sahCost;
+    }
+
     void writeColumns(Row& row) const override {
         const BvhStats& s = bvh_.stats;
         row["bvh_inner_nodes"] = std::to_string(s.innerNodes);
@@ -143,7 +150,8 @@ BvhBuildOptions buildOptions(const RunConfig& run) {
     return o;
 }
 
-std::unique_ptr<Structure> buildBvhStructure(const TriangleMesh& mesh, const RunConfig& run, const DeviceInfo& device) {
+std::unique_ptr<Structure> buildBvhStructure(const TriangleMesh& mesh, const std::vector<gpu::Ray>&, const RunConfig& run,
+                                             const DeviceInfo& device) {
     // What the device must hold is known before the build but for the node count (at most
     // 2n - 1 for n triangles; checked again at upload).
     const std::uint64_t n = mesh.triangles.size();

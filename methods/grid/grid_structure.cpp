@@ -4,6 +4,7 @@
 
 #include "device/gpu_buffers.h"
 #include "grid_reference.h"
+#include "methods/cost_model.h"
 #include "methods/multipass/multipass_simulator.h"
 #include "structures/error.h"
 
@@ -96,6 +97,16 @@ public:
         return rtbench::multipassPassCap(std::uint64_t(r[0]) + r[1] + r[2], grid_.stats.maxReferencesInCell, options);
     }
 
+    // Every voxel has the same surface area: a line through the box crosses cells x A_cell / A_box
+    // voxels on average, each listing references / cells triangles.
+    double predictedWork(const std::vector<gpu::Ray>& rays) const override {
+        const glm::vec3 lo(grid_.params.boundsMin), hi(grid_.params.boundsMax), cell(grid_.params.cellSize);
+        const double cells = double(grid_.stats.cells);
+        const double voxelsPerRay = cells * surfaceArea(glm::vec3(0.0f), cell) / surfaceArea(lo, hi);
+        const double perRay = voxelsPerRay * (1.0 + double(grid_.stats.references) / cells);
+        return double(raysEnteringBox(rays, lo, hi)) * perRay;
+    }
+
     void writeColumns(Row& row) const override {
         const GridStats& g = grid_.stats;
         row["grid_res_x"] = std::to_string(g.resolution[0]);
@@ -121,7 +132,8 @@ private:
     UniformGrid grid_;
 };
 
-std::unique_ptr<Structure> buildGrid(const TriangleMesh& mesh, const RunConfig& run, const DeviceInfo& device) {
+std::unique_ptr<Structure> buildGrid(const TriangleMesh& mesh, const std::vector<gpu::Ray>&, const RunConfig& run,
+                                     const DeviceInfo& device) {
     // Refuse before building what the device cannot hold (the cell offsets and vertices; the
     // triangle list, known only once built, is checked with every other buffer at upload).
     const GridResolutionRule rule = resolutionRule(run);

@@ -135,7 +135,7 @@ TEST_F(Config, AKeyNoRunReadsIsAnError) {
 // The registry (methods/registry.cpp) gives structure.type its values and each structure its keys.
 TEST_F(Config, AnUnknownStructureListsTheKnownOnesAndAStructuresKeyGivenToAnotherIsNamed) {
     EXPECT_EQ(errorOf(kMinimal + "[structure]\ntype = \"octree\"\n"),
-              path_ + ":6: key 'structure.type': 'octree' is not allowed (allowed: uniform_grid, bvh, brute_force)");
+              path_ + ":6: key 'structure.type': 'octree' is not allowed (allowed: uniform_grid, bvh, brute_force, auto)");
     EXPECT_EQ(errorOf(kMinimal + "[structure]\ntype = \"uniform_grid\"\nleaf_size = 8\n"),
               path_ + ":7: key 'structure.leaf_size' is never read: it applies only when structure.type=bvh");
     EXPECT_EQ(errorOf(kMinimal + "[structure]\ntype = \"bvh\"\nmin_dim = 8\n"),

@@ -17,10 +17,8 @@ namespace rtbench {
 namespace {
 using ::testing::HasSubstr;
 
-RunConfig bruteRun(std::int64_t width, std::int64_t height, double maxTests) {
+RunConfig bruteRun(double maxTests) {
     RunConfig run;
-    run.values["camera.width"] = width;
-    run.values["camera.height"] = height;
     run.values["structure.max_tests"] = maxTests;
     return run;
 }
@@ -29,12 +27,12 @@ TEST(BruteForce, MoreTestsThanTheLimitAreRefusedNamingTheProduct) {
     DeviceInfo device;
     device.maxStorageBufferRange = 1u << 27;
     try {
-        bruteStructureType().build(christenSceneB(), bruteRun(100, 100, 1e6), device);
+        bruteStructureType().build(christenSceneB(), std::vector<gpu::Ray>(10000), bruteRun(1e6), device);
         FAIL();
     } catch (const Error& e) {
         EXPECT_THAT(e.what(), HasSubstr("10000 rays x 2004 triangles = 20040000 ray-triangle tests, over structure.max_tests = 1000000"));
     }
-    EXPECT_NO_THROW(bruteStructureType().build(christenSceneB(), bruteRun(10, 10, 1e6), device));
+    EXPECT_NO_THROW(bruteStructureType().build(christenSceneB(), std::vector<gpu::Ray>(100), bruteRun(1e6), device));
 }
 
 using BruteKernels = VulkanTest;
@@ -43,7 +41,7 @@ TEST_F(BruteKernels, BothStrategiesEqualTheCpuReferenceAndTheBvhsNearestHits) {
     const TriangleMesh mesh = christenSceneB();
     DeviceInfo device;
     device.maxStorageBufferRange = 1u << 27;
-    const std::unique_ptr<Structure> brute = bruteStructureType().build(mesh, bruteRun(1, 3000, 1e9), device);
+    const std::unique_ptr<Structure> brute = bruteStructureType().build(mesh, std::vector<gpu::Ray>(3000), bruteRun(1e9), device);
     const std::vector<gpu::Ray> rays = randomRays(mesh.bounds(), 3000, 17);
     const BranchingRun branching = runBranching(*vk_, *brute, rays, {64, 0, 1});
     const std::vector<gpu::HitRecord> cpu = brute->trace(rays);

@@ -153,7 +153,7 @@ TEST(BvhBuild, ABufferOverTheBindingLimitIsRefusedBeforeTheBuild) {
     device.name = "a small device";
     device.maxStorageBufferRange = 1000;
     try {
-        bvhStructureType().build(christenSceneB(), run, device);
+        bvhStructureType().build(christenSceneB(), {}, run, device);
         FAIL();
     } catch (const Error& e) {
         EXPECT_THAT(e.what(), HasSubstr("triangle vertex (2004 triangles)"));

@@ -1,0 +1,106 @@
+#include "auto_structure.h"
+
+#include <limits>
+
+#include "methods/registry.h"
+#include "structures/error.h"
+
+namespace rtbench {
+
+namespace {
+
+// The chosen structure, with the record of the choice.
+class AutoStructure final : public Structure {
+public:
+    AutoStructure(std::unique_ptr<Structure> chosen, std::string choice, std::string predictions, double buildMsAll)
+        : chosen_(std::move(chosen)), choice_(std::move(choice)), predictions_(std::move(predictions)) {
+        memoryBytes = chosen_->memoryBytes;
+        buildMs = buildMsAll;  // the price of choosing: every candidate was built
+    }
+    std::string kernelPrefix() const override { return chosen_->kernelPrefix(); }
+    std::vector<StructureBuffer> buffers() const override { return chosen_->buffers(); }
+    std::vector<std::uint8_t> params() const override { return chosen_->params(); }
+    StructureCosts costs() const override { return chosen_->costs(); }
+    std::vector<gpu::HitRecord> trace(const std::vector<gpu::Ray>& rays) const override { return chosen_->trace(rays); }
+    void traceLoops(const gpu::Ray& ray, std::vector<std::uint32_t>& loopLog) const override {
+        chosen_->traceLoops(ray, loopLog);
+    }
+    MultipassResult simulateMultipass(const std::vector<gpu::Ray>& rays, const MultipassOptions& options) const override {
+        return chosen_->simulateMultipass(rays, options);
+    }
+    std::uint64_t multipassPassCap(const MultipassOptions& options) const override {
+        return chosen_->multipassPassCap(options);
+    }
+    double predictedWork(const std::vector<gpu::Ray>& rays) const override { return chosen_->predictedWork(rays); }
+    void writeColumns(Row& row) const override {
+        chosen_->writeColumns(row);
+        row["auto_choice"] = choice_;
+        row["auto_predictions"] = predictions_;
+    }
+    void writeWorkColumns(double cellsPerRayMean, std::uint32_t cellsPerRayMax, std::uint64_t cellBytes,
+                          Row& row) const override {
+        chosen_->writeWorkColumns(cellsPerRayMean, cellsPerRayMax, cellBytes, row);
+    }
+
+private:
+    std::unique_ptr<Structure> chosen_;
+    std::string choice_, predictions_;
+};
+
+// The run as a candidate sees it: its structure.type, and its own keys at their defaults.
+RunConfig candidateRun(const RunConfig& run, const StructureType& candidate) {
+    RunConfig c = run;
+    c.values["structure.type"] = candidate.name;
+    for (const KeySpec& key : candidate.keys) {
+        if (key.defaultValue)
+            c.values[key.name] = *key.defaultValue;
+        else if (key.groupDefault)
+            c.values[key.name] = *key.groupDefault;
+    }
+    return c;
+}
+
+std::unique_ptr<Structure> buildAuto(const TriangleMesh& mesh, const std::vector<gpu::Ray>& rays, const RunConfig& run,
+                                     const DeviceInfo& device) {
+    std::unique_ptr<Structure> best;
+    std::string bestName, predictions;
+    double bestWork = std::numeric_limits<double>::infinity(), buildMs = 0.0;
+    for (const StructureType* candidate : structureTypes()) {
+        if (candidate == &autoStructureType()) continue;
+        predictions += (predictions.empty() ? "" : " ") + candidate->name + "=";
+        std::unique_ptr<Structure> built;
+        try {
+            built = candidate->build(mesh, rays, candidateRun(run, *candidate), device);
+        } catch (const Error&) {
+            predictions += "refused";  // e.g. brute force over structure.max_tests, a grid over the binding limit
+            continue;
+        }
+        buildMs += built->buildMs;
+        const double work = built->predictedWork(rays);
+        predictions += formatNumber(work / double(std::max<std::size_t>(rays.size(), 1)));
+        if (work < bestWork) bestWork = work, bestName = candidate->name, best = std::move(built);
+    }
+    if (!best) throw Error("structure.type = auto: every candidate was refused (" + predictions + ")");
+    return std::make_unique<AutoStructure>(std::move(best), bestName, predictions, buildMs);
+}
+
+}  // namespace
+
+const StructureType& autoStructureType() {
+    static const StructureType type = [] {
+        using K = ColumnKind;
+        StructureType t;
+        t.name = "auto";
+        t.help = "the structure the cost model predicts the least work for (each candidate built with its default keys)";
+        t.columns = {
+            {"auto_choice", K::Count, "", "auto: the structure chosen"},
+            {"auto_predictions", K::Count, "operations",
+             "auto: every candidate's predicted work per ray (predicted_work_per_ray), or refused"},
+        };
+        t.build = buildAuto;
+        return t;
+    }();
+    return type;
+}
+
+}  // namespace rtbench
