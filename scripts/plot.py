@@ -12,10 +12,11 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-from rtbench_results import load  # noqa: E402
+from rtbench_results import load, method_name  # noqa: E402
 COLORS = {"branching": "tab:blue", "multipass": "tab:orange", "Embree rtcIntersect1": "tab:green"}
-BYTES = [("bytes_stencil", "stencil"), ("bytes_state", "state variables"), ("bytes_voxel", "voxel data"),
-         ("bytes_triangle_list", "triangle lists"), ("bytes_vertices", "triangle vertices"), ("bytes_output", "output")]
+BYTES = [("bytes_stencil", "stencil"), ("bytes_state", "state variables"), ("bytes_stack", "node stack"),
+         ("bytes_voxel", "voxel data"), ("bytes_node", "BVH nodes"), ("bytes_triangle_list", "triangle lists"),
+         ("bytes_vertices", "triangle vertices"), ("bytes_output", "output")]
 KERNELS = [("kernel_ms_setup", "setup"), ("kernel_ms_traverse", "traverse"), ("kernel_ms_intersect", "intersect"),
            ("kernel_ms_write", "write")]
 
@@ -102,10 +103,13 @@ def passes_vs_threshold(runs, device, folder, written):
 
 
 def bandwidth_by_category(runs, device, folder, written):
+    if runs.structure_type.nunique() > 1:
+        return  # structures_* charts compare structures
     chosen = runs[runs.sweep == "architecture"] if (runs.sweep == "architecture").any() else runs
     chosen = chosen.drop_duplicates(["scene", "strategy_type"]).sort_values(["scene", "strategy_type"])
     fig, ax = plt.subplots(figsize=(max(5, 1.4 * len(chosen)), 4.5))
-    stacked_bars(ax, [f"{r.scene}\n{r.strategy_type}" for r in chosen.itertuples()], chosen, BYTES, 1e-6)
+    present = [(c, n) for c, n in BYTES if c in chosen and chosen[c].fillna(0).any()]
+    stacked_bars(ax, [f"{r.scene}\n{r.strategy_type}" for r in chosen.itertuples()], chosen, present, 1e-6)
     ax.set_ylabel("bytes read and written per frame (MB)")
     ax.set_title(f"Bandwidth by data type (Purcell Fig. 8 style), {size(chosen)}; {device}")
     save(fig, folder, "bandwidth_by_category", written)
@@ -134,6 +138,8 @@ def unrolling(runs, device, folder, written):
 
 
 def grid_resolution(runs, device, folder, written):
+    if runs.structure_type.nunique() > 1:
+        return  # structures_* charts compare structures
     grid = runs[runs.sweep == "grid"] if (runs.sweep == "grid").any() else runs
     grid = grid[grid.structure_min_dim.notna()]
     if grid.structure_min_dim.nunique() < 3:
@@ -161,6 +167,8 @@ def grid_resolution(runs, device, folder, written):
 
 
 def kernel_time(runs, device, folder, written):
+    if runs.structure_type.nunique() > 1:
+        return  # structures_* charts compare structures
     multipass = runs[runs.strategy_type == "multipass"]
     chosen = multipass[multipass.sweep == "architecture"] if (multipass.sweep == "architecture").any() else multipass
     if chosen.empty:
@@ -175,6 +183,116 @@ def kernel_time(runs, device, folder, written):
     save(fig, folder, "kernel_time", written)
 
 
+STRUCTURE_COLORS = {"grid": "tab:blue", "bvh": "tab:red", "brute force": "tab:gray", "auto": "tab:purple"}
+
+
+def method_color(method: str) -> str:
+    return STRUCTURE_COLORS.get(method.split(" ")[0] if not method.startswith("brute") else "brute force", "k")
+
+
+def with_methods(runs):
+    runs = runs.copy()
+    runs["method"] = [method_name(r) for _, r in runs.iterrows()]
+    runs["method_kind"] = [m.split(" (")[0] for m in runs.method]  # "auto (bvh)" -> "auto"
+    return runs
+
+
+def grouped_bars(ax, frame, value, scenes, methods, log=True):
+    """Bars of `value` per scene (groups) and method (bars), with the method's colour."""
+    width = 0.8 / max(len(methods), 1)
+    for i, method in enumerate(methods):
+        xs, ys = [], []
+        for j, scene in enumerate(scenes):
+            row = frame[(frame.scene == scene) & (frame.method_kind == method)]
+            if not row.empty:
+                xs.append(j + (i - (len(methods) - 1) / 2) * width)
+                ys.append(row[value].iloc[0])
+        shade = 0.35 + 0.65 * (i + 1) / len(methods) if method.startswith("grid") else 1.0
+        ax.bar(xs, ys, width, label=method, color=method_color(method), alpha=shade)
+    ax.set_xticks(range(len(scenes)))
+    ax.set_xticklabels(scenes, fontsize=8)
+    if log:
+        ax.set_yscale("log")
+
+
+def structure_order(runs):
+    kinds = runs.method_kind.unique().tolist()
+    order = ["grid 32", "grid 64", "grid 128", "bvh", "brute force", "auto"]
+    return [k for k in order if k in kinds] + sorted(k for k in kinds if k not in order)
+
+
+def structures_time(runs, device, folder, written):
+    if runs.structure_type.nunique() < 2:
+        return
+    runs = with_methods(runs)
+    scenes = runs.sort_values("scene_triangles").scene.unique().tolist()
+    methods = structure_order(runs)
+    strategies = [s for s in ("branching", "multipass") if (runs.strategy_type == s).any()]
+    fig, axes = plt.subplots(len(strategies), 2, figsize=(15, 4.2 * len(strategies)), squeeze=False)
+    for row, strategy in zip(axes, strategies):
+        part = runs[runs.strategy_type == strategy]
+        grouped_bars(row[0], part, "kernel_ms_median", scenes, methods)
+        embree = part.groupby("scene").embree1_ms_median.median()
+        row[0].scatter([scenes.index(s) for s in embree.index], embree.values, marker="_", s=400, color="k",
+                       label="Embree rtcIntersect1", zorder=3)
+        row[0].set_ylabel("GPU time per frame (ms, median, log)")
+        row[0].set_title(f"{strategy}: time per scene")
+        grouped_bars(row[1], part, "speed_ratio_vs_embree1", scenes, methods)
+        row[1].axhline(1.0, color="k", lw=1, ls="--")
+        row[1].set_ylabel("Mrays/s / Embree rtcIntersect1's (log)")
+        row[1].set_title(f"{strategy}: speed against Embree on the same rays")
+    axes[0][0].legend(fontsize=7, ncol=2)
+    fig.suptitle(f"Structures side by side, {size(runs)} primary rays; {device}")
+    save(fig, folder, "structures_time", written)
+
+
+def structures_memory(runs, device, folder, written):
+    if runs.structure_type.nunique() < 2:
+        return
+    runs = with_methods(runs)
+    runs = runs[runs.strategy_type == runs.strategy_type.iloc[0]]  # the structure is the same for both strategies
+    scenes = runs.sort_values("scene_triangles").scene.unique().tolist()
+    methods = [m for m in structure_order(runs) if m != "auto"]
+    fig, (left, right) = plt.subplots(1, 2, figsize=(15, 4.2))
+    grouped_bars(left, runs, "structure_bytes_per_triangle", scenes, methods)
+    left.set_ylabel("device bytes per triangle (log)")
+    left.set_title("Memory: the structure's buffers, vertices included")
+    grouped_bars(right, runs, "structure_build_ms", scenes, methods)
+    right.set_ylabel("CPU build time (ms, log)")
+    right.set_title("Build time (grid: CGAL exact triangle-box tests; BVH: Embree rtcBuildBVH)")
+    left.legend(fontsize=7)
+    fig.suptitle(f"Memory and build time per structure; {device}")
+    save(fig, folder, "structures_memory", written)
+
+
+def structures_work(runs, device, folder, written):
+    if runs.structure_type.nunique() < 2:
+        return
+    runs = with_methods(runs)
+    scenes = runs.sort_values("scene_triangles").scene.unique().tolist()
+    methods = [m for m in structure_order(runs) if m != "auto"]
+    fig, (left, right) = plt.subplots(1, 2, figsize=(15, 4.5))
+    part = runs[(runs.strategy_type == "branching") & (runs.method_kind != "auto")]
+    for method in methods:
+        group = part[part.method_kind == method]
+        left.scatter(group.predicted_work_per_ray, group.work_per_ray_mean, label=method, color=method_color(method))
+    lo = max(1e-2, min(part.predicted_work_per_ray.min(), part.work_per_ray_mean.min()))
+    hi = max(part.predicted_work_per_ray.max(), part.work_per_ray_mean.max())
+    left.plot([lo, hi], [lo, hi], "k--", lw=1, label="measured = predicted")
+    left.set_xscale("log")
+    left.set_yscale("log")
+    left.set_xlabel("predicted work per ray (cost model: visits + tests)")
+    left.set_ylabel("measured work per ray")
+    left.set_title("The cost model against the measured work (branching)")
+    left.legend(fontsize=7)
+    grouped_bars(right, part, "simd_efficiency", scenes, methods, log=False)
+    right.set_ylim(0, 1.05)
+    right.set_ylabel("active lanes / lane slots")
+    right.set_title("Lane utilisation of the branching kernel (Aila & Laine)")
+    fig.suptitle(f"Work per ray and lane utilisation, {size(runs)}; {device}")
+    save(fig, folder, "structures_work", written)
+
+
 def main() -> int:
     if len(sys.argv) != 2:
         print(__doc__)
@@ -185,7 +303,8 @@ def main() -> int:
         print(f"{folder}: no successful runs to chart")
         return 1
     written = []
-    for chart in (speed_vs_accuracy, passes_vs_threshold, bandwidth_by_category, unrolling, grid_resolution, kernel_time):
+    for chart in (speed_vs_accuracy, passes_vs_threshold, bandwidth_by_category, unrolling, grid_resolution, kernel_time,
+                  structures_time, structures_memory, structures_work):
         chart(runs, device, folder, written)
     print(f"{folder}: wrote {', '.join(written)} (.png, .svg)")
     return 0

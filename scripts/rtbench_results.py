@@ -4,7 +4,25 @@ from pathlib import Path
 
 import pandas as pd
 
-SCENES = {"cgal:bunny00": "bunny", "procedural:christen_a": "scene A", "procedural:christen_b": "scene B"}
+SCENES = {"cgal:bunny00": "bunny", "procedural:christen_a": "scene A", "procedural:christen_b": "scene B",
+          "christen_c": "scene C", "teapot_in_stadium": "teapot in stadium", "million": "1M triangles"}
+
+
+def scene_name(source: str) -> str:
+    """A short name: the table's, or a scene description's file name without .toml."""
+    if source.endswith(".toml"):
+        source = Path(source).stem
+    return SCENES.get(source, source)
+
+
+def method_name(run) -> str:
+    """structure (with its grid resolution rule) for one run: "grid 64", "bvh", "auto (bvh)"."""
+    kind = run.structure_type
+    if kind == "uniform_grid":
+        return f"grid {int(run.structure_min_dim)}" if run.get("structure_min_dim") == run.get("structure_min_dim") else "grid"
+    if kind == "auto":
+        return f"auto ({run.auto_choice})"
+    return {"brute_force": "brute force"}.get(kind, kind)
 
 
 def sweep_of(label: str) -> str:
@@ -20,7 +38,7 @@ def load(folder: Path):
     context = json.loads((folder / "context.json").read_text())
     failed = runs[runs.status != "ok"]
     runs = runs[runs.status == "ok"].copy()
-    runs["scene"] = runs.scene_source.map(lambda s: SCENES.get(s, s))
+    runs["scene"] = runs.scene_source.map(scene_name)
     runs["sweep"] = runs.label.map(sweep_of)
     for column in ["strategy_scheduling", "strategy_suppress_finished_reads"]:
         if column not in runs:
