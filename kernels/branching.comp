@@ -19,7 +19,7 @@
     }
 #define RT_ON_OUTER() RT_LANE_BALLOT()
 #define RT_ON_INNER() RT_LANE_BALLOT()
-#include "multipass_events.glsl"
+#include "traversal_common.glsl"
 #include "structure.glsl"
 
 void main() {

@@ -1,7 +1,7 @@
 // What every multipass kernel does around the structure's per-ray work: the stencil test (early
 // exit of rays in other states, Purcell's early fragment kill), saving the new state, and counting.
 #include "bindings.glsl"
-#include "multipass_events.glsl"
+#include "traversal_common.glsl"
 #include "structure.glsl"
 
 // Counts a served ray's events and new state. The oracle's counts are always kept (the host

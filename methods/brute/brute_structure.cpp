@@ -1,50 +1,32 @@
 #include "brute_structure.h"
 
 #include <chrono>
-#include <cstring>
 
-#include "methods/multipass/multipass_simulator.h"
+#include "methods/shared_source.h"
 #include "methods/brute/brute_layout.h"
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 #include "structures/error.h"
 
 namespace rtbench {
 
 namespace bruteref {
-// The shared GLSL source as C++ (see methods/grid/grid_reference.h for how).
+// The shared GLSL source as C++ (methods/shared_source.h).
 using namespace glm;
 using namespace rtbench::gpu;
-#define RT_OUT(T) T&
-#define RT_INOUT(T) T&
-#define RT_ON_OUTER() \
-    if (loopLog) loopLog->push_back(0);
-#define RT_ON_INNER() \
-    if (loopLog) ++loopLog->back();
-#define precise
-struct BruteKernels {
+#include "methods/shared_source_begin.h"
+struct BruteKernels : KernelConstants {
     using RtTraversalState = BruteTraversalState;
     const Triangle* triangles;
     BruteParams params;
-    std::uint32_t traverseStepsPerPass = 1;
-    std::uint32_t intersectionsPerPass = 1;
-    std::uint32_t suppressFinishedReads = 0;
-    std::vector<std::uint32_t>* loopLog = nullptr;
 #include "../../kernels/ray_math.glsl"
-#include "../../kernels/multipass_events.glsl"
+#include "../../kernels/traversal_common.glsl"
 #include "brute_traversal.glsl"
 };
-#undef precise
-#undef RT_ON_INNER
-#undef RT_ON_OUTER
-#undef RT_INOUT
-#undef RT_OUT
+#include "methods/shared_source_end.h"
 }  // namespace bruteref
 
 namespace {
 
-class BruteStructure final : public Structure {
+class BruteStructure final : public SharedSourceStructure<bruteref::BruteKernels> {
 public:
     explicit BruteStructure(const TriangleMesh& mesh) {
         const auto start = std::chrono::steady_clock::now();
@@ -63,46 +45,23 @@ public:
         return {{"triangle vertex (" + std::to_string(triangles_.size()) + " triangles)", memoryBytes, triangles_.data()}};
     }
 
-    std::vector<std::uint8_t> params() const override {
-        std::vector<std::uint8_t> bytes(sizeof params_);
-        std::memcpy(bytes.data(), &params_, sizeof params_);
-        return bytes;
-    }
-
     StructureCosts costs() const override {
         StructureCosts c;  // no cells, no lists: only the vertices of every triangle
         c.traversalStateBytes = sizeof(gpu::BruteTraversalState);
         return c;
     }
 
-    bruteref::BruteKernels kernels() const {
+    bruteref::BruteKernels kernels() const override {
         bruteref::BruteKernels k{};
         k.triangles = triangles_.data();
         k.params = params_;
         return k;
     }
 
-    std::vector<gpu::HitRecord> trace(const std::vector<gpu::Ray>& rays) const override {
-        std::vector<gpu::HitRecord> hits(rays.size());
-        tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 256), [&](const auto& range) {
-            bruteref::BruteKernels k = kernels();
-            for (std::size_t i = range.begin(); i != range.end(); ++i) hits[i] = k.rtTrace(rays[i]);
-        });
-        return hits;
-    }
-
     void traceLoops(const gpu::Ray& ray, std::vector<std::uint32_t>& loopLog) const override {
         // One outer iteration whose triangle loop runs over every triangle: no need to trace.
         (void)ray;
         loopLog.assign(1, std::uint32_t(triangles_.size()));
-    }
-
-    MultipassResult simulateMultipass(const std::vector<gpu::Ray>& rays, const MultipassOptions& options) const override {
-        bruteref::BruteKernels k = kernels();
-        k.traverseStepsPerPass = options.traverseStepsPerPass;
-        k.intersectionsPerPass = options.intersectionsPerPass;
-        k.suppressFinishedReads = options.suppressFinishedReads ? 1u : 0u;
-        return rtbench::simulateMultipass(k, rays, options, multipassPassCap(options));
     }
 
     // One "cell" holding every triangle.

@@ -1,6 +1,6 @@
 // Brute force: every ray against every triangle, nearest hit kept. ONE source for the kernels
 // (through structure.glsl) and the CPU reference (methods/brute/brute_structure.cpp), included
-// after kernels/ray_math.glsl and kernels/multipass_events.glsl; the buffer `triangles` and the
+// after kernels/ray_math.glsl and kernels/traversal_common.glsl; the buffer `triangles` and the
 // push constant `params` are declared by structure_layout.glsl in GLSL, members in C++.
 // The baseline every structure must beat, and all a scene of a few dozen triangles needs.
 
@@ -14,35 +14,17 @@
 // Branching: one outer-loop iteration (the whole scene is one "cell"), its triangle loop over
 // every triangle.
 HitRecord rtTrace(Ray ray) {
-    HitRecord h;
-    h.t = kNoHitT;
-    h.primitive = kNoHit;
-    h.u = 0.0f;
-    h.v = 0.0f;
-    h.cellsVisited = 0u;
-    h.trianglesTested = 0u;
-    h.traversalSteps = 0u;
-    h.pad = 0u;
+    HitRecord h = rtEmptyRecord();
     vec3 o = vec3(ray.originTMin);
     vec3 d = vec3(ray.directionTMax);
-    float tBest = ray.directionTMax.w;
-    float uBest = 0.0f;
-    float vBest = 0.0f;
-    uint primBest = kNoHit;
+    RtNearest nearest = rtNoHitYet(ray);
     RT_ON_OUTER();
     for (uint tri = 0u; tri < params.counts.x; ++tri) {
         RT_ON_INNER();
         h.trianglesTested += 1u;
-        if (rtIntersectTriangle(o, d, ray.originTMin.w, vec3(triangles[tri].v0), vec3(triangles[tri].v1),
-                                vec3(triangles[tri].v2), tBest, uBest, vBest))
-            primBest = tri;
+        rtTestTriangle(o, d, ray.originTMin.w, tri, nearest);
     }
-    if (primBest != kNoHit) {
-        h.t = tBest;
-        h.primitive = primBest;
-        h.u = uBest;
-        h.v = vBest;
-    }
+    rtRecordNearest(nearest, h);
     return h;
 }
 
@@ -81,10 +63,7 @@ uint mpIntersect(Ray ray, RT_INOUT(BruteTraversalState) ts, RT_INOUT(RayHitState
             next += 1u;
             if (next == count) state = mpDone(hit);
         } else if (suppressFinishedReads == 0u) {
-            uint tri = count - 1u;  // reads, then discards
-            e.triangleReads += 1u;
-            e.sink ^= floatBitsToUint(triangles[tri].v0.x) ^ floatBitsToUint(triangles[tri].v1.y) ^
-                      floatBitsToUint(triangles[tri].v2.z);
+            mpDiscardTriangleRead(count - 1u, e);
         }
     }
     ts.next.x = next;

@@ -1,46 +1,27 @@
 #include "bvh_structure.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
-#include <cstring>
-
 #include "methods/cost_model.h"
-#include "methods/multipass/multipass_simulator.h"
+#include "methods/shared_source.h"
 #include "structures/error.h"
 
 namespace rtbench {
 
 namespace bvhref {
-// The shared GLSL source as C++ (see methods/grid/grid_reference.h for how).
+// The shared GLSL source as C++ (methods/shared_source.h).
 using namespace glm;
 using namespace rtbench::gpu;
-#define RT_OUT(T) T&
-#define RT_INOUT(T) T&
-#define RT_ON_OUTER() \
-    if (loopLog) loopLog->push_back(0);
-#define RT_ON_INNER() \
-    if (loopLog) ++loopLog->back();
-#define precise
-struct BvhKernels {
+#include "methods/shared_source_begin.h"
+struct BvhKernels : KernelConstants {
     using RtTraversalState = BvhTraversalState;
     const BvhNode* nodes;
     const std::uint32_t* triangleList;
     const Triangle* triangles;
     BvhParams params;
-    std::uint32_t traverseStepsPerPass = 1;
-    std::uint32_t intersectionsPerPass = 1;
-    std::uint32_t suppressFinishedReads = 0;
-    std::vector<std::uint32_t>* loopLog = nullptr;
 #include "../../kernels/ray_math.glsl"
-#include "../../kernels/multipass_events.glsl"
+#include "../../kernels/traversal_common.glsl"
 #include "bvh_traversal.glsl"
 };
-#undef precise
-#undef RT_ON_INNER
-#undef RT_ON_OUTER
-#undef RT_INOUT
-#undef RT_OUT
+#include "methods/shared_source_end.h"
 }  // namespace bvhref
 
 namespace {
@@ -56,7 +37,7 @@ bvhref::BvhKernels kernelsOf(const FlatBvh& bvh) {
     return k;
 }
 
-class BvhStructure final : public Structure {
+class BvhStructure final : public SharedSourceStructure<bvhref::BvhKernels> {
 public:
     explicit BvhStructure(FlatBvh bvh) : bvh_(std::move(bvh)) {
         memoryBytes = bvh_.stats.bytes;
@@ -74,12 +55,6 @@ public:
                  bvh_.triangles.size() * sizeof(gpu::Triangle), bvh_.triangles.data()}};
     }
 
-    std::vector<std::uint8_t> params() const override {
-        std::vector<std::uint8_t> bytes(sizeof(gpu::BvhParams));
-        std::memcpy(bytes.data(), &bvh_.params, sizeof(gpu::BvhParams));
-        return bytes;
-    }
-
     StructureCosts costs() const override {
         StructureCosts c;
         c.bytesPerCellVisit = sizeof(gpu::BvhNode);      // an inner node visited is one node read
@@ -90,23 +65,7 @@ public:
         return c;
     }
 
-    std::vector<gpu::HitRecord> trace(const std::vector<gpu::Ray>& rays) const override {
-        return traceBvhReference(bvh_, rays);
-    }
-
-    void traceLoops(const gpu::Ray& ray, std::vector<std::uint32_t>& loopLog) const override {
-        bvhref::BvhKernels k = kernelsOf(bvh_);
-        k.loopLog = &loopLog;
-        k.rtTrace(ray);
-    }
-
-    MultipassResult simulateMultipass(const std::vector<gpu::Ray>& rays, const MultipassOptions& options) const override {
-        bvhref::BvhKernels k = kernelsOf(bvh_);
-        k.traverseStepsPerPass = options.traverseStepsPerPass;
-        k.intersectionsPerPass = options.intersectionsPerPass;
-        k.suppressFinishedReads = options.suppressFinishedReads ? 1u : 0u;
-        return rtbench::simulateMultipass(k, rays, options, multipassPassCap(options));
-    }
+    bvhref::BvhKernels kernels() const override { return kernelsOf(bvh_); }
 
     // A ray visits each reference at most once: inner nodes + leaves bound its steps; a leaf holds
     // at most largestLeaf triangles.
@@ -163,12 +122,7 @@ std::unique_ptr<Structure> buildBvhStructure(const TriangleMesh& mesh, const std
 }  // namespace
 
 std::vector<gpu::HitRecord> traceBvhReference(const FlatBvh& bvh, const std::vector<gpu::Ray>& rays) {
-    std::vector<gpu::HitRecord> hits(rays.size());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 4096), [&](const auto& range) {
-        bvhref::BvhKernels k = kernelsOf(bvh);
-        for (std::size_t i = range.begin(); i != range.end(); ++i) hits[i] = k.rtTrace(rays[i]);
-    });
-    return hits;
+    return traceAll(kernelsOf(bvh), rays);
 }
 
 std::unique_ptr<Structure> bvhStructure(FlatBvh bvh) { return std::make_unique<BvhStructure>(std::move(bvh)); }

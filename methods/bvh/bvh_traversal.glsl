@@ -1,6 +1,6 @@
 // BVH ray traversal: ONE source for the GPU kernels (through structure.glsl) and the CPU reference
 // (methods/bvh/bvh_structure.cpp), included after kernels/ray_math.glsl and
-// kernels/multipass_events.glsl; the buffers `nodes`, `triangleList`, `triangles` and the push
+// kernels/traversal_common.glsl; the buffers `nodes`, `triangleList`, `triangles` and the push
 // constant `params` are declared by structure_layout.glsl in GLSL, members in C++.
 //
 // Algorithm: a per-ray stack walk of a binary BVH whose nodes hold both children's boxes (Aila &
@@ -66,24 +66,13 @@ uint rtBvhChildren(vec3 o, vec3 d, vec3 invD, float tMin, float tBest, BvhNode n
 // inside it for a leaf. A push beyond kBvhStackSize cannot happen (the builder bounds the depth);
 // were it to, the walk would end there, as the multipass walk does.
 HitRecord rtTrace(Ray ray) {
-    HitRecord h;
-    h.t = kNoHitT;
-    h.primitive = kNoHit;
-    h.u = 0.0f;
-    h.v = 0.0f;
-    h.cellsVisited = 0u;
-    h.trianglesTested = 0u;
-    h.traversalSteps = 0u;
-    h.pad = 0u;
+    HitRecord h = rtEmptyRecord();
     if (!rtBvhEnter(ray)) return h;
     vec3 o = vec3(ray.originTMin);
     vec3 d = vec3(ray.directionTMax);
     vec3 invD = rtInverseDirection(d);
     float tMin = ray.originTMin.w;
-    float tBest = ray.directionTMax.w;
-    float uBest = 0.0f;
-    float vBest = 0.0f;
-    uint primBest = kNoHit;
+    RtNearest nearest = rtNoHitYet(ray);
     uint stack[kBvhStackSize];
     uint size = 0u;
     uint ref = 0u;  // the root, always an inner node
@@ -96,18 +85,15 @@ HitRecord rtTrace(Ray ray) {
             uint end = first + rtBvhLeafCount(ref);
             for (uint i = first; i < end; ++i) {
                 RT_ON_INNER();
-                uint tri = triangleList[i];
                 h.trianglesTested += 1u;
-                if (rtIntersectTriangle(o, d, tMin, vec3(triangles[tri].v0), vec3(triangles[tri].v1),
-                                        vec3(triangles[tri].v2), tBest, uBest, vBest))
-                    primBest = tri;
+                rtTestTriangle(o, d, tMin, triangleList[i], nearest);
             }
             next = false;
         } else {
             h.cellsVisited += 1u;
             uint first;
             uint second;
-            uint entered = rtBvhChildren(o, d, invD, tMin, tBest, nodes[ref], first, second);
+            uint entered = rtBvhChildren(o, d, invD, tMin, nearest.t, nodes[ref], first, second);
             if (entered == 2u) {
                 if (size == kBvhStackSize) break;
                 stack[size] = second;
@@ -122,12 +108,7 @@ HitRecord rtTrace(Ray ray) {
             ref = stack[size];
         }
     }
-    if (primBest != kNoHit) {
-        h.t = tBest;
-        h.primitive = primBest;
-        h.u = uBest;
-        h.v = vBest;
-    }
+    rtRecordNearest(nearest, h);
     return h;
 }
 
@@ -214,10 +195,7 @@ uint mpIntersect(Ray ray, RT_INOUT(BvhTraversalState) ts, RT_INOUT(RayHitState) 
             listPos += 1u;
             if (listPos == listEnd) state = mpBvhPop(ts, hit);
         } else if (suppressFinishedReads == 0u) {
-            uint tri = triangleList[listEnd - 1u];  // reads, then discards
-            e.triangleReads += 1u;
-            e.sink ^= tri ^ floatBitsToUint(triangles[tri].v0.x) ^ floatBitsToUint(triangles[tri].v1.y) ^
-                      floatBitsToUint(triangles[tri].v2.z);
+            mpDiscardTriangleRead(triangleList[listEnd - 1u], e);
         }
     }
     ts.walk.z = listPos;

@@ -2,8 +2,8 @@
 // §5.4-5.6: ONE source for kernels/multipass_*.comp (through structure.glsl) and the CPU simulator
 // (methods/grid/grid_reference.h). Each function is one kernel's work for one ray: it restores
 // the ray's saved state, works, and returns the new state (the stencil byte); the caller saves
-// it. MpEvents (kernels/multipass_events.glsl) reports what the accounting needs.
-// Include after grid_traversal.glsl and multipass_events.glsl, with traverseStepsPerPass,
+// it. MpEvents (kernels/traversal_common.glsl) reports what the accounting needs.
+// Include after grid_traversal.glsl and traversal_common.glsl, with traverseStepsPerPass,
 // intersectionsPerPass and suppressFinishedReads declared (specialization constants in GLSL,
 // members in C++).
 
@@ -105,10 +105,7 @@ uint mpIntersect(Ray ray, RT_INOUT(GridTraversalState) ts, RT_INOUT(RayHitState)
             listPos += 1u;
             if (listPos == listEnd) state = mpAfterVoxel(s, hit);
         } else if (suppressFinishedReads == 0u) {
-            uint tri = triangleList[listEnd - 1u];  // reads, then discards
-            e.triangleReads += 1u;
-            e.sink ^= tri ^ floatBitsToUint(triangles[tri].v0.x) ^ floatBitsToUint(triangles[tri].v1.y) ^
-                      floatBitsToUint(triangles[tri].v2.z);
+            mpDiscardTriangleRead(triangleList[listEnd - 1u], e);
         }
     }
     ts.cellList.w = listPos;

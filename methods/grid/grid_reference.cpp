@@ -1,8 +1,5 @@
 #include "grid_reference.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-
 namespace rtbench {
 
 gridref::GridKernels gridKernels(const UniformGrid& grid) {
@@ -15,12 +12,7 @@ gridref::GridKernels gridKernels(const UniformGrid& grid) {
 }
 
 std::vector<gpu::HitRecord> traceGridReference(const UniformGrid& grid, const std::vector<gpu::Ray>& rays) {
-    std::vector<gpu::HitRecord> hits(rays.size());
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 4096), [&](const auto& range) {
-        gridref::GridKernels kernels = gridKernels(grid);
-        for (std::size_t i = range.begin(); i != range.end(); ++i) hits[i] = kernels.rtTrace(rays[i]);
-    });
-    return hits;
+    return traceAll(gridKernels(grid), rays);
 }
 
 std::vector<glm::ivec3> ddaVoxels(const UniformGrid& grid, const gpu::Ray& ray) {

@@ -5,7 +5,6 @@
 #include "device/gpu_buffers.h"
 #include "grid_reference.h"
 #include "methods/cost_model.h"
-#include "methods/multipass/multipass_simulator.h"
 #include "structures/error.h"
 
 namespace rtbench {
@@ -40,7 +39,7 @@ GridResolutionRule resolutionRule(const RunConfig& run) {
 
 std::string num(double v, int significant = 6) { return formatNumber(v, significant); }
 
-class GridStructure final : public Structure {
+class GridStructure final : public SharedSourceStructure<gridref::GridKernels> {
 public:
     explicit GridStructure(UniformGrid grid) : grid_(std::move(grid)) {
         memoryBytes = grid_.stats.bytes;
@@ -57,12 +56,6 @@ public:
                 {sizes[2].what, sizes[2].bytes, grid_.triangles.data()}};
     }
 
-    std::vector<std::uint8_t> params() const override {
-        std::vector<std::uint8_t> bytes(sizeof(gpu::GridParams));
-        std::memcpy(bytes.data(), &grid_.params, sizeof(gpu::GridParams));
-        return bytes;
-    }
-
     StructureCosts costs() const override {
         StructureCosts c;
         c.bytesPerCellVisit = 2 * 4;    // a voxel entered reads its two cell offsets
@@ -72,23 +65,7 @@ public:
         return c;
     }
 
-    std::vector<gpu::HitRecord> trace(const std::vector<gpu::Ray>& rays) const override {
-        return traceGridReference(grid_, rays);
-    }
-
-    void traceLoops(const gpu::Ray& ray, std::vector<std::uint32_t>& loopLog) const override {
-        gridref::GridKernels k = gridKernels(grid_);
-        k.loopLog = &loopLog;
-        k.rtTrace(ray);
-    }
-
-    MultipassResult simulateMultipass(const std::vector<gpu::Ray>& rays, const MultipassOptions& options) const override {
-        gridref::GridKernels k = gridKernels(grid_);
-        k.traverseStepsPerPass = options.traverseStepsPerPass;
-        k.intersectionsPerPass = options.intersectionsPerPass;
-        k.suppressFinishedReads = options.suppressFinishedReads ? 1u : 0u;
-        return rtbench::simulateMultipass(k, rays, options, multipassPassCap(options));
-    }
+    gridref::GridKernels kernels() const override { return gridKernels(grid_); }
 
     // A ray visits at most resX + resY + resZ voxels; a voxel lists at most maxReferencesInCell.
     std::uint64_t multipassPassCap(const MultipassOptions& options) const override {

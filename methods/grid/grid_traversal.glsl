@@ -116,23 +116,12 @@ bool rtEnterGrid(Ray ray, RT_OUT(RtDda) s) {
 // The branching ray caster (Purcell §3.1 in one loop): walk the grid, test every triangle of each
 // non-empty voxel, stop in the first voxel whose exit lies at or beyond the nearest hit so far.
 HitRecord rtTrace(Ray ray) {
-    HitRecord h;
-    h.t = kNoHitT;
-    h.primitive = kNoHit;
-    h.u = 0.0f;
-    h.v = 0.0f;
-    h.cellsVisited = 0u;
-    h.trianglesTested = 0u;
-    h.traversalSteps = 0u;
-    h.pad = 0u;
+    HitRecord h = rtEmptyRecord();
     RtDda s;
     if (!rtEnterGrid(ray, s)) return h;
     vec3 o = vec3(ray.originTMin);
     vec3 d = vec3(ray.directionTMax);
-    float tBest = ray.directionTMax.w;
-    float uBest = 0.0f;
-    float vBest = 0.0f;
-    uint primBest = kNoHit;
+    RtNearest nearest = rtNoHitYet(ray);
     while (true) {
         RT_ON_OUTER();
         h.cellsVisited += 1u;
@@ -141,22 +130,13 @@ HitRecord rtTrace(Ray ray) {
         uint end = cellOffsets[cell + 1u];
         for (uint i = first; i < end; ++i) {
             RT_ON_INNER();
-            uint tri = triangleList[i];
             h.trianglesTested += 1u;
-            if (rtIntersectTriangle(o, d, ray.originTMin.w, vec3(triangles[tri].v0),
-                                    vec3(triangles[tri].v1), vec3(triangles[tri].v2), tBest,
-                                    uBest, vBest))
-                primBest = tri;
+            rtTestTriangle(o, d, ray.originTMin.w, triangleList[i], nearest);
         }
-        if (primBest != kNoHit && tBest <= rtDdaVoxelExit(s)) break;
+        if (nearest.primitive != kNoHit && nearest.t <= rtDdaVoxelExit(s)) break;
         h.traversalSteps += 1u;
         if (!rtDdaStep(s)) break;
     }
-    if (primBest != kNoHit) {
-        h.t = tBest;
-        h.primitive = primBest;
-        h.u = uBest;
-        h.v = vBest;
-    }
+    rtRecordNearest(nearest, h);
     return h;
 }

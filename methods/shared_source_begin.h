@@ -1,0 +1,9 @@
+// Opens a structure's shared GLSL as C++ (see methods/shared_source.h); close with
+// methods/shared_source_end.h. No include guard: it is meant to be included once per structure.
+#define RT_OUT(T) T&
+#define RT_INOUT(T) T&
+#define RT_ON_OUTER() \
+    if (loopLog) loopLog->push_back(0);
+#define RT_ON_INNER() \
+    if (loopLog) ++loopLog->back();
+#define precise
