@@ -7,3 +7,6 @@
 #define RT_ON_INNER() \
     if (loopLog) ++loopLog->back();
 #define precise
+// Some structures' GLSL functions leave a parameter of the common signature unused.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-parameter"

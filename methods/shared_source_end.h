@@ -4,3 +4,4 @@
 #undef RT_ON_OUTER
 #undef RT_INOUT
 #undef RT_OUT
+#pragma GCC diagnostic pop
