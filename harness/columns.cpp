@@ -85,7 +85,7 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
             "cells or nodes visited + triangles tested per ray, measured: what predicted_work_per_ray predicts");
         add("triangles_per_ray_mean", K::Count, "tests", "ray-triangle tests per ray, mean");
         add("triangles_per_ray_max", K::Count, "tests", "ray-triangle tests per ray, max");
-        add("traversal_steps_per_ray_mean", K::Count, "steps", "traversal step attempts per ray (grid: DDA steps; BVH: nodes popped), mean");
+        add("traversal_steps_per_ray_mean", K::Count, "steps", "traversal step attempts per ray (grid: DDA steps; BVH: references visited, inner nodes and leaves), mean");
         add("traversal_steps_per_ray_max", K::Count, "steps", "traversal step attempts per ray, max");
         add("passes_total", K::Count, "passes", "kernel dispatches over the ray stream");
         add("simd_efficiency", K::Count, "fraction",

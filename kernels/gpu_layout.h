@@ -77,7 +77,7 @@ struct HitRecord {
     float v;              // byte 12: barycentric of v2
     uint cellsVisited;    // byte 16: grid voxels entered / BVH nodes visited (0: box missed)
     uint trianglesTested; // byte 20: ray-triangle tests executed
-    uint traversalSteps;  // byte 24: traversal step attempts (grid: DDA steps; BVH: node pops)
+    uint traversalSteps;  // byte 24: traversal step attempts (grid: DDA steps; BVH: references visited)
     uint pad;             // byte 28
 };
 

@@ -27,20 +27,26 @@ vec3 rtInverseDirection(vec3 d) {
 
 // Clips [tMin, tMax] of the ray to the box; false when it misses. Axis-parallel rays (a zero
 // direction component) are inside that slab iff the origin is within it (closed interval).
+// One axis of the slab test: narrows [tEnter, tLeave]; false when the ray misses the slab.
+bool rtClipSlab(float o, float d, float invD, float lo, float hi, RT_INOUT(float) tEnter, RT_INOUT(float) tLeave) {
+    if (d == 0.0f) return !(o < lo || o > hi);
+    precise float t0 = (lo - o) * invD;
+    precise float t1 = (hi - o) * invD;
+    tEnter = max(tEnter, min(t0, t1));
+    tLeave = min(tLeave, max(t0, t1));
+    return true;
+}
+
+// The axes are written out rather than looped over: a device may count loop iterations against a
+// limit (llvmpipe: 65,535 per invocation, see methods/branching/lane_counts.h), and the BVH clips
+// two boxes per node.
 bool rtClipToBox(vec3 o, vec3 d, vec3 invD, float tMin, float tMax, vec3 boxMin, vec3 boxMax,
                  RT_OUT(float) tEnter, RT_OUT(float) tLeave) {
     tEnter = tMin;
     tLeave = tMax;
-    for (int a = 0; a < 3; ++a) {
-        if (d[a] == 0.0f) {
-            if (o[a] < boxMin[a] || o[a] > boxMax[a]) return false;
-        } else {
-            precise float t0 = (boxMin[a] - o[a]) * invD[a];
-            precise float t1 = (boxMax[a] - o[a]) * invD[a];
-            tEnter = max(tEnter, min(t0, t1));
-            tLeave = min(tLeave, max(t0, t1));
-        }
-    }
+    if (!rtClipSlab(o.x, d.x, invD.x, boxMin.x, boxMax.x, tEnter, tLeave)) return false;
+    if (!rtClipSlab(o.y, d.y, invD.y, boxMin.y, boxMax.y, tEnter, tLeave)) return false;
+    if (!rtClipSlab(o.z, d.z, invD.z, boxMin.z, boxMax.z, tEnter, tLeave)) return false;
     return tEnter <= tLeave;
 }
 

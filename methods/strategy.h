@@ -28,7 +28,8 @@ struct StrategyRun {
     std::uint64_t cpuMismatches = 0;     // rays whose record differs from the CPU reference's
     std::string countsMismatch;          // what of the pass or lane counts differs ("" if none)
     std::uint64_t branchingMismatches = 0;  // multipass: rays whose record differs from rtTrace's
-    // Rays the device cut short (HitRecord flags kHitTruncated), and why; fails the run first.
+    // Rays in subgroups that need more loop iterations than the device runs (the CPU lane model's
+    // count against DeviceInfo::loopIterationLimit), and why; fails the run first.
     std::uint64_t truncatedRays = 0;
     std::string truncatedWhy;
 };

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <functional>
+#include <new>
 
 #include "structures/error.h"
 #include "structures/scene_limits.h"
@@ -23,12 +24,14 @@ struct BuildInner : BuildNode {
 };
 struct BuildLeaf : BuildNode {
     std::uint32_t count;
-    std::uint32_t ids[1];  // `count` entries
+    // The `count` triangle ids, allocated right after the struct.
+    std::uint32_t* ids() { return reinterpret_cast<std::uint32_t*>(this + 1); }
+    const std::uint32_t* ids() const { return reinterpret_cast<const std::uint32_t*>(this + 1); }
 };
 
 void* createInner(RTCThreadLocalAllocator alloc, unsigned int childCount, void*) {
     if (childCount != 2) return nullptr;  // maxBranchingFactor is 2
-    auto* node = static_cast<BuildInner*>(rtcThreadLocalAlloc(alloc, sizeof(BuildInner), 16));
+    auto* node = new (rtcThreadLocalAlloc(alloc, sizeof(BuildInner), 16)) BuildInner;
     node->leaf = false;
     node->children[0] = node->children[1] = nullptr;
     return node;
@@ -45,12 +48,13 @@ void setBounds(void* nodePtr, const RTCBounds** bounds, unsigned int childCount,
 }
 
 void* createLeaf(RTCThreadLocalAllocator alloc, const RTCBuildPrimitive* prims, size_t count, void*) {
-    const std::size_t bytes = sizeof(BuildLeaf) + sizeof(std::uint32_t) * (count > 0 ? count - 1 : 0);
-    auto* leaf = static_cast<BuildLeaf*>(rtcThreadLocalAlloc(alloc, bytes, 16));
+    const std::size_t bytes = sizeof(BuildLeaf) + sizeof(std::uint32_t) * count;
+    auto* leaf = new (rtcThreadLocalAlloc(alloc, bytes, 16)) BuildLeaf;
     leaf->leaf = true;
     leaf->count = std::uint32_t(count);
-    for (std::size_t i = 0; i < count; ++i) leaf->ids[i] = prims[i].primID;
-    std::sort(leaf->ids, leaf->ids + count);  // Embree's threads may hand them over in any order
+    std::uint32_t* ids = leaf->ids();
+    for (std::size_t i = 0; i < count; ++i) ids[i] = prims[i].primID;
+    std::sort(ids, ids + count);  // Embree's threads may hand them over in any order
     return leaf;
 }
 
@@ -72,7 +76,7 @@ struct Flattener {
         if (first + leaf.count > gpu::kBvhMaxReferences)
             throw Error("BVH: more than " + std::to_string(gpu::kBvhMaxReferences) +
                         " triangle references (the layout's 24-bit leaf offsets)");
-        out.triangleList.insert(out.triangleList.end(), leaf.ids, leaf.ids + leaf.count);
+        out.triangleList.insert(out.triangleList.end(), leaf.ids(), leaf.ids() + leaf.count);
         out.stats.leaves += 1;
         out.stats.largestLeaf = std::max(out.stats.largestLeaf, unsigned(leaf.count));
         out.stats.depth = std::max(out.stats.depth, depth);

@@ -30,6 +30,7 @@ RTBENCH_CONST kBvhBindings = 3u;
 // A child reference: an inner node's index (< 2^31); or a leaf, kBvhLeaf | (count - 1) << 24 |
 // first list entry, so a leaf holds 1 to kBvhMaxLeafSize triangles and the list at most
 // kBvhMaxReferences entries; or kBvhNone (the root of a tree that is a single leaf has one child).
+// kBvhNone has the leaf bit set: it is never visited, since rtBvhChildren skips it before any test.
 RTBENCH_CONST kBvhLeaf = 0x80000000u;
 RTBENCH_CONST kBvhNone = 0xFFFFFFFFu;
 RTBENCH_CONST kBvhMaxLeafSize = 128u;

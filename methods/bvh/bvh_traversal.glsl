@@ -169,8 +169,12 @@ uint mpTraverse(Ray ray, RT_INOUT(BvhTraversalState) ts, RayHitState hit, RT_INO
             }
         } else if (suppressFinishedReads == 0u) {
             // Non-branching hardware runs the rest of the unrolled loop: it reads, then discards.
+            // A whole node (the root: the walk's own may be a leaf or gone), as charged.
+            BvhNode n = nodes[0u];
             e.structureReads += 1u;
-            e.sink ^= nodes[0u].children.x ^ floatBitsToUint(nodes[0u].min0.x);
+            e.sink ^= n.children.x ^ n.children.y ^ n.children.z ^ n.children.w ^
+                      floatBitsToUint(n.min0.x + n.min0.y + n.min0.z + n.max0.x + n.max0.y + n.max0.z + n.min1.x +
+                                      n.min1.y + n.min1.z + n.max1.x + n.max1.y + n.max1.z);
         }
     }
     return state;

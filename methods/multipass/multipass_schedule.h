@@ -70,8 +70,9 @@ MultipassCounts runPassLoop(const MultipassOptions& options, std::uint64_t cap,
                             const std::function<PassSums(PassKind)>& pass);
 
 // A cap on passes: 4 x (ceil(Vmax / K) + ceil(Vmax * Lmax / M)) + 16, where Vmax bounds the
-// cells (voxels, nodes) one ray visits and Lmax the triangles in one (at least 1). Scheduling
-// makes progress every pass, so only a fault can reach it; it turns that into an error.
+// cells (voxels, nodes) one ray visits and Lmax the triangles in one (at least 1): a heuristic
+// bound (four times one ray's most passes), not a proof: every pass serves some ray, but rays out
+// of step add passes. A run that reaches it fails naming the cap (strategy.max_passes raises it).
 std::uint64_t multipassPassCap(std::uint64_t maxCellsPerRay, std::uint64_t maxTrianglesPerCell,
                                const MultipassOptions& options);
 

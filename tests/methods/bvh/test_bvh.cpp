@@ -164,6 +164,28 @@ TEST(BvhBuild, ABufferOverTheBindingLimitIsRefusedBeforeTheBuild) {
 
 using BvhKernels = VulkanTest;
 
+// lavapipe's real limit: one storage binding holds 128 MiB, so 2.8M triangles' vertices (48 bytes
+// each) do not fit; the run is refused before the build, naming the buffer, its size and the limit.
+TEST_F(BvhKernels, ASceneOverTheDevicesBindingLimitIsRefusedNamingTheSize) {
+    const std::uint64_t limit = vk_->info().maxStorageBufferRange;
+    const std::uint64_t triangles = limit / sizeof(gpu::Triangle) + 1;
+    TriangleMesh mesh;  // the check needs the count only: every triangle shares three vertices
+    mesh.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    mesh.triangles.assign(triangles, glm::uvec3(0, 1, 2));
+    RunConfig run;
+    run.values["structure.leaf_size"] = std::int64_t(4);
+    run.values["structure.quality"] = std::string("medium");
+    run.values["baseline.embree_config"] = std::string("");
+    try {
+        bvhStructureType().build(mesh, {}, run, vk_->info());
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_THAT(e.what(), HasSubstr("triangle vertex (" + std::to_string(triangles) + " triangles)"));
+        EXPECT_THAT(e.what(), HasSubstr(std::to_string(triangles * sizeof(gpu::Triangle)) + " bytes"));
+        EXPECT_THAT(e.what(), HasSubstr("maxStorageBufferRange of " + std::to_string(limit) + " bytes"));
+    }
+}
+
 TEST_F(BvhKernels, BranchingHitsCountersAndLanesEqualTheCpuReference) {
     for (const TriangleMesh& mesh : {christenSceneA(), christenSceneB()})
         for (unsigned leaf : {1u, 4u, 16u}) {
