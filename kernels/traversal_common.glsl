@@ -6,6 +6,16 @@
 #ifndef RT_TRAVERSAL_COMMON_GLSL
 #define RT_TRAVERSAL_COMMON_GLSL
 
+// Hooks for instrumentation at each iteration of a traversal's outer loop (voxels, BVH
+// references) and of its triangle loop: kernels/branching.comp counts subgroup lanes there, the
+// CPU reference logs the loop trips (methods/shared_source_begin.h); none elsewhere.
+#ifndef RT_ON_OUTER
+#define RT_ON_OUTER()
+#endif
+#ifndef RT_ON_INNER
+#define RT_ON_INNER()
+#endif
+
 // A record with no hit and no work yet.
 HitRecord rtEmptyRecord() {
     HitRecord h;
@@ -87,6 +97,9 @@ HitRecord mpHitRecord(RayHitState hit, RayCounters counters) {
     h.traversalSteps = counters.traversalSteps;
     return h;
 }
+
+// A multipass ray with nothing left to visit: done with its hit, or done without one.
+uint mpDoneState(RayHitState hit) { return hit.primitive != kNoHit ? kStateDoneHit : kStateLeftGrid; }
 
 // The read an unrolled intersect iteration makes for a ray already done, on hardware that cannot
 // skip it (Purcell §4.2): a list entry and the vertices of triangle `tri`, read, then discarded.

@@ -18,13 +18,6 @@
 // Counters: cellsVisited = inner nodes visited (each one 80-byte node read); traversalSteps =
 // references visited (inner nodes and leaves).
 
-#ifndef RT_ON_OUTER
-#define RT_ON_OUTER()
-#endif
-#ifndef RT_ON_INNER
-#define RT_ON_INNER()
-#endif
-
 bool rtBvhIsLeaf(uint ref) { return (ref & kBvhLeaf) != 0u; }
 uint rtBvhLeafFirst(uint ref) { return ref & 0x00FFFFFFu; }
 uint rtBvhLeafCount(uint ref) { return ((ref >> 24u) & 0x7Fu) + 1u; }
@@ -115,11 +108,9 @@ HitRecord rtTrace(Ray ray) {
 // ---- multipass (Purcell et al. 2002 §3.2 on a BVH): traverse passes take walk steps until a
 // leaf is reached (state waiting), intersect passes test its triangles and pop.
 
-uint mpBvhDone(RayHitState hit) { return hit.primitive != kNoHit ? kStateDoneHit : kStateLeftGrid; }
-
 // Continues with the reference on top of the saved stack: traversing, or done when it is empty.
 uint mpBvhPop(RT_INOUT(BvhTraversalState) ts, RayHitState hit) {
-    if (ts.walk.y == 0u) return mpBvhDone(hit);
+    if (ts.walk.y == 0u) return mpDoneState(hit);
     ts.walk.y -= 1u;
     ts.walk.x = ts.stack[ts.walk.y];
     return kStateTraversing;
@@ -157,7 +148,7 @@ uint mpTraverse(Ray ray, RT_INOUT(BvhTraversalState) ts, RayHitState hit, RT_INO
                 uint second;
                 uint entered = rtBvhChildren(o, d, invD, ray.originTMin.w, hit.t, nodes[ref], first, second);
                 if (entered == 2u && ts.walk.y == kBvhStackSize) {
-                    state = mpBvhDone(hit);  // cannot happen: see rtTrace
+                    state = mpDoneState(hit);  // cannot happen: see rtTrace
                 } else {
                     if (entered == 2u) {
                         ts.stack[ts.walk.y] = second;
@@ -180,28 +171,15 @@ uint mpTraverse(Ray ray, RT_INOUT(BvhTraversalState) ts, RayHitState hit, RT_INO
     return state;
 }
 
+// The intersect pass's range is the current leaf's list.
+uint mpTriangleAt(uint position) { return triangleList[position]; }
+#include "../../kernels/multipass_intersect.glsl"
+
 // Intersect pass: up to intersectionsPerPass triangles of the current leaf; after its last one
 // the walk pops (traversing) or is done.
 uint mpIntersect(Ray ray, RT_INOUT(BvhTraversalState) ts, RT_INOUT(RayHitState) hit, RT_INOUT(MpEvents) e) {
-    vec3 o = vec3(ray.originTMin);
-    vec3 d = vec3(ray.directionTMax);
     uint listPos = ts.walk.z;
-    uint listEnd = ts.walk.w;
-    uint state = kStateWaiting;
-    for (uint i = 0u; i < intersectionsPerPass; ++i) {
-        if (state == kStateWaiting) {
-            uint tri = triangleList[listPos];
-            e.triangleReads += 1u;
-            e.tested += 1u;
-            if (rtIntersectTriangle(o, d, ray.originTMin.w, vec3(triangles[tri].v0), vec3(triangles[tri].v1),
-                                    vec3(triangles[tri].v2), hit.t, hit.u, hit.v))
-                hit.primitive = tri;
-            listPos += 1u;
-            if (listPos == listEnd) state = mpBvhPop(ts, hit);
-        } else if (suppressFinishedReads == 0u) {
-            mpDiscardTriangleRead(triangleList[listEnd - 1u], e);
-        }
-    }
+    uint state = mpIntersectRange(ray, listPos, ts.walk.w, hit, e) ? mpBvhPop(ts, hit) : kStateWaiting;
     ts.walk.z = listPos;
     return state;
 }

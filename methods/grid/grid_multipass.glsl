@@ -69,7 +69,7 @@ uint mpTraverse(Ray ray, RT_INOUT(GridTraversalState) ts, RayHitState hit, RT_IN
         if (state == kStateTraversing) {
             e.steps += 1u;
             if (!rtDdaStep(s))
-                state = hit.primitive != kNoHit ? kStateDoneHit : kStateLeftGrid;
+                state = mpDoneState(hit);
             else
                 state = mpEnterVoxel(s, listPos, hit, e);
         } else if (suppressFinishedReads == 0u) {
@@ -85,29 +85,17 @@ uint mpTraverse(Ray ray, RT_INOUT(GridTraversalState) ts, RayHitState hit, RT_IN
     return state;
 }
 
+// The intersect pass's range is the current voxel's list.
+uint mpTriangleAt(uint position) { return triangleList[position]; }
+#include "../../kernels/multipass_intersect.glsl"
+
 // Intersect pass: up to intersectionsPerPass triangles of the current voxel.
 uint mpIntersect(Ray ray, RT_INOUT(GridTraversalState) ts, RT_INOUT(RayHitState) hit, RT_INOUT(MpEvents) e) {
     RtDda s = mpRestore(ray, ts);
-    vec3 o = vec3(ray.originTMin);
-    vec3 d = vec3(ray.directionTMax);
     uint listPos = ts.cellList.w;
     e.structureReads += 1u;  // where the voxel's list ends
     uint listEnd = cellOffsets[rtCellIndex(s.cell) + 1u];
-    uint state = kStateWaiting;
-    for (uint i = 0u; i < intersectionsPerPass; ++i) {
-        if (state == kStateWaiting) {
-            uint tri = triangleList[listPos];
-            e.triangleReads += 1u;
-            e.tested += 1u;
-            if (rtIntersectTriangle(o, d, ray.originTMin.w, vec3(triangles[tri].v0), vec3(triangles[tri].v1),
-                                    vec3(triangles[tri].v2), hit.t, hit.u, hit.v))
-                hit.primitive = tri;
-            listPos += 1u;
-            if (listPos == listEnd) state = mpAfterVoxel(s, hit);
-        } else if (suppressFinishedReads == 0u) {
-            mpDiscardTriangleRead(triangleList[listEnd - 1u], e);
-        }
-    }
+    uint state = mpIntersectRange(ray, listPos, listEnd, hit, e) ? mpAfterVoxel(s, hit) : kStateWaiting;
     ts.cellList.w = listPos;
     return state;
 }

@@ -9,16 +9,6 @@
 // may lie in a later voxel). Such a hit is kept as the best candidate, and traversal ends in the
 // first voxel whose exit lies beyond it.
 
-// Hooks for instrumentation (kernels/branching.comp counts subgroup lanes there; the CPU
-// reference logs the loop trips): RT_ON_OUTER at each voxel-loop iteration, RT_ON_INNER at each
-// triangle-loop iteration of rtTrace.
-#ifndef RT_ON_OUTER
-#define RT_ON_OUTER()
-#endif
-#ifndef RT_ON_INNER
-#define RT_ON_INNER()
-#endif
-
 // State of one ray's DDA walk (Amanatides & Woo 1987): the current voxel, the ray distance at
 // which it crosses the next boundary on each axis (tMax), the distance between boundaries
 // (tDelta), the step direction, and where the ray leaves the grid box (tLeave).

@@ -1,0 +1,32 @@
+// The intersect pass's loop, shared by every structure (Purcell §3.2 with M triangles per pass):
+// include after the structure defines `uint mpTriangleAt(uint position)`, the triangle at a
+// position of its current range (a list entry for the grid and the BVH, the index itself for
+// brute force).
+#ifndef RT_MULTIPASS_INTERSECT_GLSL
+#define RT_MULTIPASS_INTERSECT_GLSL
+
+// Up to intersectionsPerPass triangles at positions [position, end); once the range ends, the rest
+// of the unrolled iterations read and discard the last one (unless suppressed), as non-branching
+// hardware would. True when the range ended in this pass.
+bool mpIntersectRange(Ray ray, RT_INOUT(uint) position, uint end, RT_INOUT(RayHitState) hit, RT_INOUT(MpEvents) e) {
+    vec3 o = vec3(ray.originTMin);
+    vec3 d = vec3(ray.directionTMax);
+    bool ended = false;
+    for (uint i = 0u; i < intersectionsPerPass; ++i) {
+        if (!ended) {
+            uint tri = mpTriangleAt(position);
+            e.triangleReads += 1u;
+            e.tested += 1u;
+            if (rtIntersectTriangle(o, d, ray.originTMin.w, vec3(triangles[tri].v0), vec3(triangles[tri].v1),
+                                    vec3(triangles[tri].v2), hit.t, hit.u, hit.v))
+                hit.primitive = tri;
+            position += 1u;
+            ended = position == end;
+        } else if (suppressFinishedReads == 0u) {
+            mpDiscardTriangleRead(mpTriangleAt(end - 1u), e);
+        }
+    }
+    return ended;
+}
+
+#endif  // RT_MULTIPASS_INTERSECT_GLSL
