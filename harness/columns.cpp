@@ -43,12 +43,15 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("structure_build_ms", K::Timing, "ms", "CPU build time of the structure");
         add("predicted_work_per_ray", K::Count, "operations",
             "cost model: cells or nodes visited + triangles tested per ray, predicted from the structure alone (SAH-style, no early termination)");
-        // Each structure's own columns (methods/registry.cpp).
-        for (const StructureType* t : structureTypes())
-            for (ColumnSpec c : t->columns) {
-                c.appliesWhen.insert(c.appliesWhen.begin(), "structure.type=" + t->name);
+        // Each structure's and strategy's own columns (methods/registry.cpp), written only by its runs.
+        auto addMethodColumns = [&](const std::string& typeKey, const std::string& name,
+                                    const std::vector<ColumnSpec>& columns) {
+            for (ColumnSpec c : columns) {
+                c.appliesWhen.insert(c.appliesWhen.begin(), typeKey + "=" + name);
                 s.push_back(std::move(c));
             }
+        };
+        for (const StructureType* t : structureTypes()) addMethodColumns("structure.type", t->name, t->columns);
         // Time.
         add("kernel_ms_median", K::Timing, "ms",
             "GPU time of the kernel(s), median of the repetitions");
@@ -98,12 +101,7 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("bytes_output", K::Count, "bytes", "hit records written");
         add("bytes_total", K::Count, "bytes", "all categories");
         add("bytes_per_ray", K::Count, "bytes", "bytes_total / rays");
-        // Each strategy's own columns.
-        for (const StrategyType* t : strategyTypes())
-            for (ColumnSpec c : t->columns) {
-                c.appliesWhen.insert(c.appliesWhen.begin(), "strategy.type=" + t->name);
-                s.push_back(std::move(c));
-            }
+        for (const StrategyType* t : strategyTypes()) addMethodColumns("strategy.type", t->name, t->columns);
         // Self-checks (a mismatch fails the run).
         add("cpu_reference_mismatches", K::Count, "rays",
             "rays whose GPU hit record differs from the CPU reference's");
@@ -158,10 +156,9 @@ std::vector<Row> readRunsCsv(const std::string& path) {
         // be absent when no row ran that method.
         auto needed = [&](const ColumnSpec& c) {
             return std::any_of(rows.begin(), rows.end(), [&](const Row& row) {
-                return std::all_of(c.appliesWhen.begin(), c.appliesWhen.end(), [&](const std::string& condition) {
-                    const std::size_t eq = condition.find('=');
-                    const auto it = row.find(paramColumn(condition.substr(0, eq)));
-                    return it != row.end() && it->second == condition.substr(eq + 1);
+                return conditionsHold(c.appliesWhen, [&](const std::string& key) {
+                    const auto it = row.find(paramColumn(key));
+                    return it != row.end() ? std::optional<std::string>(it->second) : std::nullopt;
                 });
             });
         };

@@ -341,9 +341,8 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
                 rest /= it->second.size();
             }
             for (const KeySpec& spec : schema) {
-                const bool applies = std::all_of(spec.appliesWhen.begin(), spec.appliesWhen.end(), [&](const std::string& c) {
-                    const std::string key = c.substr(0, c.find('='));
-                    return run.has(key) && formatValue(run.values.at(key)) == c.substr(c.find('=') + 1);
+                const bool applies = conditionsHold(spec.appliesWhen, [&](const std::string& key) {
+                    return run.has(key) ? std::optional<std::string>(formatValue(run.values.at(key))) : std::nullopt;
                 });
                 if (!applies) run.values.erase(spec.name);
             }

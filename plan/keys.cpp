@@ -23,6 +23,16 @@ std::string formatValue(const ConfigValue& value) {
     return std::visit(Visitor{}, value);
 }
 
+bool conditionsHold(const std::vector<std::string>& conditions,
+                    const std::function<std::optional<std::string>(const std::string& key)>& valueOf) {
+    for (const std::string& condition : conditions) {
+        const std::size_t eq = condition.find('=');
+        const std::optional<std::string> value = valueOf(condition.substr(0, eq));
+        if (!value || *value != condition.substr(eq + 1)) return false;
+    }
+    return true;
+}
+
 std::int64_t RunConfig::getInt(const std::string& key) const { return std::get<std::int64_t>(values.at(key)); }
 double RunConfig::getFloat(const std::string& key) const { return std::get<double>(values.at(key)); }
 const std::string& RunConfig::getString(const std::string& key) const { return std::get<std::string>(values.at(key)); }

@@ -62,4 +62,9 @@ struct RunConfig {
 
 std::string formatValue(const ConfigValue& value);
 
+// Whether every "section.key=value" condition (KeySpec::appliesWhen, ColumnSpec::appliesWhen)
+// holds, `valueOf(key)` giving the key's value as formatValue writes it, or nothing when unset.
+bool conditionsHold(const std::vector<std::string>& conditions,
+                    const std::function<std::optional<std::string>(const std::string& key)>& valueOf);
+
 }  // namespace rtbench
