@@ -107,11 +107,11 @@ def bandwidth_by_category(runs, device, folder, written):
         return  # structures_* charts compare structures
     chosen = runs[runs.sweep == "architecture"] if (runs.sweep == "architecture").any() else runs
     chosen = chosen.drop_duplicates(["scene", "strategy_type"]).sort_values(["scene", "strategy_type"])
-    fig, ax = plt.subplots(figsize=(max(5, 1.4 * len(chosen)), 4.5))
+    fig, ax = plt.subplots(figsize=(max(7, 1.4 * len(chosen)), 4.8))
     present = [(c, n) for c, n in BYTES if c in chosen and chosen[c].fillna(0).any()]
     stacked_bars(ax, [f"{r.scene}\n{r.strategy_type}" for r in chosen.itertuples()], chosen, present, 1e-6)
     ax.set_ylabel("bytes read and written per frame (MB)")
-    ax.set_title(f"Bandwidth by data type (Purcell Fig. 8 style), {size(chosen)}; {device}")
+    ax.set_title(f"Bandwidth by data type (Purcell Fig. 8 style), {size(chosen)}\n{device}")
     save(fig, folder, "bandwidth_by_category", written)
 
 
