@@ -10,7 +10,6 @@
 
 #include "columns.h"
 #include "config.h"
-#include "embree_config.h"
 #include "runner.h"
 #include "structures/error.h"
 #include "writers.h"
@@ -49,14 +48,7 @@ CheckResult checkResults(const std::string& folder, const CheckOptions& options,
     ExperimentPlan plan = loadExperimentText(contextString(context, contextPath, "config_text"),
                                              configPath, configDir);
     const std::vector<Row> recorded = readRunsCsv((fs::path(folder) / "runs.csv").string());
-    if (!options.embreeConfigOverride.empty()) {
-        try {
-            checkEmbreeConfig(options.embreeConfigOverride);
-        } catch (const Error& e) {
-            throw Error("--embree-config: " + std::string(e.what()));
-        }
-        for (RunConfig& run : plan.runs) run.values["baseline.embree_config"] = options.embreeConfigOverride;
-    }
+    if (!options.embreeConfigOverride.empty()) overrideEmbreeConfig(plan, options.embreeConfigOverride);
 
     RunnerOptions runner;
     runner.quiet = true;

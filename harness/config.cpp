@@ -375,4 +375,13 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
     return plan;
 }
 
+void overrideEmbreeConfig(ExperimentPlan& plan, const std::string& embreeConfig) {
+    try {
+        checkEmbreeConfig(embreeConfig);
+    } catch (const Error& e) {
+        throw Error("--embree-config: " + std::string(e.what()));
+    }
+    for (RunConfig& run : plan.runs) run.values["baseline.embree_config"] = embreeConfig;
+}
+
 }  // namespace rtbench

@@ -27,4 +27,8 @@ ExperimentPlan loadExperiment(const std::string& path);
 // The same for config text that names `path` in its errors and resolves scenes against configDir.
 ExperimentPlan loadExperimentText(const std::string& configText, const std::string& path, const std::string& configDir);
 
+// Sets baseline.embree_config of every run (the command line's --embree-config, e.g. "isa=avx2"
+// where Embree's default ISA choice crashes); throws naming the option if the string is invalid.
+void overrideEmbreeConfig(ExperimentPlan& plan, const std::string& embreeConfig);
+
 }  // namespace rtbench

@@ -54,6 +54,9 @@ int main(int argc, char** argv) {
     run->add_flag("--validation", options.validationOverride, "enable the Vulkan validation layer; a run fails on any message");
     run->add_flag("-q,--quiet", options.quiet, "print only the summary table");
     run->add_flag("-f,--force", options.force, "re-run runs whose rows (same run, config hash, commit) already exist");
+    std::string runEmbreeConfig;
+    run->add_option("--embree-config", runEmbreeConfig,
+                    "Embree device config string for every run (overrides baseline.embree_config), e.g. isa=avx2");
     std::string shard;
     run->add_option("--shard", shard, "run only every N-th run, starting at i (0 <= i < N), e.g. 2/3; join with `rtbench merge`");
 
@@ -95,7 +98,8 @@ int main(int argc, char** argv) {
                 options.shardIndex = i;
                 options.shardCount = n;
             }
-            const rtbench::ExperimentPlan plan = rtbench::loadExperiment(configPath);
+            rtbench::ExperimentPlan plan = rtbench::loadExperiment(configPath);
+            if (!runEmbreeConfig.empty()) rtbench::overrideEmbreeConfig(plan, runEmbreeConfig);
             const rtbench::ExperimentResult result = rtbench::runExperiment(plan, options);
             std::cout << "\n" << rtbench::summaryTable(result.rows);
             if (result.reused) std::cout << "(" << result.reused << " run(s) kept from an earlier invocation; --force re-runs them)\n";

@@ -1,22 +1,45 @@
 #!/bin/bash
 # Runs the configs of record and makes their charts and tables: results/bunny, results/structures,
-# results/purcell2002 (or under OUT, e.g. results/h200 on a GPU machine; DEVICE picks the device).
+# results/purcell2002 (or under OUT, e.g. results/nvidia-h200 on a GPU machine; DEVICE picks the
+# Vulkan device by a name substring).
 #   scripts/records.sh [OUT] [DEVICE]        (about 25 minutes on 2 cores with lavapipe)
+# Environment:
+#   RTBENCH_BIN=path      the rtbench binary (default build/rtbench)
+#   EMBREE_CONFIG=isa=avx2  Embree device config for every run (where its default ISA crashes)
+#   CHARTS=0              run only (a machine without Python); later `scripts/records.sh --charts OUT`
+#                         draws the charts and tables here
 set -euo pipefail
 cd "$(dirname "$0")/.."
+configs=(bunny structures purcell2002)
+bin=${RTBENCH_BIN:-build/rtbench}
+
+charts() {
+  local out=$1
+  for config in "${configs[@]}"; do
+    # PNGs from the hit records that a binary built without OpenImageIO writes instead
+    if compgen -G "$out/$config/*.hits" > /dev/null; then "$bin" images "$out/$config"; fi
+    "$bin" plot "$out/$config"
+  done
+  /usr/bin/python3 scripts/structures_tables.py "$out/structures" > /dev/null
+  /usr/bin/python3 scripts/purcell_tables.py "$out/purcell2002" > /dev/null
+}
+
+if [ "${1:-}" = "--charts" ]; then
+  charts "${2:?usage: scripts/records.sh --charts OUT}"
+  exit 0
+fi
+
 out=${1:-results}
 device=${2:-}
-bin=build/rtbench
 args=(-o "$out")
 [ -n "$device" ] && args+=(-d "$device")
-for config in bunny structures purcell2002; do
+[ -n "${EMBREE_CONFIG:-}" ] && args+=(--embree-config "$EMBREE_CONFIG")
+for config in "${configs[@]}"; do
   echo "== $config -> $out/$config"
   start=$(date +%s)
   # A failed run is a result too (a row naming why); rtbench then exits 1.
   "$bin" run --force "${args[@]}" "configs/$config.toml" || echo "== $config: some runs failed (see runs.csv)"
   echo "== $config: $(( $(date +%s) - start )) s"
-  "$bin" plot "$out/$config"
 done
-/usr/bin/python3 scripts/structures_tables.py "$out/structures" > /dev/null
-/usr/bin/python3 scripts/purcell_tables.py "$out/purcell2002" > /dev/null
+[ "${CHARTS:-1}" = 0 ] || charts "$out"
 echo "== done: $out/{bunny,structures,purcell2002}"
