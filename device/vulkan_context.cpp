@@ -153,6 +153,7 @@ DeviceInfo describe(VkPhysicalDevice device) {
     need(v12.storageBuffer8BitAccess, "storageBuffer8BitAccess");
     need(v12.shaderInt8, "shaderInt8");
     need(features.features.shaderInt64, "shaderInt64");
+    need(features.features.shaderFloat64, "shaderFloat64 (kernels/ray_math.glsl's exact division)");
     need(v12.shaderBufferInt64Atomics, "shaderBufferInt64Atomics");
     const VkSubgroupFeatureFlags ops = VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT |
                                        VK_SUBGROUP_FEATURE_BALLOT_BIT;
@@ -229,6 +230,7 @@ VulkanContext::VulkanContext(const std::string& deviceChoice, bool validation) {
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
     features.pNext = &v12;
     features.features.shaderInt64 = VK_TRUE;
+    features.features.shaderFloat64 = VK_TRUE;
     VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
     deviceInfo.pNext = &features;
     deviceInfo.queueCreateInfoCount = 1;

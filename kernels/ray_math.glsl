@@ -1,12 +1,24 @@
 // Ray arithmetic shared by every structure's traversal: ONE source for the GPU kernels and the
 // CPU references (each includes it inside a C++ struct, see methods/grid/grid_reference.h), so
 // both run the very same arithmetic, operation by operation.
-// Rules that keep the two bit-identical: float literals carry an `f`; no division except the
-// explicit reciprocals below; dot/cross written out (the driver's built-ins may fuse to FMA);
-// results marked `precise` (no contraction in SPIR-V; the C++ side builds with -ffp-contract=off).
+// Rules that keep the two bit-identical: float literals carry an `f`; every division through
+// rtDivide; dot/cross written out (the driver's built-ins may fuse to FMA); results marked
+// `precise` (no contraction in SPIR-V; the C++ side builds with -ffp-contract=off). Vulkan makes
+// float add, subtract, multiply, conversions, min/max/floor exact; division it does not.
 // Algorithms: slab test (Kay & Kajiya 1986); ray-triangle test of Moller & Trumbore 1997.
 #ifndef RT_RAY_MATH_GLSL
 #define RT_RAY_MATH_GLSL
+
+// a / b correctly rounded, as IEEE float division on the CPU gives it. Vulkan allows OpFDiv an
+// error of 2.5 ULP, and NVIDIA's driver uses it: on an H200 about 3% of the bunny's rays came back
+// with other bits than the CPU's. The double quotient is within 2.5 double ULP (2^-50.7 relative)
+// of a / b, while a quotient of two floats lies at least about 2^-49 (relative) from any midpoint
+// between floats, so rounding it to float gives the correctly rounded float quotient (double
+// rounding is innocuous for division when 53 >= 2 * 24 + 2; Figueroa 1995). Needs shaderFloat64.
+float rtDivide(float a, float b) {
+    precise double q = double(a) / double(b);
+    return float(q);
+}
 
 float rtDot(vec3 a, vec3 b) {
     precise float r = a.x * b.x + a.y * b.y + a.z * b.z;
@@ -20,8 +32,8 @@ vec3 rtCross(vec3 a, vec3 b) {
 
 // Per-axis reciprocal of the direction; zero components are never used through it.
 vec3 rtInverseDirection(vec3 d) {
-    precise vec3 r = vec3(d.x != 0.0f ? 1.0f / d.x : 0.0f, d.y != 0.0f ? 1.0f / d.y : 0.0f,
-                          d.z != 0.0f ? 1.0f / d.z : 0.0f);
+    precise vec3 r = vec3(d.x != 0.0f ? rtDivide(1.0f, d.x) : 0.0f, d.y != 0.0f ? rtDivide(1.0f, d.y) : 0.0f,
+                          d.z != 0.0f ? rtDivide(1.0f, d.z) : 0.0f);
     return r;
 }
 
@@ -59,7 +71,7 @@ bool rtIntersectTriangle(vec3 o, vec3 d, float tMin, vec3 v0, vec3 v1, vec3 v2,
     precise vec3 p = rtCross(d, e2);
     precise float det = rtDot(e1, p);
     if (det == 0.0f) return false;
-    precise float invDet = 1.0f / det;
+    precise float invDet = rtDivide(1.0f, det);
     precise vec3 s = o - v0;
     precise float u = rtDot(s, p) * invDet;
     if (u < 0.0f || u > 1.0f) return false;
