@@ -70,7 +70,7 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("embree_build_ms", K::Timing, "ms", "Embree BVH build time");
         add("speed_ratio_vs_embree1", K::Timing, "ratio",
             "kernel Mrays/s / Embree rtcIntersect1 Mrays/s");
-        // Accuracy against Embree: depends on Embree's floating-point path (its ISA).
+        // Agreement with Embree, a second view of accuracy: depends on Embree's floating-point path.
         add("hits", K::Count, "rays", "rays the kernel hit");
         add("hit_miss_agreement", K::Reference, "fraction", "rays whose hit/miss equals Embree's",
             1e-4);
@@ -83,6 +83,22 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
             1e-4, true);
         add("primitive_mismatches", K::Reference, "rays", "rays both hit on different triangles",
             1e-4, true);
+        // Accuracy against the exact reference (harness/exact_reference.h): the kernels' counts are
+        // deterministic; Embree's depend on its ISA path.
+        add("exact_rays", K::Count, "rays", "rays traced by the exact reference (accuracy.exact_rays)");
+        add("exact_ties", K::Count, "rays", "of those, rays whose exact first hit is shared by several triangles (each is correct)");
+        add("exact_ms", K::Timing, "ms", "wall time of the exact reference on those rays");
+        for (const bool embree : {false, true}) {
+            const std::string p = embree ? "embree_exact_" : "exact_";
+            const std::string who = embree ? "Embree" : "the kernel";
+            const K kind = embree ? K::Reference : K::Count;
+            add(p + "false_misses", kind, "rays", "the exact ray hits, " + who + " missed (a leak)", 1e-4, true);
+            add(p + "false_hits", kind, "rays", "the exact ray misses, " + who + " hit", 1e-4, true);
+            add(p + "wrong_primitive", kind, "rays", "both hit; " + who + "'s triangle is not one the exact ray hits first", 1e-4, true);
+            add(p + "wrong_ppm", kind, "ppm", "false misses + false hits + wrong primitive, per million exact_rays", 100.0);
+            add(p + "distance_error_mean", kind, "", "|t - t_exact| / t_exact, mean over rays both hit", 1e-6);
+            add(p + "distance_error_max", kind, "", "|t - t_exact| / t_exact, max", 1e-6);
+        }
         // Work and accounting (exact, from instrumented kernels; equal to the CPU reference).
         add("work_per_ray_mean", K::Count, "operations",
             "cells or nodes visited + triangles tested per ray, measured: what predicted_work_per_ray predicts");

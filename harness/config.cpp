@@ -84,6 +84,7 @@ const std::vector<KeySpec>& configSchema() {
         add({"strategy.workgroup_size", ValueType::Int, "invocations per workgroup (specialization constant)", std::int64_t(64), false, 1, 1024});
         for (const StrategyType* t : strategyTypes()) addMethodKeys("strategy.type", t->name, t->keys);
         add({"baseline.embree_config", ValueType::String, "Embree device config string, e.g. \"isa=avx2\" (keys isa, max_isa, threads, start_threads, set_affinity, verbose)", std::string(""), false, -1e300, 1e300, {}, {}, checkEmbreeConfig});
+        add({"accuracy.exact_rays", ValueType::Int, "rays checked against the exact reference (CGAL, exact arithmetic): an even stride over the image from ray 0; 0 = every ray", std::int64_t(1048576), false, 0, 4294967295.0});
         add({"device.name", ValueType::String, "\"auto\" (discrete GPU, else lavapipe) or a substring of the device name", std::string("auto")});
         add({"device.validation", ValueType::Bool, "enable the Vulkan validation layer (a run fails on any message)", false});
         add({"output.images", ValueType::Bool, "write PNGs (needs OpenImageIO; else hit records are kept)", true});

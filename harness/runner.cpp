@@ -19,6 +19,7 @@
 #include "device/gpu_buffers.h"
 #include "device/vulkan_context.h"
 #include "embree_reference.h"
+#include "exact_reference.h"
 #include "images.h"
 #include "methods/registry.h"
 #include "output_folder.h"
@@ -69,6 +70,8 @@ struct Caches {
     std::map<std::string, std::shared_ptr<TriangleMesh>> meshes;
     std::map<std::string, std::shared_ptr<VulkanContext>> devices;
     std::map<std::string, std::shared_ptr<EmbreeReference>> embree;
+    std::map<std::string, std::shared_ptr<ExactReference>> exact;  // by scene
+    std::map<std::string, std::shared_ptr<ExactHits>> exactHits;   // by scene, rays and sample
 };
 
 VulkanContext& deviceFor(const RunConfig& run, const RunnerOptions& options, Caches& caches, Row& row) {
@@ -137,8 +140,39 @@ std::vector<gpu::HitRecord> traceEmbree(const RunConfig& run, const TriangleMesh
     return embreeHits;
 }
 
+// The exact first hits of the sampled rays, computed once per scene, rays and sample size.
+const ExactHits& traceExact(const RunConfig& run, const TriangleMesh& mesh, const std::vector<gpu::Ray>& rays,
+                            Caches& caches, Row& row) {
+    const std::string scene = run.getString("scene.source");
+    const std::uint64_t sampleSize = std::uint64_t(run.getInt("accuracy.exact_rays"));
+    const std::string key = scene + "|" + std::to_string(fnv1a64({reinterpret_cast<const char*>(rays.data()),
+                                                                    rays.size() * sizeof(gpu::Ray)})) +
+                            "|" + std::to_string(sampleSize);
+    if (!caches.exactHits.count(key)) {
+        if (!caches.exact.count(scene)) caches.exact[scene] = std::make_shared<ExactReference>(mesh);
+        caches.exactHits[key] = std::make_shared<ExactHits>(caches.exact[scene]->trace(rays, sampleRays(rays.size(), sampleSize)));
+    }
+    const ExactHits& exact = *caches.exactHits[key];
+    row["exact_rays"] = std::to_string(exact.rays.size());
+    std::uint64_t ties = 0;
+    for (const ExactHit& h : exact.hits) ties += h.tieCount > 1;
+    row["exact_ties"] = std::to_string(ties);
+    row["exact_ms"] = num(exact.ms, 4);
+    return exact;
+}
+
+void writeExactColumns(const std::string& prefix, const ExactAccuracy& a, Row& row) {
+    row[prefix + "false_misses"] = std::to_string(a.falseMisses);
+    row[prefix + "false_hits"] = std::to_string(a.falseHits);
+    row[prefix + "wrong_primitive"] = std::to_string(a.wrongPrimitive);
+    row[prefix + "wrong_ppm"] = num(a.wrongPerMillion(), 6);
+    row[prefix + "distance_error_mean"] = num(a.distanceErrorMean, 4);
+    row[prefix + "distance_error_max"] = num(a.distanceErrorMax, 4);
+}
+
 // One run, as the data flows: scene -> rays -> structure -> method (strategy on the device, checked
-// against the structure's CPU reference) -> Embree on the same rays -> metrics -> images. Every
+// against the structure's CPU reference) -> Embree on the same rays -> the exact reference on a
+// sample of them -> metrics -> images. Every
 // value goes to `row`; a self-check that fails throws after the row is complete.
 void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOptions& options,
                 const std::string& folder, Caches& caches, Row& row) {
@@ -186,7 +220,12 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
     const std::vector<gpu::HitRecord> embreeHits = traceEmbree(run, mesh, rays, timing, caches, row);
     row["speed_ratio_vs_embree1"] = num(kernelMrays / std::stod(row["embree1_mrays_s"]), 4);
 
-    // Metrics: accuracy against Embree.
+    // Ground truth: the exact first hits of a sample of the rays, for the kernel and for Embree.
+    const ExactHits& exact = traceExact(run, mesh, rays, caches, row);
+    writeExactColumns("exact_", compareExact(method.hits, exact), row);
+    writeExactColumns("embree_exact_", compareExact(embreeHits, exact), row);
+
+    // Metrics: agreement with Embree.
     const Agreement a = compareHits(method.hits, embreeHits);
     row["hits"] = std::to_string(method.metrics.work.hits);
     row["hit_miss_agreement"] = num(a.hitMissAgreement, 8);

@@ -8,6 +8,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -54,7 +55,7 @@ struct RunConfig {
     std::array<double, 3> getVec3(const std::string& key) const;
     // "key=value" pairs joined; stable across runs of the same parameters.
     std::string canonical() const;
-    // FNV-1a 64-bit of canonical(), hex.
+    // fnv1a64 of canonical(), hex.
     std::string hash() const;
     // A short label naming the swept parameters, e.g. "structure.min_dim=32".
     std::string label() const;
@@ -66,5 +67,8 @@ std::string formatValue(const ConfigValue& value);
 // holds, `valueOf(key)` giving the key's value as formatValue writes it, or nothing when unset.
 bool conditionsHold(const std::vector<std::string>& conditions,
                     const std::function<std::optional<std::string>(const std::string& key)>& valueOf);
+
+// FNV-1a 64 of bytes: config hashes, and the fingerprint of a run's rays.
+std::uint64_t fnv1a64(std::string_view bytes);
 
 }  // namespace rtbench

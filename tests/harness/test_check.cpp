@@ -144,11 +144,13 @@ TEST_F(Golden, ACutRowIsAnErrorNamingItsLine) {
     std::size_t lineStart = t.rfind('\n', third - 1) + 1;
     std::string cut = t.substr(0, lineStart);
     std::size_t fields = 0, at = lineStart;
-    while (fields < 40)
-        at = t.find(',', at) + 1, ++fields;  // 40 commas: one is inside the quoted device
+    for (bool quoted = false; fields < 10; ++at) {  // the first 10 fields, commas inside quotes skipped
+        if (t[at] == '"') quoted = !quoted;
+        if (t[at] == ',' && !quoted) ++fields;
+    }
     cut += t.substr(lineStart, at - 1 - lineStart) + t.substr(third);
     setText(cut);
-    EXPECT_THAT(errorOfCheck(), HasSubstr("runs.csv:3: row 2 has 39 of the header's"));
+    EXPECT_THAT(errorOfCheck(), HasSubstr("runs.csv:3: row 2 has 10 of the header's"));
 }
 
 TEST_F(Golden, ADuplicatedRowIsAnError) {
