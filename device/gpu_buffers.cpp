@@ -85,7 +85,8 @@ ComputePipeline GpuBuffers::createKernel(const std::string& name, const KernelSp
                                       {gpu::kSpecInstrument, spec.instrument ? 1u : 0u},
                                       {gpu::kSpecTraverseSteps, spec.traverseStepsPerPass},
                                       {gpu::kSpecIntersections, spec.intersectionsPerPass},
-                                      {gpu::kSpecSuppress, spec.suppressFinishedReads ? 1u : 0u}});
+                                      {gpu::kSpecSuppress, spec.suppressFinishedReads ? 1u : 0u},
+                                      {gpu::kSpecTriangleTest, spec.triangleTest}});
 }
 
 GpuBuffers::~GpuBuffers() {

@@ -17,6 +17,7 @@ struct KernelSpec {
     std::uint32_t traverseStepsPerPass = 1;
     std::uint32_t intersectionsPerPass = 1;
     bool suppressFinishedReads = false;
+    std::uint32_t triangleTest = gpu::kTriangleTestMollerTrumbore;
 };
 
 // One device buffer of a run and its size, known from the run's parameters before allocation.

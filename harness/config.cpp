@@ -52,7 +52,9 @@ const std::vector<KeySpec>& configSchema() {
         add({"experiment.output", ValueType::String, "output folder (relative to the working directory)", std::string("out")});
         add({"experiment.repetitions", ValueType::Int, "timed repetitions per run (median reported)", std::int64_t(5), false, 1, 1000});
         add({"experiment.warmups", ValueType::Int, "untimed warm-up dispatches before timing", std::int64_t(1), false, 0, 100});
-        add({"scene.source", ValueType::String, "mesh file (.off/.obj/.ply/.stl, relative to the config), scene description (.toml, relative to the config: meshes with transforms and seeded scatters, see structures/scene_description.h), cgal:NAME, or procedural:christen_a|christen_b|christen_b_thesis", {}, true});
+        add({"scene.source", ValueType::String, "mesh file (.off/.obj/.ply/.stl, relative to the config), scene description (.toml, relative to the config: meshes with transforms and seeded scatters, see structures/scene_description.h), cgal:NAME, or procedural:christen_a|christen_b|christen_b_thesis|closed_box|icosphere|tetrahedron", {}, true});
+        add({"scene.scale", ValueType::Float, "uniform scale applied to every vertex, in float: v * scale + translate (camera.position and camera.look_at move with the scene)", 1.0, false, 1e-30, 1e30});
+        add({"scene.translate", ValueType::Float3, "translation applied after scene.scale, in float (stability sweeps move a scene away from the origin)", std::array<double, 3>{0, 0, 0}});
         add({"camera.width", ValueType::Int, "image width in pixels", std::int64_t(1024), false, 1, 16384});
         add({"camera.height", ValueType::Int, "image height in pixels", std::int64_t(1024), false, 1, 16384});
         add({"camera.position", ValueType::Float3, "eye position (default: the procedural scene's own viewpoint, else fitted to the scene bounds)", {}});
@@ -83,6 +85,7 @@ const std::vector<KeySpec>& configSchema() {
         add({"strategy.type", ValueType::String, strategyHelp, strategies.front(), false, -1e300, 1e300, strategies});
         add({"strategy.workgroup_size", ValueType::Int, "invocations per workgroup (specialization constant)", std::int64_t(64), false, 1, 1024});
         for (const StrategyType* t : strategyTypes()) addMethodKeys("strategy.type", t->name, t->keys);
+        add({"intersection.test", ValueType::String, "ray-triangle test of every structure and strategy, on the GPU and in the CPU reference: moller_trumbore (Moller & Trumbore 1997) or watertight (Woop, Benthin & Wald 2013: no ray slips between triangles sharing an edge)", std::string("moller_trumbore"), false, -1e300, 1e300, {"moller_trumbore", "watertight"}});
         add({"baseline.embree_config", ValueType::String, "Embree device config string, e.g. \"isa=avx2\" (keys isa, max_isa, threads, start_threads, set_affinity, verbose)", std::string(""), false, -1e300, 1e300, {}, {}, checkEmbreeConfig});
         add({"accuracy.exact_rays", ValueType::Int, "rays checked against the exact reference (CGAL, exact arithmetic): an even stride over the image from ray 0; 0 = every ray", std::int64_t(1048576), false, 0, 4294967295.0});
         add({"device.name", ValueType::String, "\"auto\" (discrete GPU, else lavapipe) or a substring of the device name", std::string("auto")});

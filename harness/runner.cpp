@@ -85,10 +85,27 @@ VulkanContext& deviceFor(const RunConfig& run, const RunnerOptions& options, Cac
     return vk;
 }
 
+// The scene as a run sees it: its source moved by scene.scale and scene.translate, in float.
+glm::vec3 sceneTransform(const RunConfig& run, glm::vec3 p) {
+    const float scale = float(run.getFloat("scene.scale"));
+    const glm::vec3 translate = toVec3(run.getVec3("scene.translate"));
+    return p * scale + translate;
+}
+
+// The cache key of a run's scene: its source and transform.
+std::string sceneKey(const RunConfig& run) {
+    return run.getString("scene.source") + "|" + formatValue(run.values.at("scene.scale")) + "|" +
+           formatValue(run.values.at("scene.translate"));
+}
+
 const TriangleMesh& sceneFor(const ExperimentPlan& plan, const RunConfig& run, Caches& caches, Row& row) {
-    const std::string source = run.getString("scene.source");
-    if (!caches.meshes.count(source)) caches.meshes[source] = std::make_shared<TriangleMesh>(loadScene(source, plan.configDir));
-    const TriangleMesh& mesh = *caches.meshes[source];
+    const std::string key = sceneKey(run);
+    if (!caches.meshes.count(key)) {
+        TriangleMesh mesh = loadScene(run.getString("scene.source"), plan.configDir);
+        for (glm::vec3& v : mesh.vertices) v = sceneTransform(run, v);
+        caches.meshes[key] = std::make_shared<TriangleMesh>(std::move(mesh));
+    }
+    const TriangleMesh& mesh = *caches.meshes[key];
     row["scene_triangles"] = std::to_string(mesh.triangles.size());
     validateSceneRange(mesh);  // before the structure, the camera fit or Embree see it
     const std::size_t degenerate = mesh.degenerateCount();
@@ -107,9 +124,13 @@ PinholeCamera cameraFor(const RunConfig& run, const TriangleMesh& mesh) {
     const std::string source = run.getString("scene.source");
     PinholeCamera camera = fitCamera(mesh.bounds(), float(run.getFloat("camera.fov_deg")));
     if (source.rfind("procedural:", 0) == 0 && !run.has("camera.position") && !run.has("camera.look_at"))
-        camera = proceduralCamera(source.substr(11), camera.verticalFovDegrees).value_or(camera);
-    if (run.has("camera.look_at")) camera.lookAt = toVec3(run.getVec3("camera.look_at"));
-    if (run.has("camera.position")) camera.position = toVec3(run.getVec3("camera.position"));
+        if (auto own = proceduralCamera(source.substr(11), camera.verticalFovDegrees)) {
+            camera = *own;  // in the scene's own coordinates
+            camera.position = sceneTransform(run, camera.position);
+            camera.lookAt = sceneTransform(run, camera.lookAt);
+        }
+    if (run.has("camera.look_at")) camera.lookAt = sceneTransform(run, toVec3(run.getVec3("camera.look_at")));
+    if (run.has("camera.position")) camera.position = sceneTransform(run, toVec3(run.getVec3("camera.position")));
     camera.up = toVec3(run.getVec3("camera.up"));
     return camera;
 }
@@ -118,7 +139,7 @@ PinholeCamera cameraFor(const RunConfig& run, const TriangleMesh& mesh) {
 std::vector<gpu::HitRecord> traceEmbree(const RunConfig& run, const TriangleMesh& mesh, const std::vector<gpu::Ray>& rays,
                                         const TimingOptions& timing, Caches& caches, Row& row) {
     const std::string embreeConfig = run.getString("baseline.embree_config");
-    const std::string embreeKey = run.getString("scene.source") + "|" + embreeConfig;
+    const std::string embreeKey = sceneKey(run) + "|" + embreeConfig;
     if (!caches.embree.count(embreeKey)) caches.embree[embreeKey] = std::make_shared<EmbreeReference>(mesh, embreeConfig);
     EmbreeReference& embree = *caches.embree[embreeKey];
     std::vector<gpu::HitRecord> embreeHits, scratch;
@@ -143,7 +164,7 @@ std::vector<gpu::HitRecord> traceEmbree(const RunConfig& run, const TriangleMesh
 // The exact first hits of the sampled rays, computed once per scene, rays and sample size.
 const ExactHits& traceExact(const RunConfig& run, const TriangleMesh& mesh, const std::vector<gpu::Ray>& rays,
                             Caches& caches, Row& row) {
-    const std::string scene = run.getString("scene.source");
+    const std::string scene = sceneKey(run);
     const std::uint64_t sampleSize = std::uint64_t(run.getInt("accuracy.exact_rays"));
     const std::string key = scene + "|" + std::to_string(fnv1a64({reinterpret_cast<const char*>(rays.data()),
                                                                     rays.size() * sizeof(gpu::Ray)})) +
@@ -194,6 +215,8 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
 
     // Structure.
     const std::unique_ptr<Structure> structure = structureKind.build(mesh, rays, run, vk.info());
+    structure->setTriangleTest(run.getString("intersection.test") == "watertight" ? gpu::kTriangleTestWatertight
+                                                                                  : gpu::kTriangleTestMollerTrumbore);
     structure->writeColumns(row);
     row["structure_bytes"] = std::to_string(structure->memoryBytes);
     row["structure_bytes_per_triangle"] = num(double(structure->memoryBytes) / double(std::max<std::size_t>(mesh.triangles.size(), 1)));

@@ -18,6 +18,7 @@ layout(constant_id = kSpecInstrument) const uint instrument = 1u;
 layout(constant_id = kSpecTraverseSteps) const uint traverseStepsPerPass = 1u;
 layout(constant_id = kSpecIntersections) const uint intersectionsPerPass = 1u;
 layout(constant_id = kSpecSuppress) const uint suppressFinishedReads = 0u;
+layout(constant_id = kSpecTriangleTest) const uint triangleTest = kTriangleTestMollerTrumbore;
 
 layout(std430, set = 0, binding = kBindingRays) readonly buffer RayBuffer { Ray rays[]; };
 layout(std430, set = 0, binding = kBindingHits) writeonly buffer HitBuffer { HitRecord hits[]; };

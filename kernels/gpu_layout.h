@@ -37,6 +37,11 @@ RTBENCH_CONST kSpecInstrument = 1;       // 1: count work and bytes; 0: timing r
 RTBENCH_CONST kSpecTraverseSteps = 2;    // multipass: traversal steps per traverse pass (K)
 RTBENCH_CONST kSpecIntersections = 3;    // multipass: triangle tests per intersect pass (M)
 RTBENCH_CONST kSpecSuppress = 4;         // multipass: 1 = rays done mid-pass skip the rest's reads
+RTBENCH_CONST kSpecTriangleTest = 5;     // kTriangleTest*: the ray-triangle test (intersection.test)
+
+// ---- ray-triangle tests (kernels/ray_math.glsl) ----
+RTBENCH_CONST kTriangleTestMollerTrumbore = 0;  // Moller & Trumbore 1997
+RTBENCH_CONST kTriangleTestWatertight = 1;      // Woop, Benthin & Wald 2013
 
 // ---- multipass ray states: the one-byte "stencil" (Purcell et al. 2002 §3.2) ----
 RTBENCH_CONST kStateTraversing = 0;  // active: step through the structure

@@ -9,16 +9,15 @@
 // of the unrolled iterations read and discard the last one (unless suppressed), as non-branching
 // hardware would. True when the range ended in this pass.
 bool mpIntersectRange(Ray ray, RT_INOUT(uint) position, uint end, RT_INOUT(RayHitState) hit, RT_INOUT(MpEvents) e) {
-    vec3 o = vec3(ray.originTMin);
-    vec3 d = vec3(ray.directionTMax);
+    RtTriangleRay r = rtTriangleRay(ray);
     bool ended = false;
     for (uint i = 0u; i < intersectionsPerPass; ++i) {
         if (!ended) {
             uint tri = mpTriangleAt(position);
             e.triangleReads += 1u;
             e.tested += 1u;
-            if (rtIntersectTriangle(o, d, ray.originTMin.w, vec3(triangles[tri].v0), vec3(triangles[tri].v1),
-                                    vec3(triangles[tri].v2), hit.t, hit.u, hit.v))
+            if (rtIntersect(r, vec3(triangles[tri].v0), vec3(triangles[tri].v1), vec3(triangles[tri].v2), hit.t,
+                            hit.u, hit.v))
                 hit.primitive = tri;
             position += 1u;
             ended = position == end;

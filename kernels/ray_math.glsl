@@ -5,7 +5,9 @@
 // rtDivide; dot/cross written out (the driver's built-ins may fuse to FMA); results marked
 // `precise` (no contraction in SPIR-V; the C++ side builds with -ffp-contract=off). Vulkan makes
 // float add, subtract, multiply, conversions, min/max/floor exact; division it does not.
-// Algorithms: slab test (Kay & Kajiya 1986); ray-triangle test of Moller & Trumbore 1997.
+// Algorithms: slab test (Kay & Kajiya 1986); ray-triangle tests of Moller & Trumbore 1997 and
+// the watertight test of Woop, Benthin & Wald 2013, chosen by the specialization constant
+// `triangleTest` (intersection.test).
 #ifndef RT_RAY_MATH_GLSL
 #define RT_RAY_MATH_GLSL
 
@@ -84,6 +86,93 @@ bool rtIntersectTriangle(vec3 o, vec3 d, float tMin, vec3 v0, vec3 v1, vec3 v2,
     uBest = u;
     vBest = v;
     return true;
+}
+
+// The ray as the triangle tests see it: origin, direction, tMin, and for the watertight test the
+// per-ray shear (Woop et al. 2013 §3.1): axes kx, ky, kz with kz the direction's largest
+// component (kx, ky swapped when it is negative, to keep the winding), and Sx, Sy, Sz.
+struct RtTriangleRay {
+    vec3 o;
+    vec3 d;
+    float tMin;
+    ivec3 axes;
+    vec3 shear;
+};
+
+RtTriangleRay rtTriangleRay(Ray ray) {
+    RtTriangleRay r;
+    r.o = vec3(ray.originTMin);
+    r.d = vec3(ray.directionTMax);
+    r.tMin = ray.originTMin.w;
+    r.axes = ivec3(0, 1, 2);
+    r.shear = vec3(0.0f);
+    if (triangleTest == kTriangleTestWatertight) {
+        vec3 a = abs(r.d);
+        int kz = 0;
+        if (a.y > a[kz]) kz = 1;
+        if (a.z > a[kz]) kz = 2;
+        int kx = kz == 2 ? 0 : kz + 1;
+        int ky = kx == 2 ? 0 : kx + 1;
+        if (r.d[kz] < 0.0f) {
+            int swap = kx;
+            kx = ky;
+            ky = swap;
+        }
+        r.axes = ivec3(kx, ky, kz);
+        r.shear = vec3(rtDivide(r.d[kx], r.d[kz]), rtDivide(r.d[ky], r.d[kz]), rtDivide(1.0f, r.d[kz]));
+    }
+    return r;
+}
+
+// Watertight ray-triangle test (Woop, Benthin & Wald 2013, JCGT 2(1), §3): the vertices are
+// sheared into the ray's frame and the three 2D edge functions decide the hit; an edge function
+// that is exactly 0 is recomputed in double, so a ray through a shared edge or vertex hits at
+// least one of the triangles. Updates (tBest, u, v) when hit in [tMin, tBest), like Moller-Trumbore.
+bool rtIntersectWatertight(RtTriangleRay r, vec3 v0, vec3 v1, vec3 v2,
+                           RT_INOUT(float) tBest, RT_INOUT(float) uBest, RT_INOUT(float) vBest) {
+    int kx = r.axes.x;
+    int ky = r.axes.y;
+    int kz = r.axes.z;
+    precise vec3 a = v0 - r.o;
+    precise vec3 b = v1 - r.o;
+    precise vec3 c = v2 - r.o;
+    precise float ax = a[kx] - r.shear.x * a[kz];
+    precise float ay = a[ky] - r.shear.y * a[kz];
+    precise float bx = b[kx] - r.shear.x * b[kz];
+    precise float by = b[ky] - r.shear.y * b[kz];
+    precise float cx = c[kx] - r.shear.x * c[kz];
+    precise float cy = c[ky] - r.shear.y * c[kz];
+    precise float eu = cx * by - cy * bx;  // scaled barycentric of v0
+    precise float ev = ax * cy - ay * cx;  // of v1
+    precise float ew = bx * ay - by * ax;  // of v2
+    if (eu == 0.0f || ev == 0.0f || ew == 0.0f) {  // products of floats are exact in double
+        precise double du = double(cx) * double(by) - double(cy) * double(bx);
+        precise double dv = double(ax) * double(cy) - double(ay) * double(cx);
+        precise double dw = double(bx) * double(ay) - double(by) * double(ax);
+        eu = float(du);
+        ev = float(dv);
+        ew = float(dw);
+    }
+    if ((eu < 0.0f || ev < 0.0f || ew < 0.0f) && (eu > 0.0f || ev > 0.0f || ew > 0.0f)) return false;
+    precise float det = eu + ev + ew;
+    if (det == 0.0f) return false;
+    precise float az = r.shear.z * a[kz];
+    precise float bz = r.shear.z * b[kz];
+    precise float cz = r.shear.z * c[kz];
+    precise float scaledT = eu * az + ev * bz + ew * cz;
+    float t = rtDivide(scaledT, det);
+    if (t < r.tMin || t >= tBest) return false;
+    tBest = t;
+    uBest = rtDivide(ev, det);
+    vBest = rtDivide(ew, det);
+    return true;
+}
+
+// The configured test (intersection.test): Moller-Trumbore or watertight.
+bool rtIntersect(RtTriangleRay r, vec3 v0, vec3 v1, vec3 v2, RT_INOUT(float) tBest, RT_INOUT(float) uBest,
+                 RT_INOUT(float) vBest) {
+    if (triangleTest == kTriangleTestWatertight) return rtIntersectWatertight(r, v0, v1, v2, tBest, uBest, vBest);
+    return rtIntersectTriangle(r.o, r.d, r.tMin, v0, v1, v2, tBest, uBest, vBest);
 }
 
 #endif  // RT_RAY_MATH_GLSL

@@ -48,9 +48,8 @@ RtNearest rtNoHitYet(Ray ray) {
 }
 
 // Tests triangle `tri` of the structure's `triangles` and keeps it when it is hit nearer.
-void rtTestTriangle(vec3 o, vec3 d, float tMin, uint tri, RT_INOUT(RtNearest) n) {
-    if (rtIntersectTriangle(o, d, tMin, vec3(triangles[tri].v0), vec3(triangles[tri].v1), vec3(triangles[tri].v2),
-                            n.t, n.u, n.v))
+void rtTestTriangle(RtTriangleRay r, uint tri, RT_INOUT(RtNearest) n) {
+    if (rtIntersect(r, vec3(triangles[tri].v0), vec3(triangles[tri].v1), vec3(triangles[tri].v2), n.t, n.u, n.v))
         n.primitive = tri;
 }
 

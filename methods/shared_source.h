@@ -28,6 +28,7 @@ struct KernelConstants {
     std::uint32_t traverseStepsPerPass = 1;
     std::uint32_t intersectionsPerPass = 1;
     std::uint32_t suppressFinishedReads = 0;
+    std::uint32_t triangleTest = gpu::kTriangleTestMollerTrumbore;
     std::vector<std::uint32_t>* loopLog = nullptr;  // when set: per outer iteration, the triangle-loop trips
 
     void setMultipass(const MultipassOptions& options) {
@@ -53,6 +54,12 @@ class SharedSourceStructure : public Structure {
 public:
     // The shared source over this structure's data.
     virtual Kernels kernels() const = 0;
+    // ... with the constants every structure shares (the triangle test).
+    Kernels configured() const {
+        Kernels k = kernels();
+        k.triangleTest = triangleTest();
+        return k;
+    }
 
     std::vector<std::uint8_t> params() const override {
         const auto p = kernels().params;
@@ -60,14 +67,14 @@ public:
         std::memcpy(bytes.data(), &p, sizeof p);
         return bytes;
     }
-    std::vector<gpu::HitRecord> trace(const std::vector<gpu::Ray>& rays) const override { return traceAll(kernels(), rays); }
+    std::vector<gpu::HitRecord> trace(const std::vector<gpu::Ray>& rays) const override { return traceAll(configured(), rays); }
     void traceLoops(const gpu::Ray& ray, std::vector<std::uint32_t>& loopLog) const override {
-        Kernels k = kernels();
+        Kernels k = configured();
         k.loopLog = &loopLog;
         k.rtTrace(ray);
     }
     MultipassResult simulateMultipass(const std::vector<gpu::Ray>& rays, const MultipassOptions& options) const override {
-        Kernels k = kernels();
+        Kernels k = configured();
         k.setMultipass(options);
         return rtbench::simulateMultipass(k, rays, options, multipassPassCap(options));
     }

@@ -73,8 +73,16 @@ public:
     virtual void writeWorkColumns(double cellsPerRayMean, std::uint32_t cellsPerRayMax,
                                   std::uint64_t cellBytes, Row& row) const = 0;
 
+    // The ray-triangle test its kernels and CPU reference run (gpu::kTriangleTest*,
+    // intersection.test): set by the runner after the build, read by the strategies.
+    virtual void setTriangleTest(std::uint32_t test) { triangleTest_ = test; }
+    std::uint32_t triangleTest() const { return triangleTest_; }
+
     std::uint64_t memoryBytes = 0;  // everything the structure uploads
     double buildMs = 0.0;           // CPU build time
+
+private:
+    std::uint32_t triangleTest_ = gpu::kTriangleTestMollerTrumbore;
 };
 
 // A structure as the registry lists it: its structure.type value, keys, columns and builder.

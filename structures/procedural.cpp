@@ -1,5 +1,10 @@
 #include "procedural.h"
 
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <map>
+
 #include "error.h"
 
 namespace rtbench {
@@ -71,6 +76,13 @@ TriangleMesh christenSceneBThesis(std::uint32_t seed) {
 }
 
 std::optional<PinholeCamera> proceduralCamera(const std::string& name, float verticalFovDegrees) {
+    if (name == "closed_box" || name == "icosphere" || name == "tetrahedron") {
+        PinholeCamera camera;  // inside, at the origin (a voxel corner of the closed box's grid)
+        camera.position = {0.0f, 0.0f, 0.0f};
+        camera.lookAt = {0.0f, 0.0f, 1.0f};
+        camera.verticalFovDegrees = verticalFovDegrees;
+        return camera;
+    }
     if (name != "christen_b" && name != "christen_b_thesis") return std::nullopt;
     PinholeCamera camera;
     camera.position = {0.0f, 3.0f, 9.5f};  // by the front wall, looking across the room
@@ -79,12 +91,93 @@ std::optional<PinholeCamera> proceduralCamera(const std::string& name, float ver
     return camera;
 }
 
+TriangleMesh closedBox(int quadsPerEdge) {
+    TriangleMesh mesh;
+    mesh.name = "procedural:closed_box";
+    const int n = quadsPerEdge;
+    std::map<std::array<int, 3>, unsigned> index;  // lattice point -> vertex, so faces share edges
+    auto vertex = [&](std::array<int, 3> p) {
+        auto [it, added] = index.emplace(p, unsigned(mesh.vertices.size()));
+        if (added)  // -1 + 2 * p / n, exact in float for the n of interest (powers of two)
+            mesh.vertices.emplace_back(-1.0f + 2.0f * float(p[0]) / float(n), -1.0f + 2.0f * float(p[1]) / float(n),
+                                       -1.0f + 2.0f * float(p[2]) / float(n));
+        return it->second;
+    };
+    for (int axis = 0; axis < 3; ++axis)
+        for (int side = 0; side <= 1; ++side) {
+            const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+            for (int i = 0; i < n; ++i)
+                for (int j = 0; j < n; ++j) {
+                    std::array<unsigned, 4> q;
+                    for (int k = 0; k < 4; ++k) {
+                        std::array<int, 3> p{};
+                        p[axis] = side * n;
+                        p[u] = i + (k == 1 || k == 2);
+                        p[v] = j + (k >= 2);
+                        q[k] = vertex(p);
+                    }
+                    // Inward: counter-clockwise seen from inside.
+                    const bool flip = side == 1;
+                    mesh.triangles.push_back(flip ? glm::uvec3(q[0], q[1], q[2]) : glm::uvec3(q[0], q[2], q[1]));
+                    mesh.triangles.push_back(flip ? glm::uvec3(q[0], q[2], q[3]) : glm::uvec3(q[0], q[3], q[2]));
+                    mesh.polygonsRead += 1;
+                }
+        }
+    return mesh;
+}
+
+TriangleMesh icosphere(int levels) {
+    TriangleMesh mesh;
+    mesh.name = "procedural:icosphere";
+    const double g = (1.0 + std::sqrt(5.0)) / 2.0;
+    std::vector<glm::dvec3> points = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
+                                      {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+    for (glm::dvec3& p : points) p = glm::normalize(p);
+    std::vector<glm::uvec3> faces = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                                     {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
+                                     {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+    for (int level = 0; level < levels; ++level) {
+        std::map<std::pair<unsigned, unsigned>, unsigned> midpoints;  // each edge split once: shared
+        auto midpoint = [&](unsigned a, unsigned b) {
+            auto [it, added] = midpoints.emplace(std::minmax(a, b), unsigned(points.size()));
+            if (added) points.push_back(glm::normalize(points[a] + points[b]));
+            return it->second;
+        };
+        std::vector<glm::uvec3> next;
+        for (const glm::uvec3& f : faces) {
+            const unsigned ab = midpoint(f.x, f.y);
+            const unsigned bc = midpoint(f.y, f.z);
+            const unsigned ca = midpoint(f.z, f.x);
+            for (glm::uvec3 t : {glm::uvec3(f.x, ab, ca), glm::uvec3(f.y, bc, ab), glm::uvec3(f.z, ca, bc), glm::uvec3(ab, bc, ca)})
+                next.push_back(t);
+        }
+        faces = std::move(next);
+    }
+    for (const glm::dvec3& p : points) mesh.vertices.emplace_back(glm::vec3(p));
+    mesh.triangles = faces;
+    mesh.polygonsRead = faces.size();
+    return mesh;
+}
+
+TriangleMesh tetrahedron() {
+    TriangleMesh mesh;
+    mesh.name = "procedural:tetrahedron";
+    mesh.vertices = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+    mesh.triangles = {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}};
+    mesh.polygonsRead = 4;
+    return mesh;
+}
+
 TriangleMesh proceduralScene(const std::string& name) {
     if (name == "christen_a") return christenSceneA();
     if (name == "christen_b") return christenSceneB();
     if (name == "christen_b_thesis") return christenSceneBThesis();
+    if (name == "closed_box") return closedBox();
+    if (name == "icosphere") return icosphere();
+    if (name == "tetrahedron") return tetrahedron();
     throw Error("procedural:" + name +
-                ": unknown procedural scene (allowed: christen_a, christen_b, christen_b_thesis)");
+                ": unknown procedural scene (allowed: christen_a, christen_b, christen_b_thesis, closed_box, "
+                "icosphere, tetrahedron)");
 }
 
 }  // namespace rtbench

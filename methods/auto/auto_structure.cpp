@@ -32,6 +32,10 @@ public:
         return chosen_->multipassPassCap(options);
     }
     double predictedWork(const std::vector<gpu::Ray>& rays) const override { return chosen_->predictedWork(rays); }
+    void setTriangleTest(std::uint32_t test) override {
+        Structure::setTriangleTest(test);
+        chosen_->setTriangleTest(test);
+    }
     void writeColumns(Row& row) const override {
         chosen_->writeColumns(row);
         row["auto_choice"] = choice_;

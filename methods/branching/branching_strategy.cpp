@@ -36,6 +36,7 @@ BranchingRun runBranching(VulkanContext& vk, const Structure& structure, const s
     const std::string kernel = structure.kernelPrefix() + "_branching";
     KernelSpec spec;
     spec.workgroupSize = timing.workgroupSize;
+    spec.triangleTest = structure.triangleTest();
     {
         ComputePipeline counted = buffers.createKernel(kernel, spec);
         vk.dispatch(counted, buffers.descriptorSet(counted), buffers.pushConstants(), rays.size());

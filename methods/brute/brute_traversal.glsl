@@ -8,14 +8,13 @@
 // every triangle.
 HitRecord rtTrace(Ray ray) {
     HitRecord h = rtEmptyRecord();
-    vec3 o = vec3(ray.originTMin);
-    vec3 d = vec3(ray.directionTMax);
+    RtTriangleRay r = rtTriangleRay(ray);
     RtNearest nearest = rtNoHitYet(ray);
     RT_ON_OUTER();
     for (uint tri = 0u; tri < params.counts.x; ++tri) {
         RT_ON_INNER();
         h.trianglesTested += 1u;
-        rtTestTriangle(o, d, ray.originTMin.w, tri, nearest);
+        rtTestTriangle(r, tri, nearest);
     }
     rtRecordNearest(nearest, h);
     return h;

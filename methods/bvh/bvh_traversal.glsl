@@ -65,6 +65,7 @@ HitRecord rtTrace(Ray ray) {
     vec3 d = vec3(ray.directionTMax);
     vec3 invD = rtInverseDirection(d);
     float tMin = ray.originTMin.w;
+    RtTriangleRay r = rtTriangleRay(ray);
     RtNearest nearest = rtNoHitYet(ray);
     uint stack[kBvhStackSize];
     uint size = 0u;
@@ -79,7 +80,7 @@ HitRecord rtTrace(Ray ray) {
             for (uint i = first; i < end; ++i) {
                 RT_ON_INNER();
                 h.trianglesTested += 1u;
-                rtTestTriangle(o, d, tMin, triangleList[i], nearest);
+                rtTestTriangle(r, triangleList[i], nearest);
             }
             next = false;
         } else {

@@ -109,8 +109,7 @@ HitRecord rtTrace(Ray ray) {
     HitRecord h = rtEmptyRecord();
     RtDda s;
     if (!rtEnterGrid(ray, s)) return h;
-    vec3 o = vec3(ray.originTMin);
-    vec3 d = vec3(ray.directionTMax);
+    RtTriangleRay r = rtTriangleRay(ray);
     RtNearest nearest = rtNoHitYet(ray);
     while (true) {
         RT_ON_OUTER();
@@ -121,7 +120,7 @@ HitRecord rtTrace(Ray ray) {
         for (uint i = first; i < end; ++i) {
             RT_ON_INNER();
             h.trianglesTested += 1u;
-            rtTestTriangle(o, d, ray.originTMin.w, triangleList[i], nearest);
+            rtTestTriangle(r, triangleList[i], nearest);
         }
         if (nearest.primitive != kNoHit && nearest.t <= rtDdaVoxelExit(s)) break;
         h.traversalSteps += 1u;

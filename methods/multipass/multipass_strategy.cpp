@@ -90,6 +90,7 @@ MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const s
     const std::uint64_t cap = structure.multipassPassCap(options);
     KernelSpec spec;
     spec.workgroupSize = timing.workgroupSize;
+    spec.triangleTest = structure.triangleTest();
     spec.traverseStepsPerPass = options.traverseStepsPerPass;
     spec.intersectionsPerPass = options.intersectionsPerPass;
     spec.suppressFinishedReads = options.suppressFinishedReads;
