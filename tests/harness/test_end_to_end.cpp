@@ -262,7 +262,7 @@ TEST_F(EndToEnd, SceneTransformMovesTheCameraWithTheScene) {
         "[camera]\nwidth = 48\nheight = 32\nposition = [0.0, 3.0, 10.0]\nlook_at = [0.0, 1.0, 0.0]\n[structure]\nmin_dim = 8\n"
         "[output]\nimages = false\n");
     ASSERT_EQ(result.rows.size(), 4u);
-    EXPECT_GT(std::stoul(result.rows[0].at("hits")), 300u);
+    EXPECT_GT(std::stoul(result.rows[0].at("hits")), 200u);  // of 1,536 rays: the camera sees the boxes
     for (const Row& row : result.rows) {
         SCOPED_TRACE(row.at("label"));
         ASSERT_EQ(row.at("status"), "ok") << row.at("error");
