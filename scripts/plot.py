@@ -12,7 +12,8 @@ import matplotlib
 
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
-from rtbench_results import load, method_name  # noqa: E402
+import pandas as pd  # noqa: E402
+from rtbench_results import load, method_name, scene_name  # noqa: E402
 COLORS = {"branching": "tab:blue", "multipass": "tab:orange", "Embree rtcIntersect1": "tab:green"}
 BYTES = [("bytes_stencil", "stencil"), ("bytes_state", "state variables"), ("bytes_stack", "node stack"),
          ("bytes_voxel", "voxel data"), ("bytes_node", "BVH nodes"), ("bytes_triangle_list", "triangle lists"),
@@ -44,38 +45,118 @@ def size(frame) -> str:
 
 
 def pareto(points):
-    """Points not dominated in (speed up, agreement up), sorted by speed."""
-    front, best = [], -1.0
-    for x, y in sorted(points, key=lambda p: (-p[0], -p[1])):
-        if y > best:
+    """Points (speed, error) no other point beats in both (faster and at most as wrong), by speed."""
+    front, best = [], float("inf")
+    for x, y in sorted(points, key=lambda p: (-p[0], p[1])):
+        if y < best:
             front.append((x, y))
             best = y
     return sorted(front)
 
 
+def wrong_ppm(frame, prefix="exact_"):
+    """Rays wrong against the exact reference per million: false misses + false hits + wrong triangle."""
+    wrong = frame[prefix + "false_misses"] + frame[prefix + "false_hits"] + frame[prefix + "wrong_primitive"]
+    return 1e6 * wrong / frame.exact_rays
+
+
+def method_label(run) -> str:
+    """structure, strategy and triangle test of one run: "grid 64 branching MT"."""
+    test = {"moller_trumbore": "MT", "watertight": "watertight"}.get(run.get("intersection_test"), "MT")
+    return f"{method_name(run)} {run.strategy_type} {test}"
+
+
 def speed_vs_accuracy(runs, device, folder, written):
-    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.5))
+    if "exact_rays" not in runs:  # a folder from before the exact reference: agreement with Embree
+        return
+    fig, (left, right) = plt.subplots(1, 2, figsize=(12, 4.8))
     points = []
-    for method, group in runs.groupby("strategy_type"):
-        left.scatter(group.kernel_mrays_s, 100 * group.hit_miss_agreement, label=method, color=COLORS.get(method), alpha=0.8)
-        right.scatter(group.kernel_mrays_s, group.rel_distance_error_mean, label=method, color=COLORS.get(method), alpha=0.8)
-        points += list(zip(group.kernel_mrays_s, 100 * group.hit_miss_agreement))
-    embree = runs.drop_duplicates("scene_source")
-    left.scatter(embree.embree1_mrays_s, [100.0] * len(embree), marker="s", label="Embree rtcIntersect1 (the reference)",
-                 color=COLORS["Embree rtcIntersect1"])
+    for (strategy, test), group in runs.groupby(["strategy_type", runs.get("intersection_test", "moller_trumbore")]):
+        marker = "^" if test == "watertight" else "o"
+        ppm = wrong_ppm(group)
+        name = f"{strategy}, {'watertight' if test == 'watertight' else 'Moller-Trumbore'}"
+        left.scatter(group.kernel_mrays_s, ppm, label=name, color=COLORS.get(strategy), marker=marker, alpha=0.8)
+        right.scatter(group.kernel_mrays_s, group.exact_distance_error_mean, label=name, color=COLORS.get(strategy),
+                      marker=marker, alpha=0.8)
+        points += list(zip(group.kernel_mrays_s, ppm))
+    embree = runs.drop_duplicates(["scene_source", "camera_width", "camera_height"])
+    left.scatter(embree.embree1_mrays_s, wrong_ppm(embree, "embree_exact_"), marker="s", color=COLORS["Embree rtcIntersect1"],
+                 label="Embree rtcIntersect1 (CPU, same rays)")
+    right.scatter(embree.embree1_mrays_s, embree.embree_exact_distance_error_mean, marker="s",
+                  color=COLORS["Embree rtcIntersect1"], label="Embree rtcIntersect1 (CPU, same rays)")
     front = pareto(points)  # among the kernels' runs
     left.plot([p[0] for p in front], [p[1] for p in front], "k--", marker="x", lw=1, label="Pareto front of the kernels")
-    left.set_xscale("log")
-    left.set_xlabel("speed (Mrays/s, log scale)")
-    left.set_ylabel("hit/miss agreement with Embree (%)")
-    left.legend(fontsize=8)
-    right.set_xscale("log")
-    right.set_xlabel("speed (Mrays/s, log scale)")
-    right.set_ylabel("mean relative distance error vs Embree")
-    right.legend(fontsize=8)
+    left.set_yscale("symlog", linthresh=1.0)  # 0 wrong rays sits on the axis; 1 ppm and up are logarithmic
+    left.set_ylim(bottom=-0.1)
+    left.set_ylabel("rays wrong vs the exact reference (per million, log above 1)")
+    right.set_yscale("log")
+    right.set_ylabel("mean |t - t_exact| / t_exact (log)")
+    for ax in (left, right):
+        ax.set_xscale("log")
+        ax.set_xlabel("speed (Mrays/s, log scale)")
+        ax.legend(fontsize=7)
     scenes = ", ".join(sorted(runs.scene.unique()))
-    fig.suptitle(f"Speed against accuracy, one point per run — {scenes}; {device}")
+    fig.suptitle(f"Speed against accuracy (exact reference), one point per run — {scenes}\n{device}", fontsize=10)
     save(fig, folder, "speed_vs_accuracy", written)
+
+
+def first_number(text) -> float:
+    """The first number of a 3-vector as the CSV writes it: "[100 100 100]" -> 100."""
+    return float(str(text).strip("[]").split()[0])
+
+
+def failure_map(runs, failed, device, folder, written):
+    """Rays wrong against the exact reference as a scene moves (scene.translate) or scales (scene.scale):
+    one panel per swept axis and scene, one line per method, Embree dashed, refused runs marked."""
+    if "exact_rays" not in runs or "scene_translate" not in runs:
+        return
+    everything = runs.assign(ok=True)
+    if not failed.empty:
+        lost = failed.copy()
+        lost["scene"] = lost.scene_source.map(scene_name)
+        everything = pd.concat([everything, lost.assign(ok=False)], ignore_index=True)
+    everything["offset"] = everything.scene_translate.map(first_number)
+    panels = []
+    for scene, group in everything.groupby("scene"):
+        if group.offset.nunique() > 1:
+            panels.append((f"{scene} moved by (d, d, d)", "offset d", group[group.scene_scale == 1.0], "offset"))
+        if group.scene_scale.nunique() > 1:
+            panels.append((f"{scene} scaled", "scale", group[group.offset == 0.0], "scene_scale"))
+    if not panels:
+        return
+    fig, axes = plt.subplots(1, len(panels), figsize=(5.2 * len(panels), 4.6), squeeze=False)
+    for ax, (title, xlabel, group, x) in zip(axes[0], panels):
+        ok = group[group.ok].copy()
+        ok["method"] = [method_label(r) for _, r in ok.iterrows()]
+        # Sum over the views of a point (e.g. the closed meshes' three look-at directions).
+        for method, runs_of in ok.groupby("method"):
+            sums = runs_of.groupby(x)[["exact_false_misses", "exact_false_hits", "exact_wrong_primitive", "exact_rays"]].sum()
+            ppm = 1e6 * (sums.exact_false_misses + sums.exact_false_hits + sums.exact_wrong_primitive) / sums.exact_rays
+            style = ":^" if method.endswith("watertight") else "-o"  # the tests often coincide: dotted on solid
+            ax.plot(sums.index.map(lambda v: max(v, 1e-9) if x == "offset" else v), ppm, style, label=method,
+                    color=method_color(method), alpha=0.45 if "multipass" in method else 0.9, ms=4)
+        embree = ok.drop_duplicates([x, "camera_look_at", "scene_source"] if "camera_look_at" in ok else [x, "scene_source"])
+        sums = embree.groupby(x)[["embree_exact_false_misses", "embree_exact_false_hits", "embree_exact_wrong_primitive",
+                                  "exact_rays"]].sum()
+        ppm = 1e6 * (sums.embree_exact_false_misses + sums.embree_exact_false_hits + sums.embree_exact_wrong_primitive) \
+            / sums.exact_rays
+        ax.plot(sums.index.map(lambda v: max(v, 1e-9) if x == "offset" else v), ppm, "k--s", label="Embree (CPU)", ms=4)
+        refused = sorted(set(group[~group.ok][x]))
+        for v in refused:
+            ax.axvline(max(v, 1e-9), color="tab:red", lw=6, alpha=0.15)
+        if refused:
+            ax.plot([], [], color="tab:red", lw=6, alpha=0.3, label="refused: outside the methods' range")
+        ax.set_xscale("symlog" if x == "offset" else "log", **({"linthresh": 1.0} if x == "offset" else {}))
+        xs = sorted(set(group[x]))  # refused runs too (axvline does not widen the axis)
+        ax.set_xlim(-0.5 if x == "offset" else xs[0] / 3, xs[-1] * 3)
+        ax.set_yscale("symlog", linthresh=1.0)
+        ax.set_ylim(bottom=-0.1)
+        ax.set_xlabel(xlabel + " (log)")
+        ax.set_ylabel("rays wrong vs exact (per million; log above 1)")
+        ax.set_title(title, fontsize=9)
+        ax.legend(fontsize=6)
+    fig.suptitle(f"Failure map: leaks, false hits and wrong triangles against the exact reference\n{device}", fontsize=10)
+    save(fig, folder, "failure_map", written)
 
 
 def passes_vs_threshold(runs, device, folder, written):
@@ -298,7 +379,7 @@ def main() -> int:
         print(__doc__)
         return 2
     folder = Path(sys.argv[1])
-    runs, _, _, device = load(folder)
+    runs, failed, _, device = load(folder)
     if runs.empty:
         print(f"{folder}: no successful runs to chart")
         return 1
@@ -306,6 +387,7 @@ def main() -> int:
     for chart in (speed_vs_accuracy, passes_vs_threshold, bandwidth_by_category, unrolling, grid_resolution, kernel_time,
                   structures_time, structures_memory, structures_work):
         chart(runs, device, folder, written)
+    failure_map(runs, failed, device, folder, written)
     print(f"{folder}: wrote {', '.join(written)} (.png, .svg)")
     return 0
 
