@@ -19,7 +19,8 @@ def method_name(run) -> str:
     """structure (with its grid resolution rule) for one run: "grid 64", "bvh", "auto (bvh)"."""
     kind = run.structure_type
     if kind == "uniform_grid":
-        return f"grid {int(run.structure_min_dim)}" if run.get("structure_min_dim") == run.get("structure_min_dim") else "grid"
+        name = f"grid {int(run.structure_min_dim)}" if run.get("structure_min_dim") == run.get("structure_min_dim") else "grid"
+        return name + (" conservative" if str(run.get("structure_conservative")).lower() == "true" else "")
     if kind == "auto":
         return f"auto ({run.auto_choice})"
     return {"brute_force": "brute force"}.get(kind, kind)

@@ -95,6 +95,7 @@ public:
         row["grid_refs_per_triangle"] = num(g.referencesPerTriangle);
         row["grid_max_refs_in_cell"] = std::to_string(g.maxReferencesInCell);
         row["grid_bytes"] = std::to_string(g.bytes);
+        row["grid_voxel_margin"] = num(g.voxelMargin, 4);
         row["grid_build_ms"] = num(g.buildMs, 4);
     }
 
@@ -109,14 +110,16 @@ private:
     UniformGrid grid_;
 };
 
-std::unique_ptr<Structure> buildGrid(const TriangleMesh& mesh, const std::vector<gpu::Ray>&, const RunConfig& run,
+std::unique_ptr<Structure> buildGrid(const TriangleMesh& mesh, const std::vector<gpu::Ray>& rays, const RunConfig& run,
                                      const DeviceInfo& device) {
     // Refuse before building what the device cannot hold (the cell offsets and vertices; the
     // triangle list, known only once built, is checked with every other buffer at upload).
     const GridResolutionRule rule = resolutionRule(run);
     const auto resolution = chooseGridResolution(mesh.bounds(), mesh.triangles.size(), rule);
     refuseOversizedBuffers(device, gridBufferSizes(resolution, 0, mesh.triangles.size()));
-    return gridStructure(buildUniformGrid(mesh, rule));
+    const float margin =
+        run.getBool("structure.conservative") ? conservativeVoxelMargin(gridBounds(mesh.bounds()), rays, resolution) : 0.0f;
+    return gridStructure(buildUniformGrid(mesh, rule, 1ull << 31, margin));
 }
 
 }  // namespace
@@ -134,6 +137,7 @@ const StructureType& gridStructureType() {
             {"structure.min_dim", ValueType::Int, "Purcell's heuristic: cells along the smallest extent (default 64 when no rule is given)", {}, false, 1, 2048, {}, {}, {}, rule, std::int64_t(64)},
             {"structure.resolution", ValueType::Int3, "explicit cells per axis [x, y, z]", {}, false, 1, 4096, {}, {}, {}, rule},
             {"structure.cells_per_triangle", ValueType::Float, "density rule: about this many cubic cells per triangle", {}, false, 1e-3, 1e3, {}, {}, {}, rule},
+            {"structure.conservative", ValueType::Bool, "conservative traversal: each voxel also lists the triangles within a margin of it that bounds the DDA's rounding (methods/grid/uniform_grid.h), so a ray through an edge or a corner, or far from the origin, loses no triangle", false},
         };
         t.columns = {
             {"grid_res_x", K::Count, "cells", "grid resolution along x"},
@@ -145,6 +149,7 @@ const StructureType& gridStructureType() {
             {"grid_refs_per_triangle", K::Count, "references", "references per triangle"},
             {"grid_max_refs_in_cell", K::Count, "references", "largest voxel list"},
             {"grid_bytes", K::Count, "bytes", "grid memory (offsets, lists, vertices)"},
+            {"grid_voxel_margin", K::Count, "scene units", "structure.conservative: how far beyond its box a voxel lists triangles (0: exact voxels)"},
             {"grid_build_ms", K::Timing, "ms", "CPU build time of the grid"},
             {"voxels_per_ray_mean", K::Count, "voxels", "voxels visited per ray, mean"},
             {"voxels_per_ray_max", K::Count, "voxels", "voxels visited per ray, max"},

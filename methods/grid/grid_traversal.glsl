@@ -38,25 +38,25 @@ void rtDdaDirection(vec3 d, vec3 invD, RT_INOUT(RtDda) s) {
     }
 }
 
-// Sets up the walk from the clipped entry distance tEnter.
+// Sets up the walk from the clipped entry distance tEnter; `o` is the origin in the grid's own
+// frame (rtEnterGrid), where voxel c spans [c, c + 1] * cellSize.
 RtDda rtDdaSetup(vec3 o, vec3 d, vec3 invD, float tEnter, float tLeave) {
     RtDda s;
     s.tLeave = tLeave;
     rtDdaDirection(d, invD, s);
-    vec3 boxMin = vec3(params.boundsMin);
     vec3 cellSize = vec3(params.cellSize);
     vec3 invCellSize = vec3(params.invCellSize);
     precise vec3 entry = o + d * tEnter;
     for (int a = 0; a < 3; ++a) {
         int last = int(params.resolution[a]) - 1;
-        precise float local = (entry[a] - boxMin[a]) * invCellSize[a];
+        precise float local = entry[a] * invCellSize[a];
         int c = clamp(int(floor(local)), 0, last);
         s.cell[a] = c;
         if (d[a] > 0.0f) {
-            precise float boundary = boxMin[a] + float(c + 1) * cellSize[a];
+            precise float boundary = float(c + 1) * cellSize[a];
             s.tMaxAxis[a] = (boundary - o[a]) * invD[a];
         } else if (d[a] < 0.0f) {
-            precise float boundary = boxMin[a] + float(c) * cellSize[a];
+            precise float boundary = float(c) * cellSize[a];
             s.tMaxAxis[a] = (boundary - o[a]) * invD[a];
         } else {
             s.tMaxAxis[a] = kNoHitT;
@@ -90,14 +90,19 @@ uint rtCellIndex(ivec3 c) {
 }
 
 // Clips the ray to the grid box and sets up its walk from the first voxel; false when it misses.
+// The walk runs in the grid's own frame, origin at the box's min corner: its positions are as
+// large as the scene, not as its distance from the world origin, so a scene moved far away keeps
+// the walk's precision (o - boundsMin is even exact while o lies within a factor 2 of boundsMin,
+// Sterbenz). Distances along the ray are the same in both frames.
 bool rtEnterGrid(Ray ray, RT_OUT(RtDda) s) {
-    vec3 o = vec3(ray.originTMin);
+    vec3 boxMin = vec3(params.boundsMin);
+    precise vec3 o = vec3(ray.originTMin) - boxMin;
+    precise vec3 boxMax = vec3(params.boundsMax) - boxMin;
     vec3 d = vec3(ray.directionTMax);
     vec3 invD = rtInverseDirection(d);
     float tEnter;
     float tLeave;
-    if (!rtClipToBox(o, d, invD, ray.originTMin.w, ray.directionTMax.w, vec3(params.boundsMin),
-                     vec3(params.boundsMax), tEnter, tLeave))
+    if (!rtClipToBox(o, d, invD, ray.originTMin.w, ray.directionTMax.w, vec3(0.0f), boxMax, tEnter, tLeave))
         return false;
     s = rtDdaSetup(o, d, invD, tEnter, tLeave);
     return true;

@@ -93,21 +93,22 @@ std::array<unsigned, 3> chooseGridResolution(const Bounds3& sceneBounds, std::si
     return {unsigned(cells[0]), unsigned(cells[1]), unsigned(cells[2])};
 }
 
-Bounds3 UniformGrid::voxelBounds(unsigned x, unsigned y, unsigned z) const {
+VoxelBox UniformGrid::voxelBounds(unsigned x, unsigned y, unsigned z) const {
     const glm::uvec3 c(x, y, z);
-    Bounds3 b;
-    for (int a = 0; a < 3; ++a) {
-        b.min[a] = params.boundsMin[a] + static_cast<float>(c[a]) * params.cellSize[a];
-        b.max[a] = params.boundsMin[a] + static_cast<float>(c[a] + 1) * params.cellSize[a];
+    VoxelBox b;
+    for (int a = 0; a < 3; ++a) {  // a 24-bit float times a cell index below 2^29, plus a float: exact in double
+        b.min[a] = double(params.boundsMin[a]) + double(c[a]) * double(params.cellSize[a]);
+        b.max[a] = double(params.boundsMin[a]) + double(c[a] + 1) * double(params.cellSize[a]);
     }
     return b;
 }
 
-bool triangleOverlapsBox(const gpu::Triangle& t, const Bounds3& box) {
+bool triangleOverlapsBox(const gpu::Triangle& t, const VoxelBox& box, float margin) {
     const Kernel::Triangle_3 triangle(Kernel::Point_3(t.v0.x, t.v0.y, t.v0.z),
                                       Kernel::Point_3(t.v1.x, t.v1.y, t.v1.z),
                                       Kernel::Point_3(t.v2.x, t.v2.y, t.v2.z));
-    const CGAL::Bbox_3 bbox(box.min.x, box.min.y, box.min.z, box.max.x, box.max.y, box.max.z);
+    const double m = margin;
+    const CGAL::Bbox_3 bbox(box.min.x - m, box.min.y - m, box.min.z - m, box.max.x + m, box.max.y + m, box.max.z + m);
     if (triangle.is_degenerate()) {  // CGAL's triangle-box test requires a proper triangle
         const Kernel::Segment_3 s0(triangle[0], triangle[1]), s1(triangle[1], triangle[2]),
             s2(triangle[0], triangle[2]);
@@ -120,13 +121,25 @@ bool triangleOverlapsBox(const gpu::Triangle& t, const Bounds3& box) {
     return CGAL::do_intersect(triangle, bbox);
 }
 
+float conservativeVoxelMargin(const Bounds3& gridBox, const std::vector<gpu::Ray>& rays,
+                              const std::array<unsigned, 3>& resolution) {
+    double largest = 0.0;
+    for (int a = 0; a < 3; ++a) largest = std::max(largest, double(gridBox.max[a]) - gridBox.min[a]);
+    for (const gpu::Ray& r : rays)
+        for (int a = 0; a < 3; ++a) largest = std::max(largest, std::abs(double(r.originTMin[a]) - gridBox.min[a]));
+    const float steps = float(resolution[0]) + float(resolution[1]) + float(resolution[2]);
+    return float((4.0 * steps + 16.0) * largest * 0x1p-23);
+}
+
 UniformGrid buildUniformGrid(const TriangleMesh& mesh, const GridResolutionRule& rule,
-                             std::uint64_t maxCells) {
+                             std::uint64_t maxCells, float voxelMargin) {
     const auto start = std::chrono::steady_clock::now();
     validateSceneRange(mesh);
     UniformGrid grid;
     const Bounds3 sceneBounds = mesh.bounds();
-    const Bounds3 box = gridBounds(sceneBounds);
+    Bounds3 box = gridBounds(sceneBounds);
+    box.min -= glm::vec3(voxelMargin);
+    box.max += glm::vec3(voxelMargin);
     const std::array<unsigned, 3> res = chooseGridResolution(sceneBounds, mesh.triangles.size(), rule);
     const std::uint64_t cells = std::uint64_t(res[0]) * res[1] * res[2];
     if (cells > maxCells)
@@ -159,12 +172,13 @@ UniformGrid buildUniformGrid(const TriangleMesh& mesh, const GridResolutionRule&
         for (int a = 0; a < 3; ++a) {
             const float vmin = std::min({t.v0[a], t.v1[a], t.v2[a]});
             const float vmax = std::max({t.v0[a], t.v1[a], t.v2[a]});
-            candidateRange(vmin, vmax, p.boundsMin[a], p.invCellSize[a], res[a], lo[a], hi[a]);
+            candidateRange(vmin - voxelMargin, vmax + voxelMargin, p.boundsMin[a], p.invCellSize[a], res[a], lo[a],
+                           hi[a]);
         }
         for (int z = lo.z; z <= hi.z; ++z)
             for (int y = lo.y; y <= hi.y; ++y)
                 for (int x = lo.x; x <= hi.x; ++x)
-                    if (triangleOverlapsBox(t, grid.voxelBounds(x, y, z)))
+                    if (triangleOverlapsBox(t, grid.voxelBounds(x, y, z), voxelMargin))
                         pairs.emplace_back(
                             static_cast<std::uint32_t>(x + res[0] * (y + std::uint64_t(res[1]) * z)), i);
         if (pairs.size() > std::numeric_limits<std::uint32_t>::max())  // the cell offsets are uint32
@@ -194,6 +208,7 @@ UniformGrid buildUniformGrid(const TriangleMesh& mesh, const GridResolutionRule&
     s.maxReferencesInCell = maxInCell;
     s.bytes = grid.cellOffsets.size() * 4 + grid.triangleList.size() * 4 +
               grid.triangles.size() * sizeof(gpu::Triangle);
+    s.voxelMargin = voxelMargin;
     s.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return grid;
 }

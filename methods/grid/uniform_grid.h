@@ -46,6 +46,11 @@ struct GridStats {
     std::uint32_t maxReferencesInCell = 0;
     std::uint64_t bytes = 0;  // cell offsets + triangle list + triangle vertices
     double buildMs = 0.0;
+    float voxelMargin = 0.0f;  // scene units; 0: exact voxels
+};
+
+struct VoxelBox {
+    glm::dvec3 min, max;
 };
 
 struct UniformGrid {
@@ -57,7 +62,8 @@ struct UniformGrid {
 
     std::uint64_t cellCount() const { return cellOffsets.empty() ? 0 : cellOffsets.size() - 1; }
     // Box of voxel (x, y, z), computed as the DDA computes boundaries: min + i * cellSize.
-    Bounds3 voxelBounds(unsigned x, unsigned y, unsigned z) const;
+    // Voxel (x, y, z) as the walk sees it: boundsMin + [c, c + 1] * cellSize, exactly (in double).
+    VoxelBox voxelBounds(unsigned x, unsigned y, unsigned z) const;
 };
 
 // Builds the grid: each triangle's bounding box gives a candidate cell range (widened by one
@@ -65,10 +71,22 @@ struct UniformGrid {
 // for every candidate (closed boxes: a triangle touching a voxel's face belongs to it).
 // Throws rtbench::Error when the scene is outside the range of structures/scene_limits.h or the
 // cell count would exceed maxCells.
+// voxelMargin > 0 makes the grid conservative: the box grows by the margin on every side, and a
+// voxel lists every triangle within the margin of it (its box widened by the margin), so a walk
+// whose rounding strays by less than the margin from the ray never misses a triangle the ray hits.
 UniformGrid buildUniformGrid(const TriangleMesh& mesh, const GridResolutionRule& rule,
-                             std::uint64_t maxCells = 1ull << 31);
+                             std::uint64_t maxCells = 1ull << 31, float voxelMargin = 0.0f);
+
+// The margin that covers the DDA's rounding for these rays (structure.conservative). The walk runs
+// in the grid's frame (origin at the box's min corner): every position it computes (the origin
+// there, the entry point, a voxel boundary, a boundary distance stepped up to resX + resY + resZ
+// times) is off by at most a few float ulps of the largest magnitude M in that frame, among the
+// box's extent and the ray origins; (4 (resX + resY + resZ) + 16) ulp(M) bounds it.
+float conservativeVoxelMargin(const Bounds3& gridBox, const std::vector<gpu::Ray>& rays,
+                              const std::array<unsigned, 3>& resolution);
 
 // The exact predicate used by the builder, exposed for tests.
-bool triangleOverlapsBox(const gpu::Triangle& triangle, const Bounds3& box);
+// margin > 0 widens the box by it on every side first.
+bool triangleOverlapsBox(const gpu::Triangle& triangle, const VoxelBox& box, float margin = 0.0f);
 
 }  // namespace rtbench

@@ -25,7 +25,7 @@ struct Interval {
 };
 
 // Slab test in double precision for one voxel, clipped to the ray's [tMin, tMax].
-Interval slab(const gpu::Ray& ray, const Bounds3& b, double eps) {
+Interval slab(const gpu::Ray& ray, const VoxelBox& b, double eps) {
     double enter = ray.originTMin.w, leave = ray.directionTMax.w;
     bool interior = true;
     for (int a = 0; a < 3; ++a) {
