@@ -42,7 +42,7 @@ TEST_F(Config, MinimalConfigGetsDefaults) {
 TEST_F(Config, UnknownKeyNamesFileLineAndAllowedKeys) {
     EXPECT_EQ(errorOf(kMinimal + "[structure]\nmindim = 4\n"),
               path_ + ":6: unknown key 'structure.mindim' (allowed in [structure]: type, min_dim, resolution, "
-                      "cells_per_triangle, leaf_size, quality, max_tests)");
+                      "cells_per_triangle, conservative, leaf_size, quality, max_tests)");
 }
 
 TEST_F(Config, UnknownSection) {
