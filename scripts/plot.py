@@ -66,37 +66,51 @@ def method_label(run) -> str:
     return f"{method_name(run)} {run.strategy_type} {test}"
 
 
+KIND_COLORS = {"grid": "tab:blue", "grid conservative": "tab:cyan", "bvh": "tab:red", "brute": "tab:gray",
+               "auto": "tab:purple"}
+
+
 def speed_vs_accuracy(runs, device, folder, written):
-    if "exact_rays" not in runs:  # a folder from before the exact reference: agreement with Embree
+    """Per scene: rays wrong against the exact reference (log above 1 per million) and mean distance
+    error against speed, one point per run, Embree beside them, the kernels' Pareto front."""
+    if "exact_rays" not in runs:  # a folder from before the exact reference
         return
-    fig, (left, right) = plt.subplots(1, 2, figsize=(12, 4.8))
-    points = []
-    for (strategy, test), group in runs.groupby(["strategy_type", runs.get("intersection_test", "moller_trumbore")]):
-        marker = "^" if test == "watertight" else "o"
-        ppm = wrong_ppm(group)
-        name = f"{strategy}, {'watertight' if test == 'watertight' else 'Moller-Trumbore'}"
-        left.scatter(group.kernel_mrays_s, ppm, label=name, color=COLORS.get(strategy), marker=marker, alpha=0.8)
-        right.scatter(group.kernel_mrays_s, group.exact_distance_error_mean, label=name, color=COLORS.get(strategy),
-                      marker=marker, alpha=0.8)
-        points += list(zip(group.kernel_mrays_s, ppm))
-    embree = runs.drop_duplicates(["scene_source", "camera_width", "camera_height"])
-    left.scatter(embree.embree1_mrays_s, wrong_ppm(embree, "embree_exact_"), marker="s", color=COLORS["Embree rtcIntersect1"],
-                 label="Embree rtcIntersect1 (CPU, same rays)")
-    right.scatter(embree.embree1_mrays_s, embree.embree_exact_distance_error_mean, marker="s",
-                  color=COLORS["Embree rtcIntersect1"], label="Embree rtcIntersect1 (CPU, same rays)")
-    front = pareto(points)  # among the kernels' runs
-    left.plot([p[0] for p in front], [p[1] for p in front], "k--", marker="x", lw=1, label="Pareto front of the kernels")
-    left.set_yscale("symlog", linthresh=1.0)  # 0 wrong rays sits on the axis; 1 ppm and up are logarithmic
-    left.set_ylim(bottom=-0.1)
-    left.set_ylabel("rays wrong vs the exact reference (per million, log above 1)")
-    right.set_yscale("log")
-    right.set_ylabel("mean |t - t_exact| / t_exact (log)")
-    for ax in (left, right):
-        ax.set_xscale("log")
-        ax.set_xlabel("speed (Mrays/s, log scale)")
-        ax.legend(fontsize=7)
-    scenes = ", ".join(sorted(runs.scene.unique()))
-    fig.suptitle(f"Speed against accuracy (exact reference), one point per run — {scenes}\n{device}", fontsize=10)
+    scenes = sorted(runs.scene.unique())
+    fig, axes = plt.subplots(len(scenes), 2, figsize=(12, 4.4 * len(scenes)), squeeze=False)
+    for (left, right), scene in zip(axes, scenes):
+        of_scene = runs[runs.scene == scene]
+        points = []
+        of_scene = of_scene.assign(kind=[method_name(r).split(" ")[0] + (" conservative" if "conservative" in method_name(r)
+                                                                          else "") for _, r in of_scene.iterrows()],
+                                   test=of_scene.get("intersection_test", "moller_trumbore"))
+        for (kind, strategy, test), group in of_scene.groupby(["kind", "strategy_type", "test"]):
+            marker = "^" if test == "watertight" else "o"
+            name = f"{kind} {strategy}, {'watertight' if test == 'watertight' else 'Moller-Trumbore'}"
+            color = KIND_COLORS.get(kind, COLORS.get(strategy))
+            fill = color if strategy == "branching" else "none"  # multipass: hollow
+            ppm = wrong_ppm(group)
+            left.scatter(group.kernel_mrays_s, ppm, label=name, edgecolors=color, c=fill, marker=marker, alpha=0.8)
+            right.scatter(group.kernel_mrays_s, group.exact_distance_error_mean, label=name, edgecolors=color, c=fill,
+                          marker=marker, alpha=0.8)
+            points += list(zip(group.kernel_mrays_s, ppm))
+        embree = of_scene.drop_duplicates(["camera_width", "camera_height", "camera_look_at"])
+        left.scatter(embree.embree1_mrays_s, wrong_ppm(embree, "embree_exact_"), marker="s",
+                     color=COLORS["Embree rtcIntersect1"], label="Embree rtcIntersect1 (CPU, same rays)")
+        right.scatter(embree.embree1_mrays_s, embree.embree_exact_distance_error_mean, marker="s",
+                      color=COLORS["Embree rtcIntersect1"], label="Embree rtcIntersect1 (CPU, same rays)")
+        front = pareto(points)  # among the kernels' runs
+        left.plot([p[0] for p in front], [p[1] for p in front], "k--", marker="x", lw=1, label="Pareto front of the kernels")
+        left.set_yscale("symlog", linthresh=1.0)  # 0 wrong rays sits on the axis; 1 ppm and up are logarithmic
+        left.set_ylim(bottom=-0.1)
+        left.set_ylabel("rays wrong vs exact (per million; log above 1)")
+        right.set_yscale("log")
+        right.set_ylabel("mean |t - t_exact| / t_exact (log)")
+        for ax in (left, right):
+            ax.set_xscale("log")
+            ax.set_xlabel("speed (Mrays/s, log scale)")
+            ax.set_title(f"{scene}, {size(of_scene)}", fontsize=9)
+            ax.legend(fontsize=7)
+    fig.suptitle(f"Speed against accuracy (the exact reference), one point per run\n{device}", fontsize=10)
     save(fig, folder, "speed_vs_accuracy", written)
 
 

@@ -1,8 +1,8 @@
 #!/bin/bash
 # Runs the configs of record and makes their charts and tables: results/bunny, results/structures,
-# results/purcell2002 (or under OUT, e.g. results/nvidia-h200 on a GPU machine; DEVICE picks the
+# results/purcell2002, results/stability, results/accuracy (or under OUT, e.g. results/nvidia-h200 on a GPU machine; DEVICE picks the
 # Vulkan device by a name substring).
-#   scripts/records.sh [OUT] [DEVICE]        (about 25 minutes on 2 cores with lavapipe)
+#   scripts/records.sh [OUT] [DEVICE]        (about 35 minutes on 2 cores with lavapipe)
 # Environment:
 #   RTBENCH_BIN=path      the rtbench binary (default build/rtbench)
 #   EMBREE_CONFIG=isa=avx2  Embree device config for every run (where its default ISA crashes)
@@ -10,7 +10,7 @@
 #                         draws the charts and tables here
 set -euo pipefail
 cd "$(dirname "$0")/.."
-configs=(bunny structures purcell2002)
+configs=(bunny structures purcell2002 stability accuracy)
 bin=${RTBENCH_BIN:-build/rtbench}
 
 charts() {
@@ -42,4 +42,4 @@ for config in "${configs[@]}"; do
   echo "== $config: $(( $(date +%s) - start )) s"
 done
 [ "${CHARTS:-1}" = 0 ] || charts "$out"
-echo "== done: $out/{bunny,structures,purcell2002}"
+echo "== done: $out/{bunny,structures,purcell2002,stability,accuracy}"
