@@ -99,6 +99,9 @@ VoxelBox UniformGrid::voxelBounds(unsigned x, unsigned y, unsigned z) const {
     for (int a = 0; a < 3; ++a) {  // a 24-bit float times a cell index below 2^29, plus a float: exact in double
         b.min[a] = double(params.boundsMin[a]) + double(c[a]) * double(params.cellSize[a]);
         b.max[a] = double(params.boundsMin[a]) + double(c[a] + 1) * double(params.cellSize[a]);
+        // The walk clamps to the last voxel, which therefore reaches the box's max even where
+        // resolution x cellSize (cellSize rounded to float) falls short of it: 43 x fl(4/43) < 4.
+        if (c[a] + 1 == params.resolution[a]) b.max[a] = std::max(b.max[a], double(params.boundsMax[a]));
     }
     return b;
 }

@@ -62,7 +62,8 @@ struct UniformGrid {
 
     std::uint64_t cellCount() const { return cellOffsets.empty() ? 0 : cellOffsets.size() - 1; }
     // Box of voxel (x, y, z), computed as the DDA computes boundaries: min + i * cellSize.
-    // Voxel (x, y, z) as the walk sees it: boundsMin + [c, c + 1] * cellSize, exactly (in double).
+    // Voxel (x, y, z) as the walk sees it: boundsMin + [c, c + 1] * cellSize, exactly (in double);
+    // the last voxel of an axis reaches boundsMax.
     VoxelBox voxelBounds(unsigned x, unsigned y, unsigned z) const;
 };
 

@@ -152,5 +152,23 @@ TEST(GridBuild, RefusesMoreCellsThanTheLimit) {
     }
 }
 
+// Scene A at min_dim 32 has 43 cells along y over [0, 4]: 43 x fl(4/43) falls short of 4, and box
+// 3's top face at y = 4 was once in no voxel at all (the exact reference found the rays that went
+// through it). The voxels must cover the whole box, and every triangle must be listed.
+TEST(GridBuild, VoxelsCoverTheWholeBoxAndListEveryTriangle) {
+    const TriangleMesh mesh = christenSceneA();
+    for (unsigned minDim : {4u, 7u, 13u, 32u, 43u, 100u}) {
+        SCOPED_TRACE("min_dim " + std::to_string(minDim));
+        GridResolutionRule rule;
+        rule.minDim = minDim;
+        const UniformGrid grid = buildUniformGrid(mesh, rule);
+        const auto& r = grid.stats.resolution;
+        const VoxelBox last = grid.voxelBounds(r[0] - 1, r[1] - 1, r[2] - 1);
+        for (int a = 0; a < 3; ++a) EXPECT_GE(last.max[a], double(grid.params.boundsMax[a]));
+        std::set<std::uint32_t> listed(grid.triangleList.begin(), grid.triangleList.end());
+        EXPECT_EQ(listed.size(), mesh.triangles.size());
+    }
+}
+
 }  // namespace
 }  // namespace rtbench
