@@ -35,8 +35,9 @@ void refuseOversizedBuffers(const DeviceInfo& device, const std::vector<BufferSi
 
 // Host memory a run holds per ray: the ray, and hit records from the kernel (instrumented and
 // timed), the CPU reference (twice for multipass), Embree (and its scratch), and the image's
-// shade and difference per pixel.
-constexpr std::uint64_t kHostBytesPerRay = sizeof(gpu::Ray) + 7 * sizeof(gpu::HitRecord) + 5;
+// shade and difference per pixel, and the exact reference's hit and sample index (28 bytes, when
+// every ray is sampled).
+constexpr std::uint64_t kHostBytesPerRay = sizeof(gpu::Ray) + 7 * sizeof(gpu::HitRecord) + 5 + 28;
 // The host-memory limit of a run's per-ray data: half the machine's physical memory.
 std::uint64_t hostMemoryLimit();
 // Throws rtbench::Error when `rays` rays need more than hostMemoryLimit(); allocates nothing.

@@ -17,8 +17,12 @@
 // of a / b, while a quotient of two floats lies at least about 2^-49 (relative) from any midpoint
 // between floats, so rounding it to float gives the correctly rounded float quotient (double
 // rounding is innocuous for division when 53 >= 2 * 24 + 2; Figueroa 1995). Needs shaderFloat64.
+// A quotient at or past FLT_MAX + half an ulp (0x7f7fffff + 2^103) overflows to infinity, as IEEE's
+// float division does (and as converting it would not: undefined in C++).
 float rtDivide(float a, float b) {
     precise double q = double(a) / double(b);
+    precise double overflow = double(uintBitsToFloat(0x7f7fffffu)) + double(uintBitsToFloat(0x73000000u));
+    if (abs(q) >= overflow) return uintBitsToFloat(q > 0.0 ? 0x7f800000u : 0xff800000u);  // +-infinity
     return float(q);
 }
 

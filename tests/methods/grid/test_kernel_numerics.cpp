@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <limits>
 #include <random>
 
 #include "methods/branching/branching_strategy.h"
@@ -52,6 +53,29 @@ std::uint64_t differingRecords(const std::vector<gpu::HitRecord>& a, const std::
     return differing;
 }
 
+// rtDivide (kernels/ray_math.glsl, run here as the CPU reference runs it): the double quotient
+// rounded to float must be IEEE's float quotient, bit for bit, overflow to infinity included.
+TEST(RtDivide, EqualsIeeeFloatDivisionOnRandomAndExtremePairs) {
+    gridref::GridKernels k{};
+    std::mt19937 rng(11);
+    std::uniform_int_distribution<std::uint32_t> bits(0x00800000u, 0x7f7fffffu);  // positive normal floats
+    std::uint64_t differing = 0;
+    for (int i = 0; i < 2000000; ++i) {
+        float a, b;
+        const std::uint32_t ba = bits(rng) | (rng() & 0x80000000u), bb = bits(rng) | (rng() & 0x80000000u);
+        std::memcpy(&a, &ba, 4);
+        std::memcpy(&b, &bb, 4);
+        const volatile float ieee = a / b;
+        const float ours = k.rtDivide(a, b);
+        differing += std::memcmp(&ours, (const void*)&ieee, 4) != 0;
+    }
+    EXPECT_EQ(differing, 0u);
+    EXPECT_EQ(k.rtDivide(1.0f, 1e-39f), std::numeric_limits<float>::infinity());
+    EXPECT_EQ(k.rtDivide(-3.4028235e38f, 0.5f), -std::numeric_limits<float>::infinity());
+    EXPECT_EQ(k.rtDivide(3.4028235e38f, 1.0f), 3.4028235e38f);
+    EXPECT_EQ(k.rtDivide(1.0f, 3.0f), 1.0f / 3.0f);
+}
+
 using KernelNumerics = VulkanTest;
 
 TEST_F(KernelNumerics, SliversAtTheEdgesOfTheRangeMatchTheCpuReferenceBitForBit) {
@@ -71,8 +95,9 @@ TEST_F(KernelNumerics, SliversAtTheEdgesOfTheRangeMatchTheCpuReferenceBitForBit)
                     structure->setTriangleTest(test);
                     const BranchingRun run = runBranching(*vk_, *structure, rays, {64, 0, 1});
                     EXPECT_EQ(differingRecords(run.hits, structure->trace(rays)), 0u);
-                    if (test == gpu::kTriangleTestMollerTrumbore)
+                    if (test == gpu::kTriangleTestMollerTrumbore) {
                         EXPECT_EQ(differingRecords(run.hits, traceGridReference(grid, rays)), 0u);
+                    }
                     if (width > 1e-4f) {  // wide enough to be seen
                         EXPECT_GT(workStats(run.hits).hits, 500u);
                     }
