@@ -239,6 +239,26 @@ TEST_F(EndToEnd, WatertightTestClosesTheLeaksOfMollerTrumbore) {
     }
 }
 
+// Rays along voxel faces and edges: from the closed box's voxel corner at the origin, looking along
+// +z, the centre column and row of rays run in the grid planes x = 0 and y = 0 (the centre ray along
+// a voxel edge) and hit the far wall on the triangles' shared edges: exact ties, all accepted.
+// Every structure and both tests find every hit.
+TEST_F(EndToEnd, RaysAlongVoxelFacesAndEdgesFindEveryHit) {
+    const ExperimentResult result = run(
+        "[scene]\nsource = \"procedural:closed_box\"\n[camera]\nwidth = 65\nheight = 65\nposition = [0.0, 0.0, 0.0]\nlook_at = [0.0, 0.0, 1.0]\n"
+        "[structure]\ntype = [\"uniform_grid\", \"bvh\", \"brute_force\"]\nmin_dim = 8\n"
+        "[intersection]\ntest = [\"moller_trumbore\", \"watertight\"]\n[output]\nimages = false\n");
+    ASSERT_EQ(result.rows.size(), 6u);
+    for (const Row& row : result.rows) {
+        SCOPED_TRACE(row.at("label"));
+        ASSERT_EQ(row.at("status"), "ok") << row.at("error");
+        EXPECT_EQ(row.at("hits"), "4225");
+        EXPECT_EQ(row.at("exact_false_misses"), "0");
+        EXPECT_EQ(row.at("exact_wrong_primitive"), "0");
+        EXPECT_EQ(row.at("exact_ties"), "193");
+    }
+}
+
 TEST_F(EndToEnd, WatertightTetrahedronSeenFromInsideInEveryDirectionHasNoLeak) {
     const ExperimentResult result = run(
         "[scene]\nsource = \"procedural:tetrahedron\"\n[camera]\nwidth = 33\nheight = 33\nfov_deg = 120\nposition = [0.0, 0.0, 0.0]\n"
