@@ -175,9 +175,6 @@ const ExactHits& traceExact(const RunConfig& run, const TriangleMesh& mesh, cons
     }
     const ExactHits& exact = *caches.exactHits[key];
     row["exact_rays"] = std::to_string(exact.rays.size());
-    std::uint64_t ties = 0;
-    for (const ExactHit& h : exact.hits) ties += h.tieCount > 1;
-    row["exact_ties"] = std::to_string(ties);
     row["exact_ms"] = num(exact.ms, 4);
     return exact;
 }
@@ -245,7 +242,9 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
 
     // Ground truth: the exact first hits of a sample of the rays, for the kernel and for Embree.
     const ExactHits& exact = traceExact(run, mesh, rays, caches, row);
-    writeExactColumns("exact_", compareExact(method.hits, exact), row);
+    const ExactAccuracy kernelAccuracy = compareExact(method.hits, exact);
+    row["exact_ties"] = std::to_string(kernelAccuracy.ties);
+    writeExactColumns("exact_", kernelAccuracy, row);
     writeExactColumns("embree_exact_", compareExact(embreeHits, exact), row);
 
     // Metrics: agreement with Embree.

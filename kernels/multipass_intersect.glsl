@@ -16,9 +16,7 @@ bool mpIntersectRange(Ray ray, RT_INOUT(uint) position, uint end, RT_INOUT(RayHi
             uint tri = mpTriangleAt(position);
             e.triangleReads += 1u;
             e.tested += 1u;
-            if (rtIntersect(r, vec3(triangles[tri].v0), vec3(triangles[tri].v1), vec3(triangles[tri].v2), hit.t,
-                            hit.u, hit.v))
-                hit.primitive = tri;
+            if (rtIntersectStored(r, tri, hit.t, hit.u, hit.v)) hit.primitive = tri;
             position += 1u;
             ended = position == end;
         } else if (suppressFinishedReads == 0u) {

@@ -47,10 +47,15 @@ RtNearest rtNoHitYet(Ray ray) {
     return n;
 }
 
-// Tests triangle `tri` of the structure's `triangles` and keeps it when it is hit nearer.
+// The configured test against triangle `tri` of the structure's `triangles`: updates (t, u, v)
+// when it is hit in [tMin, t).
+bool rtIntersectStored(RtTriangleRay r, uint tri, RT_INOUT(float) t, RT_INOUT(float) u, RT_INOUT(float) v) {
+    return rtIntersect(r, vec3(triangles[tri].v0), vec3(triangles[tri].v1), vec3(triangles[tri].v2), t, u, v);
+}
+
+// Tests triangle `tri` and keeps it when it is hit nearer.
 void rtTestTriangle(RtTriangleRay r, uint tri, RT_INOUT(RtNearest) n) {
-    if (rtIntersect(r, vec3(triangles[tri].v0), vec3(triangles[tri].v1), vec3(triangles[tri].v2), n.t, n.u, n.v))
-        n.primitive = tri;
+    if (rtIntersectStored(r, tri, n.t, n.u, n.v)) n.primitive = tri;
 }
 
 // The record's hit fields from the nearest hit, if there is one.

@@ -61,11 +61,8 @@ uint rtBvhChildren(vec3 o, vec3 d, vec3 invD, float tMin, float tBest, BvhNode n
 HitRecord rtTrace(Ray ray) {
     HitRecord h = rtEmptyRecord();
     if (!rtBvhEnter(ray)) return h;
-    vec3 o = vec3(ray.originTMin);
-    vec3 d = vec3(ray.directionTMax);
-    vec3 invD = rtInverseDirection(d);
-    float tMin = ray.originTMin.w;
     RtTriangleRay r = rtTriangleRay(ray);
+    vec3 invD = rtInverseDirection(r.d);
     RtNearest nearest = rtNoHitYet(ray);
     uint stack[kBvhStackSize];
     uint size = 0u;
@@ -87,7 +84,7 @@ HitRecord rtTrace(Ray ray) {
             h.cellsVisited += 1u;
             uint first;
             uint second;
-            uint entered = rtBvhChildren(o, d, invD, tMin, nearest.t, nodes[ref], first, second);
+            uint entered = rtBvhChildren(r.o, r.d, invD, r.tMin, nearest.t, nodes[ref], first, second);
             if (entered == 2u) {
                 if (size == kBvhStackSize) break;
                 stack[size] = second;
