@@ -60,6 +60,12 @@ def wrong_ppm(frame, prefix="exact_"):
     return 1e6 * wrong / frame.exact_rays
 
 
+def wrong_ppm_summed(frame, by, prefix="exact_"):
+    """wrong_ppm over the runs of each value of `by` together (e.g. a point's several views)."""
+    columns = [prefix + "false_misses", prefix + "false_hits", prefix + "wrong_primitive", "exact_rays"]
+    return wrong_ppm(frame.groupby(by)[columns].sum(), prefix)
+
+
 def method_label(run) -> str:
     """structure, strategy and triangle test of one run: "grid 64 branching MT"."""
     test = {"moller_trumbore": "MT", "watertight": "watertight"}.get(run.get("intersection_test"), "MT")
@@ -144,20 +150,16 @@ def failure_map(runs, failed, device, folder, written):
         ok["method"] = [method_label(r) for _, r in ok.iterrows()]
         # Sum over the views of a point (e.g. the closed meshes' three look-at directions).
         for method, runs_of in ok.groupby("method"):
-            sums = runs_of.groupby(x)[["exact_false_misses", "exact_false_hits", "exact_wrong_primitive", "exact_rays"]].sum()
-            ppm = 1e6 * (sums.exact_false_misses + sums.exact_false_hits + sums.exact_wrong_primitive) / sums.exact_rays
+            ppm = wrong_ppm_summed(runs_of, x)
             style = ":^" if method.endswith("watertight") else "-o"  # the tests often coincide: dotted on solid
-            ax.plot(sums.index.map(lambda v: max(v, 1e-9) if x == "offset" else v), ppm, style, label=method,
-                    color=method_color(method), alpha=0.45 if "multipass" in method else 0.9, ms=4)
+            ax.plot(ppm.index, ppm, style, label=method, color=method_color(method),
+                    alpha=0.45 if "multipass" in method else 0.9, ms=4)
         embree = ok.drop_duplicates([x, "camera_look_at", "scene_source"] if "camera_look_at" in ok else [x, "scene_source"])
-        sums = embree.groupby(x)[["embree_exact_false_misses", "embree_exact_false_hits", "embree_exact_wrong_primitive",
-                                  "exact_rays"]].sum()
-        ppm = 1e6 * (sums.embree_exact_false_misses + sums.embree_exact_false_hits + sums.embree_exact_wrong_primitive) \
-            / sums.exact_rays
-        ax.plot(sums.index.map(lambda v: max(v, 1e-9) if x == "offset" else v), ppm, "k--s", label="Embree (CPU)", ms=4)
+        ppm = wrong_ppm_summed(embree, x, "embree_exact_")
+        ax.plot(ppm.index, ppm, "k--s", label="Embree (CPU)", ms=4)
         refused = sorted(set(group[~group.ok][x]))
         for v in refused:
-            ax.axvline(max(v, 1e-9), color="tab:red", lw=6, alpha=0.15)
+            ax.axvline(v, color="tab:red", lw=6, alpha=0.15)
         if refused:
             ax.plot([], [], color="tab:red", lw=6, alpha=0.3, label="refused: outside the methods' range")
         ax.set_xscale("symlog" if x == "offset" else "log", **({"linthresh": 1.0} if x == "offset" else {}))
