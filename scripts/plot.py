@@ -130,11 +130,8 @@ def failure_map(runs, failed, device, folder, written):
     one panel per swept axis and scene, one line per method, Embree dashed, refused runs marked."""
     if "exact_rays" not in runs or "scene_translate" not in runs:
         return
-    everything = runs.assign(ok=True)
-    if not failed.empty:
-        lost = failed.copy()
-        lost["scene"] = lost.scene_source.map(scene_name)
-        everything = pd.concat([everything, lost.assign(ok=False)], ignore_index=True)
+    everything = pd.concat([runs, failed.assign(scene=failed.scene_source.map(scene_name))], ignore_index=True)
+    everything["ok"] = everything.status == "ok"
     everything["offset"] = everything.scene_translate.map(first_number)
     panels = []
     for scene, group in everything.groupby("scene"):
@@ -312,6 +309,14 @@ def grouped_bars(ax, frame, value, scenes, methods, log=True):
         ax.set_yscale("log")
 
 
+def structures_comparable(runs) -> bool:
+    """The structures_* charts draw one bar per scene, structure and strategy: they need several
+    structures and exactly one run for each bar (not, say, a sweep of the triangle test as well)."""
+    if runs.structure_type.nunique() < 2:
+        return False
+    return not with_methods(runs).duplicated(["scene", "method_kind", "strategy_type"]).any()
+
+
 def structure_order(runs):
     kinds = runs.method_kind.unique().tolist()
     order = ["grid 32", "grid 64", "grid 128", "bvh", "brute force", "auto"]
@@ -319,7 +324,7 @@ def structure_order(runs):
 
 
 def structures_time(runs, device, folder, written):
-    if runs.structure_type.nunique() < 2:
+    if not structures_comparable(runs):
         return
     runs = with_methods(runs)
     scenes = runs.sort_values("scene_triangles").scene.unique().tolist()
@@ -344,7 +349,7 @@ def structures_time(runs, device, folder, written):
 
 
 def structures_memory(runs, device, folder, written):
-    if runs.structure_type.nunique() < 2:
+    if not structures_comparable(runs):
         return
     runs = with_methods(runs)
     runs = runs[runs.strategy_type == runs.strategy_type.iloc[0]]  # the structure is the same for both strategies
@@ -363,7 +368,7 @@ def structures_memory(runs, device, folder, written):
 
 
 def structures_work(runs, device, folder, written):
-    if runs.structure_type.nunique() < 2:
+    if not structures_comparable(runs):
         return
     runs = with_methods(runs)
     scenes = runs.sort_values("scene_triangles").scene.unique().tolist()
