@@ -78,6 +78,14 @@ GpuBuffers::GpuBuffers(VulkanContext& vk, const std::vector<gpu::Ray>& rays, std
     uploadMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
+namespace {
+std::uint32_t floatBits(float f) {
+    std::uint32_t bits;
+    std::memcpy(&bits, &f, sizeof bits);
+    return bits;
+}
+}  // namespace
+
 ComputePipeline GpuBuffers::createKernel(const std::string& name, const KernelSpec& spec) {
     return vk_.createComputePipeline(embeddedKernel(name), std::uint32_t(buffers_.size()),
                                      std::uint32_t(pushConstants_.size()), spec.workgroupSize,
@@ -86,7 +94,12 @@ ComputePipeline GpuBuffers::createKernel(const std::string& name, const KernelSp
                                       {gpu::kSpecTraverseSteps, spec.traverseStepsPerPass},
                                       {gpu::kSpecIntersections, spec.intersectionsPerPass},
                                       {gpu::kSpecSuppress, spec.suppressFinishedReads ? 1u : 0u},
-                                      {gpu::kSpecTriangleTest, spec.triangleTest}});
+                                      {gpu::kSpecTriangleTest, spec.triangleTest},
+                                      {gpu::kSpecVertexBits, spec.vertexLattice.bits},
+                                      {gpu::kSpecLatticeOriginX, floatBits(spec.vertexLattice.origin.x)},
+                                      {gpu::kSpecLatticeOriginY, floatBits(spec.vertexLattice.origin.y)},
+                                      {gpu::kSpecLatticeOriginZ, floatBits(spec.vertexLattice.origin.z)},
+                                      {gpu::kSpecLatticeStep, floatBits(spec.vertexLattice.step)}});
 }
 
 GpuBuffers::~GpuBuffers() {

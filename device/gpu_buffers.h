@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "kernels/gpu_layout.h"
+#include "structures/mesh.h"
 #include "vulkan_context.h"
 
 namespace rtbench {
@@ -18,6 +19,7 @@ struct KernelSpec {
     std::uint32_t intersectionsPerPass = 1;
     bool suppressFinishedReads = false;
     std::uint32_t triangleTest = gpu::kTriangleTestMollerTrumbore;
+    VertexLattice vertexLattice;  // bits != 0: the structure's vertices are packed to it
 };
 
 // One device buffer of a run and its size, known from the run's parameters before allocation.

@@ -37,6 +37,10 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         // Scene, rays, structure.
         add("scene_triangles", K::Count, "triangles", "triangles after triangulation");
         add("scene_degenerate", K::Count, "triangles", "zero-area triangles in float (never hit)");
+        add("scene_full_triangles", K::Count, "triangles", "triangles of the scene before scene.simplify_*: what the exact reference traces");
+        add("scene_simplify_ms", K::Timing, "ms", "scene.simplify_*: wall time of the edge collapses");
+        add("vertex_lattice_step", K::Count, "scene units", "intersection.vertex_bits < 32: the spacing of the vertex lattice");
+        add("vertex_snap_error_max", K::Count, "scene units", "intersection.vertex_bits < 32: the largest distance a vertex moved to its lattice point (not simplified scenes)");
         add("rays", K::Count, "rays", "rays traced");
         add("structure_bytes", K::Count, "bytes", "device memory of the structure (its buffers, triangle vertices included)");
         add("structure_bytes_per_triangle", K::Count, "bytes", "structure_bytes / scene_triangles");
@@ -94,11 +98,16 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
             const K kind = embree ? K::Reference : K::Count;
             add(p + "false_misses", kind, "rays", "the exact ray hits, " + who + " missed (a leak)", 1e-4, true);
             add(p + "false_hits", kind, "rays", "the exact ray misses, " + who + " hit", 1e-4, true);
-            add(p + "wrong_primitive", kind, "rays", "both hit; " + who + "'s triangle is not one the exact ray hits first", 1e-4, true);
-            add(p + "wrong_ppm", kind, "ppm", "false misses + false hits + wrong primitive, per million exact_rays", 100.0);
+            add(p + "wrong_primitive", kind, "rays", "both hit; " + who + "'s triangle is not one the exact ray hits first (empty for a simplified scene: other triangles)", 1e-4, true);
+            add(p + "wrong_ppm", kind, "ppm", "false misses + false hits + wrong primitive, per million exact_rays: the wrong pixels", 100.0);
             add(p + "distance_error_mean", kind, "", "|t - t_exact| / t_exact, mean over rays both hit", 1e-6);
             add(p + "distance_error_max", kind, "", "|t - t_exact| / t_exact, max", 1e-6);
         }
+        // Image-level accuracy, as OpenImageIO's idiff measures it, on the pixels of the exact_rays.
+        add("image_psnr_db", K::Count, "dB", "shaded pixels (grey in [0, 1]) of the kernel's hits against those of the exact hits on the full scene: PSNR, 20 log10(1 / RMS error); inf when equal");
+        add("image_error_mean", K::Count, "", "shaded pixels against the exact render: mean |difference|");
+        add("image_error_max", K::Count, "", "shaded pixels against the exact render: largest |difference|");
+        add("image_pixels_differ", K::Count, "pixels", "shaded pixels that differ from the exact render's by more than 1/255 (one 8-bit level)");
         // Work and accounting (exact, from instrumented kernels; equal to the CPU reference).
         add("work_per_ray_mean", K::Count, "operations",
             "cells or nodes visited + triangles tested per ray, measured: what predicted_work_per_ray predicts");

@@ -36,6 +36,14 @@ const char* typeName(ValueType t) {
     return "?";
 }
 
+// intersection.vertex_bits: packed to 1..16 bits per axis, or 32 (float).
+std::vector<std::string> vertexBitsChoices() {
+    std::vector<std::string> choices;
+    for (int bits = 1; bits <= 16; ++bits) choices.push_back(std::to_string(bits));
+    choices.push_back("32");
+    return choices;
+}
+
 std::string where(const std::string& file, const toml::source_region& src) {
     if (src.begin.line == 0) return file;
     return file + ":" + std::to_string(src.begin.line);
@@ -55,6 +63,8 @@ const std::vector<KeySpec>& configSchema() {
         add({"scene.source", ValueType::String, "mesh file (.off/.obj/.ply/.stl, relative to the config), scene description (.toml, relative to the config: meshes with transforms and seeded scatters, see structures/scene_description.h), cgal:NAME, or procedural:christen_a|christen_b|christen_b_thesis|closed_box|icosphere|tetrahedron", {}, true});
         add({"scene.scale", ValueType::Float, "uniform scale applied to every vertex, in float: v * scale + translate (camera.position and camera.look_at move with the scene)", 1.0, false, 1e-30, 1e30});
         add({"scene.translate", ValueType::Float3, "translation applied after scene.scale, in float (stability sweeps move a scene away from the origin)", std::array<double, 3>{0, 0, 0}});
+        add({"scene.simplify_ratio", ValueType::Float, "simplify the scene by edge collapse (CGAL Surface_mesh_simplification, Lindstrom-Turk) to at most this fraction of its triangles; every method traces the simplified scene, the exact reference the full one", {}, false, 1e-9, 1, {}, {}, {}, "scene simplification"});
+        add({"scene.simplify_triangles", ValueType::Int, "simplify the scene by edge collapse to exactly this many triangles (else the run fails saying why); as scene.simplify_ratio", {}, false, 1, 4294967295.0, {}, {}, {}, "scene simplification"});
         add({"camera.width", ValueType::Int, "image width in pixels", std::int64_t(1024), false, 1, 16384});
         add({"camera.height", ValueType::Int, "image height in pixels", std::int64_t(1024), false, 1, 16384});
         add({"camera.position", ValueType::Float3, "eye position (default: the procedural scene's own viewpoint, else fitted to the scene bounds)", {}});
@@ -86,6 +96,7 @@ const std::vector<KeySpec>& configSchema() {
         add({"strategy.workgroup_size", ValueType::Int, "invocations per workgroup (specialization constant)", std::int64_t(64), false, 1, 1024});
         for (const StrategyType* t : strategyTypes()) addMethodKeys("strategy.type", t->name, t->keys);
         add({"intersection.test", ValueType::String, "ray-triangle test of every structure and strategy, on the GPU and in the CPU reference: moller_trumbore (Moller & Trumbore 1997) or watertight (Woop, Benthin & Wald 2013: no ray slips between triangles sharing an edge)", std::string("moller_trumbore"), false, -1e300, 1e300, {"moller_trumbore", "watertight"}});
+        add({"intersection.vertex_bits", ValueType::Int, "32: float vertices; 1..16: every vertex snapped to a lattice of 2^bits points per axis over the scene's box and stored packed (20 bytes a triangle instead of 48); every method traces the snapped scene, the exact reference the original", std::int64_t(32), false, 1, 32, vertexBitsChoices()});
         add({"baseline.embree_config", ValueType::String, "Embree device config string, e.g. \"isa=avx2\" (keys isa, max_isa, threads, start_threads, set_affinity, verbose)", std::string(""), false, -1e300, 1e300, {}, {}, checkEmbreeConfig});
         add({"accuracy.exact_rays", ValueType::Int, "rays checked against the exact reference (CGAL, exact arithmetic): an even stride over the image from ray 0; 0 = every ray", std::int64_t(1048576), false, 0, 4294967295.0});
         add({"device.name", ValueType::String, "\"auto\" (discrete GPU, else lavapipe) or a substring of the device name", std::string("auto")});
@@ -118,6 +129,9 @@ ConfigValue convert(const std::string& file, const KeySpec& spec, const toml::no
             if (!node.is_integer()) throw wrongType();
             const std::int64_t v = node.as_integer()->get();
             checkRange(static_cast<double>(v));
+            if (!spec.choices.empty() &&
+                std::find(spec.choices.begin(), spec.choices.end(), std::to_string(v)) == spec.choices.end())
+                throw Error(at + "value " + std::to_string(v) + " is not allowed (allowed: " + join(spec.choices) + ")");
             return v;
         }
         case ValueType::Float: {

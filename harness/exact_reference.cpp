@@ -184,9 +184,10 @@ std::vector<std::uint32_t> sampleRays(std::size_t rayCount, std::uint64_t maxRay
     return sample;
 }
 
-ExactAccuracy compareExact(const std::vector<gpu::HitRecord>& hits, const ExactHits& exact) {
+ExactAccuracy compareExact(const std::vector<gpu::HitRecord>& hits, const ExactHits& exact, bool sameTriangles) {
     ExactAccuracy a;
     a.rays = exact.rays.size();
+    a.primitivesCompared = sameTriangles;
     double errorSum = 0.0;
     std::uint64_t errorCount = 0;
     for (std::size_t i = 0; i < exact.rays.size(); ++i) {
@@ -199,7 +200,7 @@ ExactAccuracy compareExact(const std::vector<gpu::HitRecord>& hits, const ExactH
             continue;
         }
         if (!hit) continue;
-        if (!exact.isFirstHit(i, h.primitive)) ++a.wrongPrimitive;
+        if (sameTriangles && !exact.isFirstHit(i, h.primitive)) ++a.wrongPrimitive;
         if (e.t > 0.0) {
             const double error = std::abs(double(h.t) - e.t) / e.t;
             errorSum += error;

@@ -59,6 +59,7 @@ struct ExactAccuracy {
     std::uint64_t falseMisses = 0;     // the exact ray hits; the method missed (a leak)
     std::uint64_t falseHits = 0;       // the exact ray misses; the method hit
     std::uint64_t wrongPrimitive = 0;  // both hit; the method's triangle is not among the exact first hits
+    bool primitivesCompared = true;    // false: the method traced other triangles (a simplified scene)
     std::uint64_t ties = 0;            // rays whose exact first hit is shared by several triangles
     double distanceErrorMean = 0.0;    // |t - t_exact| / t_exact over rays both hit (t_exact > 0)
     double distanceErrorMax = 0.0;
@@ -67,6 +68,8 @@ struct ExactAccuracy {
     double wrongPerMillion() const { return rays ? 1e6 * double(wrong()) / double(rays) : 0.0; }
 };
 
-ExactAccuracy compareExact(const std::vector<gpu::HitRecord>& hits, const ExactHits& exact);
+// sameTriangles: the method's triangle i is the reference scene's triangle i (false for a
+// simplified scene: then no ray counts as a wrong primitive, and only hit or miss and distance count).
+ExactAccuracy compareExact(const std::vector<gpu::HitRecord>& hits, const ExactHits& exact, bool sameTriangles = true);
 
 }  // namespace rtbench

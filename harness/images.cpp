@@ -33,16 +33,22 @@ HitImage makeHitImage(std::uint32_t width, std::uint32_t height, const std::vect
                     : kernel[i].primitive == embree[i].primitive ? HitDiff::SameHit
                                                                  : HitDiff::OtherPrimitive;
         image.diff[i] = static_cast<std::uint8_t>(d);
-        if (!hit) continue;
-        const glm::uvec3 t = mesh.triangles[kernel[i].primitive];
-        const glm::vec3 v0 = mesh.vertices[t.x], v1 = mesh.vertices[t.y], v2 = mesh.vertices[t.z];
-        const glm::vec3 n = glm::cross(v1 - v0, v2 - v0);
-        const glm::vec3 dir(rays[i].directionTMax);
-        const float len = glm::length(n) * glm::length(dir);
-        image.shade[i] = len > 0.0f ? std::abs(glm::dot(n, dir)) / len : 0.0f;
+        image.shade[i] = shadeHit(mesh, kernel[i].primitive, rays[i]);
     }
     return image;
 }
+
+float shadeHit(const TriangleMesh& mesh, std::uint32_t primitive, const gpu::Ray& ray) {
+    if (primitive == gpu::kNoHit) return -1.0f;
+    const glm::uvec3 t = mesh.triangles[primitive];
+    const glm::vec3 v0 = mesh.vertices[t.x], v1 = mesh.vertices[t.y], v2 = mesh.vertices[t.z];
+    const glm::vec3 n = glm::cross(v1 - v0, v2 - v0);
+    const glm::vec3 dir(ray.directionTMax);
+    const float len = glm::length(n) * glm::length(dir);
+    return len > 0.0f ? std::abs(glm::dot(n, dir)) / len : 0.0f;
+}
+
+float pixelGrey(float shade) { return shade < 0.0f ? 0.0f : (40.0f + 215.0f * shade) / 255.0f; }
 
 void writeHitRecords(const std::string& path, const HitImage& image) {
     std::ofstream out(path + ".tmp", std::ios::binary | std::ios::trunc);
@@ -89,7 +95,7 @@ void writeImages(const std::string& prefix, const HitImage& image) {
     std::vector<std::uint8_t> shaded(n * 3), diff(n * 3);
     for (std::size_t i = 0; i < n; ++i) {
         const float s = image.shade[i];
-        const std::uint8_t grey = s < 0.0f ? 0 : static_cast<std::uint8_t>(std::lround(40.0f + 215.0f * s));
+        const std::uint8_t grey = static_cast<std::uint8_t>(std::lround(255.0f * pixelGrey(s)));
         const std::uint8_t bg[3] = {24, 28, 40};
         for (int c = 0; c < 3; ++c) shaded[i * 3 + c] = s < 0.0f ? bg[c] : grey;
         // Agreeing pixels are dimmed; disagreements in colour: red = only the kernel hit,

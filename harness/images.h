@@ -20,6 +20,12 @@ struct HitImage {
     std::vector<std::uint8_t> diff;  // HitDiff per pixel
 };
 
+// Shading of a hit: |cos| between triangle `primitive`'s normal and the ray; -1 for kNoHit.
+float shadeHit(const TriangleMesh& mesh, std::uint32_t primitive, const gpu::Ray& ray);
+// A shaded pixel's grey in [0, 1] as the PNG draws it: 0 for a miss (shade < 0), else
+// (40 + 215 shade) / 255.
+float pixelGrey(float shade);
+
 HitImage makeHitImage(std::uint32_t width, std::uint32_t height, const std::vector<gpu::Ray>& rays,
                       const TriangleMesh& mesh, const std::vector<gpu::HitRecord>& kernel,
                       const std::vector<gpu::HitRecord>& embree);

@@ -20,8 +20,10 @@
 #include "device/vulkan_context.h"
 #include "embree_reference.h"
 #include "exact_reference.h"
+#include "image_compare.h"
 #include "images.h"
 #include "methods/registry.h"
+#include "methods/triangle_store.h"
 #include "output_folder.h"
 #include "structures/camera.h"
 #include "structures/error.h"
@@ -29,6 +31,7 @@
 #include "structures/procedural.h"
 #include "structures/scene_description.h"
 #include "structures/scene_limits.h"
+#include "structures/simplify.h"
 #include "version.h"
 
 namespace rtbench {
@@ -67,7 +70,8 @@ void writeArchitectureColumns(const ArchitectureMetrics& m, const Structure& str
 
 // What is cached across the runs of one plan (a sweep reuses scenes, devices, Embree scenes).
 struct Caches {
-    std::map<std::string, std::shared_ptr<TriangleMesh>> meshes;
+    std::map<std::string, std::shared_ptr<TriangleMesh>> meshes;  // by sceneKey and tracedSceneKey
+    std::map<std::string, SimplifiedMesh> simplified;              // by tracedSceneKey: the collapses and time (no mesh)
     std::map<std::string, std::shared_ptr<VulkanContext>> devices;
     std::map<std::string, std::shared_ptr<EmbreeReference>> embree;
     std::map<std::string, std::shared_ptr<ExactReference>> exact;  // by scene
@@ -98,16 +102,63 @@ std::string sceneKey(const RunConfig& run) {
            formatValue(run.values.at("scene.translate"));
 }
 
-const TriangleMesh& sceneFor(const ExperimentPlan& plan, const RunConfig& run, Caches& caches, Row& row) {
-    const std::string key = sceneKey(run);
+// The cache key of the scene the methods trace: the scene, simplified and snapped as configured.
+std::string tracedSceneKey(const RunConfig& run) {
+    std::string key = sceneKey(run) + "|" + std::to_string(run.getInt("intersection.vertex_bits"));
+    for (const char* k : {"scene.simplify_ratio", "scene.simplify_triangles"})
+        if (run.has(k)) key += std::string("|") + k + "=" + formatValue(run.values.at(k));
+    return key;
+}
+
+// A run's scene twice: as its source describes it (what the exact reference traces) and as the
+// methods trace it, simplified (scene.simplify_*) and snapped to a vertex lattice
+// (intersection.vertex_bits); the same mesh when neither is asked for.
+struct RunScene {
+    const TriangleMesh& full;
+    const TriangleMesh& traced;
+    bool sameTriangles;  // traced triangle i is full triangle i (perhaps with moved vertices)
+};
+
+RunScene sceneFor(const ExperimentPlan& plan, const RunConfig& run, Caches& caches, Row& row) {
+    const std::string key = sceneKey(run), tracedKey = tracedSceneKey(run);
     if (!caches.meshes.count(key)) {
         TriangleMesh mesh = loadScene(run.getString("scene.source"), plan.configDir);
         for (glm::vec3& v : mesh.vertices) v = sceneTransform(run, v);
         caches.meshes[key] = std::make_shared<TriangleMesh>(std::move(mesh));
     }
-    const TriangleMesh& mesh = *caches.meshes[key];
+    const TriangleMesh& full = *caches.meshes[key];
+    validateSceneRange(full);  // before the structure, the camera fit or Embree see it
+    const bool simplify = run.has("scene.simplify_ratio") || run.has("scene.simplify_triangles");
+    const unsigned vertexBits = unsigned(run.getInt("intersection.vertex_bits"));
+    if (!caches.meshes.count(tracedKey)) {
+        TriangleMesh traced = full;
+        if (simplify) {
+            const bool exact = run.has("scene.simplify_triangles");
+            const std::size_t target =
+                exact ? std::size_t(run.getInt("scene.simplify_triangles"))
+                      : std::size_t(std::llround(run.getFloat("scene.simplify_ratio") * double(full.triangles.size())));
+            SimplifiedMesh simplified = simplifyMesh(full, std::max<std::size_t>(target, 1), exact);
+            traced = std::move(simplified.mesh);
+            caches.simplified[tracedKey] = std::move(simplified);
+        }
+        if (vertexBits != 32) traced = snapToLattice(traced, vertexBits);
+        caches.meshes[tracedKey] = std::make_shared<TriangleMesh>(std::move(traced));
+    }
+    const TriangleMesh& mesh = *caches.meshes[tracedKey];
+    row["scene_full_triangles"] = std::to_string(full.triangles.size());
     row["scene_triangles"] = std::to_string(mesh.triangles.size());
-    validateSceneRange(mesh);  // before the structure, the camera fit or Embree see it
+    // A simplification that collapsed nothing left the same triangles.
+    const bool collapsed = simplify && caches.simplified[tracedKey].collapses > 0;
+    if (simplify) row["scene_simplify_ms"] = num(caches.simplified[tracedKey].ms, 4);
+    if (vertexBits != 32) {
+        double snapError = 0.0;
+        if (!collapsed)
+            for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
+                snapError = std::max(snapError, double(glm::length(glm::dvec3(mesh.vertices[i]) - glm::dvec3(full.vertices[i]))));
+        row["vertex_lattice_step"] = num(mesh.lattice.step);
+        if (!collapsed) row["vertex_snap_error_max"] = num(snapError, 4);
+    }
+    validateSceneRange(mesh);
     const std::size_t degenerate = mesh.degenerateCount();
     row["scene_degenerate"] = std::to_string(degenerate);
     // What makes the scene differ from what its file describes, in the row and on the console.
@@ -117,7 +168,7 @@ const TriangleMesh& sceneFor(const ExperimentPlan& plan, const RunConfig& run, C
                            " triangles are degenerate (zero area in float) and are never hit");
     if (mesh.elementsSkipped) warnings.push_back("skipped " + mesh.elementsSkippedWhat + " (not surfaces)");
     for (const std::string& w : warnings) row["warnings"] += (row["warnings"].empty() ? "" : "; ") + w;
-    return mesh;
+    return {full, mesh, !collapsed};
 }
 
 PinholeCamera cameraFor(const RunConfig& run, const TriangleMesh& mesh) {
@@ -139,7 +190,7 @@ PinholeCamera cameraFor(const RunConfig& run, const TriangleMesh& mesh) {
 std::vector<gpu::HitRecord> traceEmbree(const RunConfig& run, const TriangleMesh& mesh, const std::vector<gpu::Ray>& rays,
                                         const TimingOptions& timing, Caches& caches, Row& row) {
     const std::string embreeConfig = run.getString("baseline.embree_config");
-    const std::string embreeKey = sceneKey(run) + "|" + embreeConfig;
+    const std::string embreeKey = tracedSceneKey(run) + "|" + embreeConfig;
     if (!caches.embree.count(embreeKey)) caches.embree[embreeKey] = std::make_shared<EmbreeReference>(mesh, embreeConfig);
     EmbreeReference& embree = *caches.embree[embreeKey];
     std::vector<gpu::HitRecord> embreeHits, scratch;
@@ -182,10 +233,36 @@ const ExactHits& traceExact(const RunConfig& run, const TriangleMesh& mesh, cons
 void writeExactColumns(const std::string& prefix, const ExactAccuracy& a, Row& row) {
     row[prefix + "false_misses"] = std::to_string(a.falseMisses);
     row[prefix + "false_hits"] = std::to_string(a.falseHits);
-    row[prefix + "wrong_primitive"] = std::to_string(a.wrongPrimitive);
+    if (a.primitivesCompared) row[prefix + "wrong_primitive"] = std::to_string(a.wrongPrimitive);
     row[prefix + "wrong_ppm"] = num(a.wrongPerMillion(), 6);
     row[prefix + "distance_error_mean"] = num(a.distanceErrorMean, 4);
     row[prefix + "distance_error_max"] = num(a.distanceErrorMax, 4);
+}
+
+// A shaded pixel differs from the exact render's when its grey differs by more than one 8-bit level.
+constexpr double kPixelDifferThreshold = 1.0 / 255.0;
+
+// Image-level accuracy (harness/image_compare.h, idiff's measures): the shaded pixels of the
+// sampled rays, the kernel's hits on the traced scene against the exact hits on the full scene (the
+// whole image when every ray is sampled, else the sample as one row of pixels).
+void writeImageAccuracy(const std::vector<gpu::Ray>& rays, const RunScene& scene, const std::vector<gpu::HitRecord>& hits,
+                        const ExactHits& exact, unsigned width, unsigned height, Row& row) {
+    std::vector<float> test(exact.rays.size()), reference(exact.rays.size());
+    for (std::size_t i = 0; i < exact.rays.size(); ++i) {
+        const std::uint32_t ray = exact.rays[i], primitive = hits[ray].primitive;
+        std::uint32_t exactPrimitive = exact.hits[i].primitive;
+        // In a tie the kernel's triangle is as right as the lowest-numbered one, and shades as it.
+        if (scene.sameTriangles && primitive != gpu::kNoHit && exact.isFirstHit(i, primitive)) exactPrimitive = primitive;
+        test[i] = pixelGrey(shadeHit(scene.traced, primitive, rays[ray]));
+        reference[i] = pixelGrey(shadeHit(scene.full, exactPrimitive, rays[ray]));
+    }
+    const bool whole = exact.rays.size() == rays.size();
+    const ImageComparison c = compareImages(test, reference, whole ? width : unsigned(test.size()), whole ? height : 1u,
+                                            kPixelDifferThreshold);
+    row["image_psnr_db"] = num(c.psnr, 5);
+    row["image_error_mean"] = num(c.meanError, 4);
+    row["image_error_max"] = num(c.maxError, 4);
+    row["image_pixels_differ"] = std::to_string(c.differing);
 }
 
 // One run, as the data flows: scene -> rays -> structure -> method (strategy on the device, checked
@@ -201,8 +278,9 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
 
     // Scene and rays. Refuse before allocating: the per-ray buffers on the device (the largest
     // traversal state a structure keeps is checked again at upload) and the per-ray host data.
-    const TriangleMesh& mesh = sceneFor(plan, run, caches, row);
-    const PinholeCamera camera = cameraFor(run, mesh);
+    const RunScene scene = sceneFor(plan, run, caches, row);
+    const TriangleMesh& mesh = scene.traced;
+    const PinholeCamera camera = cameraFor(run, scene.full);  // the same rays at every simplification
     const unsigned width = unsigned(run.getInt("camera.width")), height = unsigned(run.getInt("camera.height"));
     refuseOversizedBuffers(vk.info(), rayBufferSizes(std::uint64_t(width) * height, strategy.perRayState ? 16 : 0));
     refuseOversizedRayStream(std::uint64_t(width) * height);
@@ -240,12 +318,14 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
     const std::vector<gpu::HitRecord> embreeHits = traceEmbree(run, mesh, rays, timing, caches, row);
     row["speed_ratio_vs_embree1"] = num(kernelMrays / std::stod(row["embree1_mrays_s"]), 4);
 
-    // Ground truth: the exact first hits of a sample of the rays, for the kernel and for Embree.
-    const ExactHits& exact = traceExact(run, mesh, rays, caches, row);
-    const ExactAccuracy kernelAccuracy = compareExact(method.hits, exact);
+    // Ground truth: the exact first hits of a sample of the rays on the full scene, for the kernel
+    // and for Embree; the shaded pixels of those rays against the exact render.
+    const ExactHits& exact = traceExact(run, scene.full, rays, caches, row);
+    const ExactAccuracy kernelAccuracy = compareExact(method.hits, exact, scene.sameTriangles);
     row["exact_ties"] = std::to_string(kernelAccuracy.ties);
     writeExactColumns("exact_", kernelAccuracy, row);
-    writeExactColumns("embree_exact_", compareExact(embreeHits, exact), row);
+    writeExactColumns("embree_exact_", compareExact(embreeHits, exact, scene.sameTriangles), row);
+    writeImageAccuracy(rays, scene, method.hits, exact, width, height, row);
 
     // Metrics: agreement with Embree.
     const Agreement a = compareHits(method.hits, embreeHits);

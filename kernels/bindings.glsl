@@ -19,6 +19,11 @@ layout(constant_id = kSpecTraverseSteps) const uint traverseStepsPerPass = 1u;
 layout(constant_id = kSpecIntersections) const uint intersectionsPerPass = 1u;
 layout(constant_id = kSpecSuppress) const uint suppressFinishedReads = 0u;
 layout(constant_id = kSpecTriangleTest) const uint triangleTest = kTriangleTestMollerTrumbore;
+layout(constant_id = kSpecVertexBits) const uint vertexBits = 0u;
+layout(constant_id = kSpecLatticeOriginX) const float latticeOriginX = 0.0;
+layout(constant_id = kSpecLatticeOriginY) const float latticeOriginY = 0.0;
+layout(constant_id = kSpecLatticeOriginZ) const float latticeOriginZ = 0.0;
+layout(constant_id = kSpecLatticeStep) const float latticeStep = 0.0;
 
 layout(std430, set = 0, binding = kBindingRays) readonly buffer RayBuffer { Ray rays[]; };
 layout(std430, set = 0, binding = kBindingHits) writeonly buffer HitBuffer { HitRecord hits[]; };

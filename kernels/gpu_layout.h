@@ -38,6 +38,11 @@ RTBENCH_CONST kSpecTraverseSteps = 2;    // multipass: traversal steps per trave
 RTBENCH_CONST kSpecIntersections = 3;    // multipass: triangle tests per intersect pass (M)
 RTBENCH_CONST kSpecSuppress = 4;         // multipass: 1 = rays done mid-pass skip the rest's reads
 RTBENCH_CONST kSpecTriangleTest = 5;     // kTriangleTest*: the ray-triangle test (intersection.test)
+RTBENCH_CONST kSpecVertexBits = 6;       // 0: float vertices (Triangle); 1..16: packed (kPackedTriangleWords)
+RTBENCH_CONST kSpecLatticeOriginX = 7;   // packed vertices: the lattice's origin (float bits) ...
+RTBENCH_CONST kSpecLatticeOriginY = 8;
+RTBENCH_CONST kSpecLatticeOriginZ = 9;
+RTBENCH_CONST kSpecLatticeStep = 10;     // ... and its spacing, a power of two (float bits)
 
 // ---- ray-triangle tests (kernels/ray_math.glsl) ----
 RTBENCH_CONST kTriangleTestMollerTrumbore = 0;  // Moller & Trumbore 1997
@@ -73,6 +78,13 @@ struct Triangle {
     vec4 v1;  // byte 16
     vec4 v2;  // byte 32
 };
+
+// Packed vertices (intersection.vertex_bits < 32, methods/triangle_store.h): every vertex is a point of one lattice over the
+// scene's box, origin + q * step with q < 2^16 per axis and step a power of two, so the product is
+// exact and the sum rounds once (no FMA can change it). Triangle i is 5 words from word 5i:
+// (v0.x | v0.y << 16), (v0.z | v1.x << 16), (v1.y | v1.z << 16), (v2.x | v2.y << 16), v2.z.
+// 20 bytes read per triangle instead of Triangle's 48.
+RTBENCH_CONST kPackedTriangleWords = 5;
 
 // Nearest hit of one ray plus the work it took.
 struct HitRecord {

@@ -1,5 +1,5 @@
 // What every structure's traversal shares: the empty hit record and the nearest-hit bookkeeping of
-// the branching walks, the triangle test through the structure's `triangles` buffer, what the
+// the branching walks, the triangle test through the structure's vertex buffer (float or packed), what the
 // multipass per-ray work reports (MpEvents) and the hit record the write pass makes. ONE source
 // for the kernels and the CPU references, included after kernels/ray_math.glsl and the
 // structure's buffers, before its traversal.
@@ -47,10 +47,36 @@ RtNearest rtNoHitYet(Ray ray) {
     return n;
 }
 
-// The configured test against triangle `tri` of the structure's `triangles`: updates (t, u, v)
-// when it is hit in [tMin, t).
+// A packed vertex: its lattice point, origin + q * step. The product is exact (q < 2^16, step a
+// power of two), so the one rounding of the sum gives the same float with or without FMA.
+vec3 rtLatticePoint(uint x, uint y, uint z) {
+    precise vec3 p = vec3(latticeOriginX, latticeOriginY, latticeOriginZ) + vec3(float(x), float(y), float(z)) * latticeStep;
+    return p;
+}
+
+// Triangle `tri`'s vertices from the structure's buffer: float (`triangles`) or packed
+// (`packedTriangles`, kernels/gpu_layout.h) when vertexBits != 0.
+void rtStoredVertices(uint tri, RT_OUT(vec3) v0, RT_OUT(vec3) v1, RT_OUT(vec3) v2) {
+    if (vertexBits == 0u) {
+        v0 = vec3(triangles[tri].v0);
+        v1 = vec3(triangles[tri].v1);
+        v2 = vec3(triangles[tri].v2);
+        return;
+    }
+    const uint w = kPackedTriangleWords * tri;
+    const uint a = packedTriangles[w], b = packedTriangles[w + 1u], c = packedTriangles[w + 2u];
+    const uint d = packedTriangles[w + 3u], e = packedTriangles[w + 4u];
+    v0 = rtLatticePoint(a & 0xFFFFu, a >> 16u, b & 0xFFFFu);
+    v1 = rtLatticePoint(b >> 16u, c & 0xFFFFu, c >> 16u);
+    v2 = rtLatticePoint(d & 0xFFFFu, d >> 16u, e);
+}
+
+// The configured test against the structure's triangle `tri`: updates (t, u, v) when it is hit
+// in [tMin, t).
 bool rtIntersectStored(RtTriangleRay r, uint tri, RT_INOUT(float) t, RT_INOUT(float) u, RT_INOUT(float) v) {
-    return rtIntersect(r, vec3(triangles[tri].v0), vec3(triangles[tri].v1), vec3(triangles[tri].v2), t, u, v);
+    vec3 v0, v1, v2;
+    rtStoredVertices(tri, v0, v1, v2);
+    return rtIntersect(r, v0, v1, v2, t, u, v);
 }
 
 // Tests triangle `tri` and keeps it when it is hit nearer.
@@ -109,8 +135,9 @@ uint mpDoneState(RayHitState hit) { return hit.primitive != kNoHit ? kStateDoneH
 // skip it (Purcell §4.2): a list entry and the vertices of triangle `tri`, read, then discarded.
 void mpDiscardTriangleRead(uint tri, RT_INOUT(MpEvents) e) {
     e.triangleReads += 1u;
-    e.sink ^= tri ^ floatBitsToUint(triangles[tri].v0.x) ^ floatBitsToUint(triangles[tri].v1.y) ^
-              floatBitsToUint(triangles[tri].v2.z);
+    vec3 v0, v1, v2;
+    rtStoredVertices(tri, v0, v1, v2);
+    e.sink ^= tri ^ floatBitsToUint(v0.x) ^ floatBitsToUint(v1.y) ^ floatBitsToUint(v2.z);
 }
 
 #endif  // RT_TRAVERSAL_COMMON_GLSL

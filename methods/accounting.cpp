@@ -14,7 +14,7 @@ ArchitectureMetrics branchingMetrics(const std::vector<gpu::HitRecord>& hits, st
     m.bytes.state = rays * bytes::kBranchingState;
     m.bytes.cells = m.work.cellsTotal * costs.bytesPerCellVisit;
     m.bytes.triangleList = m.work.trianglesTotal * costs.bytesPerListEntry;
-    m.bytes.vertices = m.work.trianglesTotal * bytes::kTriangle;
+    m.bytes.vertices = m.work.trianglesTotal * costs.bytesPerTriangle;
     m.bytes.output = rays * bytes::kOutput;
     return m;
 }
@@ -38,7 +38,7 @@ ArchitectureMetrics multipassMetrics(const std::vector<gpu::HitRecord>& hits, co
     m.bytes.stencil = loopPasses * rays * bytes::kStencil + counts.stencilWrites * bytes::kStencil;
     m.bytes.cells = counts.structureReads * costs.bytesPerStructureRead;
     m.bytes.triangleList = counts.triangleReads * costs.bytesPerListEntry;
-    m.bytes.vertices = counts.triangleReads * bytes::kTriangle;
+    m.bytes.vertices = counts.triangleReads * costs.bytesPerTriangle;
     m.bytes.output = rays * bytes::kOutput;
     // The per-ray state each pass moves (Purcell's state textures): setup reads the ray and
     // writes traversal and hit state; traverse reads the ray, traversal and hit state and writes

@@ -17,7 +17,6 @@ namespace bytes {
 constexpr std::uint64_t kStencil = 1;                        // the ray-state byte
 constexpr std::uint64_t kRay = sizeof(gpu::Ray);             // 32
 constexpr std::uint64_t kHitState = sizeof(gpu::RayHitState);  // 16
-constexpr std::uint64_t kTriangle = sizeof(gpu::Triangle);   // 3 vec4 vertices
 constexpr std::uint64_t kOutput = 16;                        // t, primitive, u, v of the hit record
 constexpr std::uint64_t kBranchingState = kRay;              // read the ray once (the rest lives in registers)
 }  // namespace bytes

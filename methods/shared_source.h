@@ -29,12 +29,21 @@ struct KernelConstants {
     std::uint32_t intersectionsPerPass = 1;
     std::uint32_t suppressFinishedReads = 0;
     std::uint32_t triangleTest = gpu::kTriangleTestMollerTrumbore;
+    std::uint32_t vertexBits = 0;  // packed vertices on this lattice when != 0 (methods/triangle_store.h)
+    float latticeOriginX = 0.0f, latticeOriginY = 0.0f, latticeOriginZ = 0.0f, latticeStep = 0.0f;
     std::vector<std::uint32_t>* loopLog = nullptr;  // when set: per outer iteration, the triangle-loop trips
 
     void setMultipass(const MultipassOptions& options) {
         traverseStepsPerPass = options.traverseStepsPerPass;
         intersectionsPerPass = options.intersectionsPerPass;
         suppressFinishedReads = options.suppressFinishedReads ? 1u : 0u;
+    }
+    void setLattice(const VertexLattice& lattice) {
+        vertexBits = lattice.bits;
+        latticeOriginX = lattice.origin.x;
+        latticeOriginY = lattice.origin.y;
+        latticeOriginZ = lattice.origin.z;
+        latticeStep = lattice.step;
     }
 };
 
@@ -54,10 +63,11 @@ class SharedSourceStructure : public Structure {
 public:
     // The shared source over this structure's data.
     virtual Kernels kernels() const = 0;
-    // ... with the constants every structure shares (the triangle test).
+    // ... with the constants every structure shares (the triangle test, the vertex lattice).
     Kernels configured() const {
         Kernels k = kernels();
         k.triangleTest = triangleTest();
+        k.setLattice(vertexLattice());
         return k;
     }
 

@@ -32,6 +32,7 @@ struct StructureCosts {
     std::uint64_t bytesPerListEntry = 0;      // per triangle tested: its index in a list (0: none)
     std::uint64_t traversalStateBytes = 0;    // multipass: the per-ray traversal state
     std::uint64_t stackBytes = 0;             // multipass: the part of it that is a node stack
+    std::uint64_t bytesPerTriangle = sizeof(gpu::Triangle);  // per triangle tested: its vertices (packed: 20)
 };
 
 // The CPU reference's multipass run: hit records with per-ray counters, and the pass counts.
@@ -77,9 +78,14 @@ public:
     // intersection.test): set by the runner after the build, read by the strategies.
     virtual void setTriangleTest(std::uint32_t test) { triangleTest_ = test; }
     std::uint32_t triangleTest() const { return triangleTest_; }
+    // The lattice its vertices are packed to (bits 0: float vertices), set by the build.
+    const VertexLattice& vertexLattice() const { return vertexLattice_; }
 
     std::uint64_t memoryBytes = 0;  // everything the structure uploads
     double buildMs = 0.0;           // CPU build time
+
+protected:
+    VertexLattice vertexLattice_;
 
 private:
     std::uint32_t triangleTest_ = gpu::kTriangleTestMollerTrumbore;

@@ -55,9 +55,27 @@ def pareto(points):
 
 
 def wrong_ppm(frame, prefix="exact_"):
-    """Rays wrong against the exact reference per million: false misses + false hits + wrong triangle."""
-    wrong = frame[prefix + "false_misses"] + frame[prefix + "false_hits"] + frame[prefix + "wrong_primitive"]
+    """Rays wrong against the exact reference per million: false misses + false hits + wrong triangle
+    (a simplified scene has other triangles: no wrong triangle counted)."""
+    wrong = frame[prefix + "false_misses"] + frame[prefix + "false_hits"] + frame[prefix + "wrong_primitive"].fillna(0)
     return 1e6 * wrong / frame.exact_rays
+
+
+def vertex_bits(frame):
+    """intersection.vertex_bits per run (32, float vertices, for folders from before it)."""
+    return frame["intersection_vertex_bits"].fillna(32) if "intersection_vertex_bits" in frame else pd.Series(32, frame.index)
+
+
+def simplified(frame):
+    """Whether each run traced a simplified scene (scene.simplify_*)."""
+    if "scene_full_triangles" not in frame:
+        return pd.Series(False, frame.index)
+    return frame.scene_triangles != frame.scene_full_triangles
+
+
+def variant(frame):
+    """How each run's scene differs from its source: "" (as is), "packed" or "simplified"."""
+    return pd.Series("", frame.index).where(vertex_bits(frame) == 32, "packed").where(~simplified(frame), "simplified")
 
 
 def wrong_ppm_summed(frame, by, prefix="exact_"):
@@ -72,6 +90,8 @@ def method_label(run) -> str:
     return f"{method_name(run)} {run.strategy_type} {test}"
 
 
+# Markers per scene variant, (Moller-Trumbore, watertight).
+VARIANT_MARKERS = {"": ("o", "^"), "packed": ("D", "d"), "simplified": ("v", "<")}
 KIND_COLORS = {"grid": "tab:blue", "grid conservative": "tab:cyan", "bvh": "tab:red", "brute": "tab:gray",
                "auto": "tab:purple"}
 
@@ -88,18 +108,23 @@ def speed_vs_accuracy(runs, device, folder, written):
         points = []
         of_scene = of_scene.assign(kind=[method_name(r).split(" ")[0] + (" conservative" if "conservative" in method_name(r)
                                                                           else "") for _, r in of_scene.iterrows()],
-                                   test=of_scene.get("intersection_test", "moller_trumbore"))
-        for (kind, strategy, test), group in of_scene.groupby(["kind", "strategy_type", "test"]):
-            marker = "^" if test == "watertight" else "o"
-            name = f"{kind} {strategy}, {'watertight' if test == 'watertight' else 'Moller-Trumbore'}"
+                                   test=of_scene.get("intersection_test", "moller_trumbore"), variant=variant(of_scene))
+        for (kind, strategy, test, how), group in of_scene.groupby(["kind", "strategy_type", "test", "variant"]):
+            marker = VARIANT_MARKERS[how][test == "watertight"]
+            name = f"{kind} {strategy}, {'watertight' if test == 'watertight' else 'Moller-Trumbore'}" + (f", {how}" if how else "")
             color = KIND_COLORS.get(kind, COLORS.get(strategy))
             fill = color if strategy == "branching" else "none"  # multipass: hollow
             ppm = wrong_ppm(group)
             left.scatter(group.kernel_mrays_s, ppm, label=name, edgecolors=color, c=fill, marker=marker, alpha=0.8)
             right.scatter(group.kernel_mrays_s, group.exact_distance_error_mean, label=name, edgecolors=color, c=fill,
                           marker=marker, alpha=0.8)
+            if how:  # which precision or simplification each point is
+                tags = [f"{int(b)} b" for b in vertex_bits(group)] if how == "packed" else \
+                    [f"{100 * t / f:.3g}%" for t, f in zip(group.scene_triangles, group.scene_full_triangles)]
+                for x, y, tag in zip(group.kernel_mrays_s, ppm, tags):
+                    left.annotate(tag, (x, y), fontsize=6, xytext=(3, 2), textcoords="offset points", color=color)
             points += list(zip(group.kernel_mrays_s, ppm))
-        embree = of_scene.drop_duplicates(["camera_width", "camera_height", "camera_look_at"])
+        embree = of_scene[of_scene.variant == ""].drop_duplicates(["camera_width", "camera_height", "camera_look_at"])
         left.scatter(embree.embree1_mrays_s, wrong_ppm(embree, "embree_exact_"), marker="s",
                      color=COLORS["Embree rtcIntersect1"], label="Embree rtcIntersect1 (CPU, same rays)")
         right.scatter(embree.embree1_mrays_s, embree.embree_exact_distance_error_mean, marker="s",
@@ -118,6 +143,69 @@ def speed_vs_accuracy(runs, device, folder, written):
             ax.legend(fontsize=7)
     fig.suptitle(f"Speed against accuracy (the exact reference), one point per run\n{device}", fontsize=10)
     save(fig, folder, "speed_vs_accuracy", written)
+
+
+def reduced_lines(runs, how):
+    """Per scene and method (structure, strategy, test): the runs of variant `how` with the same
+    method's run on the scene as it is, for lines from the full scene down."""
+    runs = runs.assign(variant=variant(runs), method=[method_label(r) for _, r in runs.iterrows()])
+    for scene in sorted(runs.scene.unique()):
+        of_scene = runs[runs.scene == scene]
+        reduced = of_scene[of_scene.variant == how]
+        for method in sorted(reduced.method.unique()):
+            yield scene, method, of_scene[(of_scene.method == method) & of_scene.variant.isin(["", how])]
+
+
+def vertex_precision(runs, device, folder, written):
+    """Packed vertices: rays wrong against the exact reference and vertex bytes per ray against the
+    bits per axis, 32 being float vertices."""
+    lines = list(reduced_lines(runs, "packed"))
+    if not lines:
+        return
+    fig, (left, right) = plt.subplots(1, 2, figsize=(12, 4.4))
+    for scene, method, group in lines:
+        group = group.assign(bits=vertex_bits(group)).sort_values("bits")
+        left.plot(group.bits, wrong_ppm(group), marker="o", label=f"{scene}: {method}")
+        right.plot(group.bits, group.bytes_vertices / group.rays, marker="o", label=f"{scene}: {method}")
+    left.set_yscale("symlog", linthresh=1.0)
+    left.set_ylim(bottom=-0.1)
+    left.set_ylabel("rays wrong vs exact (per million; log above 1)")
+    right.set_ylabel("triangle vertex bytes read per ray")
+    for ax in (left, right):
+        ax.set_xlabel("vertex bits per axis (32: float)")
+        ax.set_xscale("log", base=2)
+        bits = sorted(vertex_bits(runs).unique())
+        ax.set_xticks(bits, [str(int(b)) if b < 32 else "float" for b in bits])
+        ax.minorticks_off()
+        ax.legend(fontsize=7)
+    fig.suptitle(f"Reduced vertex precision: accuracy against bandwidth ({size(runs)})\n{device}", fontsize=10)
+    save(fig, folder, "vertex_precision", written)
+
+
+def simplification(runs, device, folder, written):
+    """Simplified scenes judged against the full one: rays wrong and speed against the triangles kept."""
+    lines = list(reduced_lines(runs, "simplified"))
+    if not lines:
+        return
+    fig, (left, right) = plt.subplots(1, 2, figsize=(12, 4.4))
+    for scene, method, group in lines:
+        group = group.sort_values("scene_triangles")
+        left.plot(group.scene_triangles, wrong_ppm(group), marker="o", label=f"{scene}: {method}")
+        line, = right.plot(group.scene_triangles, group.kernel_mrays_s, marker="o", label=f"{scene}: {method}")
+        right.plot(group.scene_triangles, group.embree1_mrays_s, ls=":", marker=".", color=line.get_color(),
+                   label=f"{scene}: Embree rtcIntersect1 on the same scene")
+    left.axhline(1000, color="gray", lw=1, ls="--", label="0.1% of the rays")
+    left.set_yscale("symlog", linthresh=1.0)
+    left.set_ylim(bottom=-0.1)
+    left.set_ylabel("rays wrong vs exact on the full scene (per million)")
+    right.set_yscale("log")
+    right.set_ylabel("Mrays/s (log)")
+    for ax in (left, right):
+        ax.set_xscale("log")
+        ax.set_xlabel("triangles traced (log; the rightmost point is the full scene)")
+        ax.legend(fontsize=7)
+    fig.suptitle(f"Simplified scenes (CGAL edge collapse): accuracy and speed ({size(runs)})\n{device}", fontsize=10)
+    save(fig, folder, "simplification", written)
 
 
 def first_number(text) -> float:
@@ -405,7 +493,10 @@ def main() -> int:
         print(f"{folder}: no successful runs to chart")
         return 1
     written = []
-    for chart in (speed_vs_accuracy, passes_vs_threshold, bandwidth_by_category, unrolling, grid_resolution, kernel_time,
+    for chart in (speed_vs_accuracy, vertex_precision, simplification):
+        chart(runs, device, folder, written)
+    runs = runs[variant(runs) == ""]  # the other charts compare methods on the scene as it is
+    for chart in (passes_vs_threshold, bandwidth_by_category, unrolling, grid_resolution, kernel_time,
                   structures_time, structures_memory, structures_work):
         chart(runs, device, folder, written)
     failure_map(runs, failed, device, folder, written)

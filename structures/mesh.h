@@ -17,6 +17,14 @@ struct Bounds3 {
     bool empty() const { return min.x > max.x; }
 };
 
+// A lattice the vertices lie on (intersection.vertex_bits, methods/triangle_store.h): each vertex is
+// origin + q * step in float, q an integer vector in [0, 2^bits), step a power of two.
+struct VertexLattice {
+    unsigned bits = 0;  // 0: float vertices, on no lattice
+    glm::vec3 origin{0.0f};
+    float step = 0.0f;
+};
+
 struct TriangleMesh {
     std::string name;                   // file path, cgal:NAME or procedural:NAME
     std::vector<glm::vec3> vertices;
@@ -24,6 +32,7 @@ struct TriangleMesh {
     std::size_t polygonsRead = 0;       // polygons before triangulation
     std::size_t elementsSkipped = 0;    // file elements that are not surfaces (OBJ 'l', 'p')
     std::string elementsSkippedWhat;    // what they were, e.g. "2 line elements ('l')"; "" if none
+    VertexLattice lattice;              // bits != 0: every vertex lies on it, and structures store them packed
 
     Bounds3 bounds() const;
     // Zero-area triangles (repeated vertices or collinear): kept, counted, never hit by any method.

@@ -37,6 +37,7 @@ BranchingRun runBranching(VulkanContext& vk, const Structure& structure, const s
     KernelSpec spec;
     spec.workgroupSize = timing.workgroupSize;
     spec.triangleTest = structure.triangleTest();
+    spec.vertexLattice = structure.vertexLattice();
     {
         ComputePipeline counted = buffers.createKernel(kernel, spec);
         vk.dispatch(counted, buffers.descriptorSet(counted), buffers.pushConstants(), rays.size());

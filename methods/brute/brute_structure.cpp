@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "methods/shared_source.h"
+#include "methods/triangle_store.h"
 #include "methods/brute/brute_layout.h"
 #include "structures/error.h"
 
@@ -16,6 +17,7 @@ using namespace rtbench::gpu;
 struct BruteKernels : KernelConstants {
     using RtTraversalState = BruteTraversalState;
     const Triangle* triangles;
+    const std::uint32_t* packedTriangles;
     BruteParams params;
 #include "../../kernels/ray_math.glsl"
 #include "../../kernels/traversal_common.glsl"
@@ -26,34 +28,41 @@ struct BruteKernels : KernelConstants {
 
 namespace {
 
+std::vector<gpu::Triangle> floatTriangles(const TriangleMesh& mesh) {
+    std::vector<gpu::Triangle> triangles;
+    triangles.reserve(mesh.triangles.size());
+    for (const glm::uvec3& t : mesh.triangles)
+        triangles.push_back({glm::vec4(mesh.vertices[t.x], 0.0f), glm::vec4(mesh.vertices[t.y], 0.0f),
+                             glm::vec4(mesh.vertices[t.z], 0.0f)});
+    return triangles;
+}
+
 class BruteStructure final : public SharedSourceStructure<bruteref::BruteKernels> {
 public:
-    explicit BruteStructure(const TriangleMesh& mesh) {
+    explicit BruteStructure(const TriangleMesh& mesh) : triangles_(floatTriangles(mesh)), vertices_(triangles_, mesh.lattice) {
         const auto start = std::chrono::steady_clock::now();
-        triangles_.reserve(mesh.triangles.size());
-        for (const glm::uvec3& t : mesh.triangles)
-            triangles_.push_back({glm::vec4(mesh.vertices[t.x], 0.0f), glm::vec4(mesh.vertices[t.y], 0.0f),
-                                  glm::vec4(mesh.vertices[t.z], 0.0f)});
+        vertexLattice_ = mesh.lattice;
         params_.counts = glm::uvec4(std::uint32_t(triangles_.size()), 0, 0, 0);
-        memoryBytes = triangles_.size() * sizeof(gpu::Triangle);
+        memoryBytes = vertices_.bytes();
         buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     }
 
     std::string kernelPrefix() const override { return "brute"; }
 
     std::vector<StructureBuffer> buffers() const override {
-        return {{"triangle vertex (" + std::to_string(triangles_.size()) + " triangles)", memoryBytes, triangles_.data()}};
+        return {vertices_.buffer()};
     }
 
     StructureCosts costs() const override {
         StructureCosts c;  // no cells, no lists: only the vertices of every triangle
         c.traversalStateBytes = sizeof(gpu::BruteTraversalState);
+        c.bytesPerTriangle = triangleVertexBytes(vertexLattice());
         return c;
     }
 
     bruteref::BruteKernels kernels() const override {
         bruteref::BruteKernels k{};
-        k.triangles = triangles_.data();
+        vertices_.bind(k);
         k.params = params_;
         return k;
     }
@@ -80,6 +89,7 @@ public:
 
 private:
     std::vector<gpu::Triangle> triangles_;
+    TriangleStore vertices_;  // over triangles_
     gpu::BruteParams params_{};
 };
 
@@ -93,7 +103,7 @@ std::unique_ptr<Structure> buildBrute(const TriangleMesh& mesh, const std::vecto
                     " triangles = " + std::to_string(tests) + " ray-triangle tests, over structure.max_tests = " +
                     std::to_string(limit));
     checkBindingSize(device, "triangle vertex (" + std::to_string(mesh.triangles.size()) + " triangles)",
-                     mesh.triangles.size() * sizeof(gpu::Triangle));
+                     mesh.triangles.size() * triangleVertexBytes(mesh.lattice));
     return std::make_unique<BruteStructure>(mesh);
 }
 

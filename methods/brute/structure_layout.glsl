@@ -4,3 +4,5 @@
 #define RtParams BruteParams
 #define RtTraversalState BruteTraversalState
 layout(std430, set = 0, binding = kBindingBruteTriangles) readonly buffer TriangleBuffer { Triangle triangles[]; };
+// The same binding when the vertices are packed (vertexBits != 0, kernels/gpu_layout.h).
+layout(std430, set = 0, binding = kBindingBruteTriangles) readonly buffer PackedTriangleBuffer { uint packedTriangles[]; };

@@ -7,6 +7,7 @@
 #include <functional>
 #include <new>
 
+#include "methods/triangle_store.h"
 #include "structures/error.h"
 #include "structures/scene_limits.h"
 
@@ -124,6 +125,7 @@ FlatBvh buildBvh(const TriangleMesh& mesh, const BvhBuildOptions& options) {
     validateSceneRange(mesh);
     const auto start = std::chrono::steady_clock::now();
     FlatBvh out;
+    out.lattice = mesh.lattice;
     out.triangles.reserve(mesh.triangles.size());
     Bounds3 box;
     std::vector<RTCBuildPrimitive> prims(mesh.triangles.size());
@@ -187,7 +189,7 @@ FlatBvh buildBvh(const TriangleMesh& mesh, const BvhBuildOptions& options) {
     release();
     out.stats.references = out.triangleList.size();
     out.stats.bytes = out.nodes.size() * sizeof(gpu::BvhNode) + out.triangleList.size() * 4 +
-                      out.triangles.size() * sizeof(gpu::Triangle);
+                      out.triangles.size() * triangleVertexBytes(out.lattice);
     out.stats.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return out;
 }

@@ -34,6 +34,7 @@ struct FlatBvh {
     std::vector<gpu::BvhNode> nodes;          // nodes[0] is the root
     std::vector<std::uint32_t> triangleList;  // leaves' triangle ids
     std::vector<gpu::Triangle> triangles;     // vertices per triangle
+    VertexLattice lattice;                    // the mesh's: bits != 0, the device stores them packed
     BvhStats stats;
 };
 

@@ -2,6 +2,7 @@
 
 #include "methods/cost_model.h"
 #include "methods/shared_source.h"
+#include "methods/triangle_store.h"
 #include "structures/error.h"
 
 namespace rtbench {
@@ -16,6 +17,7 @@ struct BvhKernels : KernelConstants {
     const BvhNode* nodes;
     const std::uint32_t* triangleList;
     const Triangle* triangles;
+    const std::uint32_t* packedTriangles;
     BvhParams params;
 #include "../../kernels/ray_math.glsl"
 #include "../../kernels/traversal_common.glsl"
@@ -33,13 +35,15 @@ bvhref::BvhKernels kernelsOf(const FlatBvh& bvh) {
     k.nodes = bvh.nodes.data();
     k.triangleList = bvh.triangleList.data();
     k.triangles = bvh.triangles.data();
+    k.packedTriangles = nullptr;
     k.params = bvh.params;
     return k;
 }
 
 class BvhStructure final : public SharedSourceStructure<bvhref::BvhKernels> {
 public:
-    explicit BvhStructure(FlatBvh bvh) : bvh_(std::move(bvh)) {
+    explicit BvhStructure(FlatBvh bvh) : bvh_(std::move(bvh)), vertices_(bvh_.triangles, bvh_.lattice) {
+        vertexLattice_ = bvh_.lattice;
         memoryBytes = bvh_.stats.bytes;
         buildMs = bvh_.stats.buildMs;
     }
@@ -51,8 +55,7 @@ public:
                  bvh_.nodes.data()},
                 {"BVH triangle list (" + std::to_string(bvh_.triangleList.size()) + " references)",
                  bvh_.triangleList.size() * 4, bvh_.triangleList.data()},
-                {"triangle vertex (" + std::to_string(bvh_.triangles.size()) + " triangles)",
-                 bvh_.triangles.size() * sizeof(gpu::Triangle), bvh_.triangles.data()}};
+                vertices_.buffer()};
     }
 
     StructureCosts costs() const override {
@@ -62,10 +65,15 @@ public:
         c.bytesPerListEntry = 4;
         c.traversalStateBytes = sizeof(gpu::BvhTraversalState);
         c.stackBytes = sizeof(gpu::BvhTraversalState::stack);
+        c.bytesPerTriangle = triangleVertexBytes(bvh_.lattice);
         return c;
     }
 
-    bvhref::BvhKernels kernels() const override { return kernelsOf(bvh_); }
+    bvhref::BvhKernels kernels() const override {
+        bvhref::BvhKernels k = kernelsOf(bvh_);
+        vertices_.bind(k);
+        return k;
+    }
 
     // A ray visits each reference at most once: inner nodes + leaves bound its steps; a leaf holds
     // at most largestLeaf triangles.
@@ -99,6 +107,7 @@ public:
 
 private:
     FlatBvh bvh_;
+    TriangleStore vertices_;  // over bvh_.triangles
 };
 
 BvhBuildOptions buildOptions(const RunConfig& run) {

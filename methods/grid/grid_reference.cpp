@@ -7,6 +7,7 @@ gridref::GridKernels gridKernels(const UniformGrid& grid) {
     k.cellOffsets = grid.cellOffsets.data();
     k.triangleList = grid.triangleList.data();
     k.triangles = grid.triangles.data();
+    k.packedTriangles = nullptr;  // float vertices; GridStructure binds its packed store
     k.params = grid.params;
     return k;
 }

@@ -20,6 +20,7 @@ struct GridKernels : KernelConstants {
     const std::uint32_t* cellOffsets;
     const std::uint32_t* triangleList;
     const Triangle* triangles;
+    const std::uint32_t* packedTriangles;
     GridParams params;
 #include "../../kernels/ray_math.glsl"
 #include "../../kernels/traversal_common.glsl"

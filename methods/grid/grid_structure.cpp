@@ -5,18 +5,19 @@
 #include "device/gpu_buffers.h"
 #include "grid_reference.h"
 #include "methods/cost_model.h"
+#include "methods/triangle_store.h"
 #include "structures/error.h"
 
 namespace rtbench {
 
 std::vector<BufferSize> gridBufferSizes(const std::array<unsigned, 3>& resolution, std::uint64_t references,
-                                        std::uint64_t triangles) {
+                                        std::uint64_t triangles, const VertexLattice& lattice) {
     const std::uint64_t cells = std::uint64_t(resolution[0]) * resolution[1] * resolution[2];
     const std::string res = std::to_string(resolution[0]) + "x" + std::to_string(resolution[1]) + "x" +
                             std::to_string(resolution[2]);
     return {{"grid cell offset (" + res + " = " + std::to_string(cells) + " cells)", (cells + 1) * 4},
             {"grid triangle list (" + std::to_string(references) + " references)", references * 4},
-            {"triangle vertex (" + std::to_string(triangles) + " triangles)", triangles * sizeof(gpu::Triangle)}};
+            {"triangle vertex (" + std::to_string(triangles) + " triangles)", triangles * triangleVertexBytes(lattice)}};
 }
 
 namespace {
@@ -41,7 +42,8 @@ std::string num(double v, int significant = 6) { return formatNumber(v, signific
 
 class GridStructure final : public SharedSourceStructure<gridref::GridKernels> {
 public:
-    explicit GridStructure(UniformGrid grid) : grid_(std::move(grid)) {
+    explicit GridStructure(UniformGrid grid) : grid_(std::move(grid)), vertices_(grid_.triangles, grid_.lattice) {
+        vertexLattice_ = grid_.lattice;
         memoryBytes = grid_.stats.bytes;
         buildMs = grid_.stats.buildMs;
     }
@@ -50,10 +52,10 @@ public:
 
     std::vector<StructureBuffer> buffers() const override {
         const std::vector<BufferSize> sizes =
-            gridBufferSizes(grid_.stats.resolution, grid_.triangleList.size(), grid_.triangles.size());
+            gridBufferSizes(grid_.stats.resolution, grid_.triangleList.size(), grid_.triangles.size(), grid_.lattice);
         return {{sizes[0].what, sizes[0].bytes, grid_.cellOffsets.data()},
                 {sizes[1].what, sizes[1].bytes, grid_.triangleList.data()},
-                {sizes[2].what, sizes[2].bytes, grid_.triangles.data()}};
+                vertices_.buffer()};
     }
 
     StructureCosts costs() const override {
@@ -62,10 +64,15 @@ public:
         c.bytesPerStructureRead = 4;    // one cell offset
         c.bytesPerListEntry = 4;        // one triangle id of a voxel's list
         c.traversalStateBytes = sizeof(gpu::GridTraversalState);
+        c.bytesPerTriangle = triangleVertexBytes(grid_.lattice);
         return c;
     }
 
-    gridref::GridKernels kernels() const override { return gridKernels(grid_); }
+    gridref::GridKernels kernels() const override {
+        gridref::GridKernels k = gridKernels(grid_);
+        vertices_.bind(k);
+        return k;
+    }
 
     // A ray visits at most resX + resY + resZ voxels; a voxel lists at most maxReferencesInCell.
     std::uint64_t multipassPassCap(const MultipassOptions& options) const override {
@@ -108,6 +115,7 @@ public:
 
 private:
     UniformGrid grid_;
+    TriangleStore vertices_;  // over grid_.triangles
 };
 
 std::unique_ptr<Structure> buildGrid(const TriangleMesh& mesh, const std::vector<gpu::Ray>& rays, const RunConfig& run,
@@ -116,7 +124,7 @@ std::unique_ptr<Structure> buildGrid(const TriangleMesh& mesh, const std::vector
     // triangle list, known only once built, is checked with every other buffer at upload).
     const GridResolutionRule rule = resolutionRule(run);
     const auto resolution = chooseGridResolution(mesh.bounds(), mesh.triangles.size(), rule);
-    refuseOversizedBuffers(device, gridBufferSizes(resolution, 0, mesh.triangles.size()));
+    refuseOversizedBuffers(device, gridBufferSizes(resolution, 0, mesh.triangles.size(), mesh.lattice));
     const float margin =
         run.getBool("structure.conservative") ? conservativeVoxelMargin(gridBounds(mesh.bounds()), rays, resolution) : 0.0f;
     return gridStructure(buildUniformGrid(mesh, rule, 1ull << 31, margin));

@@ -13,8 +13,9 @@ struct UniformGrid;
 // A built grid as a Structure (tests run strategies on grids they build themselves).
 std::unique_ptr<Structure> gridStructure(UniformGrid grid);
 
-// The grid's buffers (Purcell Fig. 4): cell offsets, triangle list, triangle vertices.
+// The grid's buffers (Purcell Fig. 4): cell offsets, triangle list, triangle vertices (packed
+// when the lattice has bits).
 std::vector<BufferSize> gridBufferSizes(const std::array<unsigned, 3>& resolution, std::uint64_t references,
-                                        std::uint64_t triangles);
+                                        std::uint64_t triangles, const VertexLattice& lattice);
 
 }  // namespace rtbench

@@ -8,3 +8,5 @@
 layout(std430, set = 0, binding = kBindingCellOffsets) readonly buffer CellOffsetBuffer { uint cellOffsets[]; };
 layout(std430, set = 0, binding = kBindingTriangleList) readonly buffer TriangleListBuffer { uint triangleList[]; };
 layout(std430, set = 0, binding = kBindingVertices) readonly buffer TriangleBuffer { Triangle triangles[]; };
+// The same binding when the vertices are packed (vertexBits != 0, kernels/gpu_layout.h).
+layout(std430, set = 0, binding = kBindingVertices) readonly buffer PackedTriangleBuffer { uint packedTriangles[]; };

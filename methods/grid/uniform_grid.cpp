@@ -10,6 +10,7 @@
 #include <limits>
 #include <string>
 
+#include "methods/triangle_store.h"
 #include "structures/error.h"
 #include "structures/scene_limits.h"
 
@@ -159,6 +160,7 @@ UniformGrid buildUniformGrid(const TriangleMesh& mesh, const GridResolutionRule&
     }
     p.resolution = glm::uvec4(res[0], res[1], res[2], 0u);
 
+    grid.lattice = mesh.lattice;
     grid.triangles.resize(mesh.triangles.size());
     for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
         const glm::uvec3& t = mesh.triangles[i];
@@ -210,7 +212,7 @@ UniformGrid buildUniformGrid(const TriangleMesh& mesh, const GridResolutionRule&
     s.referencesPerTriangle = static_cast<double>(pairs.size()) / static_cast<double>(grid.triangles.size());
     s.maxReferencesInCell = maxInCell;
     s.bytes = grid.cellOffsets.size() * 4 + grid.triangleList.size() * 4 +
-              grid.triangles.size() * sizeof(gpu::Triangle);
+              grid.triangles.size() * triangleVertexBytes(grid.lattice);
     s.voxelMargin = voxelMargin;
     s.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return grid;

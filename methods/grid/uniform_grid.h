@@ -58,6 +58,7 @@ struct UniformGrid {
     std::vector<std::uint32_t> cellOffsets;  // cells + 1 entries; voxel c lists [off[c], off[c+1])
     std::vector<std::uint32_t> triangleList;
     std::vector<gpu::Triangle> triangles;    // vertices per triangle (Purcell's vertex textures)
+    VertexLattice lattice;                   // the mesh's: bits != 0, the device stores them packed
     GridStats stats;
 
     std::uint64_t cellCount() const { return cellOffsets.empty() ? 0 : cellOffsets.size() - 1; }

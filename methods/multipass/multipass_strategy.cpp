@@ -91,6 +91,7 @@ MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const s
     KernelSpec spec;
     spec.workgroupSize = timing.workgroupSize;
     spec.triangleTest = structure.triangleTest();
+    spec.vertexLattice = structure.vertexLattice();
     spec.traverseStepsPerPass = options.traverseStepsPerPass;
     spec.intersectionsPerPass = options.intersectionsPerPass;
     spec.suppressFinishedReads = options.suppressFinishedReads;

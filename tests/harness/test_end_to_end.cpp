@@ -236,7 +236,63 @@ TEST_F(EndToEnd, WatertightTestClosesTheLeaksOfMollerTrumbore) {
         EXPECT_EQ(row.at("exact_wrong_primitive"), "0");
         EXPECT_EQ(row.at("exact_ties"), "65");  // rays through shared edges: either triangle is right
         EXPECT_EQ(row.at("embree_exact_false_misses"), "0");
+        // In the shaded image only the leaks differ from the exact render (a miss is black).
+        EXPECT_EQ(row.at("image_pixels_differ"), row.at("exact_false_misses"));
+        EXPECT_EQ(row.at("image_psnr_db") == "inf", row.at("exact_false_misses") == "0");
     }
+}
+
+// Packed vertices (intersection.vertex_bits): one lattice for the whole scene keeps a shared vertex
+// shared, so the closed box stays closed however coarse the lattice, and the watertight test finds
+// every hit; each triangle read moves 20 bytes instead of 48. The GPU decodes the packed words to
+// the CPU reference's vertices bit for bit (else the run fails).
+TEST_F(EndToEnd, PackedVerticesKeepAClosedMeshClosed) {
+    const ExperimentResult result = run(
+        "[scene]\nsource = \"procedural:closed_box\"\n[camera]\nwidth = 33\nheight = 33\nposition = [0.1, 0.2, 0.3]\nlook_at = [1.0, 1.0, 1.0]\n"
+        "[structure]\ntype = [\"uniform_grid\", \"bvh\", \"brute_force\"]\n[strategy]\ntype = [\"branching\", \"multipass\"]\n"
+        "[intersection]\ntest = \"watertight\"\nvertex_bits = [32, 16, 3]\n[output]\nimages = false\n");
+    ASSERT_EQ(result.rows.size(), 18u);
+    for (const Row& row : result.rows) {
+        SCOPED_TRACE(row.at("label"));
+        ASSERT_EQ(row.at("status"), "ok") << row.at("error");
+        EXPECT_EQ(row.at("hits"), row.at("rays"));
+        EXPECT_EQ(row.at("exact_false_misses"), "0");
+        EXPECT_EQ(row.at("exact_false_hits"), "0");
+        if (row.at("structure_type") == "brute_force" && row.at("strategy_type") == "branching") {
+            const std::uint64_t perTriangle = row.at("intersection_vertex_bits") == "32" ? 48 : 20;
+            const std::uint64_t triangles = std::stoull(row.at("scene_triangles")), rays = std::stoull(row.at("rays"));
+            EXPECT_EQ(std::stoull(row.at("structure_bytes")), perTriangle * triangles);
+            EXPECT_EQ(std::stoull(row.at("bytes_vertices")), perTriangle * triangles * rays);
+        }
+    }
+}
+
+// A simplified scene (scene.simplify_*): every method and Embree trace the simplified triangles,
+// the exact reference the full scene, from the same camera. The triangles differ, so no ray counts
+// as a wrong primitive; misses and hits against the full surface do.
+TEST_F(EndToEnd, SimplifiedSceneIsJudgedAgainstTheFullScene) {
+    const ExperimentResult result = run(
+        "[scene]\nsource = \"cgal:bunny00\"\n[camera]\nwidth = 64\nheight = 64\n[structure]\ntype = \"bvh\"\n[output]\nimages = false\n"
+        "[[sweep]]\nname = \"ratio\"\nscene.simplify_ratio = [1.0, 0.01]\n"
+        "[[sweep]]\nname = \"count\"\nscene.simplify_triangles = [1000, 1001]\n");
+    ASSERT_EQ(result.rows.size(), 4u);
+    const Row &whole = result.rows[0], &ratio = result.rows[1], &count = result.rows[2], &odd = result.rows[3];
+    for (const Row* row : {&whole, &ratio, &count}) {
+        SCOPED_TRACE(row->at("label"));
+        ASSERT_EQ(row->at("status"), "ok") << row->at("error");
+        EXPECT_EQ(row->at("scene_full_triangles"), "75408");
+        EXPECT_EQ(row->at("rays"), "4096");
+        EXPECT_EQ(row->at("hit_miss_agreement"), "1");  // Embree traces the same simplified scene
+    }
+    EXPECT_EQ(whole.at("scene_triangles"), "75408");  // a ratio of 1 collapses nothing: the same triangles
+    EXPECT_EQ(whole.at("exact_wrong_primitive"), "0");
+    EXPECT_LE(std::stoul(ratio.at("scene_triangles")), 754u);
+    EXPECT_EQ(ratio.count("exact_wrong_primitive"), 0u);  // not written: other triangles
+    EXPECT_GT(std::stoul(ratio.at("exact_false_misses")) + std::stoul(ratio.at("exact_false_hits")), 0u);
+    EXPECT_GT(std::stoul(ratio.at("image_pixels_differ")), 0u);
+    EXPECT_EQ(count.at("scene_triangles"), "1000");
+    EXPECT_EQ(odd.at("status"), "failed");
+    EXPECT_THAT(odd.at("error"), HasSubstr("1001"));
 }
 
 // Rays along voxel faces and edges: from the closed box's voxel corner at the origin, looking along
