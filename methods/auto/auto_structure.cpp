@@ -16,6 +16,7 @@ public:
         : chosen_(std::move(chosen)), choice_(std::move(choice)), predictions_(std::move(predictions)) {
         memoryBytes = chosen_->memoryBytes;
         buildMs = buildMsAll;  // the price of choosing: every candidate was built
+        vertexLattice_ = chosen_->vertexLattice();  // the kernels decode its vertex buffer
     }
     std::string kernelPrefix() const override { return chosen_->kernelPrefix(); }
     std::vector<StructureBuffer> buffers() const override { return chosen_->buffers(); }

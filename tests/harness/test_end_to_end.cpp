@@ -249,9 +249,9 @@ TEST_F(EndToEnd, WatertightTestClosesTheLeaksOfMollerTrumbore) {
 TEST_F(EndToEnd, PackedVerticesKeepAClosedMeshClosed) {
     const ExperimentResult result = run(
         "[scene]\nsource = \"procedural:closed_box\"\n[camera]\nwidth = 33\nheight = 33\nposition = [0.1, 0.2, 0.3]\nlook_at = [1.0, 1.0, 1.0]\n"
-        "[structure]\ntype = [\"uniform_grid\", \"bvh\", \"brute_force\"]\n[strategy]\ntype = [\"branching\", \"multipass\"]\n"
+        "[structure]\ntype = [\"uniform_grid\", \"bvh\", \"brute_force\", \"auto\"]\n[strategy]\ntype = [\"branching\", \"multipass\"]\n"
         "[intersection]\ntest = \"watertight\"\nvertex_bits = [32, 16, 3]\n[output]\nimages = false\n");
-    ASSERT_EQ(result.rows.size(), 18u);
+    ASSERT_EQ(result.rows.size(), 24u);
     for (const Row& row : result.rows) {
         SCOPED_TRACE(row.at("label"));
         ASSERT_EQ(row.at("status"), "ok") << row.at("error");
