@@ -99,15 +99,15 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
             add(p + "false_misses", kind, "rays", "the exact ray hits, " + who + " missed (a leak)", 1e-4, true);
             add(p + "false_hits", kind, "rays", "the exact ray misses, " + who + " hit", 1e-4, true);
             add(p + "wrong_primitive", kind, "rays", "both hit; " + who + "'s triangle is not one the exact ray hits first (empty for a simplified scene: other triangles)", 1e-4, true);
-            add(p + "wrong_ppm", kind, "ppm", "false misses + false hits + wrong primitive, per million exact_rays: the wrong pixels", 100.0);
+            add(p + "wrong_ppm", kind, "ppm", "false misses + false hits + wrong primitive, per million exact_rays (of primary rays: wrong pixels)", 100.0);
             add(p + "distance_error_mean", kind, "", "|t - t_exact| / t_exact, mean over rays both hit", 1e-6);
             add(p + "distance_error_max", kind, "", "|t - t_exact| / t_exact, max", 1e-6);
         }
         // Image-level accuracy, as OpenImageIO's idiff measures it, on the pixels of the exact_rays.
-        add("image_psnr_db", K::Count, "dB", "shaded pixels (grey in [0, 1]) of the kernel's hits against those of the exact hits on the full scene: PSNR, 20 log10(1 / RMS error); inf when equal");
+        add("image_psnr_db", K::Count, "dB", "shaded pixels (8-bit grey, as the PNG) of the kernel's hits against those of the exact hits on the full scene: PSNR, 20 log10(1 / RMS error) on [0, 1]; inf when equal");
         add("image_error_mean", K::Count, "", "shaded pixels against the exact render: mean |difference|");
         add("image_error_max", K::Count, "", "shaded pixels against the exact render: largest |difference|");
-        add("image_pixels_differ", K::Count, "pixels", "shaded pixels that differ from the exact render's by more than 1/255 (one 8-bit level)");
+        add("image_pixels_differ", K::Count, "pixels", "shaded pixels whose 8-bit grey differs from the exact render's");
         // Work and accounting (exact, from instrumented kernels; equal to the CPU reference).
         add("work_per_ray_mean", K::Count, "operations",
             "cells or nodes visited + triangles tested per ray, measured: what predicted_work_per_ray predicts");

@@ -48,7 +48,9 @@ float shadeHit(const TriangleMesh& mesh, std::uint32_t primitive, const gpu::Ray
     return len > 0.0f ? std::abs(glm::dot(n, dir)) / len : 0.0f;
 }
 
-float pixelGrey(float shade) { return shade < 0.0f ? 0.0f : (40.0f + 215.0f * shade) / 255.0f; }
+std::uint8_t pixelGrey(float shade) {
+    return shade < 0.0f ? 0 : static_cast<std::uint8_t>(std::lround(40.0f + 215.0f * shade));
+}
 
 void writeHitRecords(const std::string& path, const HitImage& image) {
     std::ofstream out(path + ".tmp", std::ios::binary | std::ios::trunc);
@@ -95,7 +97,7 @@ void writeImages(const std::string& prefix, const HitImage& image) {
     std::vector<std::uint8_t> shaded(n * 3), diff(n * 3);
     for (std::size_t i = 0; i < n; ++i) {
         const float s = image.shade[i];
-        const std::uint8_t grey = static_cast<std::uint8_t>(std::lround(255.0f * pixelGrey(s)));
+        const std::uint8_t grey = pixelGrey(s);
         const std::uint8_t bg[3] = {24, 28, 40};
         for (int c = 0; c < 3; ++c) shaded[i * 3 + c] = s < 0.0f ? bg[c] : grey;
         // Agreeing pixels are dimmed; disagreements in colour: red = only the kernel hit,

@@ -22,9 +22,9 @@ struct HitImage {
 
 // Shading of a hit: |cos| between triangle `primitive`'s normal and the ray; -1 for kNoHit.
 float shadeHit(const TriangleMesh& mesh, std::uint32_t primitive, const gpu::Ray& ray);
-// A shaded pixel's grey in [0, 1] as the PNG draws it: 0 for a miss (shade < 0), else
-// (40 + 215 shade) / 255.
-float pixelGrey(float shade);
+// A hit's grey as the shaded PNG stores it, 8 bits: 40 + 215 shade, rounded; 0 for a miss (shade < 0),
+// where the PNG draws its background colour instead.
+std::uint8_t pixelGrey(float shade);
 
 HitImage makeHitImage(std::uint32_t width, std::uint32_t height, const std::vector<gpu::Ray>& rays,
                       const TriangleMesh& mesh, const std::vector<gpu::HitRecord>& kernel,

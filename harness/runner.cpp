@@ -68,10 +68,18 @@ void writeArchitectureColumns(const ArchitectureMetrics& m, const Structure& str
     row["bytes_per_ray"] = num(double(m.bytes.total()) / double(rays));
 }
 
+// A scene simplified (scene.simplify_*).
+struct SimplifiedScene {
+    std::shared_ptr<TriangleMesh> mesh;
+    double ms = 0.0;
+    bool unchanged = false;  // the target was not below the count: the scene as it is
+};
+
 // What is cached across the runs of one plan (a sweep reuses scenes, devices, Embree scenes).
 struct Caches {
-    std::map<std::string, std::shared_ptr<TriangleMesh>> meshes;  // by sceneKey and tracedSceneKey
-    std::map<std::string, SimplifiedMesh> simplified;              // by tracedSceneKey: the collapses and time (no mesh)
+    std::map<std::string, std::shared_ptr<TriangleMesh>> meshes;   // by sceneKey
+    std::map<std::string, SimplifiedScene> simplified;             // by RunScene::tracedKey
+    std::map<std::string, std::shared_ptr<TriangleMesh>> snapped;  // by RunScene::tracedKey
     std::map<std::string, std::shared_ptr<VulkanContext>> devices;
     std::map<std::string, std::shared_ptr<EmbreeReference>> embree;
     std::map<std::string, std::shared_ptr<ExactReference>> exact;  // by scene
@@ -102,62 +110,63 @@ std::string sceneKey(const RunConfig& run) {
            formatValue(run.values.at("scene.translate"));
 }
 
-// The cache key of the scene the methods trace: the scene, simplified and snapped as configured.
-std::string tracedSceneKey(const RunConfig& run) {
-    std::string key = sceneKey(run) + "|" + std::to_string(run.getInt("intersection.vertex_bits"));
-    for (const char* k : {"scene.simplify_ratio", "scene.simplify_triangles"})
-        if (run.has(k)) key += std::string("|") + k + "=" + formatValue(run.values.at(k));
-    return key;
-}
-
 // A run's scene twice: as its source describes it (what the exact reference traces) and as the
 // methods trace it, simplified (scene.simplify_*) and snapped to a vertex lattice
 // (intersection.vertex_bits); the same mesh when neither is asked for.
 struct RunScene {
     const TriangleMesh& full;
     const TriangleMesh& traced;
-    bool sameTriangles;  // traced triangle i is full triangle i (perhaps with moved vertices)
+    bool sameTriangles;     // traced triangle i is full triangle i (perhaps with moved vertices)
+    std::string tracedKey;  // the traced mesh's cache key (Embree's scenes are cached by it too)
 };
 
 RunScene sceneFor(const ExperimentPlan& plan, const RunConfig& run, Caches& caches, Row& row) {
-    const std::string key = sceneKey(run), tracedKey = tracedSceneKey(run);
+    const std::string key = sceneKey(run);
     if (!caches.meshes.count(key)) {
         TriangleMesh mesh = loadScene(run.getString("scene.source"), plan.configDir);
         for (glm::vec3& v : mesh.vertices) v = sceneTransform(run, v);
         caches.meshes[key] = std::make_shared<TriangleMesh>(std::move(mesh));
     }
-    const TriangleMesh& full = *caches.meshes[key];
-    validateSceneRange(full);  // before the structure, the camera fit or Embree see it
-    const bool simplify = run.has("scene.simplify_ratio") || run.has("scene.simplify_triangles");
-    const unsigned vertexBits = unsigned(run.getInt("intersection.vertex_bits"));
-    if (!caches.meshes.count(tracedKey)) {
-        TriangleMesh traced = full;
-        if (simplify) {
-            const bool exact = run.has("scene.simplify_triangles");
-            const std::size_t target =
-                exact ? std::size_t(run.getInt("scene.simplify_triangles"))
-                      : std::size_t(std::llround(run.getFloat("scene.simplify_ratio") * double(full.triangles.size())));
-            SimplifiedMesh simplified = simplifyMesh(full, std::max<std::size_t>(target, 1), exact);
-            traced = std::move(simplified.mesh);
-            caches.simplified[tracedKey] = std::move(simplified);
+    const std::shared_ptr<TriangleMesh>& full = caches.meshes[key];
+    validateSceneRange(*full);  // before the structure, the camera fit or Embree see it
+    row["scene_full_triangles"] = std::to_string(full->triangles.size());
+
+    // Simplified: cached by scene and target, whatever the vertex bits.
+    std::shared_ptr<TriangleMesh> simplified = full;
+    bool sameTriangles = true;
+    std::string tracedKey = key;
+    if (run.has("scene.simplify_ratio") || run.has("scene.simplify_triangles")) {
+        const bool exact = run.has("scene.simplify_triangles");
+        const std::size_t target = std::max<std::size_t>(
+            1, exact ? std::size_t(run.getInt("scene.simplify_triangles"))
+                     : std::size_t(std::llround(run.getFloat("scene.simplify_ratio") * double(full->triangles.size()))));
+        tracedKey += "|simplified to " + std::to_string(target) + (exact ? " exactly" : "");
+        if (!caches.simplified.count(tracedKey)) {
+            SimplifiedMesh result = simplifyMesh(*full, target, exact);
+            caches.simplified[tracedKey] = {std::make_shared<TriangleMesh>(std::move(result.mesh)), result.ms, result.unchanged};
         }
-        if (vertexBits != 32) traced = snapToLattice(traced, vertexBits);
-        caches.meshes[tracedKey] = std::make_shared<TriangleMesh>(std::move(traced));
+        const SimplifiedScene& s = caches.simplified[tracedKey];
+        row["scene_simplify_ms"] = num(s.ms, 4);
+        if (!s.unchanged) simplified = s.mesh;  // else the same triangles, ids and all
+        sameTriangles = s.unchanged;
     }
-    const TriangleMesh& mesh = *caches.meshes[tracedKey];
-    row["scene_full_triangles"] = std::to_string(full.triangles.size());
-    row["scene_triangles"] = std::to_string(mesh.triangles.size());
-    // A simplification that collapsed nothing left the same triangles.
-    const bool collapsed = simplify && caches.simplified[tracedKey].collapses > 0;
-    if (simplify) row["scene_simplify_ms"] = num(caches.simplified[tracedKey].ms, 4);
+    // Snapped to the vertex lattice: cached by the above and the bits.
+    std::shared_ptr<TriangleMesh> traced = simplified;
+    const unsigned vertexBits = unsigned(run.getInt("intersection.vertex_bits"));
     if (vertexBits != 32) {
-        double snapError = 0.0;
-        if (!collapsed)
-            for (std::size_t i = 0; i < mesh.vertices.size(); ++i)
-                snapError = std::max(snapError, double(glm::length(glm::dvec3(mesh.vertices[i]) - glm::dvec3(full.vertices[i]))));
-        row["vertex_lattice_step"] = num(mesh.lattice.step);
-        if (!collapsed) row["vertex_snap_error_max"] = num(snapError, 4);
+        tracedKey += "|" + std::to_string(vertexBits) + "-bit vertices";
+        if (!caches.snapped.count(tracedKey))
+            caches.snapped[tracedKey] = std::make_shared<TriangleMesh>(snapToLattice(*simplified, vertexBits));
+        traced = caches.snapped[tracedKey];
+        double snapError = 0.0;  // over the vertices of triangles
+        for (const glm::uvec3& t : traced->triangles)
+            for (int k = 0; k < 3; ++k)
+                snapError = std::max(snapError, glm::length(glm::dvec3(traced->vertices[t[k]]) - glm::dvec3(simplified->vertices[t[k]])));
+        row["vertex_lattice_step"] = num(traced->lattice.step);
+        row["vertex_snap_error_max"] = num(snapError, 4);
     }
+    const TriangleMesh& mesh = *traced;
+    row["scene_triangles"] = std::to_string(mesh.triangles.size());
     validateSceneRange(mesh);
     const std::size_t degenerate = mesh.degenerateCount();
     row["scene_degenerate"] = std::to_string(degenerate);
@@ -168,7 +177,7 @@ RunScene sceneFor(const ExperimentPlan& plan, const RunConfig& run, Caches& cach
                            " triangles are degenerate (zero area in float) and are never hit");
     if (mesh.elementsSkipped) warnings.push_back("skipped " + mesh.elementsSkippedWhat + " (not surfaces)");
     for (const std::string& w : warnings) row["warnings"] += (row["warnings"].empty() ? "" : "; ") + w;
-    return {full, mesh, !collapsed};
+    return {*full, mesh, sameTriangles, tracedKey};
 }
 
 PinholeCamera cameraFor(const RunConfig& run, const TriangleMesh& mesh) {
@@ -187,10 +196,11 @@ PinholeCamera cameraFor(const RunConfig& run, const TriangleMesh& mesh) {
 }
 
 // Embree on the same rays: timings for rtcIntersect1 and rtcIntersect16; returns rtcIntersect1's hits.
-std::vector<gpu::HitRecord> traceEmbree(const RunConfig& run, const TriangleMesh& mesh, const std::vector<gpu::Ray>& rays,
+std::vector<gpu::HitRecord> traceEmbree(const RunConfig& run, const RunScene& scene, const std::vector<gpu::Ray>& rays,
                                         const TimingOptions& timing, Caches& caches, Row& row) {
+    const TriangleMesh& mesh = scene.traced;
     const std::string embreeConfig = run.getString("baseline.embree_config");
-    const std::string embreeKey = tracedSceneKey(run) + "|" + embreeConfig;
+    const std::string embreeKey = scene.tracedKey + "|" + embreeConfig;
     if (!caches.embree.count(embreeKey)) caches.embree[embreeKey] = std::make_shared<EmbreeReference>(mesh, embreeConfig);
     EmbreeReference& embree = *caches.embree[embreeKey];
     std::vector<gpu::HitRecord> embreeHits, scratch;
@@ -239,12 +249,12 @@ void writeExactColumns(const std::string& prefix, const ExactAccuracy& a, Row& r
     row[prefix + "distance_error_max"] = num(a.distanceErrorMax, 4);
 }
 
-// A shaded pixel differs from the exact render's when its grey differs by more than one 8-bit level.
-constexpr double kPixelDifferThreshold = 1.0 / 255.0;
+// A shaded pixel differs from the exact render's when its 8-bit grey differs (by a level or more).
+constexpr double kPixelDifferThreshold = 0.5 / 255.0;
 
-// Image-level accuracy (harness/image_compare.h, idiff's measures): the shaded pixels of the
-// sampled rays, the kernel's hits on the traced scene against the exact hits on the full scene (the
-// whole image when every ray is sampled, else the sample as one row of pixels).
+// Image-level accuracy (harness/image_compare.h, idiff's measures): the 8-bit grey of the shaded
+// pixels of the sampled rays, the kernel's hits on the traced scene against the exact hits on the
+// full scene (the whole image when every ray is sampled, else the sample as one row of pixels).
 void writeImageAccuracy(const std::vector<gpu::Ray>& rays, const RunScene& scene, const std::vector<gpu::HitRecord>& hits,
                         const ExactHits& exact, unsigned width, unsigned height, Row& row) {
     std::vector<float> test(exact.rays.size()), reference(exact.rays.size());
@@ -253,8 +263,8 @@ void writeImageAccuracy(const std::vector<gpu::Ray>& rays, const RunScene& scene
         std::uint32_t exactPrimitive = exact.hits[i].primitive;
         // In a tie the kernel's triangle is as right as the lowest-numbered one, and shades as it.
         if (scene.sameTriangles && primitive != gpu::kNoHit && exact.isFirstHit(i, primitive)) exactPrimitive = primitive;
-        test[i] = pixelGrey(shadeHit(scene.traced, primitive, rays[ray]));
-        reference[i] = pixelGrey(shadeHit(scene.full, exactPrimitive, rays[ray]));
+        test[i] = float(pixelGrey(shadeHit(scene.traced, primitive, rays[ray]))) / 255.0f;
+        reference[i] = float(pixelGrey(shadeHit(scene.full, exactPrimitive, rays[ray]))) / 255.0f;
     }
     const bool whole = exact.rays.size() == rays.size();
     const ImageComparison c = compareImages(test, reference, whole ? width : unsigned(test.size()), whole ? height : 1u,
@@ -315,7 +325,7 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
     row["kernel_mrays_s"] = num(kernelMrays);
 
     // Reference: Embree on the same rays.
-    const std::vector<gpu::HitRecord> embreeHits = traceEmbree(run, mesh, rays, timing, caches, row);
+    const std::vector<gpu::HitRecord> embreeHits = traceEmbree(run, scene, rays, timing, caches, row);
     row["speed_ratio_vs_embree1"] = num(kernelMrays / std::stod(row["embree1_mrays_s"]), 4);
 
     // Ground truth: the exact first hits of a sample of the rays on the full scene, for the kernel

@@ -1,7 +1,9 @@
 #include "triangle_store.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <string>
 
 #include "structures/error.h"
@@ -12,8 +14,9 @@ VertexLattice vertexLattice(const Bounds3& box, unsigned bits) {
     if (bits < 1 || bits > 16) throw Error("vertex lattice: " + std::to_string(bits) + " bits per axis, expected 1 to 16");
     VertexLattice lattice;
     lattice.bits = bits;
-    lattice.origin = box.min;
-    const glm::dvec3 extent = glm::dvec3(box.max) - glm::dvec3(box.min);
+    for (int axis = 0; axis < 3; ++axis)
+        lattice.origin[axis] = std::abs(box.min[axis]) < std::numeric_limits<float>::min() ? 0.0f : box.min[axis];
+    const glm::dvec3 extent = glm::dvec3(box.max) - glm::dvec3(lattice.origin);
     const double largest = std::max({extent.x, extent.y, extent.z});
     const double steps = double((1u << bits) - 1u);
     // The least power of two covering the box in 2^bits - 1 steps (any for a point).
@@ -51,7 +54,10 @@ glm::uvec3 nearestLatticeCoordinates(const VertexLattice& lattice, glm::vec3 v) 
 TriangleMesh snapToLattice(const TriangleMesh& mesh, unsigned bits) {
     TriangleMesh snapped = mesh;
     snapped.lattice = vertexLattice(mesh.bounds(), bits);
-    for (glm::vec3& v : snapped.vertices) v = latticePoint(snapped.lattice, nearestLatticeCoordinates(snapped.lattice, v));
+    std::vector<bool> used(mesh.vertices.size(), false);
+    for (const glm::uvec3& t : mesh.triangles) used[t.x] = used[t.y] = used[t.z] = true;
+    for (std::size_t i = 0; i < snapped.vertices.size(); ++i)
+        if (used[i]) snapped.vertices[i] = latticePoint(snapped.lattice, nearestLatticeCoordinates(snapped.lattice, snapped.vertices[i]));
     return snapped;
 }
 

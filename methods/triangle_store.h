@@ -14,16 +14,18 @@
 
 namespace rtbench {
 
-// The lattice of `bits` bits per axis over a box: origin = its min corner, step = the least power
-// of two with (2^bits - 1) * step >= its largest extent. Throws rtbench::Error when bits is
-// outside 1..16 or the step would not be a normal float.
+// The lattice of `bits` bits per axis over a box: origin = its min corner (a coordinate below the
+// smallest normal float in magnitude becomes 0: a device may flush subnormals), step = the least
+// power of two with (2^bits - 1) * step >= the largest extent from the origin. Throws
+// rtbench::Error when bits is outside 1..16 or the step would not be a normal float.
 VertexLattice vertexLattice(const Bounds3& box, unsigned bits);
 
 // A lattice point as the kernels compute it: origin + float(q) * step, the product exact.
 glm::vec3 latticePoint(const VertexLattice& lattice, glm::uvec3 q);
 
-// The mesh with every vertex moved to its nearest lattice point (per axis, ties away from
-// zero), lattice set. Distinct vertices may merge, and triangles may become degenerate.
+// The mesh with every vertex of its triangles moved to the nearest lattice point (per axis, ties
+// away from zero; a vertex no triangle uses stays), lattice set. Distinct vertices may merge, and
+// triangles may become degenerate.
 TriangleMesh snapToLattice(const TriangleMesh& mesh, unsigned bits);
 
 // Bytes the device stores (and a kernel reads) per triangle's vertices.
@@ -35,6 +37,9 @@ public:
     // `triangles` in mesh order (kept by the structure, which builds over them); packs them when
     // lattice.bits != 0, checking that every vertex is a lattice point (else rtbench::Error).
     TriangleStore(const std::vector<gpu::Triangle>& triangles, const VertexLattice& lattice);
+    // It points into its structure's triangles: neither copied nor moved with them.
+    TriangleStore(const TriangleStore&) = delete;
+    TriangleStore& operator=(const TriangleStore&) = delete;
 
     StructureBuffer buffer() const;         // what the device binds
     std::uint64_t bytes() const;            // its size

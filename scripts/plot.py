@@ -61,6 +61,14 @@ def wrong_ppm(frame, prefix="exact_"):
     return 1e6 * wrong / frame.exact_rays
 
 
+def wrong_ppm_axis(ax, label=None):
+    """A y axis of rays wrong per million: 0 sits on the axis, 1 ppm and up are logarithmic."""
+    ax.set_yscale("symlog", linthresh=1.0)
+    ax.set_ylim(bottom=-0.1)
+    if label:
+        ax.set_ylabel(label)
+
+
 def vertex_bits(frame):
     """intersection.vertex_bits per run (32, float vertices, for folders from before it)."""
     return frame["intersection_vertex_bits"].fillna(32) if "intersection_vertex_bits" in frame else pd.Series(32, frame.index)
@@ -131,9 +139,7 @@ def speed_vs_accuracy(runs, device, folder, written):
                       color=COLORS["Embree rtcIntersect1"], label="Embree rtcIntersect1 (CPU, same rays)")
         front = pareto(points)  # among the kernels' runs
         left.plot([p[0] for p in front], [p[1] for p in front], "k--", marker="x", lw=1, label="Pareto front of the kernels")
-        left.set_yscale("symlog", linthresh=1.0)  # 0 wrong rays sits on the axis; 1 ppm and up are logarithmic
-        left.set_ylim(bottom=-0.1)
-        left.set_ylabel("rays wrong vs exact (per million; log above 1)")
+        wrong_ppm_axis(left, "rays wrong vs exact (per million; log above 1)")
         right.set_yscale("log")
         right.set_ylabel("mean |t - t_exact| / t_exact (log)")
         for ax in (left, right):
@@ -167,9 +173,7 @@ def vertex_precision(runs, device, folder, written):
         group = group.assign(bits=vertex_bits(group)).sort_values("bits")
         left.plot(group.bits, wrong_ppm(group), marker="o", label=f"{scene}: {method}")
         right.plot(group.bits, group.bytes_vertices / group.rays, marker="o", label=f"{scene}: {method}")
-    left.set_yscale("symlog", linthresh=1.0)
-    left.set_ylim(bottom=-0.1)
-    left.set_ylabel("rays wrong vs exact (per million; log above 1)")
+    wrong_ppm_axis(left, "rays wrong vs exact (per million; log above 1)")
     right.set_ylabel("triangle vertex bytes read per ray")
     for ax in (left, right):
         ax.set_xlabel("vertex bits per axis (32: float)")
@@ -195,9 +199,7 @@ def simplification(runs, device, folder, written):
         right.plot(group.scene_triangles, group.embree1_mrays_s, ls=":", marker=".", color=line.get_color(),
                    label=f"{scene}: Embree rtcIntersect1 on the same scene")
     left.axhline(1000, color="gray", lw=1, ls="--", label="0.1% of the rays")
-    left.set_yscale("symlog", linthresh=1.0)
-    left.set_ylim(bottom=-0.1)
-    left.set_ylabel("rays wrong vs exact on the full scene (per million)")
+    wrong_ppm_axis(left, "rays wrong vs exact on the full scene (per million; log above 1)")
     right.set_yscale("log")
     right.set_ylabel("Mrays/s (log)")
     for ax in (left, right):
@@ -250,10 +252,8 @@ def failure_map(runs, failed, device, folder, written):
         ax.set_xscale("symlog" if x == "offset" else "log", **({"linthresh": 1.0} if x == "offset" else {}))
         xs = sorted(set(group[x]))  # refused runs too (axvline does not widen the axis)
         ax.set_xlim(-0.5 if x == "offset" else xs[0] / 3, xs[-1] * 3)
-        ax.set_yscale("symlog", linthresh=1.0)
-        ax.set_ylim(bottom=-0.1)
+        wrong_ppm_axis(ax, "rays wrong vs exact (per million; log above 1)")
         ax.set_xlabel(xlabel + " (log)")
-        ax.set_ylabel("rays wrong vs exact (per million; log above 1)")
         ax.set_title(title, fontsize=9)
         ax.legend(fontsize=6)
     fig.suptitle(f"Failure map: leaks, false hits and wrong triangles against the exact reference\n{device}", fontsize=10)

@@ -193,6 +193,7 @@ SimplifiedMesh simplifyMesh(const TriangleMesh& mesh, std::size_t target, bool e
     if (target == 0) throw Error(name + ": cannot simplify to 0 triangles (the target must be at least 1)");
     if (target >= count) {
         result.mesh = mesh;
+        result.unchanged = true;
         return finish();
     }
 

@@ -10,6 +10,7 @@ namespace rtbench {
 struct SimplifiedMesh {
     TriangleMesh mesh;          // the simplified mesh; name = the source's name
     std::size_t collapses = 0;  // edges collapsed
+    bool unchanged = false;     // the source mesh itself (target >= its count): the same triangles and ids
     double ms = 0.0;            // wall time of the whole call (conversion included)
 };
 

@@ -123,7 +123,7 @@ std::unique_ptr<Structure> buildBvhStructure(const TriangleMesh& mesh, const std
     // What the device must hold is known before the build but for the node count (at most
     // 2n - 1 for n triangles; checked again at upload).
     const std::uint64_t n = mesh.triangles.size();
-    checkBindingSize(device, "triangle vertex (" + std::to_string(n) + " triangles)", n * sizeof(gpu::Triangle));
+    checkBindingSize(device, "triangle vertex (" + std::to_string(n) + " triangles)", n * triangleVertexBytes(mesh.lattice));
     checkBindingSize(device, "BVH triangle list (" + std::to_string(n) + " references)", n * 4);
     return bvhStructure(buildBvh(mesh, buildOptions(run)));
 }

@@ -51,6 +51,18 @@ TEST_F(Config, UnknownSection) {
                                   "strategy, intersection, baseline, accuracy, device, output, sweep)"));
 }
 
+TEST_F(Config, VertexBitsArePackedWidthsOrFloat) {
+    EXPECT_EQ(loadExperiment(write(kMinimal + "[intersection]\nvertex_bits = [32, 16, 1]\n")).runs.size(), 3u);
+    EXPECT_EQ(errorOf(kMinimal + "[intersection]\nvertex_bits = 20\n"),
+              path_ + ":6: key 'intersection.vertex_bits': value 20 is not allowed (allowed: 1, 2, 3, 4, 5, 6, 7, 8, 9, "
+                      "10, 11, 12, 13, 14, 15, 16, 32)");
+}
+
+TEST_F(Config, OneSimplificationTarget) {
+    EXPECT_EQ(errorOf(kMinimal + "simplify_ratio = 0.5\nsimplify_triangles = 10\n"),
+              path_ + ":6: keys scene.simplify_ratio and scene.simplify_triangles both set the scene simplification; give exactly one");
+}
+
 TEST_F(Config, WrongType) {
     EXPECT_EQ(errorOf(kMinimal + "[camera]\nwidth = \"wide\"\n"),
               path_ + ":6: key 'camera.width': expected an integer (or a list of them to sweep)");

@@ -283,6 +283,7 @@ TEST_F(EndToEnd, SimplifiedSceneIsJudgedAgainstTheFullScene) {
         EXPECT_EQ(row->at("scene_full_triangles"), "75408");
         EXPECT_EQ(row->at("rays"), "4096");
         EXPECT_EQ(row->at("hit_miss_agreement"), "1");  // Embree traces the same simplified scene
+        EXPECT_EQ(row->at("exact_ms"), whole.at("exact_ms"));  // the same rays: one exact trace serves all
     }
     EXPECT_EQ(whole.at("scene_triangles"), "75408");  // a ratio of 1 collapses nothing: the same triangles
     EXPECT_EQ(whole.at("exact_wrong_primitive"), "0");

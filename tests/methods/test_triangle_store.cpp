@@ -6,7 +6,12 @@
 #include <cstring>
 #include <random>
 
+#include "methods/bvh/bvh_build.h"
+#include "methods/bvh/bvh_structure.h"
+#include "methods/grid/grid_structure.h"
+#include "methods/grid/uniform_grid.h"
 #include "methods/triangle_store.h"
+#include "tests/methods/test_rays.h"
 #include "structures/procedural.h"
 #include "tests/error_of.h"
 
@@ -87,6 +92,31 @@ TEST(TriangleStore, RefusesAVertexOffTheLattice) {
     triangles[2].v1.x += snapped.lattice.step * 0.25f;
     EXPECT_THAT(errorOf([&] { TriangleStore(triangles, snapped.lattice); }),
                 HasSubstr("a vertex of triangle 2 is not a point of the scene's lattice"));
+}
+
+// The CPU references run the kernels' own source (kernels/traversal_common.glsl rtStoredVertices):
+// decoding the packed words must give every structure the same hit records, bit for bit, as the
+// same snapped vertices stored as floats.
+TEST(TriangleStore, PackedAndFloatStorageTraceTheSameHits) {
+    const TriangleMesh packed = snapToLattice(proceduralScene("christen_b"), 10);
+    TriangleMesh floats = packed;
+    floats.lattice = VertexLattice{};
+    const std::vector<gpu::Ray> rays = randomRays(packed.bounds(), 20000, 11);
+    GridResolutionRule rule;
+    rule.minDim = 16;
+    const auto packedGrid = gridStructure(buildUniformGrid(packed, rule)), floatGrid = gridStructure(buildUniformGrid(floats, rule));
+    ASSERT_EQ(packedGrid->vertexLattice().bits, 10u);
+    ASSERT_EQ(floatGrid->vertexLattice().bits, 0u);
+    expectIdentical(packedGrid->trace(rays), floatGrid->trace(rays));
+    BvhBuildOptions options;
+    const auto packedBvh = bvhStructure(buildBvh(packed, options)), floatBvh = bvhStructure(buildBvh(floats, options));
+    const std::vector<gpu::HitRecord> hits = packedBvh->trace(rays);
+    expectIdentical(hits, floatBvh->trace(rays));
+    std::size_t hit = 0;
+    for (const gpu::HitRecord& h : hits) hit += h.primitive != gpu::kNoHit;
+    EXPECT_GT(hit, 5000u);  // the rays meet the scene
+    EXPECT_EQ(packedBvh->costs().bytesPerTriangle, 20u);
+    EXPECT_EQ(floatBvh->costs().bytesPerTriangle, 48u);
 }
 
 }  // namespace
