@@ -128,8 +128,8 @@ RunScene sceneFor(const ExperimentPlan& plan, const RunConfig& run, Caches& cach
         caches.meshes[key] = std::make_shared<TriangleMesh>(std::move(mesh));
     }
     const std::shared_ptr<TriangleMesh>& full = caches.meshes[key];
+    row["scene_full_triangles"] = row["scene_triangles"] = std::to_string(full->triangles.size());
     validateSceneRange(*full);  // before the structure, the camera fit or Embree see it
-    row["scene_full_triangles"] = std::to_string(full->triangles.size());
 
     // Simplified: cached by scene and target, whatever the vertex bits.
     std::shared_ptr<TriangleMesh> simplified = full;

@@ -110,7 +110,7 @@ def speed_vs_accuracy(runs, device, folder, written):
     if "exact_rays" not in runs:  # a folder from before the exact reference
         return
     scenes = sorted(runs.scene.unique())
-    fig, axes = plt.subplots(len(scenes), 2, figsize=(12, 4.4 * len(scenes)), squeeze=False)
+    fig, axes = plt.subplots(len(scenes), 2, figsize=(15, 4.4 * len(scenes)), squeeze=False)
     for (left, right), scene in zip(axes, scenes):
         of_scene = runs[runs.scene == scene]
         points = []
@@ -146,7 +146,8 @@ def speed_vs_accuracy(runs, device, folder, written):
             ax.set_xscale("log")
             ax.set_xlabel("speed (Mrays/s, log scale)")
             ax.set_title(f"{scene}, {size(of_scene)}", fontsize=9)
-            ax.legend(fontsize=7)
+        right.legend(*left.get_legend_handles_labels(), fontsize=7, loc="upper left",
+                     bbox_to_anchor=(1.02, 1.0))  # one legend (the left panel's, with the front), beside the points
     fig.suptitle(f"Speed against accuracy (the exact reference), one point per run\n{device}", fontsize=10)
     save(fig, folder, "speed_vs_accuracy", written)
 
@@ -199,7 +200,7 @@ def simplification(runs, device, folder, written):
         right.plot(group.scene_triangles, group.embree1_mrays_s, ls=":", marker=".", color=line.get_color(),
                    label=f"{scene}: Embree rtcIntersect1 on the same scene")
     left.axhline(1000, color="gray", lw=1, ls="--", label="0.1% of the rays")
-    wrong_ppm_axis(left, "rays wrong vs exact on the full scene (per million; log above 1)")
+    wrong_ppm_axis(left, "rays wrong vs exact, full scene (per million)")
     right.set_yscale("log")
     right.set_ylabel("Mrays/s (log)")
     for ax in (left, right):
