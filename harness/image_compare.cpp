@@ -77,7 +77,9 @@ ImageComparison compareImagesDirect(const std::vector<float>& test, const std::v
     const double values = static_cast<double>(pixels);  // one channel: values = pixels
     result.meanError = totalError / values;
     result.rmsError = std::sqrt(totalSquaredError / values);
-    result.psnr = 20.0 * std::log10(peak / result.rmsError);
+    // +inf for identical images, as OIIO's log10(peak / 0) gives (without dividing by zero here).
+    result.psnr = result.rmsError == 0.0 ? std::numeric_limits<double>::infinity()
+                                         : 20.0 * std::log10(peak / result.rmsError);
     return result;
 }
 
