@@ -253,22 +253,23 @@ void writeExactColumns(const std::string& prefix, const ExactAccuracy& a, Row& r
 constexpr double kPixelDifferThreshold = 0.5 / 255.0;
 
 // Image-level accuracy (harness/image_compare.h, idiff's measures): the 8-bit grey of the shaded
-// pixels of the sampled rays, the kernel's hits on the traced scene against the exact hits on the
-// full scene (the whole image when every ray is sampled, else the sample as one row of pixels).
+// pixels of the sampled rays, the kernel's image (its hits on the traced scene) against the exact
+// hits on the full scene (the whole image when every ray is sampled, else the sample as one row of
+// pixels).
 void writeImageAccuracy(const std::vector<gpu::Ray>& rays, const RunScene& scene, const std::vector<gpu::HitRecord>& hits,
-                        const ExactHits& exact, unsigned width, unsigned height, Row& row) {
+                        const HitImage& image, const ExactHits& exact, Row& row) {
     std::vector<float> test(exact.rays.size()), reference(exact.rays.size());
     for (std::size_t i = 0; i < exact.rays.size(); ++i) {
         const std::uint32_t ray = exact.rays[i], primitive = hits[ray].primitive;
         std::uint32_t exactPrimitive = exact.hits[i].primitive;
         // In a tie the kernel's triangle is as right as the lowest-numbered one, and shades as it.
         if (scene.sameTriangles && primitive != gpu::kNoHit && exact.isFirstHit(i, primitive)) exactPrimitive = primitive;
-        test[i] = float(pixelGrey(shadeHit(scene.traced, primitive, rays[ray]))) / 255.0f;
+        test[i] = float(pixelGrey(image.shade[ray])) / 255.0f;
         reference[i] = float(pixelGrey(shadeHit(scene.full, exactPrimitive, rays[ray]))) / 255.0f;
     }
     const bool whole = exact.rays.size() == rays.size();
-    const ImageComparison c = compareImages(test, reference, whole ? width : unsigned(test.size()), whole ? height : 1u,
-                                            kPixelDifferThreshold);
+    const ImageComparison c = compareImages(test, reference, whole ? image.width : unsigned(test.size()),
+                                            whole ? image.height : 1u, kPixelDifferThreshold);
     row["image_psnr_db"] = num(c.psnr, 5);
     row["image_error_mean"] = num(c.meanError, 4);
     row["image_error_max"] = num(c.maxError, 4);
@@ -328,6 +329,9 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
     const std::vector<gpu::HitRecord> embreeHits = traceEmbree(run, scene, rays, timing, caches, row);
     row["speed_ratio_vs_embree1"] = num(kernelMrays / std::stod(row["embree1_mrays_s"]), 4);
 
+    // The kernel's image: its shading, and where its hits differ from Embree's.
+    const HitImage image = makeHitImage(width, height, rays, mesh, method.hits, embreeHits);
+
     // Ground truth: the exact first hits of a sample of the rays on the full scene, for the kernel
     // and for Embree; the shaded pixels of those rays against the exact render.
     const ExactHits& exact = traceExact(run, scene.full, rays, caches, row);
@@ -335,7 +339,7 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
     row["exact_ties"] = std::to_string(kernelAccuracy.ties);
     writeExactColumns("exact_", kernelAccuracy, row);
     writeExactColumns("embree_exact_", compareExact(embreeHits, exact, scene.sameTriangles), row);
-    writeImageAccuracy(rays, scene, method.hits, exact, width, height, row);
+    writeImageAccuracy(rays, scene, method.hits, image, exact, row);
 
     // Metrics: agreement with Embree.
     const Agreement a = compareHits(method.hits, embreeHits);
@@ -349,7 +353,6 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
 
     // Writers: images, or the per-ray records to make them later.
     const std::string prefix = (fs::path(folder) / ("run-" + row["run"])).string();
-    const HitImage image = makeHitImage(width, height, rays, mesh, method.hits, embreeHits);
     const bool wantImages = run.getBool("output.images");
     if (run.getBool("output.hit_records") || (wantImages && !imagesSupported())) writeHitRecords(prefix + ".hits", image);
     if (wantImages && imagesSupported()) writeImages(prefix, image);

@@ -79,9 +79,10 @@ struct Triangle {
     vec4 v2;  // byte 32
 };
 
-// Packed vertices (intersection.vertex_bits < 32, methods/triangle_store.h): every vertex is a point of one lattice over the
-// scene's box, origin + q * step with q < 2^16 per axis and step a power of two, so the product is
-// exact and the sum rounds once (no FMA can change it). Triangle i is 5 words from word 5i:
+// Packed vertices (intersection.vertex_bits < 32, methods/triangle_store.h): every vertex is a
+// point of one lattice over the scene's box, origin + q * step with q < 2^16 per axis and step a
+// power of two, so the product is exact and the sum rounds once (no FMA can change it).
+// Triangle i is 5 words from word 5i:
 // (v0.x | v0.y << 16), (v0.z | v1.x << 16), (v1.y | v1.z << 16), (v2.x | v2.y << 16), v2.z.
 // 20 bytes read per triangle instead of Triangle's 48.
 RTBENCH_CONST kPackedTriangleWords = 5;

@@ -78,14 +78,11 @@ public:
     // intersection.test): set by the runner after the build, read by the strategies.
     virtual void setTriangleTest(std::uint32_t test) { triangleTest_ = test; }
     std::uint32_t triangleTest() const { return triangleTest_; }
-    // The lattice its vertices are packed to (bits 0: float vertices), set by the build.
-    const VertexLattice& vertexLattice() const { return vertexLattice_; }
+    // The lattice its vertex buffer is packed to (bits 0: float vertices; methods/triangle_store.h).
+    virtual const VertexLattice& vertexLattice() const = 0;
 
     std::uint64_t memoryBytes = 0;  // everything the structure uploads
     double buildMs = 0.0;           // CPU build time
-
-protected:
-    VertexLattice vertexLattice_;
 
 private:
     std::uint32_t triangleTest_ = gpu::kTriangleTestMollerTrumbore;

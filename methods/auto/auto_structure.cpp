@@ -16,7 +16,6 @@ public:
         : chosen_(std::move(chosen)), choice_(std::move(choice)), predictions_(std::move(predictions)) {
         memoryBytes = chosen_->memoryBytes;
         buildMs = buildMsAll;  // the price of choosing: every candidate was built
-        vertexLattice_ = chosen_->vertexLattice();  // the kernels decode its vertex buffer
     }
     std::string kernelPrefix() const override { return chosen_->kernelPrefix(); }
     std::vector<StructureBuffer> buffers() const override { return chosen_->buffers(); }
@@ -33,6 +32,7 @@ public:
         return chosen_->multipassPassCap(options);
     }
     double predictedWork(const std::vector<gpu::Ray>& rays) const override { return chosen_->predictedWork(rays); }
+    const VertexLattice& vertexLattice() const override { return chosen_->vertexLattice(); }
     void setTriangleTest(std::uint32_t test) override {
         Structure::setTriangleTest(test);
         chosen_->setTriangleTest(test);

@@ -39,9 +39,10 @@ std::vector<gpu::Triangle> floatTriangles(const TriangleMesh& mesh) {
 
 class BruteStructure final : public SharedSourceStructure<bruteref::BruteKernels> {
 public:
-    explicit BruteStructure(const TriangleMesh& mesh) : triangles_(floatTriangles(mesh)), vertices_(triangles_, mesh.lattice) {
-        const auto start = std::chrono::steady_clock::now();
-        vertexLattice_ = mesh.lattice;
+    // The build time counts from `start`, taken before the members copy and pack the vertices.
+    explicit BruteStructure(const TriangleMesh& mesh,
+                            std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now())
+        : triangles_(floatTriangles(mesh)), vertices_(triangles_, mesh.lattice) {
         params_.counts = glm::uvec4(std::uint32_t(triangles_.size()), 0, 0, 0);
         memoryBytes = vertices_.bytes();
         buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -52,6 +53,8 @@ public:
     std::vector<StructureBuffer> buffers() const override {
         return {vertices_.buffer()};
     }
+
+    const VertexLattice& vertexLattice() const override { return vertices_.lattice(); }
 
     StructureCosts costs() const override {
         StructureCosts c;  // no cells, no lists: only the vertices of every triangle

@@ -43,7 +43,6 @@ bvhref::BvhKernels kernelsOf(const FlatBvh& bvh) {
 class BvhStructure final : public SharedSourceStructure<bvhref::BvhKernels> {
 public:
     explicit BvhStructure(FlatBvh bvh) : bvh_(std::move(bvh)), vertices_(bvh_.triangles, bvh_.lattice) {
-        vertexLattice_ = bvh_.lattice;
         memoryBytes = bvh_.stats.bytes;
         buildMs = bvh_.stats.buildMs;
     }
@@ -65,9 +64,11 @@ public:
         c.bytesPerListEntry = 4;
         c.traversalStateBytes = sizeof(gpu::BvhTraversalState);
         c.stackBytes = sizeof(gpu::BvhTraversalState::stack);
-        c.bytesPerTriangle = triangleVertexBytes(bvh_.lattice);
+        c.bytesPerTriangle = triangleVertexBytes(vertexLattice());
         return c;
     }
+
+    const VertexLattice& vertexLattice() const override { return vertices_.lattice(); }
 
     bvhref::BvhKernels kernels() const override {
         bvhref::BvhKernels k = kernelsOf(bvh_);

@@ -43,7 +43,6 @@ std::string num(double v, int significant = 6) { return formatNumber(v, signific
 class GridStructure final : public SharedSourceStructure<gridref::GridKernels> {
 public:
     explicit GridStructure(UniformGrid grid) : grid_(std::move(grid)), vertices_(grid_.triangles, grid_.lattice) {
-        vertexLattice_ = grid_.lattice;
         memoryBytes = grid_.stats.bytes;
         buildMs = grid_.stats.buildMs;
     }
@@ -64,9 +63,11 @@ public:
         c.bytesPerStructureRead = 4;    // one cell offset
         c.bytesPerListEntry = 4;        // one triangle id of a voxel's list
         c.traversalStateBytes = sizeof(gpu::GridTraversalState);
-        c.bytesPerTriangle = triangleVertexBytes(grid_.lattice);
+        c.bytesPerTriangle = triangleVertexBytes(vertexLattice());
         return c;
     }
+
+    const VertexLattice& vertexLattice() const override { return vertices_.lattice(); }
 
     gridref::GridKernels kernels() const override {
         gridref::GridKernels k = gridKernels(grid_);
