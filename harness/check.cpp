@@ -2,6 +2,10 @@
 
 #include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
+#include <set>
+
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
@@ -26,6 +30,45 @@ std::string contextString(const Json& context, const std::string& path, const ch
     return it->get<std::string>();
 }
 
+// The rows must be the recorded plan's runs: each row a run of the plan with its config hash, and,
+// when context.json says the sweep completed, every run of the plan a row. The recorded plan must
+// be the plan its config text gives. A lost, extra or edited row is an error naming the run.
+void checkRowsAgainstPlan(const Json& context, const std::string& contextPath, const ExperimentPlan& plan,
+                          const std::vector<Row>& rows, const std::string& csvPath) {
+    std::map<std::string, std::string> derived, recordedPlan;
+    for (const RunConfig& run : plan.runs) derived[runNumber(run)] = run.hash();
+    try {
+        for (const Json& run : context.at("plan"))
+            recordedPlan[run.at("run").get<std::string>()] = run.at("config_hash").get<std::string>();
+    } catch (const Json::exception& e) {
+        throw Error(contextPath + ": no valid \"plan\" list: " + e.what());
+    }
+    for (const auto& [run, hash] : derived)
+        if (!recordedPlan.count(run) || recordedPlan[run] != hash)
+            throw Error(contextPath + ": its plan lacks run " + run + " (config_hash " + hash + ") that its config text gives (" +
+                        std::to_string(recordedPlan.size()) + " runs recorded, " + std::to_string(derived.size()) +
+                        " in the config): the plan was cut down or edited");
+    if (recordedPlan.size() != derived.size())
+        throw Error(contextPath + ": its plan lists " + std::to_string(recordedPlan.size()) + " runs, its config text gives " +
+                    std::to_string(derived.size()) + ": the plan was edited");
+    std::set<std::string> present;
+    for (const Row& row : rows) {
+        const std::string& run = row.at("run");
+        const auto it = derived.find(run);
+        if (it == derived.end()) throw Error(csvPath + ": run " + run + " (" + row.at("label") + ") is not in the recorded plan");
+        if (it->second != row.at("config_hash"))
+            throw Error(csvPath + ": run " + run + " has config_hash " + row.at("config_hash") + ", the plan's is " + it->second +
+                        " (a row of another config?)");
+        present.insert(run);
+    }
+    const bool complete = context.value("complete", false);
+    if (!complete) return;  // an interrupted sweep: the runs it finished are checked
+    for (const RunConfig& run : plan.runs)
+        if (!present.count(runNumber(run)))
+            throw Error(csvPath + ": run " + runNumber(run) + " (" + run.label() + ") of the plan has no row, and " + contextPath +
+                        " says the sweep completed: rows were lost");
+}
+
 double number(const std::string& s) {
     return s.empty() ? std::nan("") : std::strtod(s.c_str(), nullptr);
 }
@@ -34,6 +77,12 @@ double number(const std::string& s) {
 
 CheckResult checkResults(const std::string& folder, const CheckOptions& options,
                          std::ostream& out) {
+    if (!(options.timingTolerance >= 0.0) || !std::isfinite(options.timingTolerance))
+        throw Error("--tolerance " + formatNumber(options.timingTolerance) + ": expected a finite number >= 0 (0.5 = 50%)");
+    if (!options.embreeConfigOverride.empty()) {
+        ExperimentPlan none;
+        overrideEmbreeConfig(none, options.embreeConfigOverride);  // refused before any work
+    }
     const std::string contextPath = (fs::path(folder) / "context.json").string();
     if (!fs::exists(contextPath))
         throw Error(contextPath + ": not found (is this a results folder?)");
@@ -47,16 +96,26 @@ CheckResult checkResults(const std::string& folder, const CheckOptions& options,
         configDir = contextString(context, contextPath, "config_dir");
     ExperimentPlan plan = loadExperimentText(contextString(context, contextPath, "config_text"),
                                              configPath, configDir);
-    const std::vector<Row> recorded = readRunsCsv((fs::path(folder) / "runs.csv").string());
+    // The command line's overrides of the recorded run (-d, --validation, --embree-config).
+    if (context.contains("overrides")) {
+        std::map<std::string, std::string> overrides;
+        for (const auto& [key, value] : context["overrides"].items())
+            if (value.is_string()) overrides[key] = value.get<std::string>();
+        applyRecordedOverrides(plan, overrides);
+    }
+    const std::string csvPath = (fs::path(folder) / "runs.csv").string();
+    const std::vector<Row> recorded = readRunsCsv(csvPath);
+    checkRowsAgainstPlan(context, contextPath, plan, recorded, csvPath);
     if (!options.embreeConfigOverride.empty()) overrideEmbreeConfig(plan, options.embreeConfigOverride);
 
     RunnerOptions runner;
     runner.quiet = true;
     runner.force = true;
     for (const Row& row : recorded) runner.onlyRuns.insert(row.at("run"));
-    const fs::path scratch =
-        fs::temp_directory_path() / ("rtbench-check-" + std::to_string(::getpid()));
-    fs::remove_all(scratch);
+    // A private scratch folder (mkdtemp: a name no one else can have planted).
+    std::string pattern = (fs::temp_directory_path() / "rtbench-check-XXXXXX").string();
+    if (!::mkdtemp(pattern.data())) throw Error(pattern + ": cannot create the scratch folder: " + std::strerror(errno));
+    const fs::path scratch = pattern;
     runner.outputOverride = scratch.string();
     ExperimentResult now;
     try {

@@ -30,7 +30,9 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("error", K::Count, "", "why the run failed");
         add("warnings", K::Count, "",
             "what the run did that may surprise (e.g. triangles degenerate in float)");
-        add("config_hash", K::Parameter, "", "FNV-1a 64 of the run's parameters");
+        add("config_hash", K::Parameter, "", "FNV-1a 64 of the run's parameters (the command line's -d, --validation and --embree-config included)");
+        add("inputs_hash", K::Parameter, "", "FNV-1a 64 over the contents of every file the scene was made from (mesh files, the scene description and its meshes, a cgal: mesh's cached file; none for procedural scenes): with config_hash, git_commit, device and driver, the run's identity");
+        add("input_files", K::Context, "", "those files: path (bytes, FNV-1a 64 of the contents), in reading order");
         add("git_commit", K::Context, "", "commit of the binary");
         add("device", K::Context, "", "Vulkan device name");
         add("driver", K::Context, "", "Vulkan driver name and version");

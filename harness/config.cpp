@@ -3,6 +3,8 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <charconv>
+#include <cstdio>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +15,7 @@
 #include "methods/registry.h"
 #include "output_folder.h"
 #include "structures/error.h"
+#include "structures/input_file.h"
 
 namespace rtbench {
 
@@ -49,6 +52,27 @@ std::string where(const std::string& file, const toml::source_region& src) {
     return file + ":" + std::to_string(src.begin.line);
 }
 
+// The shortest decimal that reads back as v (179.9999 stays 179.9999, not "180").
+std::string shortest(double v) {
+    char text[32];
+    const auto end = std::to_chars(text, text + sizeof text, v).ptr;
+    return std::string(text, end);
+}
+
+// Strings name files, devices and folders: a NUL would cut them where the OS reads them (and
+// every message quoting them), and other control characters hide what they say.
+void refuseControlCharacters(const std::string& at, const std::string& v) {
+    for (std::size_t i = 0; i < v.size(); ++i) {
+        const unsigned char c = static_cast<unsigned char>(v[i]);
+        if (c < 0x20 || c == 0x7f) {
+            char code[8];
+            std::snprintf(code, sizeof code, "U+%04X", c);
+            throw Error(at + "control character " + code + " at byte " + std::to_string(i) +
+                        " of the string: not allowed in a string value");
+        }
+    }
+}
+
 }  // namespace
 
 const std::vector<KeySpec>& configSchema() {
@@ -58,6 +82,7 @@ const std::vector<KeySpec>& configSchema() {
         add({"experiment.name", ValueType::String, "experiment name, a plain folder name; results go to <output>/<name>/", {}, true, -1e300, 1e300, {}, {},
              [](const std::string& name) { experimentFolder("", name); }});
         add({"experiment.output", ValueType::String, "output folder (relative to the working directory)", std::string("out")});
+        for (KeySpec& k : s) k.sweepable = false;  // the two keys above place the results
         add({"experiment.repetitions", ValueType::Int, "timed repetitions per run (median reported)", std::int64_t(5), false, 1, 1000});
         add({"experiment.warmups", ValueType::Int, "untimed warm-up dispatches before timing", std::int64_t(1), false, 0, 100});
         add({"scene.source", ValueType::String, "mesh file (.off/.obj/.ply/.stl, relative to the config), scene description (.toml, relative to the config: meshes with transforms and seeded scatters, see structures/scene_description.h), cgal:NAME, or procedural:christen_a|christen_b|christen_b_thesis|closed_box|icosphere|tetrahedron", {}, true});
@@ -112,14 +137,14 @@ const std::vector<KeySpec>& configSchema() {
 namespace {
 
 // Converts one TOML node (scalar or 3-array) to a value of the spec's type, or throws.
-ConfigValue convert(const std::string& file, const KeySpec& spec, const toml::node& node) {
-    const std::string at = where(file, node.source()) + ": key '" + spec.name + "': ";
+// `location` replaces the node's own (a value parsed out of a skip rule's text).
+ConfigValue convert(const std::string& file, const KeySpec& spec, const toml::node& node,
+                    const std::string& location = "") {
+    const std::string at = (location.empty() ? where(file, node.source()) : location) + ": key '" + spec.name + "': ";
     auto checkRange = [&](double v) {
-        if (!(v >= spec.min && v <= spec.max)) {
-            std::ostringstream s;
-            s << at << "value " << v << " is out of range [" << spec.min << ", " << spec.max << "]";
-            throw Error(s.str());
-        }
+        if (!(v >= spec.min && v <= spec.max))
+            throw Error(at + "value " + shortest(v) + " is out of range [" + shortest(spec.min) + ", " +
+                        shortest(spec.max) + "]");
     };
     auto wrongType = [&]() -> Error {
         return Error(at + "expected " + typeName(spec.type) + " (or a list of them to sweep)");
@@ -144,6 +169,7 @@ ConfigValue convert(const std::string& file, const KeySpec& spec, const toml::no
         case ValueType::String: {
             if (!node.is_string()) throw wrongType();
             const std::string v = node.as_string()->get();
+            refuseControlCharacters(at, v);
             if (!spec.choices.empty() &&
                 std::find(spec.choices.begin(), spec.choices.end(), v) == spec.choices.end())
                 throw Error(at + "'" + v + "' is not allowed (allowed: " + join(spec.choices) + ")");
@@ -177,6 +203,73 @@ ConfigValue convert(const std::string& file, const KeySpec& spec, const toml::no
     throw wrongType();
 }
 
+// A skip rule of a [[sweep]]: "key=value key=value"; a run matching every condition is left out.
+// Values are typed as the key's own (30 = 30.0 = 30.000, 1e9 = 1000000000, [1, 0, 0]) and checked
+// as the key would be (a choice not allowed, a bool given as 1, a range), so a rule cannot miss
+// by spelling.
+struct SkipRule {
+    std::string text, at;  // as written, and its file:line
+    std::vector<std::pair<std::string, ConfigValue>> conditions;
+    // A run lacking a key (one its structure or strategy does not read) does not match.
+    bool matches(const RunConfig& run) const {
+        return std::all_of(conditions.begin(), conditions.end(), [&](const auto& c) {
+            return run.has(c.first) && run.values.at(c.first) == c.second;
+        });
+    }
+};
+
+// Words split at spaces outside [...] and "...".
+std::vector<std::string> ruleWords(const std::string& rule) {
+    std::vector<std::string> words;
+    std::string word;
+    int depth = 0;
+    bool quoted = false;
+    for (char c : rule) {
+        if (c == '"') quoted = !quoted;
+        if (!quoted && c == '[') ++depth;
+        if (!quoted && c == ']') --depth;
+        if (!quoted && depth <= 0 && std::isspace(static_cast<unsigned char>(c))) {
+            if (!word.empty()) words.push_back(std::move(word));
+            word.clear();
+            continue;
+        }
+        word += c;
+    }
+    if (!word.empty()) words.push_back(std::move(word));
+    return words;
+}
+
+SkipRule parseSkipRule(const std::string& path, const std::string& at, const std::string& text,
+                       const std::vector<KeySpec>& schema) {
+    SkipRule rule{text, at, {}};
+    const std::string key = at + ": key 'sweep.skip': ";
+    refuseControlCharacters(key, text);
+    for (const std::string& word : ruleWords(text)) {
+        const std::size_t eq = word.find('=');
+        const std::string name = word.substr(0, eq);
+        const auto spec = std::find_if(schema.begin(), schema.end(), [&](const KeySpec& k) { return k.name == name; });
+        if (eq == std::string::npos || spec == schema.end())
+            throw Error(key + "'" + word + "' is not section.key=value for a known key");
+        std::string value = word.substr(eq + 1);
+        const std::string valueAt = at + ": key 'sweep.skip': in '" + word + "'";
+        if (spec->type == ValueType::String) {
+            // A bare word or a quoted string.
+            if (value.size() >= 2 && value.front() == '"' && value.back() == '"') value = value.substr(1, value.size() - 2);
+            rule.conditions.emplace_back(name, convert(path, *spec, toml::value<std::string>(value), valueAt));
+            continue;
+        }
+        toml::table parsed;
+        try {
+            parsed = toml::parse("v = " + value);
+        } catch (const toml::parse_error&) {
+            throw Error(valueAt + ": key '" + name + "': '" + value + "' is not " + typeName(spec->type));
+        }
+        rule.conditions.emplace_back(name, convert(path, *spec, *parsed.get("v"), valueAt));
+    }
+    if (rule.conditions.empty()) throw Error(key + "an empty rule");
+    return rule;
+}
+
 // A list-valued node sweeps: for 3-vectors a list of 3-arrays, for scalars a list of scalars.
 bool isSweep(const KeySpec& spec, const toml::node& node) {
     const toml::array* a = node.as_array();
@@ -189,11 +282,8 @@ bool isSweep(const KeySpec& spec, const toml::node& node) {
 }  // namespace
 
 ExperimentPlan loadExperiment(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw Error(path + ": cannot open config file");
-    std::ostringstream text;
-    text << in.rdbuf();
-    return loadExperimentText(text.str(), path, std::filesystem::absolute(path).parent_path().string());
+    const std::string text = readInputFile(path, kMaxConfigBytes, "config file");
+    return loadExperimentText(text, path, std::filesystem::absolute(path).parent_path().string());
 }
 
 ExperimentPlan loadExperimentText(const std::string& configText, const std::string& path, const std::string& configDir) {
@@ -242,7 +332,7 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
         std::string name;
         Given overrides;
         // Skip rules: a run matching every "section.key=value" of one rule is left out.
-        std::vector<std::vector<std::pair<std::string, std::string>>> skip;
+        std::vector<SkipRule> skip;
         std::string at;  // file:line of the [[sweep]] table
     };
     std::vector<Sweep> sweeps;
@@ -262,6 +352,7 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
                     if (!node.is_string())
                         throw Error(where(path, key.source()) + ": key 'sweep.name': expected a string");
                     sweep.name = node.as_string()->get();
+                    refuseControlCharacters(where(path, key.source()) + ": key 'sweep.name': ", sweep.name);
                 } else if (key.str() == "skip") {
                     const toml::array* rules = node.as_array();
                     if (!rules) throw Error(where(path, key.source()) + ": key 'sweep.skip': expected a list of strings");
@@ -269,22 +360,14 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
                         if (!rule.is_string())
                             throw Error(where(path, rule.source()) + ": key 'sweep.skip': expected strings such as "
                                         "\"strategy.traverse_steps_per_pass=1 strategy.suppress_finished_reads=true\"");
-                        std::vector<std::pair<std::string, std::string>> conditions;
-                        std::istringstream words(rule.as_string()->get());
-                        std::string word;
-                        while (words >> word) {
-                            const std::size_t eq = word.find('=');
-                            const std::string name = word.substr(0, eq);
-                            if (eq == std::string::npos ||
-                                std::none_of(schema.begin(), schema.end(), [&](const KeySpec& k) { return k.name == name; }))
-                                throw Error(where(path, rule.source()) + ": key 'sweep.skip': '" + word +
-                                            "' is not section.key=value for a known key");
-                            conditions.emplace_back(name, word.substr(eq + 1));
-                        }
-                        sweep.skip.push_back(std::move(conditions));
+                        sweep.skip.push_back(parseSkipRule(path, where(path, rule.source()), rule.as_string()->get(), schema));
                     }
-                } else {
+                                } else {
                     readSection(key, node, sweep.overrides);
+                    for (const KeySpec& spec : schema)
+                        if (!spec.sweepable && sweep.overrides.count(spec.name))
+                            throw Error(where(path, sweep.overrides[spec.name]->source()) + ": key '" + spec.name +
+                                        "' places the results: set it once, outside [[sweep]] tables");
                 }
             }
             sweeps.push_back(std::move(sweep));
@@ -297,6 +380,7 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
     for (const KeySpec& spec : schema)
         if (!spec.group.empty()) groups[spec.group].push_back(spec.name);
     std::map<std::string, const toml::node*> unread;  // given keys no run has read yet
+    std::set<std::string> read;                        // keys some run of some sweep reads
     std::set<std::string> seen;                        // canonical runs, to drop duplicates
     for (const Sweep& sweep : sweeps) {
         const std::string& sweepName = sweep.name;
@@ -307,7 +391,8 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
             if (std::any_of(keys.begin(), keys.end(), [&](const std::string& k) { return overrides.count(k); }))
                 for (const std::string& k : keys) given.erase(k);
         for (const auto& [key, node] : overrides) given[key] = node;
-        for (const auto& [key, node] : given) unread.emplace(key, node);
+        for (const auto& [key, node] : given)
+            if (!read.count(key)) unread.emplace(key, node);
 
         std::set<std::string> groupsGiven;
         for (const auto& [group, keys] : groups) {
@@ -332,8 +417,17 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
                 if (spec.groupDefault && !groupsGiven.count(spec.group)) values.push_back(*spec.groupDefault);
             } else if (isSweep(spec, *it->second)) {
                 const toml::array& list = *it->second->as_array();
-                if (list.empty())
-                    throw Error(where(path, it->second->source()) + ": key '" + spec.name + "': an empty list sweeps nothing");
+                const std::string at = where(path, it->second->source()) + ": key '" + spec.name + "': ";
+                if (list.empty()) throw Error(at + "an empty list sweeps nothing");
+                if (!spec.sweepable) throw Error(at + "places the results and cannot be swept: give one value");
+                // A scene description reads scale = [sx, sy, sz] as one per-axis scale; here a list
+                // sweeps the uniform scale. Three numbers could mean either: say which.
+                if (spec.name == "scene.scale" && list.size() == 3)
+                    if (std::all_of(list.begin(), list.end(), [](const toml::node& n) { return n.is_number(); }))
+                        throw Error(at + "a list of 3 numbers is ambiguous: in a config a list sweeps the uniform "
+                                    "scale (3 runs), but a scene description reads [sx, sy, sz] as one per-axis scale. "
+                                    "A per-axis scale belongs in a scene description ([[object]] scale); to sweep "
+                                    "3 uniform scales give each its own [[sweep]]");
                 for (const toml::node& element : list) values.push_back(convert(path, spec, element));
             } else {
                 values.push_back(convert(path, spec, *it->second));
@@ -350,6 +444,7 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
             if (total > 100000) throw Error(path + ": the sweep expands to over 100000 runs");
         }
         std::size_t skippedRuns = 0;
+        std::vector<std::size_t> skipMatches(sweep.skip.size(), 0);
         for (std::size_t r = 0; r < total; ++r) {
             RunConfig run;
             run.sweep = sweepName;
@@ -364,16 +459,20 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
                 });
                 if (!applies) run.values.erase(spec.name);
             }
-            const bool skipped = std::any_of(sweep.skip.begin(), sweep.skip.end(), [&](const auto& rule) {
-                return std::all_of(rule.begin(), rule.end(), [&](const auto& condition) {
-                    return run.has(condition.first) && formatValue(run.values.at(condition.first)) == condition.second;
-                });
-            });
+            bool skipped = false;
+            for (std::size_t k = 0; k < sweep.skip.size(); ++k)
+                if (sweep.skip[k].matches(run)) {
+                    ++skipMatches[k];
+                    skipped = true;
+                }
             if (skipped) {
                 ++skippedRuns;
                 continue;
             }
-            for (const auto& [key, value] : run.values) unread.erase(key);
+            for (const auto& [key, value] : run.values) {
+                unread.erase(key);
+                read.insert(key);
+            }
             for (const std::string& key : swept)
                 if (run.has(key)) run.sweptKeys.push_back(key);
             if (!seen.insert(sweepName + "|" + run.canonical()).second) continue;
@@ -383,6 +482,10 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
         if (skippedRuns == total)
             throw Error(sweep.at + ": every one of the " + std::to_string(total) + " runs of sweep '" + sweepName +
                         "' matches a skip rule: the sweep runs nothing");
+        for (std::size_t k = 0; k < sweep.skip.size(); ++k)
+            if (!skipMatches[k])
+                throw Error(sweep.skip[k].at + ": key 'sweep.skip': the rule \"" + sweep.skip[k].text +
+                            "\" matches no run of this sweep (a typo, or a value the sweep never takes?)");
     }
     if (!unread.empty()) {
         const auto& [key, node] = *unread.begin();
@@ -393,13 +496,42 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
     return plan;
 }
 
+void overrideKey(ExperimentPlan& plan, const std::string& key, const ConfigValue& value, const std::string& option) {
+    const std::vector<KeySpec>& schema = configSchema();
+    const auto spec = std::find_if(schema.begin(), schema.end(), [&](const KeySpec& k) { return k.name == key; });
+    if (spec == schema.end()) throw Error(option + ": no config key " + key);
+    // Checked as the key in a config file would be.
+    toml::table t;
+    std::visit([&](const auto& v) {
+        if constexpr (std::is_same_v<std::decay_t<decltype(v)>, std::array<double, 3>>)
+            t.insert("v", toml::array{v[0], v[1], v[2]});
+        else
+            t.insert("v", v);
+    }, value);
+    const ConfigValue checked = convert(option, *spec, *t.get("v"), option);
+    for (RunConfig& run : plan.runs) run.values[key] = checked;
+    plan.overrides[key] = formatValue(checked);
+}
+
 void overrideEmbreeConfig(ExperimentPlan& plan, const std::string& embreeConfig) {
     try {
         checkEmbreeConfig(embreeConfig);
     } catch (const Error& e) {
         throw Error("--embree-config: " + std::string(e.what()));
     }
-    for (RunConfig& run : plan.runs) run.values["baseline.embree_config"] = embreeConfig;
+    overrideKey(plan, "baseline.embree_config", embreeConfig, "--embree-config");
+}
+
+void applyRecordedOverrides(ExperimentPlan& plan, const std::map<std::string, std::string>& overrides) {
+    const std::vector<KeySpec>& schema = configSchema();
+    for (const auto& [key, text] : overrides) {
+        const auto spec = std::find_if(schema.begin(), schema.end(), [&](const KeySpec& k) { return k.name == key; });
+        if (spec == schema.end()) throw Error("context.json: override of unknown key " + key);
+        ConfigValue value = text;
+        if (spec->type == ValueType::Bool) value = text == "true";
+        else if (spec->type != ValueType::String) throw Error("context.json: override of " + key + " is not supported");
+        overrideKey(plan, key, value, "recorded override " + key);
+    }
 }
 
 }  // namespace rtbench

@@ -2,6 +2,7 @@
 // help; validation whose errors name the file, line and key and list what is allowed; and the
 // plan: one run per combination of list-valued keys (cartesian product, in schema order).
 #pragma once
+#include <map>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,9 @@ struct ExperimentPlan {
     std::string configText;
     std::string configDir;  // relative scene paths resolve against it
     std::vector<RunConfig> runs;
+    // Keys the command line set in every run (-d, --validation, --embree-config), as formatValue
+    // writes them: recorded in context.json, so `rtbench check` re-runs what ran.
+    std::map<std::string, std::string> overrides;
 };
 
 // Parses and validates a config file; throws rtbench::Error with file:line: key: message.
@@ -30,5 +34,13 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
 // Sets baseline.embree_config of every run (the command line's --embree-config, e.g. "isa=avx2"
 // where Embree's default ISA choice crashes); throws naming the option if the string is invalid.
 void overrideEmbreeConfig(ExperimentPlan& plan, const std::string& embreeConfig);
+
+// Sets `key` to `value` in every run (the command line's -d sets device.name, --validation
+// device.validation): the run's parameters, hash and identity record what ran. `option` names
+// the command-line option in errors; the value is checked as the config key would be.
+void overrideKey(ExperimentPlan& plan, const std::string& key, const ConfigValue& value, const std::string& option);
+
+// Applies context.json's recorded "overrides" (key -> value as formatValue writes it).
+void applyRecordedOverrides(ExperimentPlan& plan, const std::map<std::string, std::string>& overrides);
 
 }  // namespace rtbench

@@ -1,6 +1,7 @@
 #include "embree_config.h"
 
 #include <algorithm>
+#include <set>
 #include <sstream>
 
 #include "structures/error.h"
@@ -51,14 +52,24 @@ std::vector<std::string> embreeIsasSupportedHere() {
 }
 
 void checkEmbreeConfig(const std::string& config) {
-    std::istringstream items(config);
-    std::string item;
-    while (std::getline(items, item, ',')) {
-        const std::size_t eq = item.find('=');
-        const std::string key = item.substr(0, eq),
-                          value = eq == std::string::npos ? "" : item.substr(eq + 1);
-        if (eq == std::string::npos || key.empty())
-            throw Error("'" + item + "' is not key=value (e.g. \"isa=avx2,threads=2\")");
+    // First the form and the keys: Embree takes the last of a repeated key ("isa=avx2,isa=sse2"
+    // would silently run SSE2), so a key given twice is refused before any value is judged.
+    std::vector<std::pair<std::string, std::string>> pairs;
+    {
+        std::istringstream items(config);
+        std::string item;
+        std::set<std::string> seen;
+        while (std::getline(items, item, ',')) {
+            const std::size_t eq = item.find('=');
+            if (eq == std::string::npos || eq == 0)
+                throw Error("'" + item + "' is not key=value (e.g. \"isa=avx2,threads=2\")");
+            const std::string key = item.substr(0, eq);
+            if (!seen.insert(key).second)
+                throw Error("key '" + key + "' is given twice in \"" + config + "\" (give each key once)");
+            pairs.emplace_back(key, item.substr(eq + 1));
+        }
+    }
+    for (const auto& [key, value] : pairs) {
         if (key == "isa" || key == "max_isa") {
             const auto& names = embreeIsaNames();
             if (std::find(names.begin(), names.end(), value) == names.end())

@@ -13,7 +13,7 @@ std::vector<std::string> embreeIsasSupportedHere();
 
 // Throws rtbench::Error (without file or line: the caller adds them) naming what is wrong and
 // what is allowed: keys threads (>= 0), start_threads, set_affinity (0 or 1), verbose (0-3),
-// isa / max_isa (a name above that this CPU supports).
+// isa / max_isa (a name above that this CPU supports), each key at most once.
 void checkEmbreeConfig(const std::string& config);
 
 }  // namespace rtbench

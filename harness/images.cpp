@@ -1,21 +1,88 @@
 #include "images.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
+#include <map>
 
+#include "harness/writers.h"
 #include "structures/error.h"
+#include "structures/text.h"
 
 #ifdef RTBENCH_WITH_OIIO
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 #endif
 
 namespace rtbench {
 
+namespace fs = std::filesystem;
+
 namespace {
-constexpr char kMagic[8] = {'R', 'T', 'B', 'H', 'I', 'T', 'S', '1'};
+constexpr char kMagicV1[8] = {'R', 'T', 'B', 'H', 'I', 'T', 'S', '1'};
+constexpr char kMagicV2[8] = {'R', 'T', 'B', 'H', 'I', 'T', 'S', '2'};
+constexpr float kMaxShade = 1.001f;  // |cos| of a hit, with room for its float rounding
+
+void putU16(std::string& out, std::uint16_t v) {
+    out += char(v & 0xff);
+    out += char(v >> 8);
 }
+void putU32(std::string& out, std::uint32_t v) {
+    for (int k = 0; k < 4; ++k) out += char((v >> (8 * k)) & 0xff);
+}
+std::uint32_t getU32(const unsigned char* p) {
+    return std::uint32_t(p[0]) | std::uint32_t(p[1]) << 8 | std::uint32_t(p[2]) << 16 | std::uint32_t(p[3]) << 24;
+}
+std::uint16_t getU16(const unsigned char* p) {
+    return std::uint16_t(p[0] | p[1] << 8);
+}
+
+// A run number or config hash as the header holds it: at most kHitsMaxIdBytes printable ASCII
+// bytes, neither empty.
+bool plainId(const std::string& s) {
+    return !s.empty() && s.size() <= kHitsMaxIdBytes &&
+           std::all_of(s.begin(), s.end(), [](char c) { return c > ' ' && c < 127; });
+}
+
+// "run-NNN.hits" -> "NNN" (digits only), else "".
+std::string runOfFileName(const std::string& fileName) {
+    const std::string prefix = "run-", suffix = ".hits";
+    if (fileName.size() <= prefix.size() + suffix.size() || fileName.rfind(prefix, 0) != 0 ||
+        fileName.compare(fileName.size() - suffix.size(), suffix.size(), suffix) != 0)
+        return "";
+    const std::string digits = fileName.substr(prefix.size(), fileName.size() - prefix.size() - suffix.size());
+    if (digits.size() > 9 || !std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }))
+        return "";
+    return digits;
+}
+
+// Reads exactly `size` bytes at the file's current offset; false at an early end.
+bool readFully(int fd, void* data, std::size_t size) {
+    auto* p = static_cast<char*>(data);
+    while (size > 0) {
+        const ssize_t got = ::read(fd, p, std::min<std::size_t>(size, std::size_t(1) << 30));
+        if (got < 0 && errno == EINTR) continue;
+        if (got <= 0) return false;
+        p += got;
+        size -= std::size_t(got);
+    }
+    return true;
+}
+
+struct FileDescriptor {
+    int fd = -1;
+    ~FileDescriptor() {
+        if (fd >= 0) ::close(fd);
+    }
+};
+
+}  // namespace
 
 HitImage makeHitImage(std::uint32_t width, std::uint32_t height, const std::vector<gpu::Ray>& rays,
                       const TriangleMesh& mesh, const std::vector<gpu::HitRecord>& kernel,
@@ -52,34 +119,120 @@ std::uint8_t pixelGrey(float shade) {
     return shade < 0.0f ? 0 : static_cast<std::uint8_t>(std::lround(40.0f + 215.0f * shade));
 }
 
-void writeHitRecords(const std::string& path, const HitImage& image) {
-    std::ofstream out(path + ".tmp", std::ios::binary | std::ios::trunc);
-    if (!out) throw Error(path + ": cannot open for writing");
-    out.write(kMagic, 8);
-    out.write(reinterpret_cast<const char*>(&image.width), 4);
-    out.write(reinterpret_cast<const char*>(&image.height), 4);
-    out.write(reinterpret_cast<const char*>(image.shade.data()), image.shade.size() * 4);
-    out.write(reinterpret_cast<const char*>(image.diff.data()), image.diff.size());
-    out.close();
-    if (!out) throw Error(path + ": write failed");
-    std::filesystem::rename(path + ".tmp", path);
+void writeHitRecords(const std::string& path, const HitImage& image, const std::string& run,
+                     const std::string& configHash) {
+    const std::string at = printable(path) + ": ";
+    if (image.width == 0 || image.height == 0 || image.width > kHitsMaxSide || image.height > kHitsMaxSide)
+        throw Error(at + "cannot write hit records of " + std::to_string(image.width) + " x " +
+                    std::to_string(image.height) + " pixels (allowed: 1 to " + std::to_string(kHitsMaxSide) + " a side)");
+    const std::size_t n = std::size_t(image.width) * image.height;
+    if (image.shade.size() != n || image.diff.size() != n)
+        throw Error(at + "hit records of " + std::to_string(image.width) + " x " + std::to_string(image.height) +
+                    " pixels with " + std::to_string(image.shade.size()) + " shades and " +
+                    std::to_string(image.diff.size()) + " diffs");
+    if (!plainId(run) || !plainId(configHash))
+        throw Error(at + "the run number '" + printable(run) + "' and config hash '" + printable(configHash) +
+                    "' must be 1 to " + std::to_string(kHitsMaxIdBytes) + " printable characters");
+    std::string bytes(kMagicV2, 8);
+    bytes.reserve(kHitsMaxHeaderBytes + n * 5);
+    putU32(bytes, image.width);
+    putU32(bytes, image.height);
+    putU16(bytes, std::uint16_t(run.size()));
+    bytes += run;
+    putU16(bytes, std::uint16_t(configHash.size()));
+    bytes += configHash;
+    for (float s : image.shade) {
+        std::uint32_t bits;
+        std::memcpy(&bits, &s, 4);
+        putU32(bytes, bits);
+    }
+    bytes.append(reinterpret_cast<const char*>(image.diff.data()), n);
+    writeFileAtomically(path, bytes);
 }
 
 HitImage readHitRecords(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(path + ": cannot open hit records");
-    char magic[8];
+    const std::string at = printable(path) + ": ";
+    FileDescriptor file;
+    // O_NOFOLLOW: a link is refused (ELOOP); O_NONBLOCK: a FIFO does not block the open.
+    file.fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
+    if (file.fd < 0)
+        throw Error(at + (errno == ELOOP ? std::string("is a symbolic link (hit records are read only from regular files)")
+                                         : "cannot open hit records: " + std::string(std::strerror(errno))));
+    struct stat st {};
+    if (::fstat(file.fd, &st) != 0) throw Error(at + "cannot stat hit records: " + std::strerror(errno));
+    if (!S_ISREG(st.st_mode)) throw Error(at + "not a regular file");
+    const std::uint64_t size = std::uint64_t(st.st_size);
+    if (size > kHitsMaxFileBytes)
+        throw Error(at + "hit-record file of " + std::to_string(size) + " bytes, more than the " +
+                    std::to_string(kHitsMaxFileBytes) + " of the largest image (" + std::to_string(kHitsMaxSide) +
+                    " x " + std::to_string(kHitsMaxSide) + ")");
+    if (size < 16)
+        throw Error(at + "truncated: " + std::to_string(size) + " bytes, shorter than a hit-record header (16 bytes)");
+    unsigned char header[kHitsMaxHeaderBytes];
+    const std::size_t headerRead = std::size_t(std::min<std::uint64_t>(size, kHitsMaxHeaderBytes));
+    if (!readFully(file.fd, header, headerRead)) throw Error(at + "read error in the header");
     HitImage image;
-    in.read(magic, 8);
-    in.read(reinterpret_cast<char*>(&image.width), 4);
-    in.read(reinterpret_cast<char*>(&image.height), 4);
-    if (!in || std::memcmp(magic, kMagic, 8) != 0) throw Error(path + ": not an rtbench hit-record file");
-    const std::size_t n = std::size_t(image.width) * image.height;
+    if (std::memcmp(header, kMagicV2, 8) == 0)
+        image.fileVersion = 2;
+    else if (std::memcmp(header, kMagicV1, 8) == 0)
+        image.fileVersion = 1;
+    else
+        throw Error(at + "not an rtbench hit-record file (its first 8 bytes are '" +
+                    printable(std::string_view(reinterpret_cast<const char*>(header), 8)) +
+                    "', expected 'RTBHITS2' or 'RTBHITS1')");
+    image.width = getU32(header + 8);
+    image.height = getU32(header + 12);
+    if (image.width == 0 || image.height == 0 || image.width > kHitsMaxSide || image.height > kHitsMaxSide)
+        throw Error(at + "the header claims " + std::to_string(image.width) + " x " + std::to_string(image.height) +
+                    " pixels (allowed: 1 to " + std::to_string(kHitsMaxSide) + " a side, as camera.width and camera.height)");
+    std::uint64_t headerBytes = 16;
+    if (image.fileVersion == 2) {
+        // Two length-prefixed strings: the run number, the config hash.
+        for (std::string* id : {&image.run, &image.configHash}) {
+            const char* what = id == &image.run ? "run number" : "config hash";
+            if (headerBytes + 2 > headerRead)
+                throw Error(at + "truncated: the file ends in the header, before its " + what);
+            const std::uint16_t length = getU16(header + headerBytes);
+            headerBytes += 2;
+            if (length == 0 || length > kHitsMaxIdBytes)
+                throw Error(at + "the header's " + what + " has " + std::to_string(length) + " bytes (allowed: 1 to " +
+                            std::to_string(kHitsMaxIdBytes) + ")");
+            if (headerBytes + length > headerRead)
+                throw Error(at + "truncated: the file ends in the header, inside its " + what);
+            id->assign(reinterpret_cast<const char*>(header + headerBytes), length);
+            headerBytes += length;
+            if (!plainId(*id)) throw Error(at + "the header's " + what + " '" + printable(*id) + "' is not printable ASCII");
+        }
+    }
+    const std::uint64_t pixels = std::uint64_t(image.width) * image.height;
+    const std::uint64_t expected = headerBytes + pixels * 5;
+    if (size != expected)
+        throw Error(at + (size < expected ? "truncated: " : "wrong size: ") + std::to_string(size) +
+                    " bytes, but a header of " + std::to_string(image.width) + " x " + std::to_string(image.height) +
+                    " pixels needs exactly " + std::to_string(headerBytes) + " + 5 x " + std::to_string(pixels) +
+                    " = " + std::to_string(expected));
+    // Only now, with the size known to match, the pixels.
+    if (::lseek(file.fd, off_t(headerBytes), SEEK_SET) != off_t(headerBytes))
+        throw Error(at + "cannot seek past the header: " + std::strerror(errno));
+    const std::size_t n = std::size_t(pixels);
+    std::vector<unsigned char> raw(n * 4);
     image.shade.resize(n);
     image.diff.resize(n);
-    in.read(reinterpret_cast<char*>(image.shade.data()), n * 4);
-    in.read(reinterpret_cast<char*>(image.diff.data()), n);
-    if (!in) throw Error(path + ": truncated hit-record file");
+    if (!readFully(file.fd, raw.data(), raw.size()) || !readFully(file.fd, image.diff.data(), n))
+        throw Error(at + "truncated while reading (did the file change?)");
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::uint32_t bits = getU32(raw.data() + 4 * i);
+        std::memcpy(&image.shade[i], &bits, 4);
+        const float s = image.shade[i];
+        if (!(s >= -1.0f && s <= kMaxShade))
+            throw Error(at + "pixel " + std::to_string(i) + " (x " + std::to_string(i % image.width) + ", y " +
+                        std::to_string(i / image.width) + ") has shade " + std::to_string(s) +
+                        " (allowed: -1 for a miss, 0 to 1 for a hit)");
+        if (image.diff[i] > std::uint8_t(HitDiff::OnlyEmbreeHit))
+            throw Error(at + "pixel " + std::to_string(i) + " (x " + std::to_string(i % image.width) + ", y " +
+                        std::to_string(i / image.width) + ") has diff value " + std::to_string(image.diff[i]) +
+                        " (allowed: 0 to 4)");
+    }
     return image;
 }
 
@@ -91,9 +244,37 @@ bool imagesSupported() {
 #endif
 }
 
+std::string encodePng(std::uint32_t width, std::uint32_t height, const std::vector<std::uint8_t>& rgb,
+                      const std::string& nameForErrors) {
+#ifdef RTBENCH_WITH_OIIO
+    const std::string at = printable(nameForErrors) + ": ";
+    if (rgb.size() != std::size_t(width) * height * 3)
+        throw Error(at + "a PNG of " + std::to_string(width) + " x " + std::to_string(height) + " needs " +
+                    std::to_string(std::size_t(width) * height * 3) + " bytes of RGB, given " + std::to_string(rgb.size()));
+    // Into memory (an IOVecOutput proxy): the file is written by writeFileAtomically, never here.
+    std::vector<unsigned char> bytes;
+    OIIO::Filesystem::IOVecOutput memory(bytes);
+    auto out = OIIO::ImageOutput::create("png", &memory);
+    if (!out) throw Error(at + "OpenImageIO cannot create a PNG writer: " + OIIO::geterror());
+    if (!out->supports("ioproxy")) throw Error(at + "OpenImageIO's PNG writer cannot write into memory");
+    const OIIO::ImageSpec spec(int(width), int(height), 3, OIIO::TypeDesc::UINT8);
+    if (!out->open(nameForErrors, spec) || !out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) || !out->close())
+        throw Error(at + "OpenImageIO's PNG encoding failed: " + out->geterror());
+    if (bytes.empty()) throw Error(at + "OpenImageIO's PNG encoding wrote nothing");
+    return std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+#else
+    (void)width, (void)height, (void)rgb;
+    throw Error(printable(nameForErrors) + ": built without OpenImageIO (RTBENCH_WITH_OIIO=OFF): cannot encode PNGs");
+#endif
+}
+
 void writeImages(const std::string& prefix, const HitImage& image) {
 #ifdef RTBENCH_WITH_OIIO
     const std::size_t n = std::size_t(image.width) * image.height;
+    if (image.shade.size() != n || image.diff.size() != n)
+        throw Error(printable(prefix) + ": an image of " + std::to_string(image.width) + " x " +
+                    std::to_string(image.height) + " pixels with " + std::to_string(image.shade.size()) +
+                    " shades and " + std::to_string(image.diff.size()) + " diffs");
     std::vector<std::uint8_t> shaded(n * 3), diff(n * 3);
     for (std::size_t i = 0; i < n; ++i) {
         const float s = image.shade[i];
@@ -111,31 +292,95 @@ void writeImages(const std::string& prefix, const HitImage& image) {
         }
         std::memcpy(&diff[i * 3], rgb, 3);
     }
-    auto write = [&](const std::string& path, const std::vector<std::uint8_t>& pixels) {
-        auto out = OIIO::ImageOutput::create(path);
-        if (!out) throw Error(path + ": OpenImageIO cannot create a PNG writer: " + OIIO::geterror());
-        OIIO::ImageSpec spec(static_cast<int>(image.width), static_cast<int>(image.height), 3, OIIO::TypeDesc::UINT8);
-        if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) || !out->close())
-            throw Error(path + ": OpenImageIO write failed: " + out->geterror());
-    };
-    write(prefix + "-shaded.png", shaded);
-    write(prefix + "-diff.png", diff);
+    // Both encoded before either is written: a failed encoding leaves neither half-made.
+    const std::string shadedPath = prefix + "-shaded.png", diffPath = prefix + "-diff.png";
+    const std::string shadedPng = encodePng(image.width, image.height, shaded, shadedPath);
+    const std::string diffPng = encodePng(image.width, image.height, diff, diffPath);
+    writeFileAtomically(shadedPath, shadedPng);
+    writeFileAtomically(diffPath, diffPng);
 #else
     (void)image;
     throw Error(prefix + ": built without OpenImageIO (RTBENCH_WITH_OIIO=OFF): keep hit records and run `rtbench images`");
 #endif
 }
 
-int writeImagesForFolder(const std::string& folder) {
-    if (!std::filesystem::is_directory(folder)) throw Error(folder + ": not a results folder");
-    int count = 0;
-    for (const auto& entry : std::filesystem::directory_iterator(folder)) {
-        if (entry.path().extension() != ".hits") continue;
-        const std::string prefix = (entry.path().parent_path() / entry.path().stem()).string();
-        writeImages(prefix, readHitRecords(entry.path().string()));
-        ++count;
+ImagesReport imagesForFolder(const std::string& folder) {
+    const std::string name = printable(folder);
+    std::error_code ec;
+    if (!fs::exists(folder, ec)) throw Error(name + ": not a results folder (no such folder)");
+    if (!fs::is_directory(folder, ec)) throw Error(name + ": not a results folder (not a folder)");
+    if (!imagesSupported())
+        throw Error(name + ": built without OpenImageIO (RTBENCH_WITH_OIIO=OFF): `rtbench images` needs it");
+    const fs::path csv = fs::path(folder) / "runs.csv";
+    if (!fs::exists(csv, ec))
+        throw Error(name + ": no runs.csv to check the hit records against (for shards: rtbench merge first)");
+    // The runs.csv row of each run: by run number, each once.
+    std::map<std::string, Row> rows;
+    std::map<std::string, int> seen;
+    for (Row& row : readCsv(csv.string()))
+        if (auto r = row.find("run"); r != row.end()) {
+            ++seen[r->second];
+            rows[r->second] = std::move(row);
+        }
+    std::vector<fs::path> hits;
+    for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec))
+        if (it->path().extension() == ".hits") hits.push_back(it->path());
+    if (ec) throw Error(name + ": cannot list the folder: " + ec.message());
+    std::sort(hits.begin(), hits.end());
+    if (hits.empty())
+        throw Error(name + ": no .hits files (a run keeps them with output.hit_records = true, or when built "
+                           "without OpenImageIO)");
+
+    ImagesReport report;
+    for (const fs::path& path : hits) {
+        const std::string file = path.string(), at = printable(file) + ": ";
+        try {
+            const std::string run = runOfFileName(path.filename().string());
+            if (run.empty()) throw Error(at + "not named run-NNN.hits (the run number names its runs.csv row)");
+            if (!rows.count(run)) throw Error(at + "runs.csv has no row for run " + run);
+            if (seen[run] > 1)
+                throw Error(at + "runs.csv has " + std::to_string(seen[run]) + " rows for run " + run);
+            const Row& row = rows[run];
+            auto column = [&](const std::string& key) {
+                const auto c = row.find(key);
+                if (c == row.end() || c->second.empty())
+                    throw Error(at + "runs.csv's row of run " + run + " has no " + key);
+                return c->second;
+            };
+            const std::string width = column("camera_width"), height = column("camera_height"),
+                              hash = column("config_hash");
+            const HitImage image = readHitRecords(file);
+            if (std::to_string(image.width) != width || std::to_string(image.height) != height)
+                throw Error(at + "holds " + std::to_string(image.width) + " x " + std::to_string(image.height) +
+                            " pixels, but run " + run + " of runs.csv is " + width + " x " + height);
+            if (image.fileVersion >= 2) {
+                if (image.run != run)
+                    throw Error(at + "holds the hit records of run " + printable(image.run) + ", not of run " + run);
+                if (image.configHash != hash)
+                    throw Error(at + "holds hit records of config hash " + printable(image.configHash) + ", but run " +
+                                run + " of runs.csv has config hash " + hash + " (from another sweep?)");
+            } else {
+                report.warnings.push_back(at + "a version 1 file (RTBHITS1): it records no run or config hash, so only "
+                                               "its name and size were checked against runs.csv");
+            }
+            writeImages((path.parent_path() / path.stem()).string(), image);
+            ++report.written;
+        } catch (const std::exception& e) {
+            const std::string what = e.what();
+            // Every message names the file; one from elsewhere (e.g. the file system) gets it here.
+            report.failures.push_back(what.rfind(printable(file), 0) == 0 ? what : at + what);
+        }
     }
-    return count;
+    return report;
+}
+
+int writeImagesForFolder(const std::string& folder) {
+    const ImagesReport report = imagesForFolder(folder);
+    if (report.failures.empty()) return report.written;
+    std::string message = std::to_string(report.failures.size()) + " of " + std::to_string(report.hitsFiles()) +
+                          " hit-record files failed";
+    for (const std::string& f : report.failures) message += "\n  " + f;
+    throw Error(message);
 }
 
 }  // namespace rtbench

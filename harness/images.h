@@ -18,6 +18,10 @@ struct HitImage {
     std::uint32_t width = 0, height = 0;
     std::vector<float> shade;        // kernel's hit: |cos| between normal and ray; -1 on a miss
     std::vector<std::uint8_t> diff;  // HitDiff per pixel
+    // What a .hits file says of the run it belongs to (readHitRecords): its number ("007", as
+    // runs.csv's `run`) and config hash (`config_hash`); empty for a version-1 file.
+    std::string run, configHash;
+    int fileVersion = 0;  // 1 or 2 when read from a file
 };
 
 // Shading of a hit: |cos| between triangle `primitive`'s normal and the ray; -1 for kNoHit.
@@ -30,14 +34,47 @@ HitImage makeHitImage(std::uint32_t width, std::uint32_t height, const std::vect
                       const TriangleMesh& mesh, const std::vector<gpu::HitRecord>& kernel,
                       const std::vector<gpu::HitRecord>& embree);
 
-void writeHitRecords(const std::string& path, const HitImage& image);
+// The .hits format, version 2 (all integers little-endian):
+//   "RTBHITS2", uint32 width, uint32 height, uint16 n + n bytes of the run number,
+//   uint16 m + m bytes of the config hash, width*height float32 shades, width*height HitDiff bytes.
+// Version 1 ("RTBHITS1", width, height, shades, diffs) carries no run and no hash; it is still read.
+constexpr std::uint32_t kHitsMaxSide = 16384;            // camera.width / camera.height allow no more
+constexpr std::size_t kHitsMaxIdBytes = 64;              // run number, config hash
+constexpr std::uint64_t kHitsMaxHeaderBytes = 8 + 8 + 2 + kHitsMaxIdBytes + 2 + kHitsMaxIdBytes;
+constexpr std::uint64_t kHitsMaxFileBytes =              // the largest file a run can write
+    kHitsMaxHeaderBytes + std::uint64_t(kHitsMaxSide) * kHitsMaxSide * 5;
+
+// Writes `path` (version 2) through writeFileAtomically (harness/writers.h): never through a link.
+void writeHitRecords(const std::string& path, const HitImage& image, const std::string& run,
+                     const std::string& configHash);
+// Reads a version 1 or 2 file. Before allocating anything it checks the file (a regular file, not
+// a link, at most kHitsMaxFileBytes), the magic, the sides (1 to kHitsMaxSide), the identity
+// strings and that the size is exactly the header's plus width*height*5 bytes; then every pixel
+// (shade finite in [-1, 1.001], diff 0 to 4). Throws rtbench::Error "PATH: why".
 HitImage readHitRecords(const std::string& path);
 
 bool imagesSupported();  // built with OpenImageIO
-// Writes <prefix>-shaded.png and <prefix>-diff.png; throws when built without OpenImageIO.
+// Encodes a PNG of width x height RGB8 pixels in memory (throws when built without OpenImageIO).
+std::string encodePng(std::uint32_t width, std::uint32_t height, const std::vector<std::uint8_t>& rgb,
+                      const std::string& nameForErrors);
+// Writes <prefix>-shaded.png and <prefix>-diff.png, each encoded in memory and written through
+// writeFileAtomically; throws when built without OpenImageIO.
 void writeImages(const std::string& prefix, const HitImage& image);
 
-// For `rtbench images`: converts every *.hits file in a folder; returns how many.
+// For `rtbench images`: converts every run-NNN.hits file of a folder, in name order. Each file is
+// checked against the row of run NNN in the folder's runs.csv (camera_width, camera_height,
+// config_hash, and for version 2 the run number it records); a bad file is listed in `failures`
+// ("PATH: why") and the others go on. Throws rtbench::Error for what stops them all: not a
+// folder, no or unreadable runs.csv, built without OpenImageIO.
+struct ImagesReport {
+    int written = 0;                    // runs whose two PNGs were written
+    std::vector<std::string> failures;  // "PATH: why", one per bad file
+    std::vector<std::string> warnings;  // "PATH: what" (version-1 files: no identity to check)
+    int hitsFiles() const { return written + int(failures.size()); }
+};
+ImagesReport imagesForFolder(const std::string& folder);
+// The same, all or nothing for the caller: how many runs' PNGs were written, or rtbench::Error
+// listing every bad file when one failed (the good ones are written all the same).
 int writeImagesForFolder(const std::string& folder);
 
 }  // namespace rtbench

@@ -1,6 +1,10 @@
 // rtbench: GPU ray tracing strategies measured against Embree, from TOML experiment configs.
 #include <CLI/CLI.hpp>
 
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <cerrno>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
@@ -16,10 +20,17 @@
 
 namespace {
 
-std::string shellQuote(const std::string& s) {
-    std::string out = "'";
-    for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
+// Runs a program with an argument vector (no shell) and waits; its exit status, or 127.
+int runProgram(const std::vector<std::string>& argv) {
+    std::vector<char*> args;
+    for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    pid_t pid = 0;
+    if (posix_spawn(&pid, args[0], nullptr, nullptr, args.data(), environ) != 0) return 127;
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0)
+        if (errno != EINTR) return 127;
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
 // scripts/plot.py beside the binary (build/rtbench -> scripts/, or a bundle's scripts/), else in
@@ -50,8 +61,10 @@ int main(int argc, char** argv) {
     CLI::App* run = app.add_subcommand("run", "Run every run of an experiment config (list-valued keys sweep)");
     run->add_option("config", configPath, "experiment config (TOML), e.g. configs/bunny.toml")->required();
     run->add_option("-o,--output", options.outputOverride, "output folder (overrides experiment.output)");
-    run->add_option("-d,--device", options.deviceOverride, "Vulkan device: auto or a name substring (overrides device.name)");
-    run->add_flag("--validation", options.validationOverride, "enable the Vulkan validation layer; a run fails on any message");
+    std::string deviceOverride;
+    bool validationOverride = false;
+    run->add_option("-d,--device", deviceOverride, "Vulkan device: auto or a name substring (overrides device.name)");
+    run->add_flag("--validation", validationOverride, "enable the Vulkan validation layer; a run fails on any message");
     run->add_flag("-q,--quiet", options.quiet, "print only the summary table");
     run->add_flag("-f,--force", options.force, "re-run runs whose rows (same run, config hash, commit) already exist");
     std::string runEmbreeConfig;
@@ -100,6 +113,9 @@ int main(int argc, char** argv) {
             }
             rtbench::ExperimentPlan plan = rtbench::loadExperiment(configPath);
             if (!runEmbreeConfig.empty()) rtbench::overrideEmbreeConfig(plan, runEmbreeConfig);
+            // The effective device and validation are the run's parameters (and identity).
+            if (!deviceOverride.empty()) rtbench::overrideKey(plan, "device.name", deviceOverride, "-d");
+            if (validationOverride) rtbench::overrideKey(plan, "device.validation", true, "--validation");
             const rtbench::ExperimentResult result = rtbench::runExperiment(plan, options);
             std::cout << "\n" << rtbench::summaryTable(result.rows);
             if (result.reused) std::cout << "(" << result.reused << " run(s) kept from an earlier invocation; --force re-runs them)\n";
@@ -125,9 +141,13 @@ int main(int argc, char** argv) {
             return 0;
         }
         if (*images) {
-            const int n = rtbench::writeImagesForFolder(imagesFolder);
-            std::cout << "wrote images for " << n << " run(s) in " << imagesFolder << "\n";
-            return 0;
+            // Each bad .hits file is reported with its reason, the others still converted.
+            const rtbench::ImagesReport report = rtbench::imagesForFolder(imagesFolder);
+            for (const std::string& w : report.warnings) std::cerr << "rtbench: warning: " << w << "\n";
+            for (const std::string& f : report.failures) std::cerr << "rtbench: error: " << f << "\n";
+            std::cout << "wrote images for " << report.written << " of " << report.hitsFiles() << " run(s) in "
+                      << imagesFolder << "\n";
+            return report.failures.empty() ? 0 : 1;
         }
         if (*check) {
             const rtbench::CheckResult result = rtbench::checkResults(checkFolder, checkOptions, std::cout);
@@ -135,9 +155,7 @@ int main(int argc, char** argv) {
         }
         if (*plot) {
             // Debian's python3-matplotlib and python3-pandas (PyPI is not reachable here).
-            const std::string script = findPlotScript();
-            const std::string command = "/usr/bin/python3 " + shellQuote(script) + " " + shellQuote(plotFolder);
-            return std::system(command.c_str()) == 0 ? 0 : 1;
+            return runProgram({"/usr/bin/python3", findPlotScript(), plotFolder}) == 0 ? 0 : 1;
         }
         if (*columns) {
             std::cout << rtbench::columnsMarkdown();

@@ -8,9 +8,9 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 
 #include "structures/error.h"
+#include "structures/text.h"
 
 namespace rtbench {
 namespace fs = std::filesystem;
@@ -20,42 +20,143 @@ std::string experimentFolder(const std::string& output, const std::string& name)
                                      [](char c) { return static_cast<unsigned char>(c) < 0x20; });
     if (name.empty() || name == "." || name == ".." || name.find('/') != std::string::npos ||
         name.find('\\') != std::string::npos || control)
-        throw Error("experiment.name '" + name +
+        throw Error("experiment.name '" + printable(name) +
                     "' is not a plain folder name (no '/', not '.' or '..'): results go to "
                     "<output>/<name>/");
     return (fs::path(output) / name).string();
 }
 
-OutputFolderLock::OutputFolderLock(const std::string& folder) {
-    const std::string path = (fs::path(folder) / ".rtbench.lock").string();
-    fd_ = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-    if (fd_ < 0) throw Error(path + ": cannot create the lock file: " + std::strerror(errno));
-    if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
-        const int why = errno;
-        char holder[32] = {0};
-        const ssize_t n = ::pread(fd_, holder, sizeof holder - 1, 0);
-        ::close(fd_);
-        fd_ = -1;
-        if (why == EWOULDBLOCK)
-            throw Error(folder + ": another rtbench process (pid " +
-                        (n > 0 ? std::string(holder, std::size_t(n)) : "?") +
-                        ") is writing this results folder; wait for it or use another -o / "
-                        "experiment.name");
-        throw Error(path + ": cannot lock: " + std::strerror(why));
+namespace {
+
+// Opens (creating) a lock file without following a symlink.
+int openLockFile(const std::string& path) {
+    const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644);
+    if (fd < 0) {
+        if (errno == ELOOP)
+            throw Error(path + ": is a symlink; rtbench never writes through one: remove it");
+        throw Error(path + ": cannot create the lock file: " + std::strerror(errno));
     }
+    return fd;
+}
+
+std::string pidIn(int fd) {
+    char holder[32] = {0};
+    const ssize_t n = ::pread(fd, holder, sizeof holder - 1, 0);
+    return n > 0 ? std::string(holder, std::size_t(n)) : "?";
+}
+
+void writePid(int fd, const std::string& path) {
     const std::string pid = std::to_string(::getpid());
-    if (::ftruncate(fd_, 0) != 0 || ::pwrite(fd_, pid.data(), pid.size(), 0) != ssize_t(pid.size()))
+    if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, pid.data(), pid.size(), 0) != ssize_t(pid.size()))
         throw Error(path + ": cannot write the lock holder's pid: " + std::strerror(errno));
 }
 
+// The pids of the shard runs holding their locks in `folder` now.
+std::string runningShards(const std::string& folder) {
+    std::string pids;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(folder, ec)) {
+        const std::string name = entry.path().filename().string();
+        if (name.rfind(".rtbench.shard-", 0) != 0 || entry.is_symlink(ec)) continue;
+        const int fd = ::open(entry.path().c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+        if (fd < 0) continue;
+        if (::flock(fd, LOCK_EX | LOCK_NB) != 0) pids += (pids.empty() ? "" : ", ") + pidIn(fd);
+        ::close(fd);
+    }
+    return pids;
+}
+
+}  // namespace
+
+namespace {
+
+// Opens `path` and flocks it (LOCK_EX or LOCK_SH) without waiting: the descriptor, or -1 when
+// another process holds it (its pid, as written in the file, in `holder`).
+int tryLock(const std::string& path, int operation, std::string& holder) {
+    const int fd = openLockFile(path);
+    if (::flock(fd, operation | LOCK_NB) == 0) return fd;
+    const int why = errno;
+    holder = pidIn(fd);
+    ::close(fd);
+    if (why != EWOULDBLOCK) throw Error(path + ": cannot lock: " + std::strerror(why));
+    return -1;
+}
+
+}  // namespace
+
+OutputFolderLock::OutputFolderLock(const std::string& folder) {
+    const std::string path = (fs::path(folder) / ".rtbench.lock").string();
+    std::string holder;
+    const int fd = tryLock(path, LOCK_EX, holder);
+    if (fd < 0) {
+        const std::string shards = runningShards(folder);
+        if (!shards.empty())
+            throw Error(folder + ": shard runs (pid " + shards +
+                        ") are writing this results folder; wait for them (then `rtbench merge`) or use "
+                        "another -o / experiment.name");
+        throw Error(folder + ": another rtbench process (pid " + holder +
+                    ") is writing this results folder; wait for it or use another -o / experiment.name");
+    }
+    fds_.push_back(fd);
+    try {
+        writePid(fd, path);
+    } catch (...) {
+        ::close(fd);
+        throw;
+    }
+}
+
+OutputFolderLock::OutputFolderLock(const std::string& folder, const std::string& shard) {
+    std::string holder;
+    const int fd = tryLock((fs::path(folder) / ".rtbench.lock").string(), LOCK_SH, holder);
+    if (fd < 0)
+        throw Error(folder + ": another rtbench process (pid " + holder +
+                    ") is writing this whole results folder (a run without --shard, or a merge); wait for it");
+    const std::string shardPath = (fs::path(folder) / (".rtbench." + shard + ".lock")).string();
+    int shardFd = -1;
+    try {
+        shardFd = tryLock(shardPath, LOCK_EX, holder);
+    } catch (...) {
+        ::close(fd);
+        throw;
+    }
+    if (shardFd < 0) {
+        ::close(fd);  // a constructor that throws runs no destructor
+        throw Error(folder + ": another rtbench process (pid " + holder + ") is writing " + shard +
+                    " of this results folder; wait for it");
+    }
+    fds_ = {fd, shardFd};
+    try {
+        writePid(shardFd, shardPath);
+    } catch (...) {
+        ::close(fd);
+        ::close(shardFd);
+        throw;
+    }
+}
+
 OutputFolderLock::~OutputFolderLock() {
-    if (fd_ >= 0) ::close(fd_);  // releases the flock; the file stays (removing it would race)
+    for (int fd : fds_) ::close(fd);  // releases the flocks; the files stay (removing them would race)
+}
+
+void refuseSymlinks(const std::string& folder) {
+    std::error_code ec;
+    if (fs::is_symlink(fs::symlink_status(folder, ec)))
+        throw Error(folder + ": the results folder is a symlink; rtbench writes only into a real folder "
+                             "(give -o the folder it points to)");
+    for (const auto& entry : fs::directory_iterator(folder, ec))
+        if (entry.is_symlink(ec))
+            throw Error(entry.path().string() +
+                        ": a symlink in the results folder; rtbench never writes through one and refuses a "
+                        "folder holding one: remove it");
+    if (ec) throw Error(folder + ": cannot list the results folder: " + ec.message());
 }
 
 void checkWritableFile(const std::string& path) {
     std::error_code ec;
     const fs::file_status status = fs::symlink_status(path, ec);
     if (!fs::exists(status)) return;
+    if (fs::is_symlink(status)) throw Error(path + ": is a symlink; rtbench never writes through one: remove it");
     if (!fs::is_regular_file(status))
         throw Error(path + ": exists but is not a regular file; move it away first");
     if (::access(path.c_str(), W_OK) != 0 && errno != ENOENT)

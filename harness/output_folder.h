@@ -1,7 +1,8 @@
-// The folder an experiment writes: <output>/<experiment.name>/, checked before any run starts
-// and held by one process at a time.
+// The folder an experiment writes: <output>/<experiment.name>/, checked before any run starts,
+// never written through a symlink, and locked against a second writer.
 #pragma once
 #include <string>
+#include <vector>
 
 namespace rtbench {
 
@@ -9,22 +10,32 @@ namespace rtbench {
 // not "." or "..", not absolute, no control characters), so results never land outside `output`.
 std::string experimentFolder(const std::string& output, const std::string& name);
 
-// An exclusive lock on a results folder (flock on <folder>/.rtbench.lock, holding the pid), kept
-// for the lifetime of the object. A second process fails at once, naming the holder's pid. The
-// lock ends with the process, so a killed run never leaves the folder locked.
+// Locks on a results folder (flock, released when the process ends however it ends, so a killed
+// run never leaves the folder locked). A whole-plan run and `rtbench merge` hold the folder's
+// lock (.rtbench.lock) exclusively; a shard run holds it shared, so shards run side by side, and
+// holds its own shard's lock (.rtbench.<shard>.lock) exclusively. A process that cannot lock
+// fails at once, naming the holder's pid. Lock files are opened without following symlinks.
 class OutputFolderLock {
   public:
+    // The whole folder.
     explicit OutputFolderLock(const std::string& folder);
+    // One shard ("shard-0-of-2") of the folder.
+    OutputFolderLock(const std::string& folder, const std::string& shard);
     ~OutputFolderLock();
     OutputFolderLock(const OutputFolderLock&) = delete;
     OutputFolderLock& operator=(const OutputFolderLock&) = delete;
 
   private:
-    int fd_ = -1;
+    std::vector<int> fds_;
 };
 
-// Throws rtbench::Error unless `path` is absent or a regular file that can be replaced (checked
-// before a run is computed, so a result is never computed and then lost).
+// Throws rtbench::Error when the results folder is a symlink or holds one: rtbench writes only
+// regular files of its own in it, and a planted link (runs.csv -> ~/.bashrc) must not redirect
+// a write.
+void refuseSymlinks(const std::string& folder);
+
+// Throws rtbench::Error unless `path` is absent or a regular file (not a symlink) that can be
+// replaced (checked before a run is computed, so a result is never computed and then lost).
 void checkWritableFile(const std::string& path);
 
 }  // namespace rtbench

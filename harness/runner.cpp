@@ -10,6 +10,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <regex>
 #include <set>
 #include <fstream>
 #include <sstream>
@@ -86,15 +87,14 @@ struct Caches {
     std::map<std::string, std::shared_ptr<ExactHits>> exactHits;   // by scene, rays and sample
 };
 
-VulkanContext& deviceFor(const RunConfig& run, const RunnerOptions& options, Caches& caches, Row& row) {
-    const std::string deviceName = options.deviceOverride.empty() ? run.getString("device.name") : options.deviceOverride;
-    const bool validation = options.validationOverride || run.getBool("device.validation");
+// The run's device (device.name, device.validation: the command line's -d and --validation are
+// applied to the plan), opened once per sweep.
+VulkanContext& deviceFor(const RunConfig& run, Caches& caches) {
+    const std::string deviceName = run.getString("device.name");
+    const bool validation = run.getBool("device.validation");
     const std::string deviceKey = deviceName + (validation ? "+validation" : "");
     if (!caches.devices.count(deviceKey)) caches.devices[deviceKey] = std::make_shared<VulkanContext>(deviceName, validation);
-    VulkanContext& vk = *caches.devices[deviceKey];
-    row["device"] = vk.info().name;
-    row["driver"] = vk.info().driver;
-    return vk;
+    return *caches.devices[deviceKey];
 }
 
 // The scene as a run sees it: its source moved by scene.scale and scene.translate, in float.
@@ -120,14 +120,31 @@ struct RunScene {
     std::string tracedKey;  // the traced mesh's cache key (Embree's scenes are cached by it too)
 };
 
-RunScene sceneFor(const ExperimentPlan& plan, const RunConfig& run, Caches& caches, Row& row) {
+// The scene as its source describes it, moved; loaded once per sweep. Its `inputs` are the
+// files read, as they were when read.
+const std::shared_ptr<TriangleMesh>& fullScene(const ExperimentPlan& plan, const RunConfig& run, Caches& caches) {
     const std::string key = sceneKey(run);
     if (!caches.meshes.count(key)) {
         TriangleMesh mesh = loadScene(run.getString("scene.source"), plan.configDir);
         for (glm::vec3& v : mesh.vertices) v = sceneTransform(run, v);
         caches.meshes[key] = std::make_shared<TriangleMesh>(std::move(mesh));
     }
-    const std::shared_ptr<TriangleMesh>& full = caches.meshes[key];
+    return caches.meshes[key];
+}
+
+// What a row records of the files its scene was made from: part of the run's identity.
+void writeInputColumns(const TriangleMesh& scene, Row& row) {
+    row["inputs_hash"] = inputsHash(scene.inputs);
+    std::string files;
+    for (const InputFile& f : scene.inputs)
+        files += (files.empty() ? "" : "; ") + f.path + " (" + std::to_string(f.bytes) + " bytes, fnv1a64 " + f.hash + ")";
+    row["input_files"] = files;
+}
+
+RunScene sceneFor(const ExperimentPlan& plan, const RunConfig& run, Caches& caches, Row& row) {
+    const std::string key = sceneKey(run);
+    const std::shared_ptr<TriangleMesh>& full = fullScene(plan, run, caches);
+    writeInputColumns(*full, row);
     row["scene_full_triangles"] = row["scene_triangles"] = std::to_string(full->triangles.size());
     validateSceneRange(*full);  // before the structure, the camera fit or Embree see it
 
@@ -280,9 +297,8 @@ void writeImageAccuracy(const std::vector<gpu::Ray>& rays, const RunScene& scene
 // against the structure's CPU reference) -> Embree on the same rays -> the exact reference on a
 // sample of them -> metrics -> images. Every
 // value goes to `row`; a self-check that fails throws after the row is complete.
-void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOptions& options,
-                const std::string& folder, Caches& caches, Row& row) {
-    VulkanContext& vk = deviceFor(run, options, caches, row);
+void executeRun(const ExperimentPlan& plan, const RunConfig& run, const std::string& folder, Caches& caches, Row& row) {
+    VulkanContext& vk = deviceFor(run, caches);
     const std::size_t messagesBefore = vk.validationMessages().size();
     const StructureType& structureKind = structureType(run.getString("structure.type"));
     const StrategyType& strategy = strategyType(run.getString("strategy.type"));
@@ -354,7 +370,7 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
     // Writers: images, or the per-ray records to make them later.
     const std::string prefix = (fs::path(folder) / ("run-" + row["run"])).string();
     const bool wantImages = run.getBool("output.images");
-    if (run.getBool("output.hit_records") || (wantImages && !imagesSupported())) writeHitRecords(prefix + ".hits", image);
+    if (run.getBool("output.hit_records") || (wantImages && !imagesSupported())) writeHitRecords(prefix + ".hits", image, row["run"], row["config_hash"]);
     if (wantImages && imagesSupported()) writeImages(prefix, image);
 
     if (vk.validationMessages().size() != messagesBefore)
@@ -371,24 +387,20 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const RunnerOp
                     std::to_string(method.branchingMismatches) + " of " + std::to_string(rays.size()) + " rays");
 }
 
-// The runs done so far, as context.json lists them.
-Json runsJson(const std::vector<Row>& rows) {
-    Json runs = Json::array();
-    for (const Row& r : rows)
-        runs.push_back({{"run", r.at("run")}, {"label", r.at("label")}, {"config_hash", r.at("config_hash")},
-                        {"status", r.at("status")}});
-    return runs;
-}
-
-// What is needed to re-run and to judge the experiment; written when the sweep starts (complete:
-// false) and rewritten after every run, so `rtbench check` works on an interrupted sweep.
-Json contextJson(const ExperimentPlan& plan, const RunnerOptions& options, const std::vector<Row>& rows,
-                 const Caches& caches, const std::string& startedUtc, bool complete) {
+// What is needed to re-run and to judge the experiment: written when the sweep starts, with every
+// device it uses already opened (complete: false), and once more at its end (complete: true). The
+// runs done are runs.csv's rows, so `rtbench check` works on an interrupted sweep, and a run's
+// bookkeeping does not grow with the plan.
+Json contextJson(const ExperimentPlan& plan, const RunnerOptions& options, const Caches& caches,
+                 const std::string& startedUtc, bool complete) {
     Json j;
     j["command"] = options.commandLine;
     j["config_path"] = plan.configPath;
     j["config_text"] = plan.configText;
     j["config_dir"] = plan.configDir;
+    j["overrides"] = Json::object();  // the command line's -d, --validation, --embree-config
+    for (const auto& [key, value] : plan.overrides) j["overrides"][key] = value;
+    j["shard"] = options.shardCount > 1 ? std::to_string(options.shardIndex) + "/" + std::to_string(options.shardCount) : "";
     j["git_commit"] = gitCommit();
     j["date_utc"] = startedUtc;
     j["complete"] = complete;
@@ -405,9 +417,34 @@ Json contextJson(const ExperimentPlan& plan, const RunnerOptions& options, const
                                 {"timestamp_period_ns", d.timestampPeriodNs}});
     }
     j["plan"] = Json::array();
-    for (const RunConfig& run : plan.runs) j["plan"].push_back({{"run", runNumber(run)}, {"config_hash", run.hash()}});
-    j["runs"] = runsJson(rows);
+    for (const RunConfig& run : plan.runs)
+        j["plan"].push_back({{"run", runNumber(run)}, {"config_hash", run.hash()}, {"label", run.label()}});
     return j;
+}
+
+// A run's identity beyond its parameters (config_hash): the commit of the binary, the device it
+// ran on and the contents of the files its scene was made from. A row of an earlier invocation
+// stands for a run of this plan only when all of them are equal.
+std::string identity(const Row& row) {
+    auto get = [&](const char* column) {
+        const auto it = row.find(column);
+        return it == row.end() ? std::string() : it->second;
+    };
+    return get("run") + "|" + get("config_hash") + "|" + get("git_commit") + "|" + get("device") + "|" + get("driver") +
+           "|" + get("inputs_hash");
+}
+
+// <folder>/superseded-<UTC time>[-k]-runs.csv for rows set aside (a name merge and resume never
+// read), never an existing file's.
+std::string supersededPath(const std::string& folder, const std::string& csvName) {
+    std::string stamp = utcNow();
+    stamp.erase(std::remove(stamp.begin(), stamp.end(), ':'), stamp.end());
+    stamp.erase(std::remove(stamp.begin(), stamp.end(), '-'), stamp.end());
+    for (int k = 0;; ++k) {
+        const fs::path path = fs::path(folder) / ("superseded-" + stamp + (k ? "-" + std::to_string(k) : "") + "-" + csvName);
+        std::error_code ec;
+        if (!fs::exists(fs::symlink_status(path, ec))) return path.string();
+    }
 }
 
 }  // namespace
@@ -425,7 +462,7 @@ std::string summaryTable(const std::vector<Row>& rows) {
         return it == r.end() || it->second.empty() ? std::string("-") : it->second;
     };
     out << std::left << std::setw(5) << "run" << std::setw(34) << "parameters" << std::right << std::setw(13)
-        << "kernel Mr/s" << std::setw(14) << "Embree1 Mr/s" << std::setw(15) << "Embree16 Mr/s" << std::setw(9)
+        << "kernel Mr/s" << std::setw(14) << "Embree1 Mr/s" << std::setw(15) << "Embree16 Mr/s" << std::setw(11)
         << "ratio" << std::setw(12) << "hit/miss %" << std::setw(10) << "status" << "\n";
     for (const Row& r : rows) {
         std::string agreement = get(r, "hit_miss_agreement");
@@ -434,7 +471,7 @@ std::string summaryTable(const std::vector<Row>& rows) {
         if (label.size() > 33) label = label.substr(0, 30) + "...";
         out << std::left << std::setw(5) << get(r, "run") << std::setw(34) << label << std::right << std::setw(13)
             << get(r, "kernel_mrays_s") << std::setw(14) << get(r, "embree1_mrays_s") << std::setw(15)
-            << get(r, "embree16_mrays_s") << std::setw(9) << get(r, "speed_ratio_vs_embree1") << std::setw(12)
+            << get(r, "embree16_mrays_s") << std::setw(11) << get(r, "speed_ratio_vs_embree1") << std::setw(12)
             << agreement << std::setw(10) << get(r, "status") << "\n";
     }
     for (const Row& r : rows)
@@ -462,11 +499,15 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
     const std::string output = options.outputOverride.empty() ? first.getString("experiment.output") : options.outputOverride;
     result.folder = experimentFolder(output, first.getString("experiment.name"));
     std::error_code ec;
+    if (fs::is_symlink(fs::symlink_status(result.folder, ec))) refuseSymlinks(result.folder);
     fs::create_directories(result.folder, ec);
     if (ec || !fs::is_directory(result.folder))
         throw Error(result.folder + ": cannot create the results folder" + (ec ? ": " + ec.message() : std::string()));
-    // Everything below writes the folder: one process at a time, checked before any run.
-    const OutputFolderLock lock(result.folder);
+    // Everything below writes the folder: one writer of each file, checked before any run.
+    const std::unique_ptr<OutputFolderLock> lock =
+        options.shardCount > 1 ? std::make_unique<OutputFolderLock>(result.folder, shardSuffix(options).substr(1))
+                               : std::make_unique<OutputFolderLock>(result.folder);
+    refuseSymlinks(result.folder);
     const std::string csvName = runsFileName(options);
     const std::string csvPath = (fs::path(result.folder) / csvName).string();
     const std::string contextPath = (fs::path(result.folder) / contextFileName(options)).string();
@@ -474,28 +515,104 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
     checkWritableFile(contextPath);
     const std::vector<std::string> columns = runColumns();
 
-    // Rows of an earlier invocation that can stand: ok, same run, same parameters, same commit.
-    std::map<std::string, Row> earlier;
-    if (!options.force && fs::exists(csvPath)) {
-        std::vector<Row> rows;
-        try {
-            rows = readRunsCsv(csvPath);
-        } catch (const Error& e) {
-            throw Error(std::string(e.what()) + "; cannot resume from it (--force re-runs every run and replaces it)");
-        }
-        for (const Row& row : rows)
-            if (row.at("status") == "ok")
-                earlier[row.at("run") + "|" + row.at("config_hash") + "|" + row.at("git_commit")] = row;
-    }
-
     std::vector<const RunConfig*> mine;
     for (const RunConfig& run : plan.runs)
         if (run.index % options.shardCount == options.shardIndex &&
             (options.onlyRuns.empty() || options.onlyRuns.count(runNumber(run))))
             mine.push_back(&run);
+    // Every device the runs name, opened before anything is written: a device that is not there
+    // fails the command, not each run, and its name and driver are part of each run's identity.
     Caches caches;
+    for (const RunConfig* run : mine) deviceFor(*run, caches);
+
+    // Rows of an earlier invocation that can stand: ok, and the same run in every input.
+    std::vector<Row> earlierRows;
+    if (fs::exists(fs::symlink_status(csvPath, ec))) {
+        try {
+            earlierRows = readRunsCsv(csvPath);
+        } catch (const Error& e) {
+            if (!options.force)
+                throw Error(std::string(e.what()) + "; cannot resume from it (--force re-runs every run and replaces it)");
+            earlierRows.clear();  // --force replaces it; the unreadable file is kept aside below
+            const std::string aside = supersededPath(result.folder, csvName);
+            fs::rename(csvPath, aside, ec);
+            if (ec) throw Error(csvPath + ": cannot move the unreadable file aside: " + ec.message());
+            std::cerr << "[rtbench] " << csvPath << " could not be read (" << e.what() << "); kept as " << aside << "\n";
+        }
+    }
+    std::map<std::string, const Row*> earlier;  // by identity
+    std::set<std::string> earlierRuns;           // "run|config_hash" of those
+    if (!options.force)
+        for (const Row& row : earlierRows)
+            if (row.at("status") == "ok") {
+                earlier[identity(row)] = &row;
+                earlierRuns.insert(row.at("run") + "|" + row.at("config_hash"));
+            }
+
     const std::string started = utcNow();
-    writeJson(contextPath, contextJson(plan, options, result.rows, caches, started, false));
+    // Each run's row as it will be written: its parameters and identity (the scene's inputs are
+    // hashed as loaded, so only runs with an earlier row to match load their scene here).
+    std::vector<Row> rows(mine.size());
+    std::vector<bool> kept(mine.size(), false);
+    std::set<const Row*> keptEarlier;
+    for (std::size_t k = 0; k < mine.size(); ++k) {
+        const RunConfig& run = *mine[k];
+        Row& row = rows[k];
+        for (const auto& [key, value] : run.values) row[paramColumn(key)] = formatValue(value);
+        row["run"] = runNumber(run);
+        row["label"] = run.label();
+        row["config_hash"] = run.hash();
+        row["git_commit"] = gitCommit();
+        const VulkanContext& vk = deviceFor(run, caches);
+        row["device"] = vk.info().name;
+        row["driver"] = vk.info().driver;
+        if (!earlierRuns.count(row["run"] + "|" + row["config_hash"])) continue;
+        Row withInputs = row;
+        try {
+            writeInputColumns(*fullScene(plan, run, caches), withInputs);
+        } catch (const Error&) {
+            continue;  // the scene no longer loads: the run is run again, and says why
+        }
+        const auto previous = earlier.find(identity(withInputs));
+        if (previous == earlier.end()) continue;
+        row = *previous->second;
+        row["label"] = run.label();  // the label names the swept keys of this plan
+        kept[k] = true;
+        keptEarlier.insert(previous->second);
+    }
+    // Earlier rows that do not stand are never lost: they are set aside in a file of their own.
+    std::vector<Row> superseded;
+    std::set<std::string> planned;
+    for (const RunConfig& run : plan.runs) planned.insert(runNumber(run) + "|" + run.hash());
+    std::size_t notInPlan = 0;
+    for (const Row& row : earlierRows)
+        if (!keptEarlier.count(&row)) {
+            superseded.push_back(row);
+            notInPlan += !planned.count(row.at("run") + "|" + row.at("config_hash"));
+        }
+    if (!superseded.empty()) {
+        const std::string aside = supersededPath(result.folder, csvName);
+        writeCsv(aside, columns, superseded);
+        std::string notInPlanRuns;
+        for (const Row& row : superseded)
+            if (!planned.count(row.at("run") + "|" + row.at("config_hash")))
+                notInPlanRuns += (notInPlanRuns.empty() ? "" : ", ") + row.at("run") + " (" + row.at("label") + ")";
+        std::cerr << "[rtbench] " << superseded.size() << " row(s) of " << csvPath << " are not kept: "
+                  << notInPlan << " no longer in the plan" << (notInPlanRuns.empty() ? "" : " [" + notInPlanRuns + "]")
+                  << ", " << superseded.size() - notInPlan
+                  << " failed or from another commit, device or input files" << (options.force ? " (--force)" : "")
+                  << "; they are saved in " << aside << "\n";
+    }
+
+    // The bookkeeping: context.json once now and once at the end; runs.csv written once with the
+    // kept rows, then one appended row per run.
+    writeJson(contextPath, contextJson(plan, options, caches, started, false));
+    {
+        std::vector<Row> keptRows;
+        for (std::size_t k = 0; k < mine.size(); ++k)
+            if (kept[k]) keptRows.push_back(rows[k]);
+        writeCsv(csvPath, columns, keptRows);
+    }
     if (!options.quiet)
         std::cout << "[rtbench] " << plan.configPath << ": " << mine.size() << " run" << (mine.size() == 1 ? "" : "s")
                   << (options.shardCount > 1 ? " (shard " + std::to_string(options.shardIndex) + "/" +
@@ -508,15 +625,8 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
     int executed = 0;
     for (std::size_t k = 0; k < mine.size(); ++k) {
         const RunConfig& run = *mine[k];
-        Row row;
-        for (const auto& [key, value] : run.values) row[paramColumn(key)] = formatValue(value);
-        row["run"] = runNumber(run);
-        row["label"] = run.label();
-        row["config_hash"] = run.hash();
-        row["git_commit"] = gitCommit();
-        const auto previous = earlier.find(row["run"] + "|" + row["config_hash"] + "|" + row["git_commit"]);
-        if (previous != earlier.end()) {
-            result.rows.push_back(previous->second);
+        Row& row = rows[k];
+        if (kept[k]) {
             ++result.reused;
             if (!options.quiet) std::cout << "[run " << k + 1 << "/" << mine.size() << "] " << run.label() << ": done before, kept\n";
             continue;
@@ -530,7 +640,7 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
         }
         const auto start = std::chrono::steady_clock::now();
         try {
-            executeRun(plan, run, options, result.folder, caches, row);
+            executeRun(plan, run, result.folder, caches, row);
             row["status"] = "ok";
         } catch (const std::exception& e) {
             row["status"] = "failed";
@@ -549,59 +659,124 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
                 std::cout << " FAILED: " << row["error"] << "\n";
         }
         if (!row["warnings"].empty()) std::cerr << "[rtbench] run " << row["run"] << " warning: " << row["warnings"] << "\n";
-        result.rows.push_back(row);
-        // After every run: an interrupt loses nothing done, and the context names what ran.
-        writeCsv(csvPath, columns, result.rows);
-        writeJson(contextPath, contextJson(plan, options, result.rows, caches, started, false));
+        appendCsvRow(csvPath, columns, row);  // an interrupt loses nothing done
     }
-    writeCsv(csvPath, columns, result.rows);
-    writeJson(contextPath, contextJson(plan, options, result.rows, caches, started, true));
+    result.rows = rows;
+    writeCsv(csvPath, columns, result.rows);  // in plan order
+    writeJson(contextPath, contextJson(plan, options, caches, started, true));
     return result;
 }
 
+namespace {
+
+// One shard's files as merge reads them.
+struct ShardFiles {
+    fs::path csv, context;
+    Json json;
+};
+
+std::string contextField(const Json& context, const fs::path& path, const char* key) {
+    const auto it = context.find(key);
+    if (it == context.end()) throw Error(path.string() + ": no \"" + key + "\" field");
+    return it->is_string() ? it->get<std::string>() : it->dump();
+}
+
+}  // namespace
+
 std::vector<Row> mergeShards(const std::string& folder) {
-    if (!fs::is_directory(folder)) throw Error(folder + ": not a results folder");
-    const OutputFolderLock lock(folder);
-    std::vector<Row> rows;
-    std::set<std::string> planned;  // "run|config_hash" of every run in the plan
-    fs::path firstContext;
-    int shards = 0;
+    std::error_code ec;
+    if (!fs::is_directory(folder, ec)) throw Error(folder + ": not a results folder");
+    const OutputFolderLock lock(folder);  // no shard is running
+    refuseSymlinks(folder);
+    // runs.shard-<i>-of-<n>.csv with its context.shard-<i>-of-<n>.json.
+    std::map<std::string, ShardFiles> shards;
+    const std::regex csvName(R"(runs\.(shard-[0-9]+-of-[0-9]+)\.csv)"), contextName(R"(context\.(shard-[0-9]+-of-[0-9]+)\.json)");
     for (const auto& entry : fs::directory_iterator(folder)) {
         const std::string name = entry.path().filename().string();
-        if (name.rfind("runs.shard-", 0) == 0 && entry.path().extension() == ".csv") {
-            ++shards;
-            for (const Row& row : readRunsCsv(entry.path().string())) rows.push_back(row);
-        }
-        if (name.rfind("context.shard-", 0) == 0 && entry.path().extension() == ".json") {
-            if (firstContext.empty() || entry.path() < firstContext) firstContext = entry.path();
-            const Json context = readJson(entry.path().string());
-            try {
-                for (const Json& run : context.at("plan"))
-                    planned.insert(run.at("run").get<std::string>() + "|" + run.at("config_hash").get<std::string>());
-            } catch (const Json::exception& e) {
-                throw Error(entry.path().string() + ": no valid \"plan\" list: " + e.what());
+        std::smatch m;
+        if (std::regex_match(name, m, csvName)) shards[m[1]].csv = entry.path();
+        if (std::regex_match(name, m, contextName)) shards[m[1]].context = entry.path();
+    }
+    if (shards.empty()) throw Error(folder + ": no runs.shard-*.csv files to merge");
+    std::set<std::string> counts;
+    for (auto& [shard, files] : shards) {
+        if (files.csv.empty()) throw Error(folder + ": " + files.context.filename().string() + " has no runs." + shard + ".csv");
+        if (files.context.empty()) throw Error(folder + ": " + files.csv.filename().string() + " has no context." + shard + ".json");
+        files.json = readJson(files.context.string());
+        counts.insert(shard.substr(shard.rfind("-of-") + 4));
+    }
+    if (counts.size() > 1) throw Error(folder + ": shards of different splits (of-" + *counts.begin() + " and of-" + *counts.rbegin() + ")");
+    // The shards must be parts of one experiment: the same config text, overrides, plan and commit.
+    const ShardFiles& reference = shards.begin()->second;
+    for (const auto& [shard, files] : shards)
+        for (const char* key : {"config_text", "overrides", "plan", "git_commit"}) {
+            const std::string a = contextField(reference.json, reference.context, key),
+                              b = contextField(files.json, files.context, key);
+            if (a != b) {
+                const std::string what = std::string(key) == "git_commit" ? "were run at other commits (" + a + " and " + b + ")"
+                                         : std::string(key) == "plan" ? "have other plans"
+                                         : std::string(key) == "overrides" ? "were run with other command-line overrides (" + a + " and " + b + ")"
+                                                                           : "were run from other config texts: the plans differ";
+                throw Error(folder + ": " + reference.context.filename().string() + " and " +
+                            files.context.filename().string() + " " + what + "; they cannot be merged");
             }
         }
+    std::map<std::string, std::string> planned;  // run -> config_hash
+    try {
+        for (const Json& run : reference.json.at("plan"))
+            planned[run.at("run").get<std::string>()] = run.at("config_hash").get<std::string>();
+    } catch (const Json::exception& e) {
+        throw Error(reference.context.string() + ": no valid \"plan\" list: " + e.what());
     }
-    if (shards == 0) throw Error(folder + ": no runs.shard-*.csv files to merge");
-    if (planned.empty()) throw Error(folder + ": no context.shard-*.json with the plan");
+    const std::string commit = contextField(reference.json, reference.context, "git_commit");
     std::map<std::string, Row> byRun;
-    for (const Row& row : rows) {
-        const std::string key = row.at("run") + "|" + row.at("config_hash");
-        if (!planned.count(key)) throw Error(folder + ": run " + row.at("run") + " (" + row.at("label") + ") is not in the plan");
-        if (!byRun.emplace(key, row).second)
-            throw Error(folder + ": run " + row.at("run") + " (" + row.at("label") + ") appears in more than one shard");
+    bool complete = true;
+    for (const auto& [shard, files] : shards) {
+        complete = complete && files.json.value("complete", false);
+        for (const Row& row : readRunsCsv(files.csv.string())) {
+            const std::string& run = row.at("run");
+            const std::string name = files.csv.filename().string() + ": run " + run + " (" + row.at("label") + ")";
+            if (!planned.count(run) || planned[run] != row.at("config_hash")) throw Error(folder + ": " + name + " is not in the plan");
+            if (row.at("git_commit") != commit) throw Error(folder + ": " + name + " was run at commit " + row.at("git_commit") + ", the shards at " + commit);
+            if (!byRun.emplace(run, row).second) throw Error(folder + ": " + name + " appears in more than one shard");
+        }
     }
-    for (const std::string& key : planned)
-        if (!byRun.count(key)) throw Error(folder + ": run " + key.substr(0, key.find('|')) + " is missing from the shards");
+    for (const auto& [run, hash] : planned)
+        if (!byRun.count(run)) throw Error(folder + ": run " + run + " is missing from the shards");
+    // One device, and one content of each scene's files, across the shards.
+    std::map<std::string, const Row*> byScene;
+    const Row* firstRow = &byRun.begin()->second;
+    for (const auto& [run, row] : byRun) {
+        if (row.at("device") + row.at("driver") != firstRow->at("device") + firstRow->at("driver"))
+            throw Error(folder + ": run " + firstRow->at("run") + " ran on " + firstRow->at("device") + " (" + firstRow->at("driver") +
+                        ") and run " + run + " on " + row.at("device") + " (" + row.at("driver") + "); a merged runs.csv holds one device");
+        if (row.at("inputs_hash").empty()) continue;  // the scene did not load: the row says why
+        const std::string scene = row.at("scene_source");
+        const auto [it, inserted] = byScene.emplace(scene, &row);
+        if (!inserted && it->second->at("inputs_hash") != row.at("inputs_hash"))
+            throw Error(folder + ": runs " + it->second->at("run") + " and " + run + " read other contents of scene.source '" + scene +
+                        "' (" + it->second->at("input_files") + " against " + row.at("input_files") + ")");
+    }
     std::vector<Row> merged;
-    for (const auto& [key, row] : byRun) merged.push_back(row);
+    for (const auto& [run, row] : byRun) merged.push_back(row);
     const std::string csvPath = (fs::path(folder) / "runs.csv").string();
     checkWritableFile(csvPath);
+    if (fs::exists(fs::symlink_status(csvPath, ec))) {
+        // Merging again is fine; replacing other results is not.
+        std::vector<Row> existing;
+        try {
+            existing = readRunsCsv(csvPath);
+        } catch (const Error& e) {
+            throw Error(csvPath + ": exists and is not the merge of these shards (" + e.what() + "); move it away first");
+        }
+        if (existing != merged)
+            throw Error(csvPath + ": exists and differs from the merge of these shards (" + std::to_string(existing.size()) +
+                        " rows against " + std::to_string(merged.size()) + "); move it away first");
+    }
     writeCsv(csvPath, runColumns(), merged);
-    Json context = readJson(firstContext.string());
-    context["complete"] = true;
-    context["runs"] = runsJson(merged);
+    Json context = reference.json;
+    context["complete"] = complete;
+    context["shard"] = "";
     writeJson((fs::path(folder) / "context.json").string(), context);
     return merged;
 }

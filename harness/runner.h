@@ -13,13 +13,14 @@
 namespace rtbench {
 
 struct RunnerOptions {
-    std::string outputOverride;  // replaces experiment.output when non-empty
-    std::string deviceOverride;  // replaces device.name when non-empty
-    bool validationOverride = false;  // forces device.validation on
+    std::string outputOverride;  // replaces experiment.output when non-empty (-d and --validation
+                                 // set device.* in the plan: overrideKey, harness/config.h)
     bool quiet = false;
     std::string commandLine;  // recorded in context.json
-    // Resumption: runs whose ok row (same run number, config hash and git commit) is already in
-    // the output's CSV are kept, not re-run, unless `force`.
+    // Resumption: runs whose ok row is already in the output's CSV with the same identity (run
+    // number, config hash, git commit, device and driver, and the contents of the scene's files)
+    // are kept, not re-run, unless `force`. Rows that are not kept are saved aside in
+    // superseded-<time>-runs.csv, never lost.
     bool force = false;
     // Sharding: run only the runs whose index % shardCount == shardIndex, into
     // runs.shard-<i>-of-<n>.csv (`rtbench merge` joins the shards).

@@ -1,12 +1,19 @@
 #include "writers.h"
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
 
 #include "structures/error.h"
+#include "structures/input_file.h"
 #include "structures/text.h"
 
 namespace rtbench {
@@ -22,45 +29,111 @@ std::string csvField(const std::string& raw) {
 }
 }  // namespace
 
-void writeFileAtomically(const std::string& path, const std::string& text) {
-    const std::string tmp = path + ".tmp";
-    std::error_code ec;
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (!out) throw Error(tmp + ": cannot open for writing");
-        out << text;
-        out.flush();
-        if (!out) {
-            out.close();
-            std::filesystem::remove(tmp, ec);  // never leave a partial file behind
-            throw Error(tmp + ": write failed (disk full?); " + path + " is unchanged");
+namespace {
+
+std::string parentOf(const std::string& path) {
+    const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+    return parent.empty() ? "." : parent.string();
+}
+
+void refuseSymlink(const std::string& path) {
+    struct stat st{};
+    if (::lstat(path.c_str(), &st) == 0 && S_ISLNK(st.st_mode))
+        throw Error(path + ": is a symlink; rtbench never writes through one: remove it");
+}
+
+// Writes all of `bytes` to fd; false (errno set) on failure.
+bool writeAll(int fd, std::string_view bytes) {
+    std::size_t done = 0;
+    while (done < bytes.size()) {
+        const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) {
+            if (n == 0) errno = ENOSPC;
+            return false;
         }
+        done += std::size_t(n);
     }
-    std::filesystem::rename(tmp, path, ec);
-    if (ec) {
-        const std::string why = ec.message();
-        std::filesystem::remove(tmp, ec);
-        throw Error(path + ": rename failed: " + why);
+    return true;
+}
+
+}  // namespace
+
+void writeFileAtomically(const std::string& path, const std::string& text) {
+    refuseSymlink(path);
+    // A temporary of a unique name beside the target (mkostemp: O_CREAT | O_EXCL, so a planted
+    // file or symlink of that name is never opened), renamed over the target: rename replaces
+    // the directory entry, never writing through what was there.
+    std::string tmp = (std::filesystem::path(parentOf(path)) /
+                       ("." + std::filesystem::path(path).filename().string() + ".tmp-XXXXXX"))
+                          .string();
+    const int fd = ::mkostemp(tmp.data(), O_CLOEXEC);
+    if (fd < 0) throw Error(path + ": cannot create a temporary file beside it: " + std::strerror(errno));
+    const bool written = ::fchmod(fd, 0644) == 0 && writeAll(fd, text) && ::fsync(fd) == 0;
+    const int why = errno;
+    if (::close(fd) != 0 || !written) {
+        ::unlink(tmp.c_str());  // never leave a partial file behind
+        throw Error(tmp + ": write failed (disk full?): " + std::strerror(written ? errno : why) + "; " + path +
+                    " is unchanged");
+    }
+    if (::rename(tmp.c_str(), path.c_str()) != 0) {
+        const int renameWhy = errno;
+        ::unlink(tmp.c_str());
+        throw Error(path + ": rename failed: " + std::strerror(renameWhy));
     }
 }
 
+namespace {
+
+// One CSV line of `row` under `columns`; `rowNumber` names it in the error for an undeclared column.
+std::string csvLine(const std::string& path, const std::vector<std::string>& columns,
+                    const std::set<std::string>& declared, const Row& row, std::size_t rowNumber) {
+    for (const auto& [column, value] : row)
+        if (!declared.count(column))
+            throw Error(path + ": row " + std::to_string(rowNumber) + " sets column '" + column +
+                        "', which is not declared");
+    std::string line;
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+        auto it = row.find(columns[c]);
+        line += (c ? "," : "") + (it == row.end() ? std::string() : csvField(it->second));
+    }
+    return line + "\n";
+}
+
+}  // namespace
+
 void writeCsv(const std::string& path, const std::vector<std::string>& columns, const std::vector<Row>& rows) {
     const std::set<std::string> declared(columns.begin(), columns.end());
-    std::ostringstream out;
-    for (std::size_t c = 0; c < columns.size(); ++c) out << (c ? "," : "") << csvField(columns[c]);
-    out << "\n";
-    for (std::size_t r = 0; r < rows.size(); ++r) {
-        for (const auto& [column, value] : rows[r])
-            if (!declared.count(column))
-                throw Error(path + ": row " + std::to_string(r + 1) + " sets column '" + column +
-                            "', which is not declared");
-        for (std::size_t c = 0; c < columns.size(); ++c) {
-            auto it = rows[r].find(columns[c]);
-            out << (c ? "," : "") << (it == rows[r].end() ? "" : csvField(it->second));
-        }
-        out << "\n";
+    std::string out;
+    for (std::size_t c = 0; c < columns.size(); ++c) out += (c ? "," : "") + csvField(columns[c]);
+    out += "\n";
+    for (std::size_t r = 0; r < rows.size(); ++r) out += csvLine(path, columns, declared, rows[r], r + 1);
+    writeFileAtomically(path, out);
+}
+
+void appendCsvRow(const std::string& path, const std::vector<std::string>& columns, const Row& row) {
+    const std::set<std::string> declared(columns.begin(), columns.end());
+    const std::string line = csvLine(path, columns, declared, row, 1);
+    const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_NOFOLLOW | O_CLOEXEC);
+    if (fd < 0) {
+        if (errno == ELOOP) throw Error(path + ": is a symlink; rtbench never writes through one: remove it");
+        throw Error(path + ": cannot open to append a row: " + std::strerror(errno));
     }
-    writeFileAtomically(path, out.str());
+    struct stat st{};
+    if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        ::close(fd);
+        throw Error(path + ": not a regular file");
+    }
+    // One write of the whole line; on failure the file is cut back to what it was.
+    const bool written = writeAll(fd, line) && ::fdatasync(fd) == 0;
+    const int why = errno;
+    if (!written) {
+        const bool restored = ::ftruncate(fd, st.st_size) == 0;
+        ::close(fd);
+        throw Error(path + ": write failed (disk full?): " + std::strerror(why) + "; " +
+                    (restored ? "the file is as before this row" : "and could not be cut back to its rows"));
+    }
+    ::close(fd);
 }
 
 namespace {
@@ -70,11 +143,7 @@ struct CsvRecords {
 };
 
 CsvRecords readCsvRecords(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(path + ": cannot open CSV");
-    std::stringstream buffer;
-    buffer << in.rdbuf();
-    const std::string text = buffer.str();
+    const std::string text = readInputFile(path, kMaxResultsFileBytes, "CSV file");
     // RFC 4180: records end in CRLF or LF; a quoted field may hold commas, line breaks and "".
     CsvRecords out;
     std::vector<std::string> record;
@@ -155,10 +224,9 @@ void writeJson(const std::string& path, const Json& json) {
 }
 
 Json readJson(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(path + ": cannot open");
+    const std::string text = readInputFile(path, kMaxResultsFileBytes, "JSON file");
     try {
-        return Json::parse(in);
+        return Json::parse(text);
     } catch (const Json::exception& e) {
         throw Error(path + ": not valid JSON: " + e.what());
     }

@@ -11,20 +11,28 @@
 
 namespace rtbench {
 
-// Writes `rows` under `columns` (missing cells empty) to path via path.tmp + rename; a row that
-// sets a column not in `columns` is an error (a typo never silently drops a value).
+// Writes `rows` under `columns` (missing cells empty) to path atomically (writeFileAtomically); a
+// row that sets a column not in `columns` is an error (a typo never silently drops a value).
 void writeCsv(const std::string& path, const std::vector<std::string>& columns, const std::vector<Row>& rows);
+
+// Appends one row to an existing CSV written by writeCsv with the same columns: one write of the
+// whole line (O_APPEND, never through a symlink), synced; a failed write (a full disk) cuts the
+// file back to the rows it had. A sweep's per-run cost, whatever the number of rows.
+void appendCsvRow(const std::string& path, const std::vector<std::string>& columns, const Row& row);
 
 // Reads a CSV as RFC 4180 (quoted fields with "" escapes and line breaks, LF or CRLF) into rows
 // keyed by the header. Throws rtbench::Error naming the file and line on an unclosed quote, a
 // duplicated header name, or a row with more or fewer fields than the header.
 std::vector<Row> readCsv(const std::string& path);
 
-// Writes text to path via path.tmp + rename; on failure the .tmp is removed and path unchanged.
+// Writes text to path through a uniquely named temporary beside it (created with O_EXCL, so
+// never a planted file or symlink), synced and renamed over path; refuses a path that is a
+// symlink. On failure the temporary is removed and path unchanged.
 void writeFileAtomically(const std::string& path, const std::string& text);
 
 // JSON files (nlohmann::json, keys kept in the order written): written atomically; a read that
-// fails names the file.
+// fails names the file. CSV and JSON files are read only when regular and within
+// kMaxResultsFileBytes (structures/input_file.h).
 using Json = nlohmann::ordered_json;
 void writeJson(const std::string& path, const Json& json);
 Json readJson(const std::string& path);

@@ -47,18 +47,7 @@ std::string RunConfig::canonical() const {
     return out;
 }
 
-std::uint64_t fnv1a64(std::string_view bytes) {
-    std::uint64_t h = 1469598103934665603ull;
-    for (unsigned char c : bytes) h = (h ^ c) * 1099511628211ull;
-    return h;
-}
-
-std::string RunConfig::hash() const {
-    const std::uint64_t h = fnv1a64(canonical());
-    char buf[17];
-    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-    return buf;
-}
+std::string RunConfig::hash() const { return hex64(fnv1a64(canonical())); }
 
 std::string RunConfig::label() const {
     std::string params;

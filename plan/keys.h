@@ -12,6 +12,8 @@
 #include <variant>
 #include <vector>
 
+#include "structures/input_file.h"  // fnv1a64
+
 namespace rtbench {
 
 using ConfigValue = std::variant<std::int64_t, double, std::string, bool, std::array<double, 3>>;
@@ -37,6 +39,9 @@ struct KeySpec {
     // When none is given, the key with a groupDefault takes it.
     std::string group = {};
     std::optional<ConfigValue> groupDefault = {};
+    // False for keys that place the results (experiment.name, experiment.output): one value per
+    // config, never a list, the same in every [[sweep]].
+    bool sweepable = true;
 };
 
 // One run: every schema key that has a value (given or default), scalar.
@@ -67,8 +72,5 @@ std::string formatValue(const ConfigValue& value);
 // holds, `valueOf(key)` giving the key's value as formatValue writes it, or nothing when unset.
 bool conditionsHold(const std::vector<std::string>& conditions,
                     const std::function<std::optional<std::string>(const std::string& key)>& valueOf);
-
-// FNV-1a 64 of bytes: config hashes, and the fingerprint of a run's rays.
-std::uint64_t fnv1a64(std::string_view bytes);
 
 }  // namespace rtbench

@@ -6,7 +6,7 @@ rtbench_packages=(
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
   libembree-dev libtbb-dev
   libcgal-dev libcgal-demo libgmp-dev libmpfr-dev libboost-dev
-  libopenimageio-dev libglm-dev libtomlplusplus-dev libcli11-dev libgtest-dev nlohmann-json3-dev
+  libopenimageio-dev libglm-dev libtomlplusplus-dev libcli11-dev libgtest-dev nlohmann-json3-dev libarchive-dev
   python3-matplotlib python3-pandas
 )
 

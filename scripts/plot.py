@@ -5,7 +5,11 @@ usage: scripts/plot.py RESULTS_DIR      (or: build/rtbench plot RESULTS_DIR)
 Charts whose runs are absent from the folder are skipped. Uses Debian's python3-matplotlib and
 python3-pandas only.
 """
+import errno
+import json
+import os
 import sys
+import tempfile
 from pathlib import Path
 
 import matplotlib
@@ -22,10 +26,44 @@ KERNELS = [("kernel_ms_setup", "setup"), ("kernel_ms_traverse", "traverse"), ("k
            ("kernel_ms_write", "write")]
 
 
+class PlotError(Exception):
+    """What stops the charts, said in one line: "<path>: <why>"."""
+
+
+def umask() -> int:
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
+
+
+def write_atomically(fig, target: Path, ext: str):
+    """fig as `ext` into `target`: a new temporary file in the same folder (O_EXCL, O_NOFOLLOW:
+    mkstemp), then os.replace over the target, which replaces a name and never writes through a
+    link. A target that exists as a symbolic link is refused; a failed write leaves the old chart."""
+    if target.is_symlink():
+        raise PlotError(f"{target}: is a symbolic link; refusing to write a chart through it")
+    if target.exists() and not target.is_file():
+        raise PlotError(f"{target}: exists and is not a regular file; cannot write a chart there")
+    fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".tmp")
+    try:
+        os.fchmod(fd, 0o666 & ~umask())  # as a plain open() would create it, not mkstemp's 0600
+        with os.fdopen(fd, "wb") as out:
+            fig.savefig(out, format=ext, dpi=110)
+            out.flush()
+            os.fsync(out.fileno())
+        os.replace(tmp, target)
+    except BaseException:
+        try:
+            os.unlink(tmp)
+        except FileNotFoundError:
+            pass
+        raise
+
+
 def save(fig, folder: Path, name: str, written: list):
     fig.tight_layout()
     for ext in ("png", "svg"):
-        fig.savefig(folder / f"{name}.{ext}", dpi=110)
+        write_atomically(fig, folder / f"{name}.{ext}", ext)
     plt.close(fig)
     written.append(name)
 
@@ -484,15 +522,42 @@ def structures_work(runs, device, folder, written):
     save(fig, folder, "structures_work", written)
 
 
-def main() -> int:
-    if len(sys.argv) != 2:
-        print(__doc__)
-        return 2
-    folder = Path(sys.argv[1])
-    runs, failed, _, device = load(folder)
+def why(error: OSError) -> str:
+    return error.strerror or str(error)
+
+
+def check_folder(folder: Path):
+    """The folder must exist, be a folder with runs.csv and context.json, and take new files."""
+    if not os.path.lexists(folder):
+        raise PlotError(f"{folder}: no such folder")
+    if not folder.is_dir():
+        raise PlotError(f"{folder}: not a folder (expected an rtbench results folder holding runs.csv)")
+    for name in ("runs.csv", "context.json"):
+        if not (folder / name).is_file():
+            raise PlotError(f"{folder}: no {name} (not an rtbench results folder, or no run has finished)")
+    # Writable? Try it: os.access says yes to root on a read-only mount or a 0555 folder alike.
+    try:
+        fd, probe = tempfile.mkstemp(dir=folder, prefix=".plot-probe.", suffix=".tmp")
+        os.close(fd)
+        os.unlink(probe)
+    except OSError as e:
+        if e.errno in (errno.EACCES, errno.EPERM, errno.EROFS):
+            raise PlotError(f"{folder}: charts cannot be written there ({why(e)}: the folder is read-only)") from e
+        raise PlotError(f"{folder}: charts cannot be written there ({why(e)})") from e
+
+
+def run(folder: Path) -> int:
+    check_folder(folder)
+    try:
+        runs, failed, _, device = load(folder)
+    except (pd.errors.ParserError, pd.errors.EmptyDataError, UnicodeDecodeError) as e:
+        raise PlotError(f"{folder / 'runs.csv'}: cannot be read as a CSV ({str(e).strip()})") from e
+    except json.JSONDecodeError as e:
+        raise PlotError(f"{folder / 'context.json'}: not valid JSON (line {e.lineno}: {e.msg})") from e
+    except (AttributeError, KeyError) as e:
+        raise PlotError(f"{folder}: runs.csv or context.json lacks what rtbench writes ({e})") from e
     if runs.empty:
-        print(f"{folder}: no successful runs to chart")
-        return 1
+        raise PlotError(f"{folder}: no successful runs to chart")
     written = []
     for chart in (speed_vs_accuracy, vertex_precision, simplification):
         chart(runs, device, folder, written)
@@ -503,6 +568,21 @@ def main() -> int:
     failure_map(runs, failed, device, folder, written)
     print(f"{folder}: wrote {', '.join(written)} (.png, .svg)")
     return 0
+
+
+def main() -> int:
+    if len(sys.argv) != 2:
+        print(__doc__)
+        return 2
+    folder = Path(sys.argv[1])
+    try:
+        return run(folder)
+    except PlotError as e:
+        print(f"rtbench plot: {e}", file=sys.stderr)
+        return 1
+    except OSError as e:  # a chart that could not be written (full disk, folder removed meanwhile)
+        print(f"rtbench plot: {e.filename or folder}: {why(e)}", file=sys.stderr)
+        return 1
 
 
 if __name__ == "__main__":

@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "input_file.h"
+
 namespace rtbench {
 
 struct Bounds3 {
@@ -33,6 +35,7 @@ struct TriangleMesh {
     std::size_t elementsSkipped = 0;    // file elements that are not surfaces (OBJ 'l', 'p')
     std::string elementsSkippedWhat;    // what they were, e.g. "2 line elements ('l')"; "" if none
     VertexLattice lattice;              // bits != 0: every vertex lies on it, and structures store them packed
+    std::vector<InputFile> inputs;      // the files read to make it, in reading order (none: procedural)
 
     Bounds3 bounds() const;
     // Zero-area triangles (repeated vertices or collinear): kept, counted, never hit by any method.

@@ -5,9 +5,15 @@
 #include <CGAL/IO/OFF.h>
 #include <CGAL/IO/PLY.h>
 #include <CGAL/IO/STL.h>
+#include <archive.h>
+#include <archive_entry.h>
+#include <fcntl.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
+#include <map>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -120,21 +126,18 @@ TriangleMesh readMeshBytes(std::string_view bytes, const std::string& nameWithEx
 }
 
 TriangleMesh readMeshFile(const std::string& path) {
-    std::error_code ec;
-    if (!fs::exists(path, ec)) throw Error(printable(path) + ": mesh file not found");
-    if (!fs::is_regular_file(path, ec)) throw Error(printable(path) + ": not a regular file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(printable(path) + ": cannot open for reading");
-    std::ostringstream bytes;
-    bytes << in.rdbuf();
-    if (in.bad()) throw Error(printable(path) + ": read error");
-    return readMeshBytes(bytes.view(), path);
+    const std::string bytes = readInputFile(path, kMaxMeshFileBytes, "mesh file");
+    TriangleMesh mesh = readMeshBytes(bytes, path);
+    mesh.inputs = {fingerprint(path, bytes)};
+    return mesh;
 }
 
-std::string resolveCgalMesh(const std::string& name) {
-    if (name.empty() || name.find('/') != std::string::npos || name.find("..") != std::string::npos)
-        throw Error("cgal:" + name + ": expected a mesh name such as cgal:bunny00");
-    const fs::path archive = "/usr/share/doc/libcgal-demo/data.tar.gz";
+namespace {
+
+const fs::path kCgalArchive = "/usr/share/doc/libcgal-demo/data.tar.gz";
+constexpr const char* kCgalManifest = ".extracted";  // "NAME.off HASH" per line: written last
+
+fs::path cgalCache() {
     fs::path cache;
     if (const char* env = std::getenv("RTBENCH_CACHE"); env && *env)
         cache = env;
@@ -144,43 +147,141 @@ std::string resolveCgalMesh(const std::string& name) {
         cache = fs::path(home) / ".cache" / "rtbench";
     else
         cache = fs::temp_directory_path() / "rtbench-cache";
-    const fs::path meshes = cache / "cgal-data" / "meshes";
-    if (!fs::exists(meshes)) {
-        if (!fs::exists(archive))
-            throw Error("cgal:" + name + ": " + archive.string() +
-                        " is missing (install Debian's libcgal-demo: scripts/setup.sh does)");
-        fs::create_directories(cache);
-        // Extract into a private folder, then rename: a concurrent or interrupted run never
-        // sees a half-extracted cache.
-        const fs::path staging = cache / ("cgal-data.tmp." + std::to_string(::getpid()));
-        fs::remove_all(staging);
-        fs::create_directories(staging);
-        const std::string command =
-            "tar -xzf '" + archive.string() + "' -C '" + staging.string() + "' data/meshes";
-        std::cerr << "[rtbench] extracting CGAL's meshes once into " << meshes.parent_path()
-                  << "\n";
-        if (std::system(command.c_str()) != 0) {
-            fs::remove_all(staging);
-            throw Error("cgal:" + name + ": extracting " + archive.string() + " failed");
+    return cache / "cgal-data";
+}
+
+// Writes `bytes` to a new file `path` (never through a symlink, never over a file).
+void writeNewFile(const fs::path& path, std::string_view bytes) {
+    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+    if (fd < 0) throw Error(printable(path.string()) + ": cannot create: " + std::strerror(errno));
+    std::size_t done = 0;
+    while (done < bytes.size()) {
+        const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) {
+            const int why = errno;
+            ::close(fd);
+            throw Error(printable(path.string()) + ": write failed: " + std::strerror(why));
         }
-        fs::create_directories(meshes.parent_path().parent_path());
-        std::error_code ec;
-        fs::rename(staging / "data", meshes.parent_path(), ec);  // loses a race harmlessly
-        fs::remove_all(staging);
-        if (!fs::exists(meshes))
-            throw Error("cgal:" + name + ": cache " + meshes.string() + " missing");
+        done += std::size_t(n);
     }
-    const fs::path file = meshes / (name + ".off");
-    if (!fs::exists(file)) {
+    if (::close(fd) != 0) throw Error(printable(path.string()) + ": write failed: " + std::strerror(errno));
+}
+
+// Extracts the archive's data/meshes/*.off (regular files with plain names only) into `into`
+// with libarchive (no shell, no tar), and writes the manifest of their hashes last.
+void extractCgalMeshes(const fs::path& into) {
+    struct Reader {
+        archive* a = archive_read_new();
+        ~Reader() { archive_read_free(a); }
+    } reader;
+    archive_read_support_filter_gzip(reader.a);
+    archive_read_support_format_tar(reader.a);
+    if (archive_read_open_filename(reader.a, kCgalArchive.c_str(), 1 << 16) != ARCHIVE_OK)
+        throw Error(kCgalArchive.string() + ": cannot open: " + archive_error_string(reader.a));
+    fs::create_directories(into / "meshes");
+    std::string manifest;
+    archive_entry* entry = nullptr;
+    int status;
+    while ((status = archive_read_next_header(reader.a, &entry)) == ARCHIVE_OK) {
+        const std::string path = archive_entry_pathname(entry) ? archive_entry_pathname(entry) : "";
+        const std::string prefix = "data/meshes/";
+        if (path.rfind(prefix, 0) != 0 || archive_entry_filetype(entry) != AE_IFREG) continue;
+        const std::string name = path.substr(prefix.size());
+        if (name.empty() || name.find('/') != std::string::npos || name[0] == '.' ||
+            fs::path(name).extension() != ".off")
+            continue;
+        const la_int64_t size = archive_entry_size(entry);
+        if (size < 0 || std::uint64_t(size) > kMaxMeshFileBytes)
+            throw Error(kCgalArchive.string() + ": " + path + ": size " + std::to_string(size) + " out of range");
+        std::string bytes(std::size_t(size), '\0');
+        if (archive_read_data(reader.a, bytes.data(), bytes.size()) != la_ssize_t(bytes.size()))
+            throw Error(kCgalArchive.string() + ": " + path + ": cannot read: " + archive_error_string(reader.a));
+        writeNewFile(into / "meshes" / name, bytes);
+        manifest += name + " " + hex64(fnv1a64(bytes)) + "\n";
+    }
+    if (status != ARCHIVE_EOF)
+        throw Error(kCgalArchive.string() + ": cannot read: " + archive_error_string(reader.a));
+    if (manifest.empty()) throw Error(kCgalArchive.string() + ": holds no data/meshes/*.off");
+    writeNewFile(into / kCgalManifest, manifest);
+}
+
+// The manifest of an extracted cache: file name -> hash; empty when the cache is not whole.
+std::map<std::string, std::string> readCgalManifest(const fs::path& cache) {
+    std::map<std::string, std::string> hashes;
+    std::error_code ec;
+    if (!fs::is_regular_file(cache / kCgalManifest, ec)) return hashes;
+    std::istringstream lines(readInputFile((cache / kCgalManifest).string(), 1 << 20, "cache manifest"));
+    std::string name, hash;
+    while (lines >> name >> hash) hashes[name] = hash;
+    return hashes;
+}
+
+// The extracted cache, extracting it when it is missing or not whole (no manifest: emptied, or
+// made by an older rtbench): into a private folder, then renamed, so a concurrent or
+// interrupted run never sees a half-extracted cache.
+std::map<std::string, std::string> cgalMeshes(const std::string& source) {
+    const fs::path cache = cgalCache();
+    std::map<std::string, std::string> manifest = readCgalManifest(cache);
+    if (!manifest.empty()) return manifest;
+    std::error_code ec;
+    if (!fs::exists(kCgalArchive, ec))
+        throw Error(source + ": " + kCgalArchive.string() + " is missing (install Debian's libcgal-demo: scripts/setup.sh does)");
+    fs::create_directories(cache.parent_path());
+    std::string pattern = (cache.parent_path() / "cgal-data.tmp.XXXXXX").string();
+    if (!::mkdtemp(pattern.data()))
+        throw Error(source + ": cannot create a folder in " + printable(cache.parent_path().string()) + ": " +
+                    std::strerror(errno));
+    const fs::path staging = pattern;
+    fs::permissions(staging, fs::perms(0755), ec);  // mkdtemp's 0700: a cache others may read
+    std::cerr << "[rtbench] extracting CGAL's meshes once into " << cache << "\n";
+    try {
+        extractCgalMeshes(staging);
+        if (fs::exists(fs::symlink_status(cache, ec))) fs::remove_all(cache, ec);  // not whole: replaced
+        fs::rename(staging, cache, ec);  // loses a race to another extraction harmlessly
+    } catch (...) {
+        fs::remove_all(staging, ec);
+        throw;
+    }
+    fs::remove_all(staging, ec);
+    manifest = readCgalManifest(cache);
+    if (manifest.empty()) throw Error(source + ": cache " + printable(cache.string()) + " is not whole after extracting");
+    return manifest;
+}
+
+void checkCgalName(const std::string& name) {
+    if (name.empty() || name.find('/') != std::string::npos || name.find("..") != std::string::npos || name[0] == '.')
+        throw Error("cgal:" + printable(name) + ": expected a mesh name such as cgal:bunny00");
+}
+
+}  // namespace
+
+std::string resolveCgalMesh(const std::string& name) {
+    checkCgalName(name);
+    const std::map<std::string, std::string> manifest = cgalMeshes("cgal:" + name);
+    if (!manifest.count(name + ".off")) {
         std::string some;
         int n = 0;
-        for (const auto& entry : fs::directory_iterator(meshes))
-            if (entry.path().extension() == ".off" && n++ < 8)
-                some += " " + entry.path().stem().string();
-        throw Error("cgal:" + name + ": no such mesh in libcgal-demo (some that exist:" + some +
-                    ")");
+        for (const auto& [file, hash] : manifest)
+            if (n++ < 8) some += " " + fs::path(file).stem().string();
+        throw Error("cgal:" + printable(name) + ": no such mesh in libcgal-demo (" + std::to_string(manifest.size()) +
+                    " meshes, e.g." + some + ")");
     }
-    return file.string();
+    return (cgalCache() / "meshes" / (name + ".off")).string();
+}
+
+TriangleMesh readCgalMesh(const std::string& name) {
+    const std::string path = resolveCgalMesh(name);
+    const std::string bytes = readInputFile(path, kMaxMeshFileBytes, "mesh file");
+    const std::string expected = cgalMeshes("cgal:" + name).at(name + ".off");
+    if (hex64(fnv1a64(bytes)) != expected)
+        throw Error("cgal:" + printable(name) + ": " + printable(path) +
+                    " differs from the file extracted from libcgal-demo (changed since); remove " +
+                    printable(cgalCache().string()) + " to extract it again");
+    TriangleMesh mesh = readMeshBytes(bytes, path);
+    mesh.name = "cgal:" + name;
+    mesh.inputs = {fingerprint(path, bytes)};
+    return mesh;
 }
 
 }  // namespace rtbench

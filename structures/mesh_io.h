@@ -22,8 +22,12 @@ TriangleMesh readMeshFile(const std::string& path);
 TriangleMesh readMeshBytes(std::string_view bytes, const std::string& nameWithExtension);
 
 // Resolves `cgal:NAME` to Debian libcgal-demo's data/meshes/NAME.off, extracting the package's
-// data.tar.gz once into the cache folder (RTBENCH_CACHE, else $XDG_CACHE_HOME/rtbench, else
-// ~/.cache/rtbench). Returns the path of the extracted file.
+// data.tar.gz once (with libarchive) into the cache folder (RTBENCH_CACHE, else
+// $XDG_CACHE_HOME/rtbench, else ~/.cache/rtbench) with a manifest of each file's hash; a cache
+// without its manifest (emptied, interrupted) is extracted again. Returns the extracted file.
 std::string resolveCgalMesh(const std::string& name);
+
+// Reads `cgal:NAME`; throws rtbench::Error when the cached file differs from what was extracted.
+TriangleMesh readCgalMesh(const std::string& name);
 
 }  // namespace rtbench

@@ -389,6 +389,15 @@ PlyValue readBinary(const unsigned char* p, const PlyType& type, bool bigEndian)
     return v;
 }
 
+// Two properties of one name: the reader takes one of them, validation would check the other
+// (two vertex_indices lists: CGAL's polygon from the first, unchecked, list).
+void refuseRepeatedProperty(const PlyElement& element, std::string_view property, const std::string& at) {
+    for (const PlyProperty& p : element.properties)
+        if (p.name == property)
+            fail(at, "element " + quote(element.name) + " has a second property " + quote(property) +
+                         " (allowed: each property name once)");
+}
+
 ValidatedMesh validatePly(std::string_view bytes, const std::string& name) {
     ValidatedMesh mesh;
     LineReader lines(bytes);
@@ -400,7 +409,15 @@ ValidatedMesh validatePly(std::string_view bytes, const std::string& name) {
     while (!sawEnd && lines.next(line)) {
         const auto t = split(line.text);
         const std::string at = atLine(name, line.number);
-        if (t.empty() || t[0] == "comment" || t[0] == "obj_info") continue;
+        // CGAL's header parser stops at an empty line and reads nothing.
+        if (t.empty())
+            fail(at, "empty line in the PLY header (allowed: header lines up to 'end_header', no blank one)");
+        // CGAL's reader takes the line after 'ply' for the format line, whatever it is.
+        if (!sawFormat && t[0] != "format")
+            fail(at, "expected the 'format' line right after 'ply', found " + quote(line.text) +
+                         " (allowed: format ascii|binary_little_endian|binary_big_endian 1.0)");
+        if (sawFormat && t[0] == "format") fail(at, "a second 'format' line (allowed: one, right after 'ply')");
+        if (t[0] == "comment" || t[0] == "obj_info") continue;
         if (t[0] == "end_header") {
             sawEnd = true;
         } else if (t[0] == "format" && t.size() == 3 && t[2] == "1.0" &&
@@ -415,10 +432,12 @@ ValidatedMesh validatePly(std::string_view bytes, const std::string& name) {
                 fail(at, "element " + quote(t[1]) + ": count " + quote(t[2]) +
                              " is not a non-negative integer");
         } else if (t[0] == "property" && !elements.empty() && t.size() == 3 && t[1] != "list") {
+            refuseRepeatedProperty(elements.back(), t[2], at);
             elements.back().properties.push_back({std::string(t[2]), plyType(t[1], at), nullptr});
         } else if (t[0] == "property" && !elements.empty() && t.size() == 5 && t[1] == "list") {
             const PlyType* count = plyType(t[2], at);
             if (!count->integer) fail(at, "list " + quote(t[4]) + " has a non-integer count type");
+            refuseRepeatedProperty(elements.back(), t[4], at);
             elements.back().properties.push_back({std::string(t[4]), plyType(t[3], at), count});
         } else if (t[0] == "format" || t[0] == "element" || t[0] == "property") {
             fail(at, "malformed PLY header line " + quote(line.text) +
@@ -447,9 +466,16 @@ ValidatedMesh validatePly(std::string_view bytes, const std::string& name) {
         checkDeclared(e.count, minBytes, available, atLine(name, e.line),
                       "'" + printable(e.name) + "' elements");
         available -= e.count * minBytes;
-        if (e.name == "vertex" || e.name == "vertices")
+        // CGAL's reader takes the items of every element of these names; validation checks one.
+        const bool isVertex = e.name == "vertex" || e.name == "vertices", isFace = e.name == "face" || e.name == "faces";
+        if ((isVertex && vertex) || (isFace && face))
+            fail(atLine(name, e.line), "a second " + std::string(isVertex ? "vertex" : "face") + " element " +
+                                           quote(e.name) + " (the first, " + quote((isVertex ? vertex : face)->name) +
+                                           ", is at line " + n((isVertex ? vertex : face)->line) +
+                                           "; allowed: one of each)");
+        if (isVertex)
             vertex = &e;
-        else if (e.name == "face" || e.name == "faces")
+        else if (isFace)
             face = &e;
         else if (e.count)
             skipped += (skipped.empty() ? "" : ", ") + n(e.count) + " '" + printable(e.name) + "'";
@@ -469,7 +495,12 @@ ValidatedMesh validatePly(std::string_view bytes, const std::string& name) {
                        (skipped.empty() ? ")" : "; the file has " + skipped + ")"));
     const PlyProperty* indices = nullptr;
     for (const PlyProperty& p : face->properties)
-        if ((p.name == "vertex_indices" || p.name == "vertex_index") && p.countType) indices = &p;
+        if ((p.name == "vertex_indices" || p.name == "vertex_index") && p.countType) {
+            if (indices)
+                fail(atLine(name, face->line),
+                     "the face element has two index lists, 'vertex_indices' and 'vertex_index' (allowed: one)");
+            indices = &p;
+        }
     if (!indices || !indices->type->integer || indices->type->size != 4)
         fail(atLine(name, face->line),
              "the face element needs a list property 'vertex_indices' or 'vertex_index' of int or "

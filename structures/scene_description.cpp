@@ -41,11 +41,7 @@ std::string resolvePath(const std::string& source, const std::string& baseDir) {
 // A mesh source other than a description: procedural:NAME, cgal:NAME or a file.
 TriangleMesh loadMeshSource(const std::string& source, const std::string& baseDir) {
     if (source.rfind("procedural:", 0) == 0) return proceduralScene(source.substr(11));
-    if (source.rfind("cgal:", 0) == 0) {
-        TriangleMesh mesh = readMeshFile(resolveCgalMesh(source.substr(5)));
-        mesh.name = source;
-        return mesh;
-    }
+    if (source.rfind("cgal:", 0) == 0) return readCgalMesh(source.substr(5));
     return readMeshFile(resolvePath(source, baseDir));
 }
 
@@ -371,6 +367,7 @@ class Reader {
                 }
                 if (mesh->triangles.empty())
                     throw Error(p.meshAt + ": mesh '" + p.mesh + "' has no triangles");
+                result.mesh.inputs.insert(result.mesh.inputs.end(), mesh->inputs.begin(), mesh->inputs.end());
             }
             const std::uint64_t copies = p.scatter ? p.count : 1;
             triangles +=
@@ -506,15 +503,11 @@ void sinCosDegrees(double degrees, double& sine, double& cosine) {
 }
 
 SceneDescription readSceneDescription(const std::string& path) {
-    std::error_code ec;
-    if (!fs::exists(path, ec)) throw Error(path + ": scene description not found");
-    if (!fs::is_regular_file(path, ec)) throw Error(path + ": not a regular file");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(path + ": cannot open for reading");
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (in.bad()) throw Error(path + ": read error");
-    return Reader(path, fs::path(path).parent_path().string()).read(text.str());
+    const std::string text = readInputFile(path, kMaxConfigBytes, "scene description");
+    SceneDescription description = Reader(path, fs::path(path).parent_path().string()).read(text);
+    // The description first, then each mesh as first read.
+    description.mesh.inputs.insert(description.mesh.inputs.begin(), fingerprint(path, text));
+    return description;
 }
 
 TriangleMesh loadSceneSource(const std::string& source, const std::string& baseDir) {

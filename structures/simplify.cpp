@@ -191,6 +191,10 @@ SimplifiedMesh simplifyMesh(const TriangleMesh& mesh, std::size_t target, bool e
         return result;
     };
     if (target == 0) throw Error(name + ": cannot simplify to 0 triangles (the target must be at least 1)");
+    // Exactly more triangles than there are: simplification only removes them.
+    if (exact && target > count)
+        throw Error(name + ": cannot simplify to exactly " + n(target) + " triangles: the scene has only " + n(count) +
+                    " triangles, fewer than the " + n(target) + " asked for");
     if (target >= count) {
         result.mesh = mesh;
         result.unchanged = true;

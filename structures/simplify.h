@@ -17,14 +17,17 @@ struct SimplifiedMesh {
 // Collapses edges until the mesh has at most targetTriangles triangles. A collapse removes the
 // two triangles of an edge inside the surface, one on a border. With exact = true the result has
 // exactly targetTriangles triangles or it throws rtbench::Error saying why not (a closed surface
-// keeps its parity; one triangle above the target, only a border edge is collapsed); with
-// exact = false it stops at the first count <= target. Target >= the mesh's count returns the
-// mesh unchanged (0 collapses). Triangles with a repeated vertex index are dropped; zero-area
-// ones are kept, and CGAL collapses the zero-length edges among them first, whatever the target.
+// keeps its parity; one triangle above the target, only a border edge is collapsed; a target
+// above the mesh's count, which simplification cannot reach); with exact = false it stops at the
+// first count <= target. A target equal to the mesh's count (with exact = false, any target at or
+// above it) returns the mesh unchanged (0 collapses). Triangles with a repeated vertex index are
+// dropped; zero-area ones are kept, and CGAL collapses the zero-length edges among them first,
+// whatever the target.
 // Besides CGAL's checks, a collapse is refused where it would leave a triangle of zero area with
 // its vertices rounded to float (as the result holds them): simplification adds none, and
 // mesh.degenerateCount() counts those of the source it kept.
-// Throws rtbench::Error (naming mesh.name) on: target 0; an index out of range; a coordinate that
+// Throws rtbench::Error (naming mesh.name) on: target 0; an exact target above the count (the
+// scene has only N triangles, fewer than asked for); an index out of range; a coordinate that
 // is not finite; no triangle of three distinct indices; a soup CGAL cannot orient into a
 // 2-manifold surface (orient_polygon_soup duplicates points where it must, so none seen yet); a
 // simplifier that stops above the target (no edge can be collapsed without breaking the surface:

@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -11,6 +12,7 @@
 #include "harness/embree_config.h"
 #include "harness/runner.h"
 #include "structures/error.h"
+#include "tests/error_of.h"
 #include "tests/temp_dir.h"
 
 namespace rtbench {
@@ -74,10 +76,10 @@ TEST_F(Golden, ReproducesAndAChangedCountFails) {
     std::ostringstream clean;
     const CheckResult same = check(clean);
     EXPECT_FALSE(same.failed()) << clean.str();
-    EXPECT_EQ(same.runs, 8);
+    EXPECT_EQ(same.runs, 38);
 
     std::vector<Row> rows = readCsv(csv());
-    ASSERT_EQ(rows.size(), 8u);
+    ASSERT_EQ(rows.size(), 38u);
     const std::string recorded = rows[3].at("passes_total");
     rows[3]["passes_total"] = std::to_string(std::stoull(recorded) + 1);
     writeCsv(csv(), runColumns(), rows);
@@ -100,6 +102,32 @@ TEST_F(Golden, AReferenceValueBeyondItsToleranceFailsAndSaysItsKind) {
     EXPECT_THAT(report.str(), HasSubstr("reference (tolerance 0.0001): BEYOND"));
 }
 
+// The tolerance's edge: a reference value just within its tolerance passes (and is reported as
+// within), just past it fails. hit_miss_mismatches' tolerance is per ray (1e-4 x 1536 rays =
+// 0.1536 here), hit_miss_agreement's absolute (1e-4). One run is kept (an interrupted sweep), so
+// only it is re-run.
+TEST_F(Golden, AReferenceDifferenceJustWithinItsTolerancePassesAndJustPastFails) {
+    const std::vector<Row> all = readCsv(csv());
+    ASSERT_EQ(all[0].at("rays"), "1536");
+    Json context = readJson((copy_ / "context.json").string());
+    context["complete"] = false;
+    writeJson((copy_ / "context.json").string(), context);
+    struct Case {
+        const char* column;
+        double offset;
+        bool fails;
+    };
+    for (const Case& c : {Case{"hit_miss_mismatches", 0.15, false}, Case{"hit_miss_mismatches", 0.16, true},
+                          Case{"hit_miss_agreement", -0.99e-4, false}, Case{"hit_miss_agreement", -1.01e-4, true}}) {
+        Row row = all[0];
+        row[c.column] = formatNumber(std::stod(row.at(c.column)) + c.offset, 10);
+        writeCsv(csv(), runColumns(), {row});
+        std::ostringstream report;
+        EXPECT_EQ(check(report).failed(), c.fails) << c.column << " + " << c.offset << "\n" << report.str();
+        EXPECT_THAT(report.str(), HasSubstr(c.fails ? ": BEYOND" : ": within")) << c.column << " + " << c.offset;
+    }
+}
+
 // Embree takes another code path per ISA; the counts must not notice.
 TEST_F(Golden, ReproducesWithEmbreeForcedToEveryIsaThisCpuRuns) {
     const std::vector<std::string> isas = embreeIsasSupportedHere();
@@ -108,7 +136,7 @@ TEST_F(Golden, ReproducesWithEmbreeForcedToEveryIsaThisCpuRuns) {
         std::ostringstream report;
         const CheckResult r = check(report, "isa=" + isa);
         EXPECT_FALSE(r.failed()) << "isa=" << isa << "\n" << report.str();
-        EXPECT_EQ(r.runs, 8) << isa;
+        EXPECT_EQ(r.runs, 38) << isa;
     }
 }
 
@@ -179,10 +207,51 @@ TEST_F(Golden, AnInterruptedSweepChecksTheRunsItFinished) {
     std::vector<Row> rows = readCsv(csv());
     rows.resize(3);
     writeCsv(csv(), runColumns(), rows);
+    Json context = readJson((copy_ / "context.json").string());
+    context["complete"] = false;
+    writeJson((copy_ / "context.json").string(), context);
     std::ostringstream report;
     const CheckResult r = check(report);
     EXPECT_FALSE(r.failed()) << report.str();
     EXPECT_EQ(r.runs, 3);
+}
+
+// Nothing lost: a completed sweep whose runs.csv lost a row (or every row), or whose plan was cut
+// down, is an error naming the run, not a pass over what is left.
+TEST_F(Golden, ALostRowOfACompletedSweepIsAnErrorNamingTheRun) {
+    std::vector<Row> rows = readCsv(csv());
+    const Row lost = rows[5];
+    rows.erase(rows.begin() + 5);
+    writeCsv(csv(), runColumns(), rows);
+    EXPECT_THAT(errorOfCheck(), HasSubstr("runs.csv: run " + lost.at("run") + " (" + lost.at("label") +
+                                          ") of the plan has no row"));
+    writeCsv(csv(), runColumns(), {});  // header only
+    EXPECT_THAT(errorOfCheck(), HasSubstr("runs.csv: run 000 "));
+}
+
+TEST_F(Golden, APlanCutDownInContextJsonIsAnError) {
+    Json context = readJson((copy_ / "context.json").string());
+    context["plan"].erase(context["plan"].size() - 1);
+    writeJson((copy_ / "context.json").string(), context);
+    EXPECT_THAT(errorOfCheck(), HasSubstr("context.json: its plan lacks run 037"));
+}
+
+TEST_F(Golden, ARowOfAnotherConfigIsAnError) {
+    std::vector<Row> rows = readCsv(csv());
+    rows[2]["config_hash"] = "0123456789abcdef";
+    writeCsv(csv(), runColumns(), rows);
+    EXPECT_THAT(errorOfCheck(), HasSubstr("run 002 has config_hash 0123456789abcdef"));
+    rows[2] = rows[1];
+    rows[2]["run"] = "038";
+    writeCsv(csv(), runColumns(), rows);
+    EXPECT_THAT(errorOfCheck(), HasSubstr("run 038 (" + rows[2].at("label") + ") is not in the recorded plan"));
+}
+
+TEST(CheckTolerance, ANegativeOrNanToleranceIsRefused) {
+    std::ostringstream out;
+    for (double bad : {-1.0, std::nan(""), double(INFINITY)})
+        EXPECT_THAT(errorOf([&] { checkResults(RTBENCH_SOURCE_DIR "/results/golden", {.timingTolerance = bad}, out); }),
+                    HasSubstr("--tolerance"));
 }
 
 TEST(CheckOptions, ABogusEmbreeConfigIsRefused) {

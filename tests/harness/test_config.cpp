@@ -1,9 +1,14 @@
 // Each config error names the file, line and key, and lists what is allowed.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <filesystem>
 
 #include "harness/config.h"
 #include "structures/error.h"
+#include "structures/input_file.h"
+#include "tests/error_of.h"
 #include "tests/temp_dir.h"
 
 namespace rtbench {
@@ -107,7 +112,7 @@ TEST_F(Config, MissingFile) {
         loadExperiment(dir_.file("absent.toml"));
         FAIL();
     } catch (const Error& e) {
-        EXPECT_EQ(std::string(e.what()), dir_.file("absent.toml") + ": cannot open config file");
+        EXPECT_EQ(std::string(e.what()), dir_.file("absent.toml") + ": config file not found");
     }
 }
 
@@ -250,6 +255,102 @@ TEST_F(Config, TheEmbreeConfigIsCheckedBeforeEmbreeSeesIt) {
               path_ + ":6: key 'baseline.embree_config': 'isa' is not key=value (e.g. \"isa=avx2,threads=2\")");
     EXPECT_THAT(errorOf(base + "\"tesselation=3\"\n"), HasSubstr("unknown Embree config key 'tesselation'"));
     EXPECT_NO_THROW(loadExperiment(write(base + "\"isa=sse2,threads=2\"\n")));
+}
+
+}  // namespace
+}  // namespace rtbench
+
+namespace rtbench {
+namespace {
+
+// Skip rules compare typed values: a rule cannot miss a run by how a number is spelled, a choice
+// that does not exist is named, and a rule that matches no run is an error naming it.
+TEST_F(Config, SkipRulesCompareTypedValues) {
+    const std::string sweep = kMinimal + "[camera]\nfov_deg = [30.0, 40]\n[[sweep]]\nskip = [\"";
+    for (const std::string& rule : {"camera.fov_deg=30.000", "camera.fov_deg=30", "camera.fov_deg=3e1"}) {
+        const ExperimentPlan plan = loadExperiment(write(sweep + rule + "\"]\n"));
+        ASSERT_EQ(plan.runs.size(), 1u) << rule;
+        EXPECT_EQ(plan.runs[0].getFloat("camera.fov_deg"), 40.0) << rule;
+    }
+    EXPECT_EQ(loadExperiment(write(kMinimal + "[camera]\nfov_deg = [30.5, 40]\n[[sweep]]\nskip = [\"camera.fov_deg=30.50\"]\n"))
+                  .runs.size(),
+              1u);
+    // A vector value, written as TOML writes it.
+    EXPECT_EQ(loadExperiment(write(kMinimal + "[camera]\nup = [[1, 0, 0], [0, 1, 0]]\n[[sweep]]\nskip = [\"camera.up=[1, 0, 0]\"]\n"))
+                  .runs.size(),
+              1u);
+    EXPECT_THAT(errorOf(kMinimal + "[camera]\nup = [[1, 0, 0], [0, 1, 0]]\n[[sweep]]\nskip = [\"camera.up=[1 0 0]\"]\n"),
+                HasSubstr("'[1 0 0]' is not an array of 3 numbers"));
+    // Checked as the key would be.
+    EXPECT_THAT(errorOf(kMinimal + "[structure]\nconservative = [true, false]\n[[sweep]]\nskip = [\"structure.conservative=1\"]\n"),
+                HasSubstr("key 'structure.conservative': expected true or false"));
+    EXPECT_THAT(errorOf(kMinimal + "[structure]\ntype = [\"bvh\", \"uniform_grid\"]\n[[sweep]]\nskip = [\"structure.type=BVH\"]\n"),
+                HasSubstr("'BVH' is not allowed (allowed: uniform_grid, bvh, brute_force, auto)"));
+    EXPECT_EQ(loadExperiment(write(kMinimal + "[structure]\ntype = \"brute_force\"\nmax_tests = [1e9, 2e9]\n[[sweep]]\nskip = [\"structure.max_tests=1000000000\"]\n"))
+                  .runs.size(),
+              1u);
+    // A rule that matches nothing is a typo or a value the sweep never takes.
+    EXPECT_THAT(errorOf(kMinimal + "[camera]\nfov_deg = [30, 40]\n[[sweep]]\nskip = [\"camera.fov_deg=35\"]\n"),
+                HasSubstr(path_ + ":8: key 'sweep.skip': the rule \"camera.fov_deg=35\" matches no run of this sweep"));
+}
+
+// A skip condition on a key only some runs read (leaf_size: the BVH's) matches only those runs.
+TEST_F(Config, ASkipRuleOnAKeySomeRunsLackSkipsOnlyRunsThatHaveIt) {
+    const ExperimentPlan plan = loadExperiment(write(
+        kMinimal + "[structure]\ntype = [\"bvh\", \"uniform_grid\"]\nleaf_size = [2, 8]\n[[sweep]]\nskip = [\"structure.leaf_size=8\"]\n"));
+    ASSERT_EQ(plan.runs.size(), 2u);  // bvh leaf 2, and the grid (which has no leaf_size)
+    EXPECT_EQ(plan.runs[0].getInt("structure.leaf_size"), 2);
+    EXPECT_EQ(plan.runs[1].getString("structure.type"), "uniform_grid");
+}
+
+TEST_F(Config, KeysThatPlaceTheResultsAreNotSweepable) {
+    EXPECT_THAT(errorOf("[experiment]\nname = [\"a\", \"b\"]\n[scene]\nsource = \"procedural:christen_a\"\n"),
+                HasSubstr(path_ + ":2: key 'experiment.name': places the results and cannot be swept"));
+    EXPECT_THAT(errorOf("[experiment]\nname = \"a\"\noutput = [\"x\", \"y\"]\n[scene]\nsource = \"procedural:christen_a\"\n"),
+                HasSubstr("key 'experiment.output': places the results and cannot be swept"));
+    EXPECT_THAT(errorOf(kMinimal + "[[sweep]]\nexperiment.name = \"b\"\n"),
+                HasSubstr("key 'experiment.name' places the results: set it once, outside [[sweep]] tables"));
+}
+
+// NUL and other control characters are refused in every string (a NUL would cut a path where the
+// OS reads it, and the messages quoting it).
+TEST_F(Config, ControlCharactersInStringsAreRefused) {
+    EXPECT_THAT(errorOf("[experiment]\nname = \"t\"\n[scene]\nsource = \"flat.off\\u0000zzz.off\"\n"),
+                HasSubstr(path_ + ":4: key 'scene.source': control character U+0000 at byte 8"));
+    EXPECT_THAT(errorOf(kMinimal + "[device]\nname = \"llvm\\tpipe\"\n"), HasSubstr("control character U+0009"));
+    EXPECT_THAT(errorOf(kMinimal + "[[sweep]]\nname = \"a\\u001bb\"\n"), HasSubstr("key 'sweep.name': control character U+001B"));
+}
+
+// A list of three numbers for scene.scale could be a sweep or a per-axis scale (as a scene
+// description reads it): refused, saying which is which.
+TEST_F(Config, ThreeScalesAreAmbiguousAndSaySo) {
+    EXPECT_THAT(errorOf(kMinimal + "scale = [1, 2, 3]\n"), HasSubstr("key 'scene.scale': a list of 3 numbers is ambiguous"));
+    EXPECT_EQ(loadExperiment(write(kMinimal + "scale = [1, 2]\n")).runs.size(), 2u);
+    EXPECT_EQ(loadExperiment(write(kMinimal + "scale = [1, 2, 3, 4]\n")).runs.size(), 4u);
+}
+
+TEST_F(Config, ARangeErrorQuotesTheValueAsWritten) {
+    EXPECT_EQ(errorOf(kMinimal + "[camera]\nfov_deg = 179.9999\n"),
+              path_ + ":6: key 'camera.fov_deg': value 179.9999 is out of range [1, 179]");
+}
+
+// The config file must be a regular file within the size limit: a FIFO would hang, /dev/zero
+// read until memory runs out, a folder is not a config.
+TEST_F(Config, OnlyARegularConfigFileOfBoundedSizeIsRead) {
+    std::filesystem::create_directory(dir_.path() / "folder.toml");
+    EXPECT_THAT(rtbench::errorOf([&] { loadExperiment(dir_.file("folder.toml")); }),
+                HasSubstr("folder.toml: the config file is a folder, not a regular file"));
+    ASSERT_EQ(::mkfifo(dir_.file("fifo.toml").c_str(), 0644), 0);
+    EXPECT_THAT(rtbench::errorOf([&] { loadExperiment(dir_.file("fifo.toml")); }),
+                HasSubstr("fifo.toml: the config file is a FIFO, not a regular file"));
+    std::filesystem::create_symlink("/dev/zero", dir_.path() / "zero.toml");
+    EXPECT_THAT(rtbench::errorOf([&] { loadExperiment(dir_.file("zero.toml")); }),
+                HasSubstr("zero.toml: the config file is a character device, not a regular file"));
+    dir_.write("big.toml", std::string(kMaxConfigBytes + 1, '#'));
+    EXPECT_THAT(rtbench::errorOf([&] { loadExperiment(dir_.file("big.toml")); }),
+                HasSubstr("big.toml: the config file is 4194305 bytes, over the limit of 4 MiB"));
+    std::filesystem::create_symlink("loop.toml", dir_.path() / "loop.toml");
+    EXPECT_THAT(rtbench::errorOf([&] { loadExperiment(dir_.file("loop.toml")); }), HasSubstr("loop.toml: config file is a symlink loop"));
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include "harness/images.h"
 #include "harness/runner.h"
 #include "tests/device/test_device.h"
+#include "tests/error_of.h"
 #include "tests/temp_dir.h"
 
 namespace rtbench {
@@ -188,7 +189,10 @@ TEST_F(EndToEnd, ThreeShardsMergedEqualTheUnshardedRun) {
     std::filesystem::copy_file(whole.folder + "/runs.shard-0-of-3.csv", whole.folder + "/runs.shard-3-of-3.csv");
     EXPECT_THROW(mergeShards(whole.folder), std::exception);
     std::filesystem::remove(whole.folder + "/runs.shard-3-of-3.csv");
-    std::filesystem::remove(whole.folder + "/runs.shard-1-of-3.csv");
+    std::filesystem::rename(whole.folder + "/runs.shard-1-of-3.csv", whole.folder + "/kept.csv");
+    EXPECT_THAT(errorOf([&] { mergeShards(whole.folder); }),
+                HasSubstr("context.shard-1-of-3.json has no runs.shard-1-of-3.csv"));
+    std::filesystem::remove(whole.folder + "/context.shard-1-of-3.json");
     try {
         mergeShards(whole.folder);
         FAIL();
@@ -213,8 +217,8 @@ TEST_F(EndToEnd, ContextJsonIsCompleteOnlyAfterTheLastRun) {
     const Json context = readJson(result.folder + "/context.json");
     EXPECT_EQ(context.at("complete"), true);
     EXPECT_EQ(context.at("plan").size(), 8u);
-    EXPECT_EQ(context.at("runs").size(), 8u);
-    EXPECT_EQ(context.at("runs")[7].at("status"), "ok");
+    EXPECT_EQ(context.at("plan")[7].at("run"), "007");
+    EXPECT_EQ(readRunsCsv(result.folder + "/runs.csv").size(), 8u);  // the runs done are runs.csv's rows
 }
 
 // Accuracy against the exact reference on closed meshes seen from inside: every ray must hit.

@@ -109,15 +109,33 @@ TEST(Simplify, NoBorderEdgeLeftOneAboveTheTargetThrowsAndSaysWhy) {
     EXPECT_EQ(simplifyMesh(mesh, 600, false).mesh.triangles.size(), 599u);
 }
 
+// Exactly the count, or (not exact, as scene.simplify_ratio) at or above it: nothing to remove.
 TEST(Simplify, TargetAtOrAboveTheCountReturnsTheMeshUnchanged) {
     const TriangleMesh sphere = icosphere(2);
-    for (std::size_t target : {sphere.triangles.size(), std::size_t(1) << 40}) {
-        const SimplifiedMesh result = simplifyMesh(sphere, target, true);
+    for (const auto& [target, exact] : {std::pair{sphere.triangles.size(), true}, std::pair{sphere.triangles.size(), false},
+                                        std::pair{sphere.triangles.size() + 1, false}, std::pair{std::size_t(1) << 40, false}}) {
+        const SimplifiedMesh result = simplifyMesh(sphere, target, exact);
+        EXPECT_TRUE(result.unchanged) << target;
         EXPECT_EQ(result.collapses, 0u);
         EXPECT_EQ(result.mesh.name, sphere.name);
         EXPECT_EQ(result.mesh.vertices, sphere.vertices);
         EXPECT_EQ(result.mesh.triangles, sphere.triangles);
     }
+}
+
+// Exactly more triangles than the scene has (scene.simplify_triangles = 100 on a tetrahedron):
+// simplification only removes triangles, so the run must fail saying so, not keep all 4.
+TEST(Simplify, ExactTargetAboveTheCountThrowsAndSaysHowManyThereAre) {
+    EXPECT_EQ(errorOf([] { simplifyMesh(tetrahedron(), 100, true); }),
+              "procedural:tetrahedron: cannot simplify to exactly 100 triangles: the scene has only 4 triangles, "
+              "fewer than the 100 asked for");
+    EXPECT_EQ(errorOf([] { simplifyMesh(tetrahedron(), 5, true); }),
+              "procedural:tetrahedron: cannot simplify to exactly 5 triangles: the scene has only 4 triangles, "
+              "fewer than the 5 asked for");
+    EXPECT_EQ(errorOf([] { simplifyMesh(icosphere(2), std::size_t(1) << 40, true); }),
+              "procedural:icosphere: cannot simplify to exactly 1099511627776 triangles: the scene has only 320 "
+              "triangles, fewer than the 1099511627776 asked for");
+    EXPECT_TRUE(simplifyMesh(tetrahedron(), 4, true).unchanged);
 }
 
 TEST(Simplify, TargetZeroThrows) {

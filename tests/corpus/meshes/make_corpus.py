@@ -81,6 +81,17 @@ case("off_pentagram.off",
      "error", ":8: face 0 (5 vertices) cannot be triangulated: it is self-intersecting", "star polygon")
 case("off_nonplanar.off", "OFF\n5 1 0\n0 0 0\n2 0 0\n2 2 1\n1 0.5 0\n0 2 0\n5 0 1 2 3 4\n", "error",
      ":8: face 0 (5 vertices) cannot be triangulated: it is not planar", "concave and not planar")
+case("off_index_equals_count.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", "error",
+     ":6: face 0 references vertex 3, but the file has 3 vertices (allowed: 0 to 2)",
+     "an index equal to the vertex count, one past the last (issue 15)")
+case("off_quad_index_equals_count.off", "OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n4 0 1 2 4\n", "error",
+     ":8: face 1 references vertex 4, but the file has 4 vertices (allowed: 0 to 3)",
+     "the last corner of a quad one past the last vertex")
+case("off_inline_header_index_equals_count.off", "OFF 3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 3 1 2\n", "error",
+     ":5: face 0 references vertex 3, but the file has 3 vertices (allowed: 0 to 2)",
+     "counts on the OFF line, first corner one past the last vertex")
+case("off_index_is_last_vertex.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 2 1 0\n", "triangles", 1,
+     "the largest allowed index, count - 1")
 assimp("assimp_invalid.off", "error", ":6: face 0 has 0 vertices (at least 3 needed)",
        "header '3 4' without edge count, then faces '0', '2\\r20', '4'")
 assimp("assimp_OutOfMemory.off", "error", ":2: the header declares 353535235358 vertices",
@@ -95,6 +106,15 @@ case("obj_index_zero.obj", OBJ_V + "f 0 1 2\n", "error", ":4: face 0: vertex ind
 case("obj_relative_indices.obj", OBJ_V + "f -3 -2 -1\n", "triangles", 1, "negative indices count back")
 case("obj_relative_too_far.obj", OBJ_V + "f -4 -2 -1\n", "error", ":4: face 0: vertex index -4 is out of range",
      "relative index before the first vertex")
+case("obj_index_one_past_count.obj", OBJ_V + "f 1 2 4\n", "error",
+     ":4: face 0: vertex index 4 is out of range (the file has 3 vertices; allowed: 1 to 3, or -1 back to -3 at this line)",
+     "1-based: an index of count + 1 is one past the last")
+case("obj_index_equals_count.obj", OBJ_V + "f 3 1 2\n", "triangles", 1, "1-based: the count is the last vertex")
+case("obj_forward_reference.obj", "v 0 0 0\nv 1 0 0\nf 1 2 3\nv 0 1 0\n", "triangles", 1,
+     "a face naming a vertex defined after it (the reader reads all vertices first)")
+case("obj_relative_before_later_vertices.obj", "v 0 0 0\nv 1 0 0\nf -3 -2 -1\nv 0 1 0\n", "error",
+     ":3: face 0: vertex index -3 is out of range (the file has 3 vertices; allowed: 1 to 3, or -1 back to -2 at this line)",
+     "relative indices count back from the vertices read so far, not from the file's count")
 case("obj_noninteger.obj", OBJ_V + "f 1 2 2.5\n", "error", ":4: face 0: vertex index '2.5' is not an integer",
      "non-integer index")
 case("obj_nan.obj", "v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n", "error",
@@ -154,6 +174,45 @@ case("ply_extra_values.ply", ply_header("ascii", 3, 1) + ASCII_TRI + "3 0 1 2 7\
      ":13: face 0 has 5 values, its properties declare 4", "a value too many")
 case("ply_trailing.ply", ply_header("ascii", 3, 1) + ASCII_TRI + "3 0 1 2\n3 0 2 1\n", "error",
      ":14: data after the last element the header declares", "more faces than declared")
+PLY_V3 = "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+PLY_F1 = "element face 1\nproperty list uchar int vertex_indices\n"
+case("ply_index_equals_count.ply", ply_header("ascii", 3, 1) + ASCII_TRI + "3 0 1 3\n", "error",
+     ":13: face 0 references vertex 3, but the file has 3 vertices (allowed: 0 to 2)",
+     "an index equal to the vertex count, one past the last")
+case("ply_blank_header_line.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\n\nproperty float y\n"
+     "property float z\n" + PLY_F1 + "end_header\n" + ASCII_TRI + "3 0 1 2\n", "error",
+     ":5: empty line in the PLY header", "CGAL's header parser stops at a blank line and reads nothing")
+case("ply_comment_before_format.ply", "ply\ncomment made by hand\nformat ascii 1.0\n" + PLY_V3 + PLY_F1 +
+     "end_header\n" + ASCII_TRI + "3 0 1 2\n", "error",
+     ":2: expected the 'format' line right after 'ply', found 'comment made by hand'",
+     "CGAL takes the second line for the format line")
+case("ply_second_format.ply", "ply\nformat binary_little_endian 1.0\n" + PLY_V3 + PLY_F1 + "format ascii 1.0\n"
+     "end_header\n" + ASCII_TRI + "3 0 1 2\n", "error", ":9: a second 'format' line",
+     "validation took the last format, the reader the first")
+case("ply_two_index_lists.ply", "ply\nformat ascii 1.0\n" + PLY_V3 + PLY_F1 +
+     "property list uchar int vertex_indices\nend_header\n" + ASCII_TRI + "0 3 0 1 2\n", "error",
+     ":9: element 'face' has a second property 'vertex_indices' (allowed: each property name once)",
+     "validation checked the second list, CGAL built an empty polygon from the first: a crash")
+case("ply_vertex_index_and_indices.ply", "ply\nformat ascii 1.0\n" + PLY_V3 +
+     "element face 1\nproperty list uchar int vertex_index\nproperty list uchar int vertex_indices\nend_header\n" +
+     ASCII_TRI + "3 0 1 7 3 0 1 2\n", "error",
+     ":7: the face element has two index lists, 'vertex_indices' and 'vertex_index' (allowed: one)",
+     "two index lists: which one the reader takes is not validation's choice")
+case("ply_duplicate_coordinate.ply", "ply\nformat ascii 1.0\n" + PLY_V3 + "property float x\n" + PLY_F1 +
+     "end_header\n0 0 0 9\n1 0 0 9\n0 1 0 9\n3 0 1 2\n", "error",
+     ":7: element 'vertex' has a second property 'x' (allowed: each property name once)", "x given twice")
+case("ply_two_vertex_elements.ply", "ply\nformat ascii 1.0\n" + PLY_V3.replace(" 3\n", " 1\n") + PLY_V3 + PLY_F1 +
+     "end_header\n9 9 9\n" + ASCII_TRI + "3 0 1 2\n", "error",
+     ":7: a second vertex element 'vertex' (the first, 'vertex', is at line 3; allowed: one of each)",
+     "CGAL reads the vertices of both, validation counted one")
+case("ply_vertex_and_vertices.ply", "ply\nformat ascii 1.0\n" + PLY_V3.replace(" 3\n", " 1\n") +
+     PLY_V3.replace("vertex", "vertices") + PLY_F1 + "end_header\n9 9 9\n" + ASCII_TRI + "3 0 1 2\n", "error",
+     ":7: a second vertex element 'vertices' (the first, 'vertex', is at line 3; allowed: one of each)",
+     "'vertex' and 'vertices' are both vertex elements")
+case("ply_two_face_elements.ply", "ply\nformat ascii 1.0\n" + PLY_V3 + PLY_F1 + PLY_F1 + "end_header\n" +
+     ASCII_TRI + "3 0 1 3\n3 0 1 2\n", "error",
+     ":9: a second face element 'face' (the first, 'face', is at line 7; allowed: one of each)",
+     "the first face element's indices went unchecked, CGAL read both")
 case("ply_no_end_header.ply", "ply\nformat ascii 1.0\nelement vertex 3\n", "error",
      "the PLY header has no 'end_header' line", "header only")
 case("ply_int_coordinates.ply", ply_header("ascii", 3, 1).replace("float", "int") + ASCII_TRI + "3 0 1 2\n",
@@ -163,11 +222,11 @@ case("ply_empty.ply", "", "error", "not a PLY file", "empty file")
 VERTS = [(0, 0, 0), (1, 0, 0), (0, 1, 0)]
 
 
-def ply_binary(nf_declared, faces, verts=VERTS, endian="<", fmt="binary_little_endian", trailing=b""):
+def ply_binary(nf_declared, faces, verts=VERTS, endian="<", fmt="binary_little_endian", trailing=b"", index="int"):
     body = b"".join(struct.pack(endian + "3f", *v) for v in verts)
     for f in faces:
-        body += struct.pack(endian + "B%di" % len(f), len(f), *f)
-    return ply_header(fmt, len(verts), nf_declared).encode() + body + trailing
+        body += struct.pack(endian + "B%d%s" % (len(f), "i" if index == "int" else "I"), len(f), *f)
+    return ply_header(fmt, len(verts), nf_declared, index).encode() + body + trailing
 
 
 case("ply_binary.ply", ply_binary(1, [(0, 1, 2)]), "triangles", 1, "binary little endian")
@@ -185,6 +244,12 @@ case("ply_binary_nan.ply", ply_binary(1, [(0, 1, 2)], verts=[(0, 0, 0), (float("
      "error", ": byte 181: vertex 1 has a NaN or infinite coordinate", "NaN coordinate")
 case("ply_binary_negative_index.ply", ply_binary(1, [(0, 1, -5)]), "error",
      ": byte 205: face 0 references vertex -5", "negative index")
+case("ply_binary_index_equals_count.ply", ply_binary(1, [(0, 1, 3)]), "error",
+     ": byte 205: face 0 references vertex 3, but the file has 3 vertices (allowed: 0 to 2)",
+     "binary: an index equal to the vertex count")
+case("ply_binary_uint_index_max.ply", ply_binary(1, [(0, 4294967295, 2)], index="uint"), "error",
+     ": byte 206: face 0 references vertex 4294967295, but the file has 3 vertices (allowed: 0 to 2)",
+     "uint index 2^32 - 1 (-1 as int)")
 assimp("assimp_cube_binary.ply", "triangles", 12, "binary PLY with normals")
 
 
