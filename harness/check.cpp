@@ -61,7 +61,10 @@ void checkRowsAgainstPlan(const Json& context, const std::string& contextPath, c
                         " (a row of another config?)");
         present.insert(run);
     }
-    const bool complete = context.value("complete", false);
+    const auto completeField = context.find("complete");
+    if (completeField == context.end() || !completeField->is_boolean())
+        throw Error(contextPath + ": no boolean \"complete\" field");
+    const bool complete = completeField->get<bool>();
     if (!complete) return;  // an interrupted sweep: the runs it finished are checked
     for (const RunConfig& run : plan.runs)
         if (!present.count(runNumber(run)))
@@ -108,6 +111,12 @@ CheckResult checkResults(const std::string& folder, const CheckOptions& options,
     checkRowsAgainstPlan(context, contextPath, plan, recorded, csvPath);
     if (!options.embreeConfigOverride.empty()) overrideEmbreeConfig(plan, options.embreeConfigOverride);
 
+    CheckResult result;
+    if (recorded.empty()) {  // an interrupted sweep that finished no run: nothing to re-run
+        out << "rtbench check " << folder << ": 0 runs recorded (the sweep was interrupted before its first run "
+            << "finished); nothing re-run\n";
+        return result;
+    }
     RunnerOptions runner;
     runner.quiet = true;
     runner.force = true;
@@ -126,7 +135,6 @@ CheckResult checkResults(const std::string& folder, const CheckOptions& options,
     }
     fs::remove_all(scratch);
 
-    CheckResult result;
     std::map<std::string, const Row*> byRun;
     for (const Row& row : now.rows) byRun[row.at("run")] = &row;
     std::ostringstream table;

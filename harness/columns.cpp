@@ -7,6 +7,7 @@
 #include "config.h"
 #include "methods/registry.h"
 #include "structures/error.h"
+#include "structures/input_file.h"
 
 namespace rtbench {
 
@@ -31,11 +32,12 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("warnings", K::Count, "",
             "what the run did that may surprise (e.g. triangles degenerate in float)");
         add("config_hash", K::Parameter, "", "FNV-1a 64 of the run's parameters (the command line's -d, --validation and --embree-config included)");
-        add("inputs_hash", K::Parameter, "", "FNV-1a 64 over the contents of every file the scene was made from (mesh files, the scene description and its meshes, a cgal: mesh's cached file; none for procedural scenes): with config_hash, git_commit, device and driver, the run's identity");
+        add("inputs_hash", K::Parameter, "", "FNV-1a 64 over the contents of every file the scene was made from (mesh files, the scene description and its meshes, a cgal: mesh's cached file; none for procedural scenes): with config_hash, git_commit, device, driver and cpu, the run's identity");
         add("input_files", K::Context, "", "those files: path (bytes, FNV-1a 64 of the contents), in reading order");
         add("git_commit", K::Context, "", "commit of the binary");
         add("device", K::Context, "", "Vulkan device name");
         add("driver", K::Context, "", "Vulkan driver name and version");
+        add("cpu", K::Context, "", "the host's CPU model (what lavapipe and Embree ran on)");
         // Scene, rays, structure.
         add("scene_triangles", K::Count, "triangles", "triangles after triangulation");
         add("scene_degenerate", K::Count, "triangles", "zero-area triangles in float (never hit)");
@@ -175,7 +177,11 @@ std::string columnsMarkdown() {
 }
 
 std::vector<Row> readRunsCsv(const std::string& path) {
-    const std::vector<Row> rows = readCsv(path);
+    return parseRunsCsv(readInputFile(path, kMaxResultsFileBytes, "CSV file"), path);
+}
+
+std::vector<Row> parseRunsCsv(const std::string& text, const std::string& path) {
+    const std::vector<Row> rows = parseCsv(text, path);
     const std::vector<std::string> declared = runColumns();
     const std::set<std::string> declaredSet(declared.begin(), declared.end());
     if (!rows.empty()) {

@@ -26,6 +26,7 @@ const ColumnSpec& columnSpec(const std::string& name);
 // declared columns, and every row has a run number, unique in the file. Throws rtbench::Error
 // naming the file and the missing or unknown column, or the row and run.
 std::vector<Row> readRunsCsv(const std::string& path);
+std::vector<Row> parseRunsCsv(const std::string& text, const std::string& path);
 
 // The metric columns (all but the config keys) as a Markdown table: column, kind, unit, meaning.
 // The README holds this table; a test keeps the two equal.

@@ -260,10 +260,12 @@ SkipRule parseSkipRule(const std::string& path, const std::string& at, const std
         }
         toml::table parsed;
         try {
-            parsed = toml::parse("v = " + value);
+            // One value, nothing after it (a '#' would start a comment that hides the rest).
+            if (value.find_first_of("#\n") == std::string::npos) parsed = toml::parse("v = " + value);
         } catch (const toml::parse_error&) {
-            throw Error(valueAt + ": key '" + name + "': '" + value + "' is not " + typeName(spec->type));
         }
+        if (!parsed.contains("v"))
+            throw Error(valueAt + ": key '" + name + "': '" + value + "' is not " + typeName(spec->type));
         rule.conditions.emplace_back(name, convert(path, *spec, *parsed.get("v"), valueAt));
     }
     if (rule.conditions.empty()) throw Error(key + "an empty rule");

@@ -1,5 +1,7 @@
 #include "images.h"
 
+#include "output_folder.h"
+
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -314,6 +316,9 @@ ImagesReport imagesForFolder(const std::string& folder) {
     const fs::path csv = fs::path(folder) / "runs.csv";
     if (!fs::exists(csv, ec))
         throw Error(name + ": no runs.csv to check the hit records against (for shards: rtbench merge first)");
+    // It writes the folder as a run does: never through a link, not while a run writes it.
+    refuseSymlinks(folder);
+    const OutputFolderLock lock(folder);
     // The runs.csv row of each run: by run number, each once.
     std::map<std::string, Row> rows;
     std::map<std::string, int> seen;

@@ -155,6 +155,11 @@ int main(int argc, char** argv) {
         }
         if (*plot) {
             // Debian's python3-matplotlib and python3-pandas (PyPI is not reachable here).
+            // Charts are written into the folder: never into a linked one (plot.py refuses linked
+            // chart files, writing each through a temporary and os.replace).
+            std::error_code ec;
+            if (std::filesystem::is_symlink(std::filesystem::symlink_status(plotFolder, ec)))
+                throw rtbench::Error(plotFolder + ": the results folder is a symlink; give the folder it points to");
             return runProgram({"/usr/bin/python3", findPlotScript(), plotFolder}) == 0 ? 0 : 1;
         }
         if (*columns) {

@@ -431,20 +431,42 @@ std::string identity(const Row& row) {
         return it == row.end() ? std::string() : it->second;
     };
     return get("run") + "|" + get("config_hash") + "|" + get("git_commit") + "|" + get("device") + "|" + get("driver") +
-           "|" + get("inputs_hash");
+           "|" + get("cpu") + "|" + get("inputs_hash");
 }
 
-// <folder>/superseded-<UTC time>[-k]-runs.csv for rows set aside (a name merge and resume never
-// read), never an existing file's.
-std::string supersededPath(const std::string& folder, const std::string& csvName) {
+// "<folder>/superseded-<UTC time>[-k]-": the prefix of what one invocation sets aside (rows, the
+// context they were run under, their per-run files), names merge and resume never read, and no
+// existing file's.
+std::string supersededPrefix(const std::string& folder, const std::string& csvName) {
     std::string stamp = utcNow();
     stamp.erase(std::remove(stamp.begin(), stamp.end(), ':'), stamp.end());
     stamp.erase(std::remove(stamp.begin(), stamp.end(), '-'), stamp.end());
     for (int k = 0;; ++k) {
-        const fs::path path = fs::path(folder) / ("superseded-" + stamp + (k ? "-" + std::to_string(k) : "") + "-" + csvName);
+        const std::string prefix = (fs::path(folder) / ("superseded-" + stamp + (k ? "-" + std::to_string(k) : "") + "-")).string();
         std::error_code ec;
-        if (!fs::exists(fs::symlink_status(path, ec))) return path.string();
+        if (!fs::exists(fs::symlink_status(prefix + csvName, ec))) return prefix;
     }
+}
+
+// Sets aside rows of an earlier invocation that a resume does not keep: the rows, the context
+// they were recorded under (the old context.json, before this invocation replaces it), and each
+// row's per-run files (run-NNN.hits, -shaded.png, -diff.png), which would else sit beside a new
+// row of the same run number. Returns the prefix of their names.
+std::string setAside(const std::string& folder, const std::string& csvName, const std::string& contextPath,
+                     const std::vector<std::string>& columns, const std::vector<Row>& rows) {
+    const std::string prefix = supersededPrefix(folder, csvName);
+    writeCsv(prefix + csvName, columns, rows);
+    std::error_code ec;
+    if (fs::is_regular_file(fs::symlink_status(contextPath, ec)))
+        writeFileAtomically(prefix + fs::path(contextPath).filename().string(),
+                            readInputFile(contextPath, kMaxResultsFileBytes, "JSON file"));
+    for (const Row& row : rows)
+        for (const char* suffix : {".hits", "-shaded.png", "-diff.png"}) {
+            const fs::path file = fs::path(folder) / ("run-" + row.at("run") + suffix);
+            if (fs::is_regular_file(fs::symlink_status(file, ec)))
+                fs::rename(file, prefix + file.filename().string(), ec);
+        }
+    return prefix;
 }
 
 }  // namespace
@@ -528,13 +550,24 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
     // Rows of an earlier invocation that can stand: ok, and the same run in every input.
     std::vector<Row> earlierRows;
     if (fs::exists(fs::symlink_status(csvPath, ec))) {
+        std::string text = readInputFile(csvPath, kMaxResultsFileBytes, "CSV file");
+        // A last row without its line end was cut while written (a crash, power lost): it is
+        // set aside as it is, and the rows before it stand.
+        const std::size_t end = text.rfind('\n');
+        if (!text.empty() && text.back() != '\n' && end != std::string::npos) {
+            const std::string prefix = supersededPrefix(result.folder, csvName);
+            writeFileAtomically(prefix + csvName + ".cut-row", text.substr(end + 1));
+            text.resize(end + 1);
+            std::cerr << "[rtbench] " << csvPath << ": its last row was cut while written; set aside in " << prefix
+                      << csvName << ".cut-row, and run again\n";
+        }
         try {
-            earlierRows = readRunsCsv(csvPath);
+            earlierRows = parseRunsCsv(text, csvPath);
         } catch (const Error& e) {
             if (!options.force)
                 throw Error(std::string(e.what()) + "; cannot resume from it (--force re-runs every run and replaces it)");
-            earlierRows.clear();  // --force replaces it; the unreadable file is kept aside below
-            const std::string aside = supersededPath(result.folder, csvName);
+            earlierRows.clear();  // --force replaces it; the unreadable file is kept aside
+            const std::string aside = supersededPrefix(result.folder, csvName) + csvName;
             fs::rename(csvPath, aside, ec);
             if (ec) throw Error(csvPath + ": cannot move the unreadable file aside: " + ec.message());
             std::cerr << "[rtbench] " << csvPath << " could not be read (" << e.what() << "); kept as " << aside << "\n";
@@ -566,11 +599,12 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
         const VulkanContext& vk = deviceFor(run, caches);
         row["device"] = vk.info().name;
         row["driver"] = vk.info().driver;
+        row["cpu"] = cpuModel();
         if (!earlierRuns.count(row["run"] + "|" + row["config_hash"])) continue;
         Row withInputs = row;
         try {
             writeInputColumns(*fullScene(plan, run, caches), withInputs);
-        } catch (const Error&) {
+        } catch (const std::exception&) {
             continue;  // the scene no longer loads: the run is run again, and says why
         }
         const auto previous = earlier.find(identity(withInputs));
@@ -591,8 +625,7 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
             notInPlan += !planned.count(row.at("run") + "|" + row.at("config_hash"));
         }
     if (!superseded.empty()) {
-        const std::string aside = supersededPath(result.folder, csvName);
-        writeCsv(aside, columns, superseded);
+        const std::string aside = setAside(result.folder, csvName, contextPath, columns, superseded) + csvName;
         std::string notInPlanRuns;
         for (const Row& row : superseded)
             if (!planned.count(row.at("run") + "|" + row.at("config_hash")))
@@ -686,8 +719,8 @@ std::string contextField(const Json& context, const fs::path& path, const char* 
 std::vector<Row> mergeShards(const std::string& folder) {
     std::error_code ec;
     if (!fs::is_directory(folder, ec)) throw Error(folder + ": not a results folder");
+    refuseSymlinks(folder);  // before the lock file is made
     const OutputFolderLock lock(folder);  // no shard is running
-    refuseSymlinks(folder);
     // runs.shard-<i>-of-<n>.csv with its context.shard-<i>-of-<n>.json.
     std::map<std::string, ShardFiles> shards;
     const std::regex csvName(R"(runs\.(shard-[0-9]+-of-[0-9]+)\.csv)"), contextName(R"(context\.(shard-[0-9]+-of-[0-9]+)\.json)");
@@ -728,11 +761,14 @@ std::vector<Row> mergeShards(const std::string& folder) {
     } catch (const Json::exception& e) {
         throw Error(reference.context.string() + ": no valid \"plan\" list: " + e.what());
     }
+    if (planned.empty()) throw Error(reference.context.string() + ": its plan lists no runs");
     const std::string commit = contextField(reference.json, reference.context, "git_commit");
     std::map<std::string, Row> byRun;
     bool complete = true;
     for (const auto& [shard, files] : shards) {
-        complete = complete && files.json.value("complete", false);
+        const auto it = files.json.find("complete");
+        if (it == files.json.end() || !it->is_boolean()) throw Error(files.context.string() + ": no boolean \"complete\" field");
+        complete = complete && it->get<bool>();
         for (const Row& row : readRunsCsv(files.csv.string())) {
             const std::string& run = row.at("run");
             const std::string name = files.csv.filename().string() + ": run " + run + " (" + row.at("label") + ")";
@@ -747,9 +783,10 @@ std::vector<Row> mergeShards(const std::string& folder) {
     std::map<std::string, const Row*> byScene;
     const Row* firstRow = &byRun.begin()->second;
     for (const auto& [run, row] : byRun) {
-        if (row.at("device") + row.at("driver") != firstRow->at("device") + firstRow->at("driver"))
-            throw Error(folder + ": run " + firstRow->at("run") + " ran on " + firstRow->at("device") + " (" + firstRow->at("driver") +
-                        ") and run " + run + " on " + row.at("device") + " (" + row.at("driver") + "); a merged runs.csv holds one device");
+        const auto machine = [](const Row& r) { return r.at("device") + " (" + r.at("driver") + ") with " + r.at("cpu"); };
+        if (machine(row) != machine(*firstRow))
+            throw Error(folder + ": run " + firstRow->at("run") + " ran on " + machine(*firstRow) + " and run " + run + " on " +
+                        machine(row) + "; a merged runs.csv holds one device and CPU (Embree's speed depends on it)");
         if (row.at("inputs_hash").empty()) continue;  // the scene did not load: the row says why
         const std::string scene = row.at("scene_source");
         const auto [it, inserted] = byScene.emplace(scene, &row);

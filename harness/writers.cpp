@@ -36,6 +36,17 @@ std::string parentOf(const std::string& path) {
     return parent.empty() ? "." : parent.string();
 }
 
+// The process's umask (files are created as 0666 & ~umask, as open(2) would; mkostemp's 0600
+// is widened to that).
+mode_t processUmask() {
+    static const mode_t mask = [] {
+        const mode_t m = ::umask(022);
+        ::umask(m);
+        return m;
+    }();
+    return mask;
+}
+
 void refuseSymlink(const std::string& path) {
     struct stat st{};
     if (::lstat(path.c_str(), &st) == 0 && S_ISLNK(st.st_mode))
@@ -69,7 +80,7 @@ void writeFileAtomically(const std::string& path, const std::string& text) {
                           .string();
     const int fd = ::mkostemp(tmp.data(), O_CLOEXEC);
     if (fd < 0) throw Error(path + ": cannot create a temporary file beside it: " + std::strerror(errno));
-    const bool written = ::fchmod(fd, 0644) == 0 && writeAll(fd, text) && ::fsync(fd) == 0;
+    const bool written = ::fchmod(fd, 0666 & ~processUmask()) == 0 && writeAll(fd, text) && ::fsync(fd) == 0;
     const int why = errno;
     if (::close(fd) != 0 || !written) {
         ::unlink(tmp.c_str());  // never leave a partial file behind
@@ -80,6 +91,12 @@ void writeFileAtomically(const std::string& path, const std::string& text) {
         const int renameWhy = errno;
         ::unlink(tmp.c_str());
         throw Error(path + ": rename failed: " + std::strerror(renameWhy));
+    }
+    // The rename itself, synced: the folder's entry.
+    const int dir = ::open(parentOf(path).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (dir >= 0) {
+        ::fsync(dir);
+        ::close(dir);
     }
 }
 
@@ -142,8 +159,7 @@ struct CsvRecords {
     std::vector<std::size_t> lines;  // line where each record starts
 };
 
-CsvRecords readCsvRecords(const std::string& path) {
-    const std::string text = readInputFile(path, kMaxResultsFileBytes, "CSV file");
+CsvRecords parseCsvRecords(const std::string& text, const std::string& path) {
     // RFC 4180: records end in CRLF or LF; a quoted field may hold commas, line breaks and "".
     CsvRecords out;
     std::vector<std::string> record;
@@ -189,17 +205,19 @@ CsvRecords readCsvRecords(const std::string& path) {
         }
     }
     if (quoted) throw Error(path + ":" + std::to_string(quoteLine) + ": a quoted field is never closed");
-    if (!field.empty() || fieldWasQuoted || !record.empty()) {
-        record.push_back(std::move(field));
-        out.records.push_back(std::move(record));
-        out.lines.push_back(recordLine);
-    }
+    // rtbench ends every row with a line end: a last row without one was cut while written.
+    if (!field.empty() || fieldWasQuoted || !record.empty())
+        throw Error(path + ":" + std::to_string(recordLine) + ": the last row has no line end (cut while written?)");
     return out;
 }
 }  // namespace
 
 std::vector<Row> readCsv(const std::string& path) {
-    const CsvRecords csv = readCsvRecords(path);
+    return parseCsv(readInputFile(path, kMaxResultsFileBytes, "CSV file"), path);
+}
+
+std::vector<Row> parseCsv(const std::string& text, const std::string& path) {
+    const CsvRecords csv = parseCsvRecords(text, path);
     const auto& records = csv.records;
     std::vector<Row> rows;
     if (records.empty()) throw Error(path + ": empty CSV (no header)");

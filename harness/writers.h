@@ -22,8 +22,11 @@ void appendCsvRow(const std::string& path, const std::vector<std::string>& colum
 
 // Reads a CSV as RFC 4180 (quoted fields with "" escapes and line breaks, LF or CRLF) into rows
 // keyed by the header. Throws rtbench::Error naming the file and line on an unclosed quote, a
-// duplicated header name, or a row with more or fewer fields than the header.
+// duplicated header name, a row with more or fewer fields than the header, or a last row without
+// a line end (rtbench ends every row with one: such a row was cut while written).
 std::vector<Row> readCsv(const std::string& path);
+// The same on a file's text (`path` names it in errors).
+std::vector<Row> parseCsv(const std::string& text, const std::string& path);
 
 // Writes text to path through a uniquely named temporary beside it (created with O_EXCL, so
 // never a planted file or symlink), synced and renamed over path; refuses a path that is a

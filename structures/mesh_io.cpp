@@ -8,6 +8,7 @@
 #include <archive.h>
 #include <archive_entry.h>
 #include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -146,7 +147,7 @@ fs::path cgalCache() {
     else if (const char* home = std::getenv("HOME"); home && *home)
         cache = fs::path(home) / ".cache" / "rtbench";
     else
-        cache = fs::temp_directory_path() / "rtbench-cache";
+        cache = fs::temp_directory_path() / ("rtbench-cache-" + std::to_string(::getuid()));
     return cache / "cgal-data";
 }
 
@@ -179,7 +180,9 @@ void extractCgalMeshes(const fs::path& into) {
     archive_read_support_format_tar(reader.a);
     if (archive_read_open_filename(reader.a, kCgalArchive.c_str(), 1 << 16) != ARCHIVE_OK)
         throw Error(kCgalArchive.string() + ": cannot open: " + archive_error_string(reader.a));
-    fs::create_directories(into / "meshes");
+    std::error_code ec;
+    if (!fs::create_directories(into / "meshes", ec) && ec)
+        throw Error(printable((into / "meshes").string()) + ": cannot create: " + ec.message());
     std::string manifest;
     archive_entry* entry = nullptr;
     int status;
@@ -225,9 +228,22 @@ std::map<std::string, std::string> cgalMeshes(const std::string& source) {
     std::map<std::string, std::string> manifest = readCgalManifest(cache);
     if (!manifest.empty()) return manifest;
     std::error_code ec;
+    // One extraction at a time (shards on one cache); a whole cache is never replaced, and it
+    // appears by one rename, so readers need no lock.
+    fs::create_directories(cache.parent_path(), ec);
+    const std::string lockPath = (cache.parent_path() / ".cgal-data.lock").string();
+    struct Lock {
+        int fd;
+        ~Lock() {
+            if (fd >= 0) ::close(fd);
+        }
+    } lock{::open(lockPath.c_str(), O_RDWR | O_CREAT | O_NOFOLLOW | O_CLOEXEC, 0644)};
+    if (lock.fd < 0 || ::flock(lock.fd, LOCK_EX) != 0)
+        throw Error(source + ": cannot lock " + printable(lockPath) + ": " + std::strerror(errno));
+    manifest = readCgalManifest(cache);
+    if (!manifest.empty()) return manifest;  // another process extracted it meanwhile
     if (!fs::exists(kCgalArchive, ec))
         throw Error(source + ": " + kCgalArchive.string() + " is missing (install Debian's libcgal-demo: scripts/setup.sh does)");
-    fs::create_directories(cache.parent_path());
     std::string pattern = (cache.parent_path() / "cgal-data.tmp.XXXXXX").string();
     if (!::mkdtemp(pattern.data()))
         throw Error(source + ": cannot create a folder in " + printable(cache.parent_path().string()) + ": " +
@@ -237,8 +253,12 @@ std::map<std::string, std::string> cgalMeshes(const std::string& source) {
     std::cerr << "[rtbench] extracting CGAL's meshes once into " << cache << "\n";
     try {
         extractCgalMeshes(staging);
-        if (fs::exists(fs::symlink_status(cache, ec))) fs::remove_all(cache, ec);  // not whole: replaced
-        fs::rename(staging, cache, ec);  // loses a race to another extraction harmlessly
+        if (fs::exists(fs::symlink_status(cache, ec))) {  // not whole (emptied, interrupted): replaced
+            const fs::path aside = staging.string() + ".old";
+            fs::rename(cache, aside, ec);
+            fs::remove_all(aside, ec);
+        }
+        fs::rename(staging, cache, ec);
     } catch (...) {
         fs::remove_all(staging, ec);
         throw;

@@ -289,6 +289,9 @@ TEST_F(Config, SkipRulesCompareTypedValues) {
     EXPECT_EQ(loadExperiment(write(kMinimal + "[structure]\ntype = \"brute_force\"\nmax_tests = [1e9, 2e9]\n[[sweep]]\nskip = [\"structure.max_tests=1000000000\"]\n"))
                   .runs.size(),
               1u);
+    // One value, nothing after it: a comment would hide what follows.
+    EXPECT_THAT(errorOf(kMinimal + "scale = [1, 2]\n[[sweep]]\nskip = [\"scene.scale=2#junk\"]\n"),
+                HasSubstr("'2#junk' is not a number"));
     // A rule that matches nothing is a typo or a value the sweep never takes.
     EXPECT_THAT(errorOf(kMinimal + "[camera]\nfov_deg = [30, 40]\n[[sweep]]\nskip = [\"camera.fov_deg=35\"]\n"),
                 HasSubstr(path_ + ":8: key 'sweep.skip': the rule \"camera.fov_deg=35\" matches no run of this sweep"));

@@ -42,7 +42,8 @@ class ResultsFolder : public ::testing::Test {
         const std::string path = dir_.write("r.toml", "[experiment]\nname = \"r\"\noutput = \"" + dir_.file("out") +
                                                           "\"\nrepetitions = 1\nwarmups = 0\n[device]\nname = \"" +
                                                           testDeviceName() + "\"\n[camera]\nwidth = 8\nheight = 6\n"
-                                                          "[output]\nimages = false\n" + body);
+                                                          "[output]\nimages = false\nhit_records = " +
+                                                          (hitRecords_ ? "true" : "false") + "\n" + body);
         return loadExperiment(path);
     }
     ExperimentResult run(const std::string& body, RunnerOptions options = quiet()) {
@@ -60,13 +61,17 @@ class ResultsFolder : public ::testing::Test {
         return o;
     }
     fs::path folder() const { return dir_.path() / "out" / "r"; }
-    std::vector<fs::path> superseded() const {
+    // Everything set aside, or only the rows (superseded-*-runs.csv).
+    std::vector<fs::path> superseded(bool rowsOnly = true) const {
         std::vector<fs::path> files;
-        for (const auto& e : fs::directory_iterator(folder()))
-            if (e.path().filename().string().rfind("superseded-", 0) == 0) files.push_back(e.path());
+        for (const auto& e : fs::directory_iterator(folder())) {
+            const std::string name = e.path().filename().string();
+            if (name.rfind("superseded-", 0) == 0 && (!rowsOnly || name.ends_with("-runs.csv"))) files.push_back(e.path());
+        }
         return files;
     }
     TempDir dir_;
+    bool hitRecords_ = false;
 };
 
 const std::string kMeshSweep = "[scene]\nsource = \"flat.off\"\n[structure]\nmin_dim = [2, 3]\n";
@@ -84,9 +89,73 @@ TEST_F(ResultsFolder, AChangedMeshFileIsAnotherRun) {
     EXPECT_EQ(again.reused, 0);
     EXPECT_EQ(again.rows[0].at("scene_triangles"), "1");
     EXPECT_NE(again.rows[0].at("inputs_hash"), first.rows[0].at("inputs_hash"));
-    // The rows of the old mesh are set aside, not lost.
+    // The rows of the old mesh are set aside, not lost, with the context they were run under.
     ASSERT_EQ(superseded().size(), 1u);
-    EXPECT_EQ(readCsv(superseded()[0].string()).at(1).at("scene_triangles"), "2");
+    const fs::path csv = superseded()[0];
+    EXPECT_EQ(readCsv(csv.string()).at(1).at("scene_triangles"), "2");
+    const std::string prefix = csv.string().substr(0, csv.string().size() - std::string("runs.csv").size());
+    EXPECT_TRUE(fs::exists(prefix + "context.json"));
+}
+
+// A superseded row's per-run files go with it: no old hit records beside a new row of its run.
+TEST_F(ResultsFolder, ASupersededRowTakesItsPerRunFilesAside) {
+    dir_.write("flat.off", kTwoTriangles);
+    hitRecords_ = true;
+    const std::string body = "[scene]\nsource = \"flat.off\"\n[structure]\nmin_dim = 2\n";
+    ASSERT_EQ(run(body).failed, 0);
+    ASSERT_TRUE(fs::exists(folder() / "run-000.hits"));
+    fs::remove(dir_.path() / "flat.off");  // the run fails now: it writes no hit records
+    EXPECT_EQ(run(body).failed, 1);
+    EXPECT_FALSE(fs::exists(folder() / "run-000.hits"));
+    bool aside = false;
+    for (const fs::path& f : superseded(false)) aside = aside || f.string().ends_with("-run-000.hits");
+    EXPECT_TRUE(aside);
+}
+
+// A last row cut while written is set aside and its run run again; check calls it cut.
+TEST_F(ResultsFolder, ACutLastRowIsSetAsideAndRunAgain) {
+    const std::string body = "[scene]\nsource = \"procedural:christen_a\"\n[structure]\nmin_dim = [2, 3]\n";
+    run(body);
+    const fs::path csv = folder() / "runs.csv";
+    std::string text = readText(csv);
+    text.resize(text.size() - 3);  // inside wall_s, the last column: the field count still fits
+    std::ofstream(csv, std::ios::binary) << text;
+    EXPECT_THAT(errorOf([&] { readRunsCsv(csv.string()); }), HasSubstr(":3: the last row has no line end (cut while written?)"));
+    const ExperimentResult again = run(body);
+    EXPECT_EQ(again.reused, 1);  // run 000; run 001 again
+    bool cut = false;
+    for (const fs::path& f : superseded(false)) cut = cut || f.extension() == ".cut-row";
+    EXPECT_TRUE(cut);
+    EXPECT_EQ(readRunsCsv(csv.string()).size(), 2u);
+}
+
+// An interrupted sweep that finished no run: check re-runs nothing (not the whole plan).
+TEST_F(ResultsFolder, CheckOfAFolderWithNoRowsReRunsNothing) {
+    run("[scene]\nsource = \"procedural:christen_a\"\n[structure]\nmin_dim = 2\n");
+    writeCsv((folder() / "runs.csv").string(), runColumns(), {});
+    Json context = readJson((folder() / "context.json").string());
+    context["complete"] = false;
+    writeJson((folder() / "context.json").string(), context);
+    std::ostringstream out;
+    const CheckResult r = checkResults(folder().string(), {}, out);
+    EXPECT_EQ(r.runs, 0);
+    EXPECT_THAT(out.str(), HasSubstr("0 runs recorded"));
+    context["complete"] = "yes";
+    writeJson((folder() / "context.json").string(), context);
+    EXPECT_THAT(errorOf([&] { checkResults(folder().string(), {}, out); }),
+                HasSubstr("context.json: no boolean \"complete\" field"));
+}
+
+TEST_F(ResultsFolder, MergeRefusesShardsOfAnotherCpu) {
+    dir_.write("flat.off", kTwoTriangles);
+    run(kMeshSweep, shard(0, 2));
+    run(kMeshSweep, shard(1, 2));
+    const std::string csv = (folder() / "runs.shard-1-of-2.csv").string();
+    std::vector<Row> rows = readRunsCsv(csv);
+    rows[0]["cpu"] = "Another CPU";
+    writeCsv(csv, runColumns(), rows);
+    EXPECT_THAT(errorOf([&] { mergeShards(folder().string()); }),
+                HasSubstr("with Another CPU; a merged runs.csv holds one device and CPU"));
 }
 
 // A scene description's own text and every mesh it places are inputs.
