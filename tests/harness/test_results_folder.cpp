@@ -273,7 +273,8 @@ TEST_F(ResultsFolder, AResumeAcrossACommitReRunsTheRow) {
 TEST_F(ResultsFolder, ASymlinkInTheFolderIsRefusedAndItsTargetUntouched) {
     const std::string body = "[scene]\nsource = \"procedural:christen_a\"\n[structure]\nmin_dim = 2\n";
     const std::string victim = dir_.write("victim.txt", "precious\n");
-    for (const char* name : {".rtbench.lock", "runs.csv", "context.json", ".runs.csv.tmp-000000", "run-000.hits"}) {
+    for (const char* name : {".rtbench.lock", "runs.csv", "context.json", "runs.csv.tmp", "context.json.tmp",
+                             ".runs.csv.tmp-000000", "run-000.hits"}) {
         fs::remove_all(folder());
         fs::create_directories(folder());
         fs::create_symlink(victim, folder() / name);
