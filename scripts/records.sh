@@ -38,6 +38,8 @@ for config in "${configs[@]}"; do
   echo "== $config -> $out/$config"
   start=$(date +%s)
   # A failed run is a result too (a row naming why); rtbench then exits 1.
+  # --force re-runs every run; the rows it replaces are set aside in superseded-* files (rtbench
+  # never drops a row), which a record of record does not need: remove them before committing.
   "$bin" run --force "${args[@]}" "configs/$config.toml" || echo "== $config: some runs failed (see runs.csv)"
   echo "== $config: $(( $(date +%s) - start )) s"
 done

@@ -267,7 +267,7 @@ namespace {
 // that does not exist is named, and a rule that matches no run is an error naming it.
 TEST_F(Config, SkipRulesCompareTypedValues) {
     const std::string sweep = kMinimal + "[camera]\nfov_deg = [30.0, 40]\n[[sweep]]\nskip = [\"";
-    for (const std::string& rule : {"camera.fov_deg=30.000", "camera.fov_deg=30", "camera.fov_deg=3e1"}) {
+    for (const std::string rule : {"camera.fov_deg=30.000", "camera.fov_deg=30", "camera.fov_deg=3e1"}) {
         const ExperimentPlan plan = loadExperiment(write(sweep + rule + "\"]\n"));
         ASSERT_EQ(plan.runs.size(), 1u) << rule;
         EXPECT_EQ(plan.runs[0].getFloat("camera.fov_deg"), 40.0) << rule;

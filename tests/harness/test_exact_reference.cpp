@@ -63,6 +63,26 @@ TEST(ExactReference, RayThroughASharedVertexHitsTheWholeFan) {
     EXPECT_EQ(hit.t, 2.0);
 }
 
+TEST(ExactReference, ATieOfTrianglesInDifferentPlanesReportsTheLowestId) {
+    // A valley: triangle 0 in the plane z = x, triangle 1 in z = -x, sharing the edge x = z = 0.
+    // The ray from (-1.5, 2, 3) along (1, 0, -2) meets z = -x at t = 1.5 (3 - 2t = 1.5 - t) and
+    // z = x at t = 1.5 (3 - 2t = t - 1.5): the point (0, 2, 0) of the shared edge, a tie.
+    const TriangleMesh m = mesh({{0, 0, 0}, {0, 4, 0}, {2, 2, 2}, {-2, 2, 2}}, {{0, 1, 2}, {0, 1, 3}});
+    const ExactReference exact(m);
+    std::vector<std::uint32_t> ties;
+    const ExactHit hit = exact.trace(ray({-1.5f, 2, 3}, {1, 0, -2}), ties);
+    EXPECT_EQ(hit.t, 1.5);
+    EXPECT_EQ(hit.tieCount, 2u);
+    EXPECT_EQ(hit.primitive, 0u);
+    // One ulp to the left (x0 = -1.5 - 2^-23 = -1.5 - e) the ray passes left of the edge: it meets
+    // z = -x at t = 1.5 - e, at x = -2e (inside triangle 1), and z = x only at 1.5 + e/3, at
+    // x = -2e/3 (outside triangle 0, whose x >= 0): triangle 1 alone.
+    const ExactHit beside = exact.trace(ray({-1.5f - std::ldexp(1.0f, -23), 2, 3}, {1, 0, -2}), ties);
+    EXPECT_EQ(beside.tieCount, 1u);
+    EXPECT_EQ(beside.primitive, 1u);
+    EXPECT_NEAR(beside.t, 1.5 - std::ldexp(1.0, -23), 1e-15);
+}
+
 TEST(ExactReference, RayJustOutsideAnEdgeMisses) {
     const TriangleMesh m = mesh({{0, 0, 1}, {1, 0, 1}, {0, 1, 1}}, {{0, 1, 2}});
     const ExactReference exact(m);
