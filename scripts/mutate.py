@@ -285,11 +285,15 @@ def run_mutations(mutations, rows, args, src, build, scratch, jobs, ctest, selec
         write_newer(path, original.replace(m["old"], m["new"]), built_ns)
         try:
             r = run(["cmake", "--build", build, "-j", jobs], scratch)
+            if r.returncode != 0:  # once more: a transient failure (e.g. test discovery timing out under load)
+                r = run(["cmake", "--build", build, "-j", jobs], scratch)
             built_ns = time.time_ns()
             build_s = time.time() - start
             t0 = time.time()
             if r.returncode != 0:
                 outcome, failed = "does not compile", []
+                errors = [line for line in r.stdout.splitlines() if "error" in line.lower()]
+                print("\n".join(errors[:5] or r.stdout.splitlines()[-5:]), file=sys.stderr)
             elif args.tests:
                 failed = failed_tests(run(ctest + selection, build).stdout)
                 outcome = "killed" if failed else "SURVIVED (the selected tests)"
