@@ -197,6 +197,14 @@ TEST_F(ResultsFolder, MergeRefusesShardsOfAnotherCommitOrConfig) {
     writeJson(context.string(), json);
     EXPECT_THAT(errorOf([&] { mergeShards(folder().string()); }), HasSubstr("the plans differ"));
     writeJson(context.string(), saved);
+    // A row kept from another commit in a shard's CSV, though the contexts agree.
+    const std::string shardCsv = (folder() / "runs.shard-1-of-2.csv").string();
+    const std::vector<Row> shardRows = readRunsCsv(shardCsv);
+    std::vector<Row> edited = shardRows;
+    edited[0]["git_commit"] = "0000000000ab";
+    writeCsv(shardCsv, runColumns(), edited);
+    EXPECT_THAT(errorOf([&] { mergeShards(folder().string()); }), HasSubstr("was run at commit 0000000000ab"));
+    writeCsv(shardCsv, runColumns(), shardRows);
     EXPECT_EQ(mergeShards(folder().string()).size(), 2u);
     EXPECT_EQ(mergeShards(folder().string()).size(), 2u);  // merging again changes nothing
     // An existing, different runs.csv is not replaced.
