@@ -4,6 +4,7 @@
 
 #include <cerrno>
 #include <cstring>
+#include <algorithm>
 #include <set>
 
 #include <cmath>
@@ -72,8 +73,11 @@ void checkRowsAgainstPlan(const Json& context, const std::string& contextPath, c
                         " says the sweep completed: rows were lost");
 }
 
+// The value of a numeric cell; NaN for an empty or text cell.
 double number(const std::string& s) {
-    return s.empty() ? std::nan("") : std::strtod(s.c_str(), nullptr);
+    char* end = nullptr;
+    const double v = std::strtod(s.c_str(), &end);
+    return s.empty() || *end != '\0' ? std::nan("") : v;
 }
 
 }  // namespace
@@ -181,8 +185,10 @@ CheckResult checkResults(const std::string& folder, const CheckOptions& options,
                     break;
                 }
                 case ColumnKind::Timing: {
+                    // Text (timing_stop, timing_warning) differs or not; numbers by the tolerance.
                     const double a = number(value), b = number(again);
-                    if (std::abs(b - a) <= options.timingTolerance * std::max(std::abs(a), 1e-9))
+                    const bool numeric = !std::isnan(a) && !std::isnan(b);
+                    if (numeric && std::abs(b - a) <= options.timingTolerance * std::max(std::abs(a), 1e-9))
                         break;
                     report(old.at("run"), column, value, again, "timing");
                     ++result.timingDifferences;
@@ -204,6 +210,17 @@ CheckResult checkResults(const std::string& folder, const CheckOptions& options,
         << result.referenceDifferences << " reference-dependent within tolerance, "
         << result.timingDifferences << " timing(s) outside " << options.timingTolerance * 100
         << "%, " << result.contextDifferences << " context\n";
+    // A folder of an older results schema lacks the later columns: they are not compared.
+    std::string newer;
+    for (const std::string& column : runColumns())
+        if (!recorded.front().count(column) && std::any_of(now.rows.begin(), now.rows.end(), [&](const Row& r) {
+                const auto it = r.find(column);
+                return it != r.end() && !it->second.empty();
+            }))
+            newer += (newer.empty() ? "" : ", ") + column;
+    if (!newer.empty())
+        out << "(recorded under results schema " << schemaVersion(context) << "; columns of schema " << kSchemaVersion
+            << " not compared: " << newer << ")\n";
     if (context.contains("complete") && context["complete"] == false)
         out << "(the recorded sweep was interrupted: " << recorded.size() << " of "
             << plan.runs.size() << " runs were recorded and checked)\n";

@@ -18,7 +18,7 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         for (const KeySpec& key : configSchema())
             s.push_back({paramColumn(key.name),
                          key.name == "experiment.output" ? K::Context : K::Parameter, "",
-                         key.help, 0.0, false, key.appliesWhen});
+                         key.help, 0.0, false, key.appliesWhen, key.since});
         auto add = [&](std::string name, K kind, std::string unit, std::string help,
                        double tolerance = 0.0, bool perRay = false) {
             s.push_back(
@@ -60,17 +60,30 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
             }
         };
         for (const StructureType* t : structureTypes()) addMethodColumns("structure.type", t->name, t->columns);
-        // Time.
+        // Time (harness/timing_rounds.h: every sample is in samples.csv).
+        auto since2 = [&](std::string name, K kind, std::string unit, std::string help) {
+            add(std::move(name), kind, std::move(unit), std::move(help));
+            s.back().since = 2;
+        };
+        auto spread = [&](const std::string& m, const std::string& who) {
+            since2(m + "_ms_mean", K::Timing, "ms", who + ", mean of the repetitions");
+            since2(m + "_ms_std", K::Timing, "ms", who + ", sample standard deviation of the repetitions");
+            since2(m + "_ms_cv", K::Timing, "", who + ", coefficient of variation (std / mean)");
+            since2(m + "_ms_ci_low", K::Timing, "ms", who + ", 95% percentile-bootstrap interval of the median: low end");
+            since2(m + "_ms_ci_high", K::Timing, "ms", who + ", 95% percentile-bootstrap interval of the median: high end");
+        };
         add("kernel_ms_median", K::Timing, "ms",
             "GPU time of the kernel(s), median of the repetitions");
         add("kernel_ms_min", K::Timing, "ms", "GPU time, fastest repetition");
         add("kernel_ms_max", K::Timing, "ms", "GPU time, slowest repetition");
+        spread("kernel", "GPU time");
         add("kernel_mrays_s", K::Timing, "Mrays/s", "rays / median GPU time");
         for (const char* mode : {"embree1", "embree16"}) {
             const std::string m = mode;
             add(m + "_ms_median", K::Timing, "ms", "Embree " + m + " on the same rays, median");
             add(m + "_ms_min", K::Timing, "ms", "Embree " + m + ", fastest repetition");
             add(m + "_ms_max", K::Timing, "ms", "Embree " + m + ", slowest repetition");
+            spread(m, "Embree " + m);
             add(m + "_mrays_s", K::Timing, "Mrays/s", "rays / Embree's median time");
         }
         add("embree_threads", K::Context, "threads", "TBB threads Embree ran on");
@@ -78,6 +91,16 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("embree_build_ms", K::Timing, "ms", "Embree BVH build time");
         add("speed_ratio_vs_embree1", K::Timing, "ratio",
             "kernel Mrays/s / Embree rtcIntersect1 Mrays/s");
+        since2("speed_ratio_ci_low", K::Timing, "ratio", "speed_ratio_vs_embree1: 95% bootstrap interval (the two methods' samples resampled on their own), low end");
+        since2("speed_ratio_ci_high", K::Timing, "ratio", "speed_ratio_vs_embree1: 95% bootstrap interval, high end");
+        since2("timing_repetitions", K::Timing, "repetitions", "timed repetitions of each method (kernel, Embree 1, Embree 16)");
+        since2("timing_rounds", K::Timing, "rounds", "rounds they were timed in, each the kernel then Embree 1 then Embree 16");
+        since2("timing_stop", K::Timing, "", "why the timing stopped: repetitions (experiment.repetitions, fixed), converged (every interval within experiment.target_ci), max_repetitions, time_budget");
+        since2("timing_s", K::Timing, "s", "wall time of the timed rounds");
+        since2("timing_warning", K::Timing, "", "noise guard: why the run's timings are not results of record (a coefficient of variation above experiment.noise_cv, other processes above experiment.noise_other_cpu); empty when clean");
+        since2("other_cpu_fraction", K::Timing, "fraction", "noise guard: CPU time other processes took while the run was timed, over cores x wall time (Linux /proc/stat, hypervisor steal included)");
+        since2("load_average", K::Timing, "", "noise guard: 1-minute load average when the timing ended");
+        since2("device_host_threads", K::Context, "threads", "threads the device runs on the host's cores (lavapipe: LP_NUM_THREADS, else one per core up to 32; 0 for a GPU), beside embree_threads, against the machine's cores (context.json cpu_threads)");
         // Agreement with Embree, a second view of accuracy: depends on Embree's floating-point path.
         add("hits", K::Count, "rays", "rays the kernel hit");
         add("hit_miss_agreement", K::Reference, "fraction", "rays whose hit/miss equals Embree's",
@@ -176,6 +199,11 @@ std::string columnsMarkdown() {
     return out;
 }
 
+int schemaVersion(const Json& context) {
+    const auto it = context.find("schema_version");
+    return it != context.end() && it->is_number_integer() ? it->get<int>() : 1;
+}
+
 std::vector<Row> readRunsCsv(const std::string& path) {
     return parseRunsCsv(readInputFile(path, kMaxResultsFileBytes, "CSV file"), path);
 }
@@ -195,14 +223,27 @@ std::vector<Row> parseRunsCsv(const std::string& text, const std::string& path) 
                 });
             });
         };
+        // The file's schema: the newest whose every needed column is there. A file of an older
+        // schema has none of a later one's columns; one with some of them was cut or edited.
+        int schema = kSchemaVersion;
+        for (int v = 1; v <= kSchemaVersion && schema == kSchemaVersion; ++v)
+            for (const ColumnSpec& c : runColumnSpecs())
+                if (c.since == v && !rows[0].count(c.name) && needed(c)) {
+                    schema = v - 1;
+                    break;
+                }
         std::string missing, unknown;
-        for (const ColumnSpec& c : runColumnSpecs())
-            if (!rows[0].count(c.name) && needed(c)) missing += (missing.empty() ? "" : ", ") + c.name;
+        bool laterPresent = false;
+        for (const ColumnSpec& c : runColumnSpecs()) {
+            if (c.since > schema && rows[0].count(c.name)) laterPresent = true;
+            if (!rows[0].count(c.name) && needed(c) && (c.since <= schema + 1))
+                missing += (missing.empty() ? "" : ", ") + c.name;
+        }
         for (const auto& [c, value] : rows[0])
             if (!declaredSet.count(c)) unknown += (unknown.empty() ? "" : ", ") + c;
-        if (!missing.empty())
-            throw Error(path + ": missing column(s) " + missing +
-                        " (written by another rtbench version?)");
+        if (schema < 1 || laterPresent)
+            throw Error(path + ": missing column(s) " + missing + " (of results schema " + std::to_string(schema + 1) +
+                        "; the file has other columns of it or none of schema 1: cut, edited, or written by another rtbench?)");
         if (!unknown.empty()) throw Error(path + ": unknown column(s) " + unknown);
     }
     std::set<std::string> runs;

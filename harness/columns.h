@@ -22,11 +22,16 @@ std::vector<std::string> runColumns();
 // The spec of a column; throws rtbench::Error naming the column when it is not declared.
 const ColumnSpec& columnSpec(const std::string& name);
 
-// Reads a runs CSV (runs.csv or a shard's) and checks it is whole: its header holds exactly the
-// declared columns, and every row has a run number, unique in the file. Throws rtbench::Error
+// Reads a runs CSV (runs.csv or a shard's) and checks it is whole: its header holds the declared
+// columns of one results schema (ColumnSpec::since: a file of an older schema lacks the later
+// columns, and its rows lack those keys), and every row has a run number, unique in the file. Throws rtbench::Error
 // naming the file and the missing or unknown column, or the row and run.
 std::vector<Row> readRunsCsv(const std::string& path);
 std::vector<Row> parseRunsCsv(const std::string& text, const std::string& path);
+
+// A results folder's schema (plan/columns.h kSchemaVersion) as its context.json records it; 1
+// when it does not (folders written before the schema was recorded).
+int schemaVersion(const Json& context);
 
 // The metric columns (all but the config keys) as a Markdown table: column, kind, unit, meaning.
 // The README holds this table; a test keeps the two equal.

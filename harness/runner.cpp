@@ -1,6 +1,7 @@
 #include "runner.h"
 
 #include <tbb/parallel_for.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <chrono>
@@ -25,6 +26,9 @@
 #include "images.h"
 #include "methods/registry.h"
 #include "methods/triangle_store.h"
+#include "noise_guard.h"
+#include "statistics.h"
+#include "timing_rounds.h"
 #include "output_folder.h"
 #include "structures/camera.h"
 #include "structures/error.h"
@@ -85,6 +89,7 @@ struct Caches {
     std::map<std::string, std::shared_ptr<EmbreeReference>> embree;
     std::map<std::string, std::shared_ptr<ExactReference>> exact;  // by scene
     std::map<std::string, std::shared_ptr<ExactHits>> exactHits;   // by scene, rays and sample
+    std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();  // samples' t_s origin
 };
 
 // The run's device (device.name, device.validation: the command line's -d and --validation are
@@ -212,30 +217,91 @@ PinholeCamera cameraFor(const RunConfig& run, const TriangleMesh& mesh) {
     return camera;
 }
 
-// Embree on the same rays: timings for rtcIntersect1 and rtcIntersect16; returns rtcIntersect1's hits.
-std::vector<gpu::HitRecord> traceEmbree(const RunConfig& run, const RunScene& scene, const std::vector<gpu::Ray>& rays,
-                                        const TimingOptions& timing, Caches& caches, Row& row) {
-    const TriangleMesh& mesh = scene.traced;
+// Embree on the traced scene, built once per sweep for each scene and device config.
+EmbreeReference& embreeFor(const RunConfig& run, const RunScene& scene, Caches& caches, Row& row) {
     const std::string embreeConfig = run.getString("baseline.embree_config");
     const std::string embreeKey = scene.tracedKey + "|" + embreeConfig;
-    if (!caches.embree.count(embreeKey)) caches.embree[embreeKey] = std::make_shared<EmbreeReference>(mesh, embreeConfig);
+    if (!caches.embree.count(embreeKey)) caches.embree[embreeKey] = std::make_shared<EmbreeReference>(scene.traced, embreeConfig);
     EmbreeReference& embree = *caches.embree[embreeKey];
-    std::vector<gpu::HitRecord> embreeHits, scratch;
-    for (EmbreeMode mode : {EmbreeMode::Intersect1, EmbreeMode::Intersect16}) {
-        const std::string prefix = mode == EmbreeMode::Intersect1 ? "embree1" : "embree16";
-        for (int i = 0; i < timing.warmups; ++i) embree.trace(rays, mode, scratch);
-        std::vector<double> ms;
-        for (int i = 0; i < timing.repetitions; ++i)
-            ms.push_back(embree.trace(rays, mode, mode == EmbreeMode::Intersect1 ? embreeHits : scratch));
-        const TimingStats et = timingStats(ms);
-        row[prefix + "_ms_median"] = num(et.median);
-        row[prefix + "_ms_min"] = num(et.min);
-        row[prefix + "_ms_max"] = num(et.max);
-        row[prefix + "_mrays_s"] = num(double(rays.size()) / (et.median * 1e3));
-    }
     row["embree_threads"] = std::to_string(embree.threads());
     row["embree_isa"] = embree.isa();
     row["embree_build_ms"] = num(embree.buildMs(), 4);
+    return embree;
+}
+
+// A timed series' statistics into <prefix>_ms_median, _min, _max, _mean, _std, _cv, _ci_low, _ci_high.
+SampleStats writeTimingColumns(const std::string& prefix, const std::vector<double>& ms, Row& row) {
+    const SampleStats s = summarize(ms);
+    row[prefix + "_ms_median"] = num(s.median);
+    row[prefix + "_ms_min"] = num(s.min);
+    row[prefix + "_ms_max"] = num(s.max);
+    row[prefix + "_ms_mean"] = num(s.mean);
+    row[prefix + "_ms_std"] = num(s.stddev, 4);
+    row[prefix + "_ms_cv"] = num(s.cv, 4);
+    row[prefix + "_ms_ci_low"] = num(s.ciLow);
+    row[prefix + "_ms_ci_high"] = num(s.ciHigh);
+    return s;
+}
+
+// The kernel and Embree rtcIntersect1 and rtcIntersect16 on the same rays, timed in rounds
+// (harness/timing_rounds.h) under the noise guard (harness/noise_guard.h); every sample goes to
+// `samples`, the statistics to `row`. Returns rtcIntersect1's hits.
+std::vector<gpu::HitRecord> timeMethods(const RunConfig& run, const VulkanContext& vk, KernelTimer& kernel,
+                                        EmbreeReference& embree, const std::vector<gpu::Ray>& rays, const Caches& caches,
+                                        Row& row, std::vector<TimingSample>& samples) {
+    std::vector<gpu::HitRecord> embreeHits, scratch;
+    std::vector<TimedMethod> methods;
+    methods.push_back({"kernel", [&](int warmups, int repetitions) { return kernel.time(warmups, repetitions); }});
+    for (EmbreeMode mode : {EmbreeMode::Intersect1, EmbreeMode::Intersect16})
+        methods.push_back({mode == EmbreeMode::Intersect1 ? "embree1" : "embree16", [&, mode](int warmups, int repetitions) {
+                               TimedBatch batch;
+                               for (int i = 0; i < warmups; ++i) embree.trace(rays, mode, scratch);
+                               for (int i = 0; i < repetitions; ++i)
+                                   batch.ms.push_back(embree.trace(rays, mode, mode == EmbreeMode::Intersect1 ? embreeHits : scratch));
+                               return batch;
+                           }});
+    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+    const CpuTimes before = sampleCpuTimes();
+    const RoundsResult timed = timeInRounds(methods, [&] { return kernel.timeHostLoops(); }, roundsOptions(run), caches.started);
+    const CpuTimes after = sampleCpuTimes();
+    samples = timed.samples;
+
+    const SampleStats k = writeTimingColumns("kernel", timed.of("kernel"), row);
+    row["kernel_mrays_s"] = num(k.median > 0 ? double(rays.size()) / (k.median * 1e3) : 0.0);
+    std::vector<std::string> noisy;
+    const double noiseCv = run.getFloat("experiment.noise_cv");
+    if (k.cv > noiseCv) noisy.push_back("kernel CV " + num(k.cv, 3));
+    for (const char* m : {"embree1", "embree16"}) {
+        const SampleStats e = writeTimingColumns(m, timed.of(m), row);
+        row[std::string(m) + "_mrays_s"] = num(double(rays.size()) / (e.median * 1e3));
+        if (e.cv > noiseCv) noisy.push_back(std::string(m) + " CV " + num(e.cv, 3));
+    }
+    // The strategy's own series: the parts of a repetition, its host-controlled loops.
+    for (const auto& [name, ms] : timed.series) {
+        if (name.rfind("kernel_", 0) == 0) row["kernel_ms_" + name.substr(7)] = num(median(ms));
+        else if (name != "kernel" && name != "embree1" && name != "embree16") row[name + "_ms_median"] = num(median(ms));
+    }
+    const double embreeMedian = median(timed.of("embree1"));
+    row["speed_ratio_vs_embree1"] = num(k.median > 0 ? embreeMedian / k.median : 0.0, 4);
+    const Interval ratio = bootstrapRatioOfMedians(timed.of("embree1"), timed.of("kernel"));
+    row["speed_ratio_ci_low"] = num(ratio.low, 4);
+    row["speed_ratio_ci_high"] = num(ratio.high, 4);
+    row["timing_repetitions"] = std::to_string(timed.repetitions);
+    row["timing_rounds"] = std::to_string(timed.rounds);
+    row["timing_stop"] = timed.stop;
+    row["timing_s"] = num(timed.seconds, 4);
+
+    // The noise guard.
+    const double other = otherCpuFraction(before, after, cores, double(::sysconf(_SC_CLK_TCK)));
+    row["other_cpu_fraction"] = other < 0 ? "" : num(other, 3);
+    const double load = loadAverage();
+    row["load_average"] = load < 0 ? "" : num(load, 3);
+    row["device_host_threads"] = std::to_string(deviceHostThreads(vk.info().type == "cpu", cores));
+    if (!noisy.empty()) noisy.back() += " > experiment.noise_cv " + num(noiseCv, 3);
+    if (other > run.getFloat("experiment.noise_other_cpu"))
+        noisy.push_back("other processes took " + num(100 * other, 3) + "% of the machine's CPU time (> experiment.noise_other_cpu " +
+                        num(run.getFloat("experiment.noise_other_cpu"), 3) + ")");
+    for (const std::string& n : noisy) row["timing_warning"] += (row["timing_warning"].empty() ? "" : "; ") + n;
     return embreeHits;
 }
 
@@ -297,7 +363,8 @@ void writeImageAccuracy(const std::vector<gpu::Ray>& rays, const RunScene& scene
 // against the structure's CPU reference) -> Embree on the same rays -> the exact reference on a
 // sample of them -> metrics -> images. Every
 // value goes to `row`; a self-check that fails throws after the row is complete.
-void executeRun(const ExperimentPlan& plan, const RunConfig& run, const std::string& folder, Caches& caches, Row& row) {
+void executeRun(const ExperimentPlan& plan, const RunConfig& run, const std::string& folder, Caches& caches, Row& row,
+                std::vector<TimingSample>& samples) {
     VulkanContext& vk = deviceFor(run, caches);
     const std::size_t messagesBefore = vk.validationMessages().size();
     const StructureType& structureKind = structureType(run.getString("structure.type"));
@@ -325,25 +392,20 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const std::str
     row["structure_build_ms"] = num(structure->buildMs, 4);
     row["predicted_work_per_ray"] = num(structure->predictedWork(rays) / double(rays.size()));
 
-    // Method: the strategy runs the structure's kernels and checks them against its CPU reference.
+    // Method: the strategy runs the structure's kernels once, instrumented, and checks them
+    // against its CPU reference.
     TimingOptions timing;
     timing.workgroupSize = unsigned(run.getInt("strategy.workgroup_size"));
-    timing.warmups = int(run.getInt("experiment.warmups"));
-    timing.repetitions = int(run.getInt("experiment.repetitions"));
+    timing.warmups = timing.repetitions = 0;  // timed below, in rounds with Embree
     const StrategyRun method = strategy.run(vk, *structure, rays, run, timing, row);
     row["cpu_reference_mismatches"] = std::to_string(method.cpuMismatches);
     row["cpu_counts_match"] = method.countsMismatch.empty() ? "1" : "0";
     writeArchitectureColumns(method.metrics, *structure, rays.size(), row);
-    const TimingStats kt = timingStats(method.gpuMs);
-    row["kernel_ms_median"] = num(kt.median);
-    row["kernel_ms_min"] = num(kt.min);
-    row["kernel_ms_max"] = num(kt.max);
-    const double kernelMrays = kt.median > 0 ? double(rays.size()) / (kt.median * 1e3) : 0.0;
-    row["kernel_mrays_s"] = num(kernelMrays);
 
-    // Reference: Embree on the same rays.
-    const std::vector<gpu::HitRecord> embreeHits = traceEmbree(run, scene, rays, timing, caches, row);
-    row["speed_ratio_vs_embree1"] = num(kernelMrays / std::stod(row["embree1_mrays_s"]), 4);
+    // Time: the kernel, uninstrumented, and Embree on the same rays, in rounds.
+    EmbreeReference& embree = embreeFor(run, scene, caches, row);
+    const std::vector<gpu::HitRecord> embreeHits = timeMethods(run, vk, *method.timer, embree, rays, caches, row, samples);
+    method.timer->checkHits();
 
     // The kernel's image: its shading, and where its hits differ from Embree's.
     const HitImage image = makeHitImage(width, height, rays, mesh, method.hits, embreeHits);
@@ -401,6 +463,7 @@ Json contextJson(const ExperimentPlan& plan, const RunnerOptions& options, const
     j["overrides"] = Json::object();  // the command line's -d, --validation, --embree-config
     for (const auto& [key, value] : plan.overrides) j["overrides"][key] = value;
     j["shard"] = options.shardCount > 1 ? std::to_string(options.shardIndex) + "/" + std::to_string(options.shardCount) : "";
+    j["schema_version"] = kSchemaVersion;
     j["git_commit"] = gitCommit();
     j["date_utc"] = startedUtc;
     j["complete"] = complete;
@@ -448,14 +511,17 @@ std::string supersededPrefix(const std::string& folder, const std::string& csvNa
     }
 }
 
-// Sets aside rows of an earlier invocation that a resume does not keep: the rows, the context
-// they were recorded under (the old context.json, before this invocation replaces it), and each
-// row's per-run files (run-NNN.hits, -shaded.png, -diff.png), which would else sit beside a new
-// row of the same run number. Returns the prefix of their names.
+// Sets aside rows of an earlier invocation that a resume does not keep: the rows, their timing
+// samples (and samples of runs whose row was never written), the context they were recorded under
+// (the old context.json, before this invocation replaces it), and each row's per-run files
+// (run-NNN.hits, -shaded.png, -diff.png), which would else sit beside a new row of the same run
+// number. Returns the prefix of their names.
 std::string setAside(const std::string& folder, const std::string& csvName, const std::string& contextPath,
-                     const std::vector<std::string>& columns, const std::vector<Row>& rows) {
+                     const std::vector<std::string>& columns, const std::vector<Row>& rows,
+                     const std::string& samplesName, const std::vector<Row>& samples) {
     const std::string prefix = supersededPrefix(folder, csvName);
-    writeCsv(prefix + csvName, columns, rows);
+    if (!rows.empty()) writeCsv(prefix + csvName, columns, rows);
+    if (!samples.empty()) writeCsv(prefix + samplesName, sampleColumns(), samples);
     std::error_code ec;
     if (fs::is_regular_file(fs::symlink_status(contextPath, ec)))
         writeFileAtomically(prefix + fs::path(contextPath).filename().string(),
@@ -467,6 +533,43 @@ std::string setAside(const std::string& folder, const std::string& csvName, cons
                 fs::rename(file, prefix + file.filename().string(), ec);
         }
     return prefix;
+}
+
+// The text of a CSV this invocation resumes from. A last row without its line end was cut while
+// written (a crash, power lost): it is set aside as it is, and the rows before it stand.
+std::string readResumable(const std::string& folder, const std::string& path, const std::string& name) {
+    std::string text = readInputFile(path, kMaxResultsFileBytes, "CSV file");
+    if (text.empty() || text.back() == '\n') return text;
+    const std::size_t end = text.rfind('\n');
+    const std::string prefix = supersededPrefix(folder, name);
+    writeFileAtomically(prefix + name + ".cut-row", end == std::string::npos ? text : text.substr(end + 1));
+    text.resize(end == std::string::npos ? 0 : end + 1);
+    std::cerr << "[rtbench] " << path << ": its last row was cut while written; set aside in " << prefix << name
+              << ".cut-row, and run again\n";
+    return text;
+}
+
+// A run's timing samples as samples.csv rows.
+std::vector<Row> sampleRows(const Row& row, const std::vector<TimingSample>& samples) {
+    std::vector<Row> rows;
+    for (const TimingSample& s : samples)
+        rows.push_back({{"run", row.at("run")}, {"config_hash", row.at("config_hash")}, {"method", s.method},
+                        {"round", std::to_string(s.round)}, {"repetition", std::to_string(s.repetition)},
+                        {"ms", formatNumber(s.ms, 9)}, {"t_s", formatNumber(s.t, 9)}});
+    return rows;
+}
+
+// samples.csv (or a shard's) as written by sampleRows: its header holds exactly sampleColumns().
+std::vector<Row> parseSamplesCsv(const std::string& text, const std::string& path) {
+    std::vector<Row> rows = parseCsv(text, path);
+    if (!rows.empty()) {
+        std::vector<std::string> header;
+        for (const auto& [column, value] : rows[0]) header.push_back(column);
+        std::vector<std::string> expected = sampleColumns();
+        std::sort(expected.begin(), expected.end());
+        if (header != expected) throw Error(path + ": not a samples file (expected the columns run,config_hash,method,round,repetition,ms,t_s)");
+    }
+    return rows;
 }
 
 }  // namespace
@@ -510,6 +613,7 @@ std::string shardSuffix(const RunnerOptions& options) {
 
 std::string runsFileName(const RunnerOptions& options) { return "runs" + shardSuffix(options) + ".csv"; }
 std::string contextFileName(const RunnerOptions& options) { return "context" + shardSuffix(options) + ".json"; }
+std::string samplesFileName(const RunnerOptions& options) { return "samples" + shardSuffix(options) + ".csv"; }
 
 ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& options) {
     ExperimentResult result;
@@ -533,8 +637,11 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
     const std::string csvName = runsFileName(options);
     const std::string csvPath = (fs::path(result.folder) / csvName).string();
     const std::string contextPath = (fs::path(result.folder) / contextFileName(options)).string();
+    const std::string samplesName = samplesFileName(options);
+    const std::string samplesPath = (fs::path(result.folder) / samplesName).string();
     checkWritableFile(csvPath);
     checkWritableFile(contextPath);
+    checkWritableFile(samplesPath);
     const std::vector<std::string> columns = runColumns();
 
     std::vector<const RunConfig*> mine;
@@ -548,31 +655,27 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
     for (const RunConfig* run : mine) deviceFor(*run, caches);
 
     // Rows of an earlier invocation that can stand: ok, and the same run in every input.
-    std::vector<Row> earlierRows;
-    if (fs::exists(fs::symlink_status(csvPath, ec))) {
-        std::string text = readInputFile(csvPath, kMaxResultsFileBytes, "CSV file");
-        // A last row without its line end was cut while written (a crash, power lost): it is
-        // set aside as it is, and the rows before it stand.
-        const std::size_t end = text.rfind('\n');
-        if (!text.empty() && text.back() != '\n' && end != std::string::npos) {
-            const std::string prefix = supersededPrefix(result.folder, csvName);
-            writeFileAtomically(prefix + csvName + ".cut-row", text.substr(end + 1));
-            text.resize(end + 1);
-            std::cerr << "[rtbench] " << csvPath << ": its last row was cut while written; set aside in " << prefix
-                      << csvName << ".cut-row, and run again\n";
-        }
+    std::vector<Row> earlierRows, earlierSamples;
+    // An earlier runs CSV (and its samples): read to resume from, or, unreadable with --force,
+    // moved aside whole.
+    auto readEarlier = [&](const std::string& path, const std::string& name, auto parse) {
+        std::vector<Row> rows;
+        if (!fs::exists(fs::symlink_status(path, ec))) return rows;
         try {
-            earlierRows = parseRunsCsv(text, csvPath);
+            rows = parse(readResumable(result.folder, path, name), path);
         } catch (const Error& e) {
             if (!options.force)
                 throw Error(std::string(e.what()) + "; cannot resume from it (--force re-runs every run and replaces it)");
-            earlierRows.clear();  // --force replaces it; the unreadable file is kept aside
-            const std::string aside = supersededPrefix(result.folder, csvName) + csvName;
-            fs::rename(csvPath, aside, ec);
-            if (ec) throw Error(csvPath + ": cannot move the unreadable file aside: " + ec.message());
-            std::cerr << "[rtbench] " << csvPath << " could not be read (" << e.what() << "); kept as " << aside << "\n";
+            rows.clear();  // --force replaces it; the unreadable file is kept aside
+            const std::string aside = supersededPrefix(result.folder, name) + name;
+            fs::rename(path, aside, ec);
+            if (ec) throw Error(path + ": cannot move the unreadable file aside: " + ec.message());
+            std::cerr << "[rtbench] " << path << " could not be read (" << e.what() << "); kept as " << aside << "\n";
         }
-    }
+        return rows;
+    };
+    earlierRows = readEarlier(csvPath, csvName, parseRunsCsv);
+    earlierSamples = readEarlier(samplesPath, samplesName, parseSamplesCsv);
     std::map<std::string, const Row*> earlier;  // by identity
     std::set<std::string> earlierRuns;           // "run|config_hash" of those
     if (!options.force)
@@ -624,8 +727,22 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
             superseded.push_back(row);
             notInPlan += !planned.count(row.at("run") + "|" + row.at("config_hash"));
         }
+    // The samples of kept rows stand with them; the rest (superseded rows', and those of a run
+    // interrupted before its row was written) are set aside.
+    std::set<std::string> keptRuns;
+    for (const Row* row : keptEarlier) keptRuns.insert(row->at("run") + "|" + row->at("config_hash"));
+    std::vector<Row> keptSamples, supersededSamples;
+    for (Row& sample : earlierSamples)
+        (keptRuns.count(sample.at("run") + "|" + sample.at("config_hash")) ? keptSamples : supersededSamples).push_back(std::move(sample));
+    if (superseded.empty() && !supersededSamples.empty()) {
+        const std::string aside = setAside(result.folder, csvName, contextPath, columns, {}, samplesName, supersededSamples);
+        std::cerr << "[rtbench] " << supersededSamples.size() << " timing sample(s) of " << samplesPath
+                  << " belong to no row (a run interrupted before its row was written); they are saved in " << aside
+                  << samplesName << "\n";
+    }
     if (!superseded.empty()) {
-        const std::string aside = setAside(result.folder, csvName, contextPath, columns, superseded) + csvName;
+        const std::string aside =
+            setAside(result.folder, csvName, contextPath, columns, superseded, samplesName, supersededSamples) + csvName;
         std::string notInPlanRuns;
         for (const Row& row : superseded)
             if (!planned.count(row.at("run") + "|" + row.at("config_hash")))
@@ -645,6 +762,7 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
         for (std::size_t k = 0; k < mine.size(); ++k)
             if (kept[k]) keptRows.push_back(rows[k]);
         writeCsv(csvPath, columns, keptRows);
+        writeCsv(samplesPath, sampleColumns(), keptSamples);  // the kept runs' samples first
     }
     if (!options.quiet)
         std::cout << "[rtbench] " << plan.configPath << ": " << mine.size() << " run" << (mine.size() == 1 ? "" : "s")
@@ -672,8 +790,9 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
             std::cout << "] " << run.label() << " ..." << std::defaultfloat << std::flush;
         }
         const auto start = std::chrono::steady_clock::now();
+        std::vector<TimingSample> samples;
         try {
-            executeRun(plan, run, result.folder, caches, row);
+            executeRun(plan, run, result.folder, caches, row, samples);
             row["status"] = "ok";
         } catch (const std::exception& e) {
             row["status"] = "failed";
@@ -692,6 +811,12 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
                 std::cout << " FAILED: " << row["error"] << "\n";
         }
         if (!row["warnings"].empty()) std::cerr << "[rtbench] run " << row["run"] << " warning: " << row["warnings"] << "\n";
+        if (!row["timing_warning"].empty())
+            std::cerr << "[rtbench] run " << row["run"] << " timing warning: " << row["timing_warning"]
+                      << " (not a timing of record)\n";
+        // The samples before the row: an interrupt between them leaves samples without a row,
+        // which a resume sets aside, never a row without its samples.
+        appendCsvRows(samplesPath, sampleColumns(), sampleRows(row, samples));
         appendCsvRow(csvPath, columns, row);  // an interrupt loses nothing done
     }
     result.rows = rows;
@@ -810,7 +935,39 @@ std::vector<Row> mergeShards(const std::string& folder) {
             throw Error(csvPath + ": exists and differs from the merge of these shards (" + std::to_string(existing.size()) +
                         " rows against " + std::to_string(merged.size()) + "); move it away first");
     }
+    // The shards' timing samples, of the merged rows only, in run order.
+    std::vector<Row> samples;
+    std::size_t withSamples = 0;
+    for (const auto& [shard, files] : shards) {
+        const fs::path path = fs::path(folder) / ("samples." + shard + ".csv");
+        if (!fs::exists(fs::symlink_status(path, ec))) continue;
+        ++withSamples;
+        for (Row& sample : parseSamplesCsv(readInputFile(path.string(), kMaxResultsFileBytes, "CSV file"), path.string())) {
+            const auto row = byRun.find(sample.at("run"));
+            if (row == byRun.end() || row->second.at("config_hash") != sample.at("config_hash"))
+                throw Error(path.string() + ": a sample of run " + sample.at("run") + " (config_hash " + sample.at("config_hash") +
+                            ") that no shard's row has");
+            samples.push_back(std::move(sample));
+        }
+    }
+    if (withSamples && withSamples != shards.size())
+        throw Error(folder + ": " + std::to_string(withSamples) + " of " + std::to_string(shards.size()) +
+                    " shards have a samples file; a shard's samples.shard-*.csv is missing");
+    std::stable_sort(samples.begin(), samples.end(), [](const Row& a, const Row& b) { return a.at("run") < b.at("run"); });
+    const std::string samplesPath = (fs::path(folder) / "samples.csv").string();
+    checkWritableFile(samplesPath);
+    if (withSamples && fs::exists(fs::symlink_status(samplesPath, ec))) {
+        std::vector<Row> existing;
+        try {
+            existing = parseSamplesCsv(readInputFile(samplesPath, kMaxResultsFileBytes, "CSV file"), samplesPath);
+        } catch (const Error& e) {
+            throw Error(samplesPath + ": exists and is not the merge of these shards (" + e.what() + "); move it away first");
+        }
+        if (existing != samples)
+            throw Error(samplesPath + ": exists and differs from the merge of these shards' samples; move it away first");
+    }
     writeCsv(csvPath, runColumns(), merged);
+    if (withSamples) writeCsv(samplesPath, sampleColumns(), samples);
     Json context = reference.json;
     context["complete"] = complete;
     context["shard"] = "";

@@ -38,10 +38,13 @@ struct ExperimentResult {
 
 ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& options);
 
-// The files a run writes: runs.csv and context.json, or runs.shard-<i>-of-<n>.csv and
-// context.shard-<i>-of-<n>.json for a shard.
+// The files a run writes: runs.csv, samples.csv and context.json, or runs.shard-<i>-of-<n>.csv,
+// samples.shard-<i>-of-<n>.csv and context.shard-<i>-of-<n>.json for a shard.
 std::string runsFileName(const RunnerOptions& options);
 std::string contextFileName(const RunnerOptions& options);
+// Every timed repetition of every run, long format (harness/timing_rounds.h): samples.csv, or
+// samples.shard-<i>-of-<n>.csv for a shard.
+std::string samplesFileName(const RunnerOptions& options);
 
 // A run's number as it appears in the CSV and file names: "000", "001", ...
 std::string runNumber(const RunConfig& run);

@@ -129,8 +129,13 @@ void writeCsv(const std::string& path, const std::vector<std::string>& columns, 
 }
 
 void appendCsvRow(const std::string& path, const std::vector<std::string>& columns, const Row& row) {
+    appendCsvRows(path, columns, {row});
+}
+
+void appendCsvRows(const std::string& path, const std::vector<std::string>& columns, const std::vector<Row>& rows) {
     const std::set<std::string> declared(columns.begin(), columns.end());
-    const std::string line = csvLine(path, columns, declared, row, 1);
+    std::string line;
+    for (std::size_t r = 0; r < rows.size(); ++r) line += csvLine(path, columns, declared, rows[r], r + 1);
     const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_NOFOLLOW | O_CLOEXEC);
     if (fd < 0) {
         if (errno == ELOOP) throw Error(path + ": is a symlink; rtbench never writes through one: remove it");
@@ -148,7 +153,7 @@ void appendCsvRow(const std::string& path, const std::vector<std::string>& colum
         const bool restored = ::ftruncate(fd, st.st_size) == 0;
         ::close(fd);
         throw Error(path + ": write failed (disk full?): " + std::strerror(why) + "; " +
-                    (restored ? "the file is as before this row" : "and could not be cut back to its rows"));
+                    (restored ? "the file is as before these rows" : "and could not be cut back to its rows"));
     }
     ::close(fd);
 }

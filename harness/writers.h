@@ -19,6 +19,8 @@ void writeCsv(const std::string& path, const std::vector<std::string>& columns, 
 // whole line (O_APPEND, never through a symlink), synced; a failed write (a full disk) cuts the
 // file back to the rows it had. A sweep's per-run cost, whatever the number of rows.
 void appendCsvRow(const std::string& path, const std::vector<std::string>& columns, const Row& row);
+// The same for several rows, in one write.
+void appendCsvRows(const std::string& path, const std::vector<std::string>& columns, const std::vector<Row>& rows);
 
 // Reads a CSV as RFC 4180 (quoted fields with "" escapes and line breaks, LF or CRLF) into rows
 // keyed by the header. Throws rtbench::Error naming the file and line on an unclosed quote, a

@@ -57,15 +57,5 @@ std::uint64_t recordMismatches(const std::vector<gpu::HitRecord>& a, const std::
     return mismatches;
 }
 
-TimingStats timingStats(std::vector<double> samples) {
-    TimingStats t;
-    if (samples.empty()) return t;
-    std::sort(samples.begin(), samples.end());
-    const std::size_t n = samples.size();
-    t.median = n % 2 ? samples[n / 2] : 0.5 * (samples[n / 2 - 1] + samples[n / 2]);
-    t.min = samples.front();
-    t.max = samples.back();
-    return t;
-}
 
 }  // namespace rtbench

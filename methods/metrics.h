@@ -37,10 +37,4 @@ WorkStats workStats(const std::vector<gpu::HitRecord>& hits);
 // Rays whose hit records differ in any bit (distance, primitive, barycentrics, counters).
 std::uint64_t recordMismatches(const std::vector<gpu::HitRecord>& a, const std::vector<gpu::HitRecord>& b);
 
-struct TimingStats {
-    double median = 0.0, min = 0.0, max = 0.0;
-};
-
-TimingStats timingStats(std::vector<double> samples);
-
 }  // namespace rtbench

@@ -4,6 +4,7 @@
 // device's hits and counts against the structure's CPU reference on the same rays.
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -15,15 +16,41 @@ namespace rtbench {
 
 struct TimingOptions {
     unsigned workgroupSize = 64;
+    // Warm-ups and timed repetitions done within the strategy's run; the runner passes none and
+    // times in rounds with the run's KernelTimer (harness/timing_rounds.h).
     int warmups = 1;
     int repetitions = 5;
+};
+
+// One batch of timed repetitions, uninstrumented.
+struct TimedBatch {
+    std::vector<double> ms;  // each repetition's GPU time
+    // A repetition made of parts (multipass: its pass kinds): each part's GPU time per repetition.
+    // Part p's median goes to the column kernel_ms_<p>, which the strategy declares.
+    std::vector<std::pair<std::string, std::vector<double>>> parts;
+};
+
+// What a strategy's run keeps on the device to time its kernels again, a batch at a time: the
+// runner alternates its batches with Embree's in rounds, so that drift hits both.
+class KernelTimer {
+public:
+    virtual ~KernelTimer() = default;
+    // `warmups` untimed then `repetitions` timed repetitions, recorded into one submission.
+    virtual TimedBatch time(int warmups, int repetitions) = 0;
+    // Loops the host controls, timed on the host once per round: series name -> ms (multipass:
+    // "multipass_live", the instrumented pass loop with the oracle's per-pass read-backs,
+    // the CPU-controlled loop of Christen 2005 §4.2.2 and §4.3.4). Series s's median goes to the column
+    // <s>_ms_median, which the strategy declares.
+    virtual std::vector<std::pair<std::string, double>> timeHostLoops() { return {}; }
+    // Throws (expectSameHits) when the last timed repetition's hits differ from the instrumented run's.
+    virtual void checkHits() = 0;
 };
 
 // What a strategy's run measured and how it compares with the CPU reference. A mismatch is
 // written to the row and then fails the run.
 struct StrategyRun {
     std::vector<gpu::HitRecord> hits;  // instrumented run (per-ray counters filled)
-    std::vector<double> gpuMs;         // total GPU time of each timed repetition
+    std::unique_ptr<KernelTimer> timer;  // times the kernels again, uninstrumented
     ArchitectureMetrics metrics;
     std::uint64_t cpuMismatches = 0;     // rays whose record differs from the CPU reference's
     std::string countsMismatch;          // what of the pass or lane counts differs ("" if none)
@@ -41,8 +68,8 @@ struct StrategyType {
     std::vector<ColumnSpec> columns;  // written only by its runs
     // Whether it keeps per-ray traversal state on the device (sizes the buffers before allocating).
     bool perRayState = false;
-    // Uploads, runs one instrumented and then the timed repetitions, compares with the CPU
-    // reference, and writes its own columns to `row`.
+    // Uploads, runs one instrumented run (and the timed repetitions `timing` asks for), compares
+    // with the CPU reference, writes its own columns to `row`, and returns its timer.
     StrategyRun (*run)(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
                        const RunConfig& config, const TimingOptions& timing, Row& row);
 };

@@ -31,7 +31,15 @@ struct ColumnSpec {
     // strategy's own columns, a key read only by some runs); empty: every run. A runs CSV may
     // leave the column out when no row meets them (a file from before the method existed).
     std::vector<std::string> appliesWhen = {};
+    // The results schema (kSchemaVersion) that added the column: a runs CSV of an older schema
+    // lacks it, and stays readable (harness/columns.h).
+    int since = 1;
 };
+
+// The schema of a results folder, recorded in its context.json as "schema_version" (none: 1).
+//   1  rtbench before issue 16;
+//   2  timing in rounds: samples.csv, spread and intervals, adaptive repetitions, the noise guard.
+constexpr int kSchemaVersion = 2;
 
 // The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".
 std::string paramColumn(const std::string& key);

@@ -1,5 +1,6 @@
 #include "keys.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <sstream>
 
@@ -43,7 +44,9 @@ std::array<double, 3> RunConfig::getVec3(const std::string& key) const {
 
 std::string RunConfig::canonical() const {
     std::string out;
-    for (const auto& [key, value] : values) out += key + "=" + formatValue(value) + ";";
+    for (const auto& [key, value] : values)
+        if (std::find(unhashedDefaults.begin(), unhashedDefaults.end(), key) == unhashedDefaults.end())
+            out += key + "=" + formatValue(value) + ";";
     return out;
 }
 

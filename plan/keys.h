@@ -42,6 +42,10 @@ struct KeySpec {
     // False for keys that place the results (experiment.name, experiment.output): one value per
     // config, never a list, the same in every [[sweep]].
     bool sweepable = true;
+    // The results schema (kSchemaVersion, plan/columns.h) that added the key. A key added after
+    // schema 1 leaves a run's config_hash as it was while it has its default value, so the runs
+    // of older results folders keep their identity (the default does what rtbench did before).
+    int since = 1;
 };
 
 // One run: every schema key that has a value (given or default), scalar.
@@ -51,6 +55,8 @@ struct RunConfig {
 
     std::map<std::string, ConfigValue> values;  // "section.key" -> value
     std::vector<std::string> sweptKeys;         // keys that vary across the plan
+    // Keys left out of canonical() and hash(): added after schema 1 and at their default (KeySpec::since).
+    std::vector<std::string> unhashedDefaults;
 
     bool has(const std::string& key) const { return values.count(key) != 0; }
     std::int64_t getInt(const std::string& key) const;

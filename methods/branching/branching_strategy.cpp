@@ -26,37 +26,64 @@ void expectSameHits(const std::vector<gpu::HitRecord>& timed, const std::vector<
                     std::to_string(counted[first].t) + "): the kernel gives different results on the same input");
 }
 
+namespace {
+
+// The uninstrumented kernel on the instrumented run's buffers.
+class BranchingTimer : public KernelTimer {
+public:
+    BranchingTimer(VulkanContext& vk, std::unique_ptr<GpuBuffers> buffers, const std::string& kernel, KernelSpec spec,
+                   std::vector<gpu::HitRecord> counted)
+        : vk_(vk), buffers_(std::move(buffers)), counted_(std::move(counted)) {
+        spec.instrument = false;
+        timed_ = buffers_->createKernel(kernel, spec);
+    }
+    ~BranchingTimer() override { vk_.destroy(timed_); }
+    TimedBatch time(int warmups, int repetitions) override {
+        // Warm-ups and timed repetitions recorded into one submission, each timed on its own.
+        const std::vector<VulkanContext::DispatchCall> calls(
+            std::size_t(warmups + repetitions), {&timed_, buffers_->descriptorSet(timed_), buffers_->pushConstants(), buffers_->rayCount()});
+        const std::vector<double> ms = vk_.dispatchAll(calls);
+        TimedBatch batch;
+        batch.ms.assign(ms.begin() + warmups, ms.end());
+        return batch;
+    }
+    void checkHits() override { expectSameHits(buffers_->downloadHits(), counted_, "branching kernel"); }
+
+private:
+    VulkanContext& vk_;
+    std::unique_ptr<GpuBuffers> buffers_;
+    std::vector<gpu::HitRecord> counted_;
+    ComputePipeline timed_{};
+};
+
+}  // namespace
+
 BranchingRun runBranching(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
                           const TimingOptions& timing) {
     if (timing.workgroupSize % vk.info().subgroupSize)
         throw Error("strategy.workgroup_size " + std::to_string(timing.workgroupSize) +
                     " is not a multiple of the subgroup size " + std::to_string(vk.info().subgroupSize));
     BranchingRun run;
-    GpuBuffers buffers(vk, rays, /*traversalStateBytes=*/0, structure.buffers(), structure.params());
+    auto buffers = std::make_unique<GpuBuffers>(vk, rays, /*traversalStateBytes=*/0, structure.buffers(), structure.params());
     const std::string kernel = structure.kernelPrefix() + "_branching";
     KernelSpec spec;
     spec.workgroupSize = timing.workgroupSize;
     spec.triangleTest = structure.triangleTest();
     spec.vertexLattice = structure.vertexLattice();
     {
-        ComputePipeline counted = buffers.createKernel(kernel, spec);
-        vk.dispatch(counted, buffers.descriptorSet(counted), buffers.pushConstants(), rays.size());
+        ComputePipeline counted = buffers->createKernel(kernel, spec);
+        vk.dispatch(counted, buffers->descriptorSet(counted), buffers->pushConstants(), rays.size());
         vk.destroy(counted);
-        run.hits = buffers.downloadHits();
-        const gpu::PassCounters c = buffers.readPassCounters();
+        run.hits = buffers->downloadHits();
+        const gpu::PassCounters c = buffers->readPassCounters();
         run.activeLanes = c.counts[gpu::kCountActiveLanes];
         run.laneSlots = c.counts[gpu::kCountLaneSlots];
     }
-    spec.instrument = false;
-    ComputePipeline timed = buffers.createKernel(kernel, spec);
-    // Warm-ups and timed repetitions recorded into one submission, each timed on its own.
-    const std::vector<VulkanContext::DispatchCall> calls(
-        std::size_t(timing.warmups + timing.repetitions),
-        {&timed, buffers.descriptorSet(timed), buffers.pushConstants(), rays.size()});
-    const std::vector<double> ms = vk.dispatchAll(calls);
-    run.gpuMs.assign(ms.begin() + timing.warmups, ms.end());
-    vk.destroy(timed);
-    expectSameHits(buffers.downloadHits(), run.hits, "branching kernel");
+    run.timer = std::make_unique<BranchingTimer>(vk, std::move(buffers), kernel, spec, run.hits);
+    if (timing.warmups + timing.repetitions > 0) {
+        run.gpuMs = run.timer->time(timing.warmups, timing.repetitions).ms;
+        run.timer->checkHits();
+    }
     return run;
 }
 
@@ -86,7 +113,7 @@ StrategyRun runBranchingStrategy(VulkanContext& vk, const Structure& structure, 
                            "leaving up to " + std::to_string(run.truncatedRays) +
                            " rays unfinished; multipass (a few iterations per pass), a finer grid or the BVH stay within it";
     run.hits = std::move(kernel.hits);
-    run.gpuMs = std::move(kernel.gpuMs);
+    run.timer = std::move(kernel.timer);
     return run;
 }
 

@@ -1,5 +1,7 @@
 #include "multipass_strategy.h"
 
+#include <chrono>
+
 #include "structures/error.h"
 
 namespace rtbench {
@@ -56,15 +58,8 @@ StrategyRun runMultipassStrategy(VulkanContext& vk, const Structure& structure, 
     row["passes_intersect"] = std::to_string(run.metrics.passesIntersect);
     row["passes_write"] = std::to_string(run.metrics.passesWrite);
     row["passes_lower_bound"] = std::to_string(run.metrics.passesLowerBound);
-    const char* kindColumns[kPassKinds] = {"kernel_ms_setup", "kernel_ms_traverse", "kernel_ms_intersect",
-                                           "kernel_ms_write"};
-    for (int k = 0; k < kPassKinds; ++k) {
-        std::vector<double> ms;
-        for (const auto& byKind : kernel.gpuMsByKind) ms.push_back(byKind[k]);
-        row[kindColumns[k]] = formatNumber(timingStats(ms).median);
-    }
     run.hits = std::move(kernel.hits);
-    run.gpuMs = std::move(kernel.gpuMs);
+    run.timer = std::move(kernel.timer);
     return run;
 }
 
@@ -81,12 +76,76 @@ MultipassOptions multipassOptions(const RunConfig& run) {
     return o;
 }
 
+namespace {
+
+// The instrumented run's pass sequence replayed without instrumentation, on its buffers; and the
+// live loop, the instrumented passes with the oracle's read-back after each, timed on the host.
+class MultipassTimer : public KernelTimer {
+public:
+    MultipassTimer(VulkanContext& vk, std::unique_ptr<GpuBuffers> buffers, std::unique_ptr<Pipelines> counted,
+                   const std::string& prefix, KernelSpec spec, const MultipassOptions& options, std::uint64_t cap,
+                   const MultipassCounts& counts, std::vector<gpu::HitRecord> hits)
+        : vk_(vk), buffers_(std::move(buffers)), counted_(std::move(counted)), options_(options), cap_(cap),
+          counts_(counts), hits_(std::move(hits)) {
+        spec.instrument = false;
+        timed_ = std::make_unique<Pipelines>(vk, *buffers_, prefix, spec);
+    }
+    TimedBatch time(int warmups, int repetitions) override {
+        // The oracle's choices depend only on the rays and the structure: the replay runs the
+        // counted sequence, warm-ups and repetitions in one submission, every pass timed on its
+        // own. Its hits must equal the instrumented run's (checkHits), so a replay that strayed
+        // would be caught.
+        std::vector<VulkanContext::DispatchCall> calls;
+        for (int i = 0; i < warmups + repetitions; ++i)
+            for (PassKind kind : counts_.sequence) {
+                const ComputePipeline& p = timed_->byKind[static_cast<int>(kind)];
+                calls.push_back({&p, buffers_->descriptorSet(p), buffers_->pushConstants(), buffers_->rayCount()});
+            }
+        const std::vector<double> ms = vk_.dispatchAll(calls);
+        const std::size_t passes = counts_.sequence.size();
+        static const char* names[kPassKinds] = {"setup", "traverse", "intersect", "write"};
+        TimedBatch batch;
+        for (int k = 0; k < kPassKinds; ++k) batch.parts.push_back({names[k], {}});
+        for (int i = warmups; i < warmups + repetitions; ++i) {
+            std::array<double, kPassKinds> byKind{};
+            for (std::size_t p = 0; p < passes; ++p)
+                byKind[static_cast<int>(counts_.sequence[p])] += ms[std::size_t(i) * passes + p];
+            for (int k = 0; k < kPassKinds; ++k) batch.parts[std::size_t(k)].second.push_back(byKind[std::size_t(k)]);
+            batch.ms.push_back(byKind[0] + byKind[1] + byKind[2] + byKind[3]);
+        }
+        return batch;
+    }
+    std::vector<std::pair<std::string, double>> timeHostLoops() override {
+        const auto start = std::chrono::steady_clock::now();
+        const MultipassCounts live = runPasses(vk_, *buffers_, *counted_, options_, cap_);
+        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        if (!(live == counts_))
+            throw Error("multipass: the live pass loop ran another pass sequence than the first instrumented run "
+                        "on the same rays (" + std::to_string(live.sequence.size()) + " passes against " +
+                        std::to_string(counts_.sequence.size()) + ")");
+        return {{"multipass_live", ms}};
+    }
+    void checkHits() override { expectSameHits(buffers_->downloadHits(), hits_, "multipass kernels"); }
+
+private:
+    VulkanContext& vk_;
+    std::unique_ptr<GpuBuffers> buffers_;
+    std::unique_ptr<Pipelines> counted_, timed_;
+    MultipassOptions options_;
+    std::uint64_t cap_;
+    MultipassCounts counts_;
+    std::vector<gpu::HitRecord> hits_;
+};
+
+}  // namespace
+
 MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
                           const MultipassOptions& options, const TimingOptions& timing) {
     if (options.traverseStepsPerPass < 1 || options.intersectionsPerPass < 1)
         throw Error("multipass: traverse_steps_per_pass and intersections_per_pass must be at least 1");
     MultipassRun run;
-    GpuBuffers buffers(vk, rays, structure.costs().traversalStateBytes, structure.buffers(), structure.params());
+    auto buffers = std::make_unique<GpuBuffers>(vk, rays, structure.costs().traversalStateBytes, structure.buffers(),
+                                                structure.params());
     const std::uint64_t cap = structure.multipassPassCap(options);
     KernelSpec spec;
     spec.workgroupSize = timing.workgroupSize;
@@ -95,34 +154,16 @@ MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const s
     spec.traverseStepsPerPass = options.traverseStepsPerPass;
     spec.intersectionsPerPass = options.intersectionsPerPass;
     spec.suppressFinishedReads = options.suppressFinishedReads;
-    {
-        Pipelines counted(vk, buffers, structure.kernelPrefix(), spec);
-        run.counts = runPasses(vk, buffers, counted, options, cap);
-        run.hits = buffers.downloadHits();
-        run.traversalStates = buffers.downloadTraversalStates();
+    auto counted = std::make_unique<Pipelines>(vk, *buffers, structure.kernelPrefix(), spec);
+    run.counts = runPasses(vk, *buffers, *counted, options, cap);
+    run.hits = buffers->downloadHits();
+    run.traversalStates = buffers->downloadTraversalStates();
+    run.timer = std::make_unique<MultipassTimer>(vk, std::move(buffers), std::move(counted), structure.kernelPrefix(), spec,
+                                                 options, cap, run.counts, run.hits);
+    if (timing.warmups + timing.repetitions > 0) {
+        run.gpuMs = run.timer->time(timing.warmups, timing.repetitions).ms;
+        run.timer->checkHits();
     }
-    // Timed runs: the instrumented run's pass sequence (the oracle's choices, which depend only on
-    // the rays and the structure) replayed without instrumentation, warm-ups and repetitions
-    // recorded into one submission, every pass timed on its own. Their hits must equal the
-    // instrumented run's (checked below), so a replay that strayed would be caught.
-    spec.instrument = false;
-    Pipelines timed(vk, buffers, structure.kernelPrefix(), spec);
-    std::vector<VulkanContext::DispatchCall> calls;
-    for (int i = 0; i < timing.warmups + timing.repetitions; ++i)
-        for (PassKind kind : run.counts.sequence) {
-            const ComputePipeline& p = timed.byKind[static_cast<int>(kind)];
-            calls.push_back({&p, buffers.descriptorSet(p), buffers.pushConstants(), buffers.rayCount()});
-        }
-    const std::vector<double> ms = vk.dispatchAll(calls);
-    const std::size_t passes = run.counts.sequence.size();
-    for (int i = timing.warmups; i < timing.warmups + timing.repetitions; ++i) {
-        std::array<double, kPassKinds> byKind{};
-        for (std::size_t p = 0; p < passes; ++p)
-            byKind[static_cast<int>(run.counts.sequence[p])] += ms[std::size_t(i) * passes + p];
-        run.gpuMsByKind.push_back(byKind);
-        run.gpuMs.push_back(byKind[0] + byKind[1] + byKind[2] + byKind[3]);
-    }
-    expectSameHits(buffers.downloadHits(), run.hits, "multipass kernels");
     return run;
 }
 
@@ -151,6 +192,7 @@ const StrategyType& multipassStrategyType() {
             {"kernel_ms_traverse", K::Timing, "ms", "multipass: GPU time of the traverse passes, median"},
             {"kernel_ms_intersect", K::Timing, "ms", "multipass: GPU time of the intersect passes, median"},
             {"kernel_ms_write", K::Timing, "ms", "multipass: GPU time of the write pass, median"},
+            {"multipass_live_ms_median", K::Timing, "ms", "multipass: host wall time of the live pass loop (instrumented passes, the oracle's read-back after each: Christen 2005 §4.3.4's CPU-controlled loop), median of one per round", 0.0, false, {}, 2},
             {"branching_mismatches", K::Count, "rays", "multipass: rays whose hit record differs from the branching caster's"},
         };
         t.run = runMultipassStrategy;

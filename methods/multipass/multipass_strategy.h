@@ -19,14 +19,15 @@ MultipassOptions multipassOptions(const RunConfig& run);
 struct MultipassRun {
     std::vector<gpu::HitRecord> hits;  // instrumented run, per-ray counters filled
     MultipassCounts counts;            // instrumented run
-    std::vector<double> gpuMs;         // total GPU time of each timed repetition
-    std::vector<std::array<double, kPassKinds>> gpuMsByKind;  // per timed repetition, per PassKind
+    std::vector<double> gpuMs;         // total GPU time of each timed repetition `timing` asked for
     std::vector<std::uint8_t> traversalStates;  // the per-ray state the last pass saved
+    std::unique_ptr<KernelTimer> timer;         // more timed replays (and live loops), same buffers
 };
 
-// One instrumented run (the oracle reads the ray-state counts after every pass), then warm-ups
-// and timed repetitions replaying its pass sequence in one submission with instrumentation off;
-// their hits must equal the instrumented run's. Throws rtbench::Error when the pass cap is reached.
+// One instrumented run (the oracle reads the ray-state counts after every pass), then the
+// warm-ups and timed repetitions `timing` asks for (none: the timer does them later), replaying
+// its pass sequence in one submission with instrumentation off; their hits must equal the
+// instrumented run's. Throws rtbench::Error when the pass cap is reached.
 MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
                           const MultipassOptions& options, const TimingOptions& timing);
 

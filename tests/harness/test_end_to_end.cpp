@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <map>
+#include <set>
 
 #include "harness/check.h"
 #include "harness/images.h"
@@ -167,10 +169,102 @@ TEST_F(EndToEnd, AnInterruptedSweepResumesWithoutRedoingFinishedRuns) {
     EXPECT_EQ(run(kSweep, force).reused, 0);
 }
 
+// Every timed repetition is in samples.csv, and the row's timing columns are its statistics
+// (recomputed here from the file, a second formulation of the median and the counts).
+TEST_F(EndToEnd, SamplesHoldEveryRepetitionOfEveryRoundAndTheRowSummarizesThem) {
+    const std::string path = dir_.write("samples.toml", "[experiment]\nname = \"samples\"\noutput = \"" + dir_.file("out") +
+                                                            "\"\nrepetitions = 4\nrounds = 2\nwarmups = 1\n[device]\nname = \"" +
+                                                            testDeviceName() + "\"\n" + std::string(kSweep));
+    ExperimentPlan plan = loadExperiment(path);
+    plan.runs.resize(2);  // min_dim 4: branching and multipass
+    const ExperimentResult result = runExperiment(plan, quietOptions());
+    ASSERT_EQ(result.rows.size(), 2u);
+    const std::vector<Row> samples = readCsv(result.folder + "/samples.csv");
+    for (const Row& row : result.rows) {
+        ASSERT_EQ(row.at("status"), "ok") << row.at("error");
+        EXPECT_EQ(row.at("timing_repetitions"), "4");
+        EXPECT_EQ(row.at("timing_rounds"), "2");
+        EXPECT_EQ(row.at("timing_stop"), "repetitions");
+        const bool multipass = row.at("strategy_type") == "multipass";
+        std::map<std::string, std::vector<double>> byMethod;
+        std::map<std::string, std::set<std::string>> rounds;
+        for (const Row& s : samples)
+            if (s.at("run") == row.at("run")) {
+                EXPECT_EQ(s.at("config_hash"), row.at("config_hash"));
+                byMethod[s.at("method")].push_back(std::stod(s.at("ms")));
+                rounds[s.at("method")].insert(s.at("round"));
+            }
+        std::set<std::string> methods;
+        for (const auto& [m, ms] : byMethod) methods.insert(m);
+        std::set<std::string> expected = {"kernel", "embree1", "embree16"};
+        if (multipass) expected.insert({"kernel_setup", "kernel_traverse", "kernel_intersect", "kernel_write", "multipass_live"});
+        EXPECT_EQ(methods, expected) << row.at("run");
+        for (const auto& [m, ms] : byMethod) {
+            EXPECT_EQ(ms.size(), m == "multipass_live" ? 2u : 4u) << m;  // the live loop once per round
+            EXPECT_EQ(rounds[m], (std::set<std::string>{"0", "1"})) << m;
+        }
+        for (const char* m : {"kernel", "embree1", "embree16"}) {
+            std::vector<double> ms = byMethod[m];
+            std::sort(ms.begin(), ms.end());
+            const double median = 0.5 * (ms[1] + ms[2]);
+            EXPECT_NEAR(std::stod(row.at(std::string(m) + "_ms_median")), median, 1e-5 * median) << m;
+            EXPECT_NEAR(std::stod(row.at(std::string(m) + "_ms_min")), ms.front(), 1e-5 * ms.front()) << m;
+            EXPECT_LE(std::stod(row.at(std::string(m) + "_ms_ci_low")), std::stod(row.at(std::string(m) + "_ms_median")));
+            EXPECT_GE(std::stod(row.at(std::string(m) + "_ms_ci_high")), std::stod(row.at(std::string(m) + "_ms_median")));
+        }
+        const double ratio = std::stod(row.at("embree1_ms_median")) / std::stod(row.at("kernel_ms_median"));
+        EXPECT_NEAR(std::stod(row.at("speed_ratio_vs_embree1")), ratio, 1e-3 * ratio);
+        EXPECT_LE(std::stod(row.at("speed_ratio_ci_low")), std::stod(row.at("speed_ratio_ci_high")));
+        if (multipass) {
+            EXPECT_FALSE(row.at("multipass_live_ms_median").empty());
+            EXPECT_FALSE(row.at("kernel_ms_traverse").empty());
+        }
+    }
+    // A resume keeps the rows and their samples; --force sets both aside.
+    const ExperimentResult again = runExperiment(plan, quietOptions());
+    EXPECT_EQ(again.reused, 2);
+    EXPECT_EQ(readCsv(result.folder + "/samples.csv"), samples);
+    RunnerOptions force = quietOptions();
+    force.force = true;
+    runExperiment(plan, force);
+    std::vector<std::string> aside;
+    for (const auto& entry : fs::directory_iterator(result.folder))
+        if (entry.path().filename().string().rfind("superseded-", 0) == 0 &&
+            entry.path().filename().string().ends_with("-samples.csv"))
+            aside.push_back(entry.path().string());
+    ASSERT_EQ(aside.size(), 1u);
+    EXPECT_EQ(readCsv(aside[0]), samples);
+    EXPECT_EQ(readCsv(result.folder + "/samples.csv").size(), samples.size());
+}
+
+// Samples written before an interrupt cut the run's row belong to no row: a resume sets them
+// aside and re-runs the run.
+TEST_F(EndToEnd, SamplesWithoutTheirRowAreSetAsideOnResume) {
+    const ExperimentResult full = run(kSweep);
+    const std::string csv = full.folder + "/runs.csv";
+    std::vector<Row> rows = readCsv(csv);
+    rows.resize(3);
+    writeCsv(csv, runColumns(), rows);  // the rows of runs 003.. were never written
+    const ExperimentResult resumed = run(kSweep);
+    EXPECT_EQ(resumed.reused, 3);
+    std::size_t asideSamples = 0;
+    for (const auto& entry : fs::directory_iterator(full.folder))
+        if (entry.path().filename().string().ends_with("-samples.csv"))
+            for (const Row& s : readCsv(entry.path().string())) {
+                EXPECT_GE(s.at("run"), "003");
+                ++asideSamples;
+            }
+    EXPECT_EQ(asideSamples, 5u * 3u + 3u * 5u);  // 5 runs x 3 methods, 3 multipass runs' parts and live loop
+    std::set<std::string> runs;
+    for (const Row& s : readCsv(full.folder + "/samples.csv")) runs.insert(s.at("run"));
+    EXPECT_EQ(runs.size(), 8u);
+}
+
 TEST_F(EndToEnd, ThreeShardsMergedEqualTheUnshardedRun) {
     const ExperimentResult whole = run(kSweep);
     const std::vector<Row> unsharded = readCsv(whole.folder + "/runs.csv");
     std::filesystem::remove(whole.folder + "/runs.csv");
+    std::filesystem::remove(whole.folder + "/samples.csv");
     for (unsigned i = 0; i < 3; ++i) {
         RunnerOptions shard = quietOptions();
         shard.shardIndex = i;
@@ -179,6 +273,13 @@ TEST_F(EndToEnd, ThreeShardsMergedEqualTheUnshardedRun) {
     }
     const std::vector<Row> merged = mergeShards(whole.folder);
     ASSERT_EQ(merged.size(), unsharded.size());
+    // The shards' samples joined, every run's there.
+    std::set<std::string> sampled;
+    for (const Row& s : readCsv(whole.folder + "/samples.csv")) sampled.insert(s.at("run") + "|" + s.at("method"));
+    for (const Row& row : merged) {
+        EXPECT_TRUE(sampled.count(row.at("run") + "|kernel")) << row.at("run");
+        EXPECT_TRUE(sampled.count(row.at("run") + "|embree16")) << row.at("run");
+    }
     for (std::size_t r = 0; r < merged.size(); ++r)
         for (const auto& [column, value] : unsharded[r])
             if (columnSpec(column).kind != ColumnKind::Timing) {

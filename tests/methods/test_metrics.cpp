@@ -117,12 +117,5 @@ TEST(WorkStats, MeansAndMaximaOverRays) {
     EXPECT_EQ(w.stepsTotal, 9u);
 }
 
-TEST(Timing, MedianOfAnEvenCountIsTheMeanOfTheMiddleTwo) {
-    const TimingStats t = timingStats({4.0, 1.0, 3.0, 2.0});
-    EXPECT_DOUBLE_EQ(t.median, 2.5);
-    EXPECT_DOUBLE_EQ(t.min, 1.0);
-    EXPECT_DOUBLE_EQ(t.max, 4.0);
-}
-
 }  // namespace
 }  // namespace rtbench

@@ -1,0 +1,36 @@
+// The noise guard: what else the machine did while a run was timed. lavapipe's threads and
+// Embree's TBB threads run on the host's cores; another process on them (a build, a test suite,
+// a second sweep) slows whichever is timed, and a timing taken beside it is not a result of record.
+#pragma once
+#include <string>
+
+namespace rtbench {
+
+// The host's CPU time at one moment (Linux /proc): every process's busy time and this process's
+// (all its threads, lavapipe's and TBB's included), in clock ticks.
+struct CpuTimes {
+    double machineBusyTicks = 0.0;  // /proc/stat "cpu": user nice system irq softirq steal
+    double selfTicks = 0.0;         // /proc/self/stat: utime + stime
+    double wallSeconds = 0.0;       // steady clock
+    bool valid = false;             // /proc could be read
+};
+CpuTimes sampleCpuTimes();
+
+// The parsers, on the files' text (tests feed them).
+double machineBusyTicks(const std::string& procStat);  // -1 when the "cpu" line is not there
+double selfTicks(const std::string& procSelfStat);     // -1 when malformed
+
+// What other processes used between two samples, as a fraction of the machine's CPU time
+// (cores x wall time): 0 on a quiet machine, 1 when others kept every core busy. Hypervisor
+// steal time counts as others'. -1 when either sample is invalid or no time passed.
+double otherCpuFraction(const CpuTimes& before, const CpuTimes& after, unsigned cores, double ticksPerSecond);
+
+// The 1-minute load average (getloadavg), -1 when unknown.
+double loadAverage();
+
+// The threads a device runs on the host's cores: for a CPU device (lavapipe) Mesa's
+// LP_NUM_THREADS when set, else one per core, at most LP_MAX_THREADS (Mesa 22's lp_limits.h:
+// 32; src/gallium/drivers/llvmpipe/lp_screen.c); 0 for a GPU.
+unsigned deviceHostThreads(bool cpuDevice, unsigned cores);
+
+}  // namespace rtbench

@@ -1,0 +1,64 @@
+// Timing in rounds. A run's repetitions are split into rounds; each round times the strategy's
+// host-controlled loops (if any), then a batch of the kernel, then of each Embree method, so that
+// drift (clocks, caches, a neighbour's load) hits all of them alike. With experiment.target_ci,
+// rounds are added until every method's bootstrap interval of the median is narrow enough
+// (nvbench's noise criterion), up to a count and a time budget. Every sample is kept.
+#pragma once
+#include <chrono>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "methods/strategy.h"
+#include "plan/keys.h"
+
+namespace rtbench {
+
+struct RoundsOptions {
+    int warmups = 1;        // untimed, before each method's first batch
+    int repetitions = 5;    // of each method (the minimum when adaptive)
+    int rounds = 5;         // the repetitions split into this many (at most one per repetition)
+    double targetCi = 0.0;  // adaptive: every median's interval within +- this fraction (0: off)
+    int maxRepetitions = 200;
+    double budgetSeconds = 30.0;
+};
+RoundsOptions roundsOptions(const RunConfig& run);
+
+// A method the rounds time: `time(warmups, repetitions)` runs them back to back and returns each
+// repetition's ms (and its parts: see TimedBatch).
+struct TimedMethod {
+    std::string name;  // samples.csv's method: kernel, embree1, embree16
+    std::function<TimedBatch(int warmups, int repetitions)> time;
+};
+
+// One timed repetition, as samples.csv keeps it.
+struct TimingSample {
+    std::string method;  // a TimedMethod's name, <name>_<part>, or a host loop's name
+    int round = 0;       // 0-based
+    int repetition = 0;  // 0-based, over the run, per method
+    double ms = 0.0;
+    // Steady-clock seconds since `origin` when the repetition began: a batch's start plus the
+    // times of the repetitions before it in the batch (on a GPU, their GPU times).
+    double t = 0.0;
+};
+
+struct RoundsResult {
+    std::vector<TimingSample> samples;  // in the order taken
+    // Each series' ms in order: the methods, their parts (<name>_<part>), the host loops.
+    std::vector<std::pair<std::string, std::vector<double>>> series;
+    int rounds = 0;
+    int repetitions = 0;  // of each method
+    std::string stop;     // repetitions, converged, max_repetitions, time_budget
+    double seconds = 0.0;
+    const std::vector<double>& of(const std::string& name) const;  // empty when none
+};
+
+RoundsResult timeInRounds(const std::vector<TimedMethod>& methods,
+                          const std::function<std::vector<std::pair<std::string, double>>()>& hostLoops,
+                          const RoundsOptions& options, std::chrono::steady_clock::time_point origin);
+
+// The columns of samples.csv, in order.
+const std::vector<std::string>& sampleColumns();
+
+}  // namespace rtbench
