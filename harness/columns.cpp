@@ -11,6 +11,32 @@
 
 namespace rtbench {
 
+namespace {
+
+// The columns added before schema numbers were recorded (plan/columns.h), by the schema that added
+// them; the rest of the columns of those days are schema 1, and later ones declare their own.
+int addedInSchema(const std::string& column) {
+    static const std::map<std::string, int> added = [] {
+        std::map<std::string, int> m;
+        for (const char* c : {"scene_scale", "scene_translate", "structure_conservative", "grid_voxel_margin", "intersection_test",
+                              "accuracy_exact_rays", "exact_rays", "exact_ties", "exact_ms"})
+            m[c] = 2;
+        for (const char* p : {"exact_", "embree_exact_"})
+            for (const char* c : {"false_misses", "false_hits", "wrong_primitive", "wrong_ppm", "distance_error_mean", "distance_error_max"})
+                m[std::string(p) + c] = 2;
+        for (const char* c : {"scene_simplify_ratio", "scene_simplify_triangles", "intersection_vertex_bits", "scene_full_triangles",
+                              "scene_simplify_ms", "vertex_lattice_step", "vertex_snap_error_max", "image_psnr_db",
+                              "image_error_mean", "image_error_max", "image_pixels_differ"})
+            m[c] = 3;
+        for (const char* c : {"inputs_hash", "input_files", "cpu"}) m[c] = 4;
+        return m;
+    }();
+    const auto it = added.find(column);
+    return it == added.end() ? 1 : it->second;
+}
+
+}  // namespace
+
 const std::vector<ColumnSpec>& runColumnSpecs() {
     static const std::vector<ColumnSpec> specs = [] {
         using K = ColumnKind;
@@ -61,16 +87,16 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         };
         for (const StructureType* t : structureTypes()) addMethodColumns("structure.type", t->name, t->columns);
         // Time (harness/timing_rounds.h: every sample is in samples.csv).
-        auto since2 = [&](std::string name, K kind, std::string unit, std::string help) {
+        auto since5 = [&](std::string name, K kind, std::string unit, std::string help) {
             add(std::move(name), kind, std::move(unit), std::move(help));
-            s.back().since = 2;
+            s.back().since = 5;
         };
         auto spread = [&](const std::string& m, const std::string& who) {
-            since2(m + "_ms_mean", K::Timing, "ms", who + ", mean of the repetitions");
-            since2(m + "_ms_std", K::Timing, "ms", who + ", sample standard deviation of the repetitions");
-            since2(m + "_ms_cv", K::Timing, "", who + ", coefficient of variation (std / mean)");
-            since2(m + "_ms_ci_low", K::Timing, "ms", who + ", 95% percentile-bootstrap interval of the median: low end");
-            since2(m + "_ms_ci_high", K::Timing, "ms", who + ", 95% percentile-bootstrap interval of the median: high end");
+            since5(m + "_ms_mean", K::Timing, "ms", who + ", mean of the repetitions");
+            since5(m + "_ms_std", K::Timing, "ms", who + ", sample standard deviation of the repetitions");
+            since5(m + "_ms_cv", K::Timing, "", who + ", coefficient of variation (std / mean)");
+            since5(m + "_ms_ci_low", K::Timing, "ms", who + ", 95% percentile-bootstrap interval of the median: low end");
+            since5(m + "_ms_ci_high", K::Timing, "ms", who + ", 95% percentile-bootstrap interval of the median: high end");
         };
         add("kernel_ms_median", K::Timing, "ms",
             "GPU time of the kernel(s), median of the repetitions");
@@ -91,16 +117,16 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("embree_build_ms", K::Timing, "ms", "Embree BVH build time");
         add("speed_ratio_vs_embree1", K::Timing, "ratio",
             "kernel Mrays/s / Embree rtcIntersect1 Mrays/s");
-        since2("speed_ratio_ci_low", K::Timing, "ratio", "speed_ratio_vs_embree1: 95% bootstrap interval (the two methods' samples resampled on their own), low end");
-        since2("speed_ratio_ci_high", K::Timing, "ratio", "speed_ratio_vs_embree1: 95% bootstrap interval, high end");
-        since2("timing_repetitions", K::Timing, "repetitions", "timed repetitions of each method (kernel, Embree 1, Embree 16)");
-        since2("timing_rounds", K::Timing, "rounds", "rounds they were timed in, each the kernel then Embree 1 then Embree 16");
-        since2("timing_stop", K::Timing, "", "why the timing stopped: repetitions (experiment.repetitions, fixed), converged (every interval within experiment.target_ci), max_repetitions, time_budget");
-        since2("timing_s", K::Timing, "s", "wall time of the timed rounds");
-        since2("timing_warning", K::Timing, "", "noise guard: why the run's timings are not results of record (a coefficient of variation above experiment.noise_cv, other processes above experiment.noise_other_cpu); empty when clean");
-        since2("other_cpu_fraction", K::Timing, "fraction", "noise guard: CPU time other processes took while the run was timed, over cores x wall time (Linux /proc/stat, hypervisor steal included)");
-        since2("load_average", K::Timing, "", "noise guard: 1-minute load average when the timing ended");
-        since2("device_host_threads", K::Context, "threads", "threads the device runs on the host's cores (lavapipe: LP_NUM_THREADS, else one per core up to 32; 0 for a GPU), beside embree_threads, against the machine's cores (context.json cpu_threads)");
+        since5("speed_ratio_ci_low", K::Timing, "ratio", "speed_ratio_vs_embree1: 95% bootstrap interval (the two methods' samples resampled on their own), low end");
+        since5("speed_ratio_ci_high", K::Timing, "ratio", "speed_ratio_vs_embree1: 95% bootstrap interval, high end");
+        since5("timing_repetitions", K::Timing, "repetitions", "timed repetitions of each method (kernel, Embree 1, Embree 16)");
+        since5("timing_rounds", K::Timing, "rounds", "rounds they were timed in, each the kernel then Embree 1 then Embree 16");
+        since5("timing_stop", K::Timing, "", "why the timing stopped: repetitions (experiment.repetitions, fixed), converged (every interval within experiment.target_ci), max_repetitions, time_budget");
+        since5("timing_s", K::Timing, "s", "wall time of the timed rounds");
+        since5("timing_warning", K::Timing, "", "noise guard: why the run's timings are not results of record (a coefficient of variation above experiment.noise_cv, other processes above experiment.noise_other_cpu); empty when clean");
+        since5("other_cpu_fraction", K::Timing, "fraction", "noise guard: CPU time other processes took while the run was timed, over cores x wall time (Linux /proc/stat, hypervisor steal included)");
+        since5("load_average", K::Timing, "", "noise guard: 1-minute load average when the timing ended");
+        since5("device_host_threads", K::Context, "threads", "threads the device runs on the host's cores (lavapipe: LP_NUM_THREADS, else one per core up to 32; 0 for a GPU), beside embree_threads, against the machine's cores (context.json cpu_threads)");
         // Agreement with Embree, a second view of accuracy: depends on Embree's floating-point path.
         add("hits", K::Count, "rays", "rays the kernel hit");
         add("hit_miss_agreement", K::Reference, "fraction", "rays whose hit/miss equals Embree's",
@@ -160,6 +186,7 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("cpu_counts_match", K::Count, "",
             "1 when pass and lane counts equal the CPU reference's");
         add("wall_s", K::Timing, "s", "wall time of the whole run");
+        for (ColumnSpec& c : s) c.since = std::max(c.since, addedInSchema(c.name));
         std::set<std::string> names;
         for (const ColumnSpec& c : s)
             if (!names.insert(c.name).second) throw Error("column '" + c.name + "' is declared twice");

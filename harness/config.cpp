@@ -87,7 +87,8 @@ const std::vector<KeySpec>& configSchema() {
         add({"experiment.warmups", ValueType::Int, "untimed warm-up repetitions of each timed method (kernel, Embree) before its first round", std::int64_t(1), false, 0, 100});
         // Timing in rounds, adaptive repetitions and the noise guard (harness/timing_rounds.h).
         auto timingKey = [&](KeySpec k) {
-            k.since = 2;
+            k.since = 5;
+            k.hashedAtDefault = false;  // their defaults time as rtbench did before them
             add(std::move(k));
         };
         timingKey({"experiment.rounds", ValueType::Int, "the repetitions are split into this many rounds, each timing the kernel, then Embree rtcIntersect1, then rtcIntersect16, so that drift hits all of them (at most one round per repetition)", std::int64_t(5), false, 1, 1000});
@@ -471,7 +472,7 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
                     return run.has(key) ? std::optional<std::string>(formatValue(run.values.at(key))) : std::nullopt;
                 });
                 if (!applies) run.values.erase(spec.name);
-                else if (spec.since > 1 && spec.defaultValue && run.has(spec.name) && run.values.at(spec.name) == *spec.defaultValue)
+                else if (!spec.hashedAtDefault && spec.defaultValue && run.has(spec.name) && run.values.at(spec.name) == *spec.defaultValue)
                     run.unhashedDefaults.push_back(spec.name);
             }
             bool skipped = false;

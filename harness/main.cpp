@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "harness/check.h"
+#include "harness/compare.h"
 #include "harness/columns.h"
 #include "harness/config.h"
 #include "harness/images.h"
@@ -95,6 +96,15 @@ int main(int argc, char** argv) {
     check->add_option("--embree-config", checkOptions.embreeConfigOverride,
                       "re-run with this Embree config string (e.g. isa=sse4.2): counts must not change");
 
+    std::string compareA, compareB;
+    rtbench::CompareOptions compareOptions;
+    CLI::App* compare = app.add_subcommand("compare", "Compare two results folders run by run: kernel time change with its interval and a Mann-Whitney p-value, counts exactly (exit 1 on a significant slowdown or a count difference)");
+    compare->add_option("a", compareA, "the baseline results folder")->required();
+    compare->add_option("b", compareB, "the results folder compared with it")->required();
+    compare->add_option("--threshold", compareOptions.threshold, "a slowdown counts beyond this fraction (default 0.05 = 5%)");
+    compare->add_option("--alpha", compareOptions.alpha, "significance level of the Mann-Whitney U test (default 0.05)");
+    compare->add_flag("--markdown", compareOptions.markdown, "print a Markdown table");
+
     CLI::App* keys = app.add_subcommand("keys", "List every config key with its type, default and meaning");
     CLI::App* columns = app.add_subcommand("columns", "List the metric columns of runs.csv: kind, unit, meaning (Markdown)");
 
@@ -161,6 +171,11 @@ int main(int argc, char** argv) {
             if (std::filesystem::is_symlink(std::filesystem::symlink_status(plotFolder, ec)))
                 throw rtbench::Error(plotFolder + ": the results folder is a symlink; give the folder it points to");
             return runProgram({"/usr/bin/python3", findPlotScript(), plotFolder}) == 0 ? 0 : 1;
+        }
+        if (*compare) {
+            const rtbench::CompareResult result = rtbench::compareFolders(compareA, compareB, compareOptions);
+            rtbench::printComparison(result, compareA, compareB, compareOptions, std::cout);
+            return result.exitStatus();
         }
         if (*columns) {
             std::cout << rtbench::columnsMarkdown();

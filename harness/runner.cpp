@@ -559,18 +559,6 @@ std::vector<Row> sampleRows(const Row& row, const std::vector<TimingSample>& sam
     return rows;
 }
 
-// samples.csv (or a shard's) as written by sampleRows: its header holds exactly sampleColumns().
-std::vector<Row> parseSamplesCsv(const std::string& text, const std::string& path) {
-    std::vector<Row> rows = parseCsv(text, path);
-    if (!rows.empty()) {
-        std::vector<std::string> header;
-        for (const auto& [column, value] : rows[0]) header.push_back(column);
-        std::vector<std::string> expected = sampleColumns();
-        std::sort(expected.begin(), expected.end());
-        if (header != expected) throw Error(path + ": not a samples file (expected the columns run,config_hash,method,round,repetition,ms,t_s)");
-    }
-    return rows;
-}
 
 }  // namespace
 

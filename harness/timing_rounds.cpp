@@ -4,6 +4,9 @@
 #include <map>
 
 #include "statistics.h"
+#include "structures/error.h"
+#include "structures/input_file.h"
+#include "writers.h"
 
 namespace rtbench {
 
@@ -28,6 +31,22 @@ const std::vector<double>& RoundsResult::of(const std::string& name) const {
 const std::vector<std::string>& sampleColumns() {
     static const std::vector<std::string> columns = {"run", "config_hash", "method", "round", "repetition", "ms", "t_s"};
     return columns;
+}
+
+std::vector<Row> parseSamplesCsv(const std::string& text, const std::string& path) {
+    std::vector<Row> rows = parseCsv(text, path);
+    if (!rows.empty()) {
+        std::vector<std::string> header;
+        for (const auto& [column, value] : rows[0]) header.push_back(column);
+        std::vector<std::string> expected = sampleColumns();
+        std::sort(expected.begin(), expected.end());
+        if (header != expected) throw Error(path + ": not a samples file (expected the columns run,config_hash,method,round,repetition,ms,t_s)");
+    }
+    return rows;
+}
+
+std::vector<Row> readSamplesCsv(const std::string& path) {
+    return parseSamplesCsv(readInputFile(path, kMaxResultsFileBytes, "CSV file"), path);
 }
 
 RoundsResult timeInRounds(const std::vector<TimedMethod>& methods,

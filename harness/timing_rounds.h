@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "methods/strategy.h"
+#include "plan/columns.h"
 #include "plan/keys.h"
 
 namespace rtbench {
@@ -60,5 +61,10 @@ RoundsResult timeInRounds(const std::vector<TimedMethod>& methods,
 
 // The columns of samples.csv, in order.
 const std::vector<std::string>& sampleColumns();
+
+// samples.csv (or a shard's) as the runner writes it: its header holds exactly sampleColumns().
+// Throws rtbench::Error naming the file otherwise.
+std::vector<Row> parseSamplesCsv(const std::string& text, const std::string& path);
+std::vector<Row> readSamplesCsv(const std::string& path);
 
 }  // namespace rtbench

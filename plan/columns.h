@@ -36,10 +36,15 @@ struct ColumnSpec {
     int since = 1;
 };
 
-// The schema of a results folder, recorded in its context.json as "schema_version" (none: 1).
-//   1  rtbench before issue 16;
-//   2  timing in rounds: samples.csv, spread and intervals, adaptive repetitions, the noise guard.
-constexpr int kSchemaVersion = 2;
+// The schema of a results folder: which columns its runs.csv holds. Recorded in context.json as
+// "schema_version" from 5 on; older folders are known by their columns (harness/columns.cpp).
+//   1  2026-11-28: results/nvidia-h200;
+//   2  + the exact reference (exact_*, embree_exact_*), scene.scale/translate, intersection.test,
+//        conservative grids;
+//   3  + simplified and packed scenes (scene.simplify_*, intersection.vertex_bits), image_*;
+//   4  + a run's identity: inputs_hash, input_files, cpu;
+//   5  timing in rounds: samples.csv, spread and intervals, adaptive repetitions, the noise guard.
+constexpr int kSchemaVersion = 5;
 
 // The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".
 std::string paramColumn(const std::string& key);

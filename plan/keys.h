@@ -42,10 +42,11 @@ struct KeySpec {
     // False for keys that place the results (experiment.name, experiment.output): one value per
     // config, never a list, the same in every [[sweep]].
     bool sweepable = true;
-    // The results schema (kSchemaVersion, plan/columns.h) that added the key. A key added after
-    // schema 1 leaves a run's config_hash as it was while it has its default value, so the runs
-    // of older results folders keep their identity (the default does what rtbench did before).
+    // The results schema (kSchemaVersion, plan/columns.h) that added the key's column.
     int since = 1;
+    // False for a key whose default does what rtbench did before the key existed: at its default
+    // it is left out of config_hash, so the runs of older results folders keep their identity.
+    bool hashedAtDefault = true;
 };
 
 // One run: every schema key that has a value (given or default), scalar.
@@ -55,7 +56,7 @@ struct RunConfig {
 
     std::map<std::string, ConfigValue> values;  // "section.key" -> value
     std::vector<std::string> sweptKeys;         // keys that vary across the plan
-    // Keys left out of canonical() and hash(): added after schema 1 and at their default (KeySpec::since).
+    // Keys left out of canonical() and hash(): at their default and !KeySpec::hashedAtDefault.
     std::vector<std::string> unhashedDefaults;
 
     bool has(const std::string& key) const { return values.count(key) != 0; }
