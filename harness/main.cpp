@@ -15,9 +15,12 @@
 #include "harness/columns.h"
 #include "harness/config.h"
 #include "harness/images.h"
+#include "harness/plan_view.h"
 #include "harness/runner.h"
 #include "device/vulkan_context.h"
 #include "structures/error.h"
+#include "structures/mesh_io.h"
+#include "structures/procedural.h"
 
 namespace {
 
@@ -73,6 +76,18 @@ int main(int argc, char** argv) {
                     "Embree device config string for every run (overrides baseline.embree_config), e.g. isa=avx2");
     std::string shard;
     run->add_option("--shard", shard, "run only every N-th run, starting at i (0 <= i < N), e.g. 2/3; join with `rtbench merge`");
+    bool dryRun = false;
+    run->add_flag("--dry-run", dryRun, "print the plan (as `rtbench plan`) and run nothing");
+
+    std::string planConfig;
+    std::vector<std::string> planFilters;
+    CLI::App* planCommand = app.add_subcommand("plan", "Print every run of a config with its swept parameters and what an earlier row of it took, without running");
+    planCommand->add_option("config", planConfig, "experiment config (TOML)")->required();
+    planCommand->add_option("--filter", planFilters, "only runs with key=value (e.g. structure.type=bvh), or whose label holds this text; repeatable");
+    std::string planOutput;
+    planCommand->add_option("-o,--output", planOutput, "output folder (overrides experiment.output), where earlier rows are looked for");
+
+    CLI::App* meshes = app.add_subcommand("meshes", "List the cgal:NAME meshes (Debian's libcgal-demo) and procedural:NAME scenes");
 
     std::string mergeFolder;
     CLI::App* merge = app.add_subcommand("merge", "Join the runs.shard-*.csv of a results folder into runs.csv, checking none is missing or doubled");
@@ -108,6 +123,20 @@ int main(int argc, char** argv) {
     CLI::App* keys = app.add_subcommand("keys", "List every config key with its type, default and meaning");
     CLI::App* columns = app.add_subcommand("columns", "List the metric columns of runs.csv: kind, unit, meaning (Markdown)");
 
+    // A first word that is no subcommand is named (CLI11 would only say one is required).
+    if (argc > 1 && argv[1][0] != '-') {
+        std::string known;
+        bool found = false;
+        for (const CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) {
+            known += (known.empty() ? "" : ", ") + sub->get_name();
+            found = found || sub->get_name() == argv[1];
+        }
+        if (!found) {
+            std::cerr << "rtbench: error: unknown subcommand '" << argv[1] << "' (subcommands: " << known
+                      << "; rtbench --help)\n";
+            return 2;
+        }
+    }
     CLI11_PARSE(app, argc, argv);
     for (int i = 0; i < argc; ++i) options.commandLine += (i ? " " : "") + std::string(argv[i]);
     try {
@@ -126,14 +155,43 @@ int main(int argc, char** argv) {
             // The effective device and validation are the run's parameters (and identity).
             if (!deviceOverride.empty()) rtbench::overrideKey(plan, "device.name", deviceOverride, "-d");
             if (validationOverride) rtbench::overrideKey(plan, "device.validation", true, "--validation");
+            if (dryRun) {
+                std::cout << rtbench::describePlan(plan, options, {});
+                return 0;
+            }
             const rtbench::ExperimentResult result = rtbench::runExperiment(plan, options);
             std::cout << "\n" << rtbench::summaryTable(result.rows);
             if (result.reused) std::cout << "(" << result.reused << " run(s) kept from an earlier invocation; --force re-runs them)\n";
-            std::cout << "\nresults: " << result.folder << "/" << rtbench::runsFileName(options) << " (with context.json"
-                      << (rtbench::imagesSupported() ? "; PNGs where output.images" : "; hit records for `rtbench images`")
-                      << ") — "
-                      << result.rows.size() - result.failed << " ok, " << result.failed << " failed\n";
+            // The files that are there now, by name.
+            namespace fs = std::filesystem;
+            std::string files;
+            for (const std::string& name : {rtbench::runsFileName(options), rtbench::samplesFileName(options),
+                                            rtbench::contextFileName(options)})
+                if (fs::is_regular_file(fs::path(result.folder) / name)) files += (files.empty() ? "" : ", ") + name;
+            int pngs = 0, hits = 0;
+            for (const rtbench::Row& row : result.rows) {
+                const fs::path prefix = fs::path(result.folder) / ("run-" + row.at("run"));
+                pngs += fs::is_regular_file(prefix.string() + "-shaded.png");
+                hits += fs::is_regular_file(prefix.string() + ".hits");
+            }
+            if (pngs) files += ", " + std::to_string(pngs) + " run(s)' PNGs";
+            if (hits) files += ", " + std::to_string(hits) + " run(s)' hit records (.hits, for `rtbench images`)";
+            std::cout << "\nresults in " << result.folder << "/: " << files << " — " << result.rows.size() - result.failed
+                      << " ok, " << result.failed << " failed"
+                      << (options.shardCount > 1 ? "; `rtbench merge " + result.folder + "` once every shard is done" : "")
+                      << "\n";
             return result.failed ? 1 : 0;
+        }
+        if (*planCommand) {
+            rtbench::RunnerOptions planOptions;
+            planOptions.outputOverride = planOutput;
+            std::cout << rtbench::describePlan(rtbench::loadExperiment(planConfig), planOptions, planFilters);
+            return 0;
+        }
+        if (*meshes) {
+            for (const std::string& name : rtbench::cgalMeshNames()) std::cout << "cgal:" << name << "\n";
+            for (const std::string& name : rtbench::proceduralSceneNames()) std::cout << "procedural:" << name << "\n";
+            return 0;
         }
         if (*devices) {
             for (const rtbench::DeviceInfo& d : rtbench::VulkanContext::listDevices())

@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -39,10 +40,16 @@ int openLockFile(const std::string& path) {
     return fd;
 }
 
+// The holder's pid as it wrote it. It writes it just after locking: a moment's wait covers a
+// holder that has locked but not yet written.
 std::string pidIn(int fd) {
-    char holder[32] = {0};
-    const ssize_t n = ::pread(fd, holder, sizeof holder - 1, 0);
-    return n > 0 ? std::string(holder, std::size_t(n)) : "?";
+    for (int attempt = 0; attempt < 20; ++attempt) {
+        char holder[32] = {0};
+        const ssize_t n = ::pread(fd, holder, sizeof holder - 1, 0);
+        if (n > 0) return std::string(holder, std::size_t(n));
+        ::usleep(10000);
+    }
+    return "? (it wrote none)";
 }
 
 void writePid(int fd, const std::string& path) {
@@ -72,14 +79,26 @@ namespace {
 
 // Opens `path` and flocks it (LOCK_EX or LOCK_SH) without waiting: the descriptor, or -1 when
 // another process holds it (its pid, as written in the file, in `holder`).
+// A holder removes its lock file when it ends (~OutputFolderLock); a lock taken on a file that
+// was removed meanwhile guards nothing, so it is taken again on the file the path names now.
 int tryLock(const std::string& path, int operation, std::string& holder) {
-    const int fd = openLockFile(path);
-    if (::flock(fd, operation | LOCK_NB) == 0) return fd;
-    const int why = errno;
-    holder = pidIn(fd);
-    ::close(fd);
-    if (why != EWOULDBLOCK) throw Error(path + ": cannot lock: " + std::strerror(why));
-    return -1;
+    for (int attempt = 0; attempt < 100; ++attempt) {
+        const int fd = openLockFile(path);
+        if (::flock(fd, operation | LOCK_NB) == 0) {
+            struct stat locked{}, named{};
+            if (::fstat(fd, &locked) == 0 && ::lstat(path.c_str(), &named) == 0 && locked.st_dev == named.st_dev &&
+                locked.st_ino == named.st_ino)
+                return fd;
+            ::close(fd);  // removed or replaced after we opened it
+            continue;
+        }
+        const int why = errno;
+        holder = pidIn(fd);
+        ::close(fd);
+        if (why != EWOULDBLOCK) throw Error(path + ": cannot lock: " + std::strerror(why));
+        return -1;
+    }
+    throw Error(path + ": cannot lock: the lock file keeps being removed and made again");
 }
 
 }  // namespace
@@ -97,7 +116,7 @@ OutputFolderLock::OutputFolderLock(const std::string& folder) {
         throw Error(folder + ": another rtbench process (pid " + holder +
                     ") is writing this results folder; wait for it or use another -o / experiment.name");
     }
-    fds_.push_back(fd);
+    held_.push_back({fd, path, true});
     try {
         writePid(fd, path);
     } catch (...) {
@@ -112,6 +131,7 @@ OutputFolderLock::OutputFolderLock(const std::string& folder, const std::string&
     if (fd < 0)
         throw Error(folder + ": another rtbench process (pid " + holder +
                     ") is writing this whole results folder (a run without --shard, or a merge); wait for it");
+    const std::string folderPath = (fs::path(folder) / ".rtbench.lock").string();
     const std::string shardPath = (fs::path(folder) / (".rtbench." + shard + ".lock")).string();
     int shardFd = -1;
     try {
@@ -125,7 +145,7 @@ OutputFolderLock::OutputFolderLock(const std::string& folder, const std::string&
         throw Error(folder + ": another rtbench process (pid " + holder + ") is writing " + shard +
                     " of this results folder; wait for it");
     }
-    fds_ = {fd, shardFd};
+    held_ = {{fd, folderPath, false}, {shardFd, shardPath, true}};
     try {
         writePid(shardFd, shardPath);
     } catch (...) {
@@ -136,7 +156,13 @@ OutputFolderLock::OutputFolderLock(const std::string& folder, const std::string&
 }
 
 OutputFolderLock::~OutputFolderLock() {
-    for (int fd : fds_) ::close(fd);  // releases the flocks; the files stay (removing them would race)
+    // Each lock file is removed by its last holder, while it still holds it exclusively (a process
+    // that opened it meanwhile finds its lock on a removed file and locks again: tryLock); a
+    // shared lock that other shards hold stays. Closing releases the flocks.
+    for (auto it = held_.rbegin(); it != held_.rend(); ++it) {
+        if (it->exclusive || ::flock(it->fd, LOCK_EX | LOCK_NB) == 0) ::unlink(it->path.c_str());
+        ::close(it->fd);
+    }
 }
 
 void refuseSymlinks(const std::string& folder) {

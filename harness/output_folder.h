@@ -14,7 +14,8 @@ std::string experimentFolder(const std::string& output, const std::string& name)
 // run never leaves the folder locked). A whole-plan run and `rtbench merge` hold the folder's
 // lock (.rtbench.lock) exclusively; a shard run holds it shared, so shards run side by side, and
 // holds its own shard's lock (.rtbench.<shard>.lock) exclusively. A process that cannot lock
-// fails at once, naming the holder's pid. Lock files are opened without following symlinks.
+// fails at once, naming the holder's pid. Lock files are opened without following symlinks, and
+// removed by their last holder when it ends (a killed process leaves its file, unlocked).
 class OutputFolderLock {
   public:
     // The whole folder.
@@ -26,7 +27,12 @@ class OutputFolderLock {
     OutputFolderLock& operator=(const OutputFolderLock&) = delete;
 
   private:
-    std::vector<int> fds_;
+    struct Held {
+        int fd;
+        std::string path;
+        bool exclusive;
+    };
+    std::vector<Held> held_;
 };
 
 // Throws rtbench::Error when the results folder is a symlink or holds one: rtbench writes only

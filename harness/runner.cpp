@@ -549,6 +549,24 @@ std::string readResumable(const std::string& folder, const std::string& path, co
     return text;
 }
 
+// Every scene.source the runs name exists (structures/scene_description.h checkSceneSource);
+// else an error naming the config, the key, the source and its runs.
+void checkSceneSources(const ExperimentPlan& plan, const std::vector<const RunConfig*>& runs) {
+    std::map<std::string, std::vector<std::string>> bySource;
+    for (const RunConfig* run : runs) bySource[run->getString("scene.source")].push_back(runNumber(*run));
+    for (const auto& [source, numbers] : bySource) {
+        try {
+            checkSceneSource(source, plan.configDir);
+        } catch (const Error& e) {
+            std::string which;
+            for (std::size_t i = 0; i < numbers.size() && i < 6; ++i) which += (i ? ", " : "") + numbers[i];
+            if (numbers.size() > 6) which += ", ... (" + std::to_string(numbers.size()) + " runs)";
+            throw Error(plan.configPath + ": key 'scene.source' = \"" + source + "\" (run " + which + "): " + e.what() +
+                        "; nothing was run");
+        }
+    }
+}
+
 // A run's timing samples as samples.csv rows.
 std::vector<Row> sampleRows(const Row& row, const std::vector<TimingSample>& samples) {
     std::vector<Row> rows;
@@ -569,23 +587,22 @@ std::string runNumber(const RunConfig& run) {
 }
 
 std::string summaryTable(const std::vector<Row>& rows) {
+    // Speed (with the ratio's 95% interval) and the exact accuracy; the swept parameters last, whole.
     std::ostringstream out;
     auto get = [](const Row& r, const char* key) {
         auto it = r.find(key);
         return it == r.end() || it->second.empty() ? std::string("-") : it->second;
     };
-    out << std::left << std::setw(5) << "run" << std::setw(34) << "parameters" << std::right << std::setw(13)
-        << "kernel Mr/s" << std::setw(14) << "Embree1 Mr/s" << std::setw(15) << "Embree16 Mr/s" << std::setw(11)
-        << "ratio" << std::setw(12) << "hit/miss %" << std::setw(10) << "status" << "\n";
+    out << std::left << std::setw(5) << "run" << std::right << std::setw(13) << "kernel Mr/s" << std::setw(14)
+        << "Embree1 Mr/s" << std::setw(10) << "ratio" << std::setw(22) << "ratio 95% interval" << std::setw(12)
+        << "wrong ppm" << std::setw(9) << "status" << "  " << std::left << "parameters (wrong ppm: against the exact reference)\n";
     for (const Row& r : rows) {
-        std::string agreement = get(r, "hit_miss_agreement");
-        if (agreement != "-") agreement = formatNumber(100.0 * std::stod(agreement), 6);
-        std::string label = get(r, "label");
-        if (label.size() > 33) label = label.substr(0, 30) + "...";
-        out << std::left << std::setw(5) << get(r, "run") << std::setw(34) << label << std::right << std::setw(13)
-            << get(r, "kernel_mrays_s") << std::setw(14) << get(r, "embree1_mrays_s") << std::setw(15)
-            << get(r, "embree16_mrays_s") << std::setw(11) << get(r, "speed_ratio_vs_embree1") << std::setw(12)
-            << agreement << std::setw(10) << get(r, "status") << "\n";
+        const std::string interval =
+            get(r, "speed_ratio_ci_low") == "-" ? "-" : "[" + get(r, "speed_ratio_ci_low") + ", " + get(r, "speed_ratio_ci_high") + "]";
+        out << std::left << std::setw(5) << get(r, "run") << std::right << std::setw(13) << get(r, "kernel_mrays_s")
+            << std::setw(14) << get(r, "embree1_mrays_s") << std::setw(10) << get(r, "speed_ratio_vs_embree1") << std::setw(22)
+            << interval << std::setw(12) << get(r, "exact_wrong_ppm") << std::setw(9) << get(r, "status") << "  " << std::left
+            << get(r, "label") << (get(r, "timing_warning") == "-" ? "" : " [timing_warning]") << "\n";
     }
     for (const Row& r : rows)
         if (get(r, "status") == "failed") out << "run " << get(r, "run") << " failed: " << get(r, "error") << "\n";
@@ -612,6 +629,16 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
     const RunConfig& first = plan.runs.front();
     const std::string output = options.outputOverride.empty() ? first.getString("experiment.output") : options.outputOverride;
     result.folder = experimentFolder(output, first.getString("experiment.name"));
+    // What would fail every run fails the command before any folder is made: a device that is not
+    // there (its name and driver are part of each run's identity) or a scene source that is not.
+    std::vector<const RunConfig*> mine;
+    for (const RunConfig& run : plan.runs)
+        if (run.index % options.shardCount == options.shardIndex &&
+            (options.onlyRuns.empty() || options.onlyRuns.count(runNumber(run))))
+            mine.push_back(&run);
+    Caches caches;
+    for (const RunConfig* run : mine) deviceFor(*run, caches);
+    checkSceneSources(plan, mine);
     std::error_code ec;
     if (fs::is_symlink(fs::symlink_status(result.folder, ec))) refuseSymlinks(result.folder);
     fs::create_directories(result.folder, ec);
@@ -632,15 +659,6 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
     checkWritableFile(samplesPath);
     const std::vector<std::string> columns = runColumns();
 
-    std::vector<const RunConfig*> mine;
-    for (const RunConfig& run : plan.runs)
-        if (run.index % options.shardCount == options.shardIndex &&
-            (options.onlyRuns.empty() || options.onlyRuns.count(runNumber(run))))
-            mine.push_back(&run);
-    // Every device the runs name, opened before anything is written: a device that is not there
-    // fails the command, not each run, and its name and driver are part of each run's identity.
-    Caches caches;
-    for (const RunConfig* run : mine) deviceFor(*run, caches);
 
     // Rows of an earlier invocation that can stand: ok, and the same run in every input.
     std::vector<Row> earlierRows, earlierSamples;
@@ -679,6 +697,7 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
     std::vector<Row> rows(mine.size());
     std::vector<bool> kept(mine.size(), false);
     std::set<const Row*> keptEarlier;
+    std::map<std::string, std::string> inputsNow;  // run -> inputs_hash, of runs with an earlier ok row
     for (std::size_t k = 0; k < mine.size(); ++k) {
         const RunConfig& run = *mine[k];
         Row& row = rows[k];
@@ -698,6 +717,7 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
         } catch (const std::exception&) {
             continue;  // the scene no longer loads: the run is run again, and says why
         }
+        inputsNow[row["run"]] = withInputs["inputs_hash"];
         const auto previous = earlier.find(identity(withInputs));
         if (previous == earlier.end()) continue;
         row = *previous->second;
@@ -709,11 +729,25 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
     std::vector<Row> superseded;
     std::set<std::string> planned;
     for (const RunConfig& run : plan.runs) planned.insert(runNumber(run) + "|" + run.hash());
-    std::size_t notInPlan = 0;
+    std::map<std::string, const Row*> planRow;  // run -> this invocation's row of it
+    for (const Row& row : rows) planRow[row.at("run")] = &row;
+    // Why each earlier row is not kept, first reason first.
+    std::map<std::string, std::size_t> why;
     for (const Row& row : earlierRows)
         if (!keptEarlier.count(&row)) {
             superseded.push_back(row);
-            notInPlan += !planned.count(row.at("run") + "|" + row.at("config_hash"));
+            const auto now = planRow.find(row.at("run"));
+            auto differs = [&](const char* column) { return now->second->at(column) != (row.count(column) ? row.at(column) : ""); };
+            const char* reason = !planned.count(row.at("run") + "|" + row.at("config_hash")) ? "no longer in the plan"
+                                 : row.at("status") != "ok"                                   ? "failed"
+                                 : options.force                                               ? "--force"
+                                 : now == planRow.end()                                        ? "another shard's"
+                                 : differs("git_commit")                                       ? "another commit"
+                                 : differs("device") || differs("driver")                      ? "another device or driver"
+                                 : differs("cpu")                                              ? "another CPU"
+                                 : !inputsNow.count(row.at("run"))                             ? "a scene that no longer loads"
+                                                                                               : "other input files";
+            ++why[reason];
         }
     // The samples of kept rows stand with them; the rest (superseded rows', and those of a run
     // interrupted before its row was written) are set aside.
@@ -735,11 +769,17 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
         for (const Row& row : superseded)
             if (!planned.count(row.at("run") + "|" + row.at("config_hash")))
                 notInPlanRuns += (notInPlanRuns.empty() ? "" : ", ") + row.at("run") + " (" + row.at("label") + ")";
-        std::cerr << "[rtbench] " << superseded.size() << " row(s) of " << csvPath << " are not kept: "
-                  << notInPlan << " no longer in the plan" << (notInPlanRuns.empty() ? "" : " [" + notInPlanRuns + "]")
-                  << ", " << superseded.size() - notInPlan
-                  << " failed or from another commit, device or input files" << (options.force ? " (--force)" : "")
-                  << "; they are saved in " << aside << "\n";
+        std::string reasons;
+        for (const auto& [reason, count] : why)
+            if (count) reasons += (reasons.empty() ? "" : ", ") + std::to_string(count) + " " + reason;
+        std::cerr << "[rtbench] " << superseded.size() << " row(s) of " << csvPath << " are not kept (" << reasons << ")"
+                  << (notInPlanRuns.empty() ? "" : "; no longer in the plan: " + notInPlanRuns) << "; they are saved in "
+                  << aside << "\n";
+    }
+    if (!earlierRows.empty() && !options.quiet) {
+        const std::size_t keptCount = std::size_t(std::count(kept.begin(), kept.end(), true));
+        std::cout << "[rtbench] resuming " << csvPath << ": " << keptCount << " row(s) kept, " << mine.size() - keptCount
+                  << " run(s) to run, " << superseded.size() << " earlier row(s) set aside\n";
     }
 
     // The bookkeeping: context.json once now and once at the end; runs.csv written once with the

@@ -2,21 +2,31 @@
 """Charts for an rtbench results folder: PNG and SVG next to runs.csv.
 
 usage: scripts/plot.py RESULTS_DIR      (or: build/rtbench plot RESULTS_DIR)
-Charts whose runs are absent from the folder are skipped. Uses Debian's python3-matplotlib and
-python3-pandas only.
+Besides the charts of the configs of record, one chart per swept key (by_<key>: time and rays
+wrong against the key's values, coloured by method, one row per scene). A chart the folder's runs
+cannot make is skipped with one line on stderr: "rtbench plot: DIR: skipped CHART: why". Uses
+Debian's python3-matplotlib and python3-pandas only.
 """
 import errno
 import json
+import math
 import os
+import re
 import sys
 import tempfile
+import textwrap
+import warnings
 from pathlib import Path
 
 import matplotlib
 
 matplotlib.use("Agg")
+matplotlib.rcParams["svg.hashsalt"] = "rtbench"  # the SVG's ids from its content, not at random
 import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
+from matplotlib import ticker, transforms  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
 from rtbench_results import load, method_name, scene_name  # noqa: E402
 COLORS = {"branching": "tab:blue", "multipass": "tab:orange", "Embree rtcIntersect1": "tab:green"}
 BYTES = [("bytes_stencil", "stencil"), ("bytes_state", "state variables"), ("bytes_stack", "node stack"),
@@ -48,7 +58,8 @@ def write_atomically(fig, target: Path, ext: str):
     try:
         os.fchmod(fd, 0o666 & ~umask())  # as a plain open() would create it, not mkstemp's 0600
         with os.fdopen(fd, "wb") as out:
-            fig.savefig(out, format=ext, dpi=110)
+            # SVGs without a date and with fixed ids: a chart of the same runs is the same file.
+            fig.savefig(out, format=ext, dpi=110, **({"metadata": {"Date": None}} if ext == "svg" else {}))
             out.flush()
             os.fsync(out.fileno())
         os.replace(tmp, target)
@@ -60,8 +71,59 @@ def write_atomically(fig, target: Path, ext: str):
         raise
 
 
-def save(fig, folder: Path, name: str, written: list):
-    fig.tight_layout()
+def skip(folder: Path, name: str, reason: str):
+    """A chart the runs cannot make: one line on stderr naming it and why."""
+    print(f"rtbench plot: {folder}: skipped {name}: {reason}", file=sys.stderr)
+
+
+def fit_text(text, width: float, renderer):
+    """Wrap each line of a title (a Text) to `width` pixels, then shrink it if a word is still wider."""
+    lines = text.get_text().split("\n")
+    fitted = []
+    for line in lines:
+        text.set_text(line)
+        measured = text.get_window_extent(renderer).width
+        if measured <= width or len(line) < 2:
+            fitted.append(line)
+            continue
+        chars = max(12, int(len(line) * width / measured))
+        while True:
+            text.set_text(textwrap.fill(line, chars))
+            if text.get_window_extent(renderer).width <= width or chars <= 12:
+                break
+            chars -= max(1, chars // 10)
+        fitted.append(text.get_text())
+    text.set_text("\n".join(fitted))
+    while text.get_window_extent(renderer).width > width and text.get_fontsize() > 6:
+        text.set_fontsize(text.get_fontsize() - 0.5)
+
+
+def fit_titles(fig):
+    """No clipped titles: every axes title wrapped to its axes' width, the figure's to the figure's."""
+    renderer = fig.canvas.get_renderer()
+    for ax in fig.axes:
+        if ax.get_title():
+            fit_text(ax.title, ax.get_window_extent(renderer).width, renderer)
+    if fig._suptitle is not None:
+        fit_text(fig._suptitle, 0.96 * fig.bbox.width, renderer)
+
+
+def save(fig, folder: Path, name: str, written: list, rect=None):
+    """tight_layout within `rect` below the figure's title (matplotlib 3.6 lets a tall figure's rows
+    run into it), titles fitted to their widths, then PNG and SVG."""
+    rect = list(rect or (0, 0, 1, 1))
+    fig.tight_layout(rect=rect)
+    fit_titles(fig)
+    fig.tight_layout(rect=rect)
+    for _ in range(3):
+        if fig._suptitle is None or not fig._suptitle.get_text():
+            break
+        renderer = fig.canvas.get_renderer()
+        below = fig._suptitle.get_window_extent(renderer).y0 - 6
+        top = max(ax.get_tightbbox(renderer).y1 for ax in fig.axes)
+        if top <= below:
+            break
+        fig.subplots_adjust(top=fig.subplotpars.top - (top - below) / fig.bbox.height)
     for ext in ("png", "svg"):
         write_atomically(fig, folder / f"{name}.{ext}", ext)
     plt.close(fig)
@@ -75,11 +137,19 @@ def stacked_bars(ax, labels, frame, columns, scale=1.0):
         values = (frame[column].fillna(0) * scale).tolist()
         ax.bar(labels, values, bottom=bottom, label=name)
         bottom = [b + v for b, v in zip(bottom, values)]
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="best")
+
+
+def size_of(run) -> str:
+    return f"{int(run.camera_width)}x{int(run.camera_height)}"
 
 
 def size(frame) -> str:
-    return f"{int(frame.camera_width.iloc[0])}x{int(frame.camera_height.iloc[0])}"
+    """The image sizes of the runs in `frame`, largest first: "1024x1024" or "1024x1024 and 512x512"."""
+    pairs = frame[["camera_width", "camera_height"]].drop_duplicates().dropna()
+    pairs = sorted(((int(w), int(h)) for w, h in pairs.itertuples(index=False)), key=lambda p: (-p[0] * p[1], p))
+    names = [f"{w}x{h}" for w, h in pairs]
+    return names[0] if len(names) == 1 else ", ".join(names[:-1]) + " and " + names[-1] if names else "no size"
 
 
 def pareto(points):
@@ -99,12 +169,44 @@ def wrong_ppm(frame, prefix="exact_"):
     return 1e6 * wrong / frame.exact_rays
 
 
-def wrong_ppm_axis(ax, label=None):
-    """A y axis of rays wrong per million: 0 sits on the axis, 1 ppm and up are logarithmic."""
-    ax.set_yscale("symlog", linthresh=1.0)
-    ax.set_ylim(bottom=-0.1)
+def finite(values):
+    values = pd.to_numeric(pd.Series(np.asarray(values, dtype=float).ravel()), errors="coerce")
+    return values[np.isfinite(values)]
+
+
+def all_zero_axis(ax, note="all zero"):
+    """A y axis whose data are all 0 (or absent): 0 to 1, linear, and said so (not -0.1 to 0.055)."""
+    ax.set_yscale("linear")
+    ax.set_ylim(-0.05, 1.0)
+    ax.set_yticks([0, 0.5, 1])
+    ax.text(0.5, 0.55, note, transform=ax.transAxes, ha="center", va="center", color="0.4", fontsize=9)
+
+
+def wrong_ppm_axis(ax, values, label=None):
+    """A y axis of rays wrong per million: 0 sits on the axis, 1 ppm and up are logarithmic, the
+    largest value below the top; all zero: 0 to 1 with a note."""
+    values = finite(values)
     if label:
         ax.set_ylabel(label)
+    if values.empty or values.max() <= 0:
+        all_zero_axis(ax, "all zero" if not values.empty else "no values")
+        return
+    ax.set_yscale("symlog", linthresh=1.0)
+    ax.set_ylim(-0.1, max(2.0, values.max() * 2.5))
+
+
+def log_axis(ax, values, axis="y"):
+    """A log axis over the positive values; all zero: 0 to 1 with a note."""
+    values = finite(values)
+    positive = values[values > 0]
+    if positive.empty:
+        if axis == "y":
+            all_zero_axis(ax, "all zero" if not values.empty else "no values")
+        return
+    (ax.set_yscale if axis == "y" else ax.set_xscale)("log")
+    if len(positive) < len(values) and axis == "y":
+        ax.text(0.01, 0.01, f"{len(values) - len(positive)} zero values not on this log axis", transform=ax.transAxes,
+                fontsize=6, color="0.4")
 
 
 def vertex_bits(frame):
@@ -142,51 +244,138 @@ KIND_COLORS = {"grid": "tab:blue", "grid conservative": "tab:cyan", "bvh": "tab:
                "auto": "tab:purple"}
 
 
+# Config key columns: every column before `run` (harness/columns.cpp writes the config schema's keys
+# first); for a CSV without `run`, the columns named after a config section.
+SECTIONS = ("experiment", "scene", "camera", "structure", "strategy", "intersection", "baseline", "accuracy",
+            "device", "output")
+NOT_SWEPT = {"experiment_name", "experiment_output"}  # the same for every run of a config
+METHOD_KEYS = ("structure_type", "strategy_type")  # the colour of the by_<key> charts
+STRUCTURE_NAMES = {"uniform_grid": "grid", "brute_force": "brute force"}
+
+
+def parameter_columns(frame) -> list:
+    columns = list(frame.columns)
+    head = columns[:columns.index("run")] if "run" in columns else [c for c in columns if c.split("_")[0] in SECTIONS]
+    return [c for c in head if c not in NOT_SWEPT]
+
+
+def text_value(value) -> str:
+    """One spelling per value, as a label: 64 and 64.0 alike, False as "false", an empty cell as ""."""
+    if value is None or (isinstance(value, float) and math.isnan(value)):
+        return ""
+    if isinstance(value, (bool, np.bool_)):
+        return "true" if value else "false"
+    if isinstance(value, (int, float, np.integer, np.floating)):
+        return f"{float(value):.6g}"
+    return str(value)
+
+
+def as_text(frame, columns) -> pd.DataFrame:
+    return pd.DataFrame({c: frame[c].map(text_value) for c in columns}, index=frame.index)
+
+
+def swept_keys(everything) -> list:
+    """The config keys that take two or more values over the runs (an empty cell, a key that does not
+    apply to a run's structure or strategy, is no value)."""
+    text = as_text(everything, parameter_columns(everything))
+    return [c for c in text if text[c][text[c] != ""].nunique() >= 2]
+
+
+def key_classes(everything, keys) -> list:
+    """The swept keys in classes whose values go together one for one (camera.width with camera.height):
+    [(first key, [keys that follow it])], in column order."""
+    text = as_text(everything, keys)
+    classes = []
+    for key in keys:
+        for first, followers in classes:
+            if text.groupby(first)[key].nunique().max() == 1 and text.groupby(key)[first].nunique().max() == 1:
+                followers.append(key)
+                break
+        else:
+            classes.append((key, []))
+    return classes
+
+
+def short_key(column: str) -> str:
+    """A key without its section where the rest says enough, for labels: structure_min_dim -> min_dim
+    (camera_width stays: "width" alone could be anything)."""
+    section, _, rest = column.partition("_")
+    return rest if section in ("structure", "strategy", "intersection") and rest else column
+
+
+def run_labels(frame, first, keys) -> list:
+    """A bar label per run: `first` columns' values, then key=value for each of `keys` that varies in
+    `frame`, so that no two bars of different runs read alike."""
+    text = as_text(frame, keys)
+    varying = [k for k in keys if text[k][text[k] != ""].nunique() > 1]
+    labels = []
+    for index, run in frame.iterrows():
+        parts = [str(run[c]) for c in first] + [f"{short_key(k)}={text.at[index, k]}" for k in varying
+                                                if text.at[index, k] != ""]
+        labels.append("\n".join(parts))
+    return labels
+
+
 def speed_vs_accuracy(runs, device, folder, written):
-    """Per scene: rays wrong against the exact reference (log above 1 per million) and mean distance
-    error against speed, one point per run, Embree beside them, the kernels' Pareto front."""
+    """Per scene and image size: rays wrong against the exact reference (log above 1 per million)
+    and mean distance error against speed, one point per run, Embree beside them, the kernels'
+    Pareto fronts: one over the runs on the full scene (as is or packed: wrong = missed, false hit
+    or wrong triangle), another over simplified scenes (other triangles: wrong = hit/miss only)."""
     if "exact_rays" not in runs:  # a folder from before the exact reference
-        return
-    scenes = sorted(runs.scene.unique())
-    fig, axes = plt.subplots(len(scenes), 2, figsize=(15, 4.4 * len(scenes)), squeeze=False)
-    for (left, right), scene in zip(axes, scenes):
+        return skip(folder, "speed_vs_accuracy", "no exact_rays column (a folder from before the exact reference)")
+    runs = runs.assign(size=[size_of(r) for r in runs.itertuples()])
+    panels = []  # (scene, size): a panel per image size, as their speeds and counts differ
+    for scene in sorted(runs.scene.unique()):
         of_scene = runs[runs.scene == scene]
-        points = []
+        for name in sorted(of_scene["size"].unique(), key=lambda n: -np.prod([int(v) for v in n.split("x")])):
+            panels.append((scene, name, of_scene[of_scene["size"] == name]))
+    fig, axes = plt.subplots(len(panels), 2, figsize=(15, 4.4 * len(panels)), squeeze=False)
+    for (left, right), (scene, name, of_scene) in zip(axes, panels):
+        points = {False: [], True: []}  # simplified or not: the front of each
         of_scene = of_scene.assign(kind=[method_name(r).split(" ")[0] + (" conservative" if "conservative" in method_name(r)
                                                                           else "") for _, r in of_scene.iterrows()],
                                    test=of_scene.get("intersection_test", "moller_trumbore"), variant=variant(of_scene))
         for (kind, strategy, test, how), group in of_scene.groupby(["kind", "strategy_type", "test", "variant"]):
             marker = VARIANT_MARKERS[how][test == "watertight"]
-            name = f"{kind} {strategy}, {'watertight' if test == 'watertight' else 'Moller-Trumbore'}" + (f", {how}" if how else "")
+            name_ = f"{kind} {strategy}, {'watertight' if test == 'watertight' else 'Moller-Trumbore'}" + (f", {how}" if how else "")
             color = KIND_COLORS.get(kind, COLORS.get(strategy))
             fill = color if strategy == "branching" else "none"  # multipass: hollow
             ppm = wrong_ppm(group)
-            left.scatter(group.kernel_mrays_s, ppm, label=name, edgecolors=color, c=fill, marker=marker, alpha=0.8)
-            right.scatter(group.kernel_mrays_s, group.exact_distance_error_mean, label=name, edgecolors=color, c=fill,
+            left.scatter(group.kernel_mrays_s, ppm, label=name_, edgecolors=color, c=fill, marker=marker, alpha=0.8)
+            right.scatter(group.kernel_mrays_s, group.exact_distance_error_mean, label=name_, edgecolors=color, c=fill,
                           marker=marker, alpha=0.8)
             if how:  # which precision or simplification each point is
                 tags = [f"{int(b)} b" for b in vertex_bits(group)] if how == "packed" else \
                     [f"{100 * t / f:.3g}%" for t, f in zip(group.scene_triangles, group.scene_full_triangles)]
                 for x, y, tag in zip(group.kernel_mrays_s, ppm, tags):
                     left.annotate(tag, (x, y), fontsize=6, xytext=(3, 2), textcoords="offset points", color=color)
-            points += list(zip(group.kernel_mrays_s, ppm))
+            points[how == "simplified"] += list(zip(group.kernel_mrays_s, ppm))
         embree = of_scene[of_scene.variant == ""].drop_duplicates(["camera_width", "camera_height", "camera_look_at"])
-        left.scatter(embree.embree1_mrays_s, wrong_ppm(embree, "embree_exact_"), marker="s",
+        embree_ppm = wrong_ppm(embree, "embree_exact_")
+        left.scatter(embree.embree1_mrays_s, embree_ppm, marker="s",
                      color=COLORS["Embree rtcIntersect1"], label="Embree rtcIntersect1 (CPU, same rays)")
         right.scatter(embree.embree1_mrays_s, embree.embree_exact_distance_error_mean, marker="s",
                       color=COLORS["Embree rtcIntersect1"], label="Embree rtcIntersect1 (CPU, same rays)")
-        front = pareto(points)  # among the kernels' runs
-        left.plot([p[0] for p in front], [p[1] for p in front], "k--", marker="x", lw=1, label="Pareto front of the kernels")
-        wrong_ppm_axis(left, "rays wrong vs exact (per million; log above 1)")
-        right.set_yscale("log")
+        for simplified_, style, label in ((False, "k--", "Pareto front of the kernels, full scene\n(wrong: missed, "
+                                                         "false hit or wrong triangle)"),
+                                          (True, "--", "Pareto front of the kernels, simplified scenes\n(wrong: "
+                                                       "missed or false hit; other triangles)")):
+            front = pareto(points[simplified_])
+            if front:
+                left.plot([p[0] for p in front], [p[1] for p in front], style, marker="x", lw=1, label=label,
+                          **({"color": "tab:purple"} if simplified_ else {}))
+        all_ppm = [p[1] for p in points[False] + points[True]] + list(embree_ppm)
+        wrong_ppm_axis(left, all_ppm, "rays wrong vs exact (per million; log above 1)")
+        log_axis(right, list(of_scene.exact_distance_error_mean) + list(embree.embree_exact_distance_error_mean))
         right.set_ylabel("mean |t - t_exact| / t_exact (log)")
         for ax in (left, right):
             ax.set_xscale("log")
             ax.set_xlabel("speed (Mrays/s, log scale)")
-            ax.set_title(f"{scene}, {size(of_scene)}", fontsize=9)
+            ax.set_title(f"{scene}, {name} ({len(of_scene)} run{'s' if len(of_scene) != 1 else ''})", fontsize=9)
         right.legend(*left.get_legend_handles_labels(), fontsize=7, loc="upper left",
-                     bbox_to_anchor=(1.02, 1.0))  # one legend (the left panel's, with the front), beside the points
-    fig.suptitle(f"Speed against accuracy (the exact reference), one point per run\n{device}", fontsize=10)
+                     bbox_to_anchor=(1.02, 1.0))  # one legend (the left panel's, with the fronts), beside the points
+    fig.suptitle(f"Speed against accuracy (the exact reference), one point per run, a row per scene and image size"
+                 f"\n{device}", fontsize=10)
     save(fig, folder, "speed_vs_accuracy", written)
 
 
@@ -203,25 +392,34 @@ def reduced_lines(runs, how):
 
 def vertex_precision(runs, device, folder, written):
     """Packed vertices: rays wrong against the exact reference and vertex bytes per ray against the
-    bits per axis, 32 being float vertices."""
+    bits per axis; float vertices (32 bits) are a point of their own, not joined to the packed ones."""
     lines = list(reduced_lines(runs, "packed"))
     if not lines:
-        return
-    fig, (left, right) = plt.subplots(1, 2, figsize=(12, 4.4))
+        return skip(folder, "vertex_precision", "no runs with packed vertices (intersection.vertex_bits < 32)")
+    fig, (left, right) = plt.subplots(1, 2, figsize=(12, 4.6))
+    drawn, ppms = [], []
     for scene, method, group in lines:
         group = group.assign(bits=vertex_bits(group)).sort_values("bits")
-        left.plot(group.bits, wrong_ppm(group), marker="o", label=f"{scene}: {method}")
-        right.plot(group.bits, group.bytes_vertices / group.rays, marker="o", label=f"{scene}: {method}")
-    wrong_ppm_axis(left, "rays wrong vs exact (per million; log above 1)")
+        packed, floats = group[group.bits < 32], group[group.bits >= 32]
+        for ax, values in ((left, wrong_ppm), (right, lambda g: g.bytes_vertices / g.rays)):
+            line, = ax.plot(packed.bits, values(packed), marker="o", label=f"{scene}: {method}")
+            if not floats.empty:  # float vertices: a star at "float", no line from 16 bits to it
+                ax.plot(floats.bits, values(floats), ls="none", marker="*", ms=11, color=line.get_color())
+        drawn.append(group)
+        ppms += list(wrong_ppm(group))
+    wrong_ppm_axis(left, ppms, "rays wrong vs exact (per million; log above 1)")
     right.set_ylabel("triangle vertex bytes read per ray")
+    bits = sorted(vertex_bits(pd.concat(drawn)).unique())
     for ax in (left, right):
-        ax.set_xlabel("vertex bits per axis (32: float)")
+        ax.set_xlabel("vertex bits per axis (packed); float vertices apart, a star")
         ax.set_xscale("log", base=2)
-        bits = sorted(vertex_bits(runs).unique())
         ax.set_xticks(bits, [str(int(b)) if b < 32 else "float" for b in bits])
         ax.minorticks_off()
-        ax.legend(fontsize=7)
-    fig.suptitle(f"Reduced vertex precision: accuracy against bandwidth ({size(runs)})\n{device}", fontsize=10)
+        if bits[-1] >= 32 and len(bits) > 1:
+            ax.axvline(math.sqrt(bits[-2] * bits[-1]), color="0.6", ls=":", lw=1)  # packed | float
+        ax.legend(fontsize=7, loc="best")
+    fig.suptitle(f"Reduced vertex precision: accuracy against bandwidth ({size(pd.concat(drawn))})\n{device}",
+                 fontsize=10)
     save(fig, folder, "vertex_precision", written)
 
 
@@ -229,23 +427,34 @@ def simplification(runs, device, folder, written):
     """Simplified scenes judged against the full one: rays wrong and speed against the triangles kept."""
     lines = list(reduced_lines(runs, "simplified"))
     if not lines:
-        return
-    fig, (left, right) = plt.subplots(1, 2, figsize=(12, 4.4))
+        return skip(folder, "simplification", "no runs on a simplified scene (scene.simplify_*)")
+    fig, (left, right) = plt.subplots(1, 2, figsize=(12, 4.6))
+    drawn, ppms = [], []
     for scene, method, group in lines:
         group = group.sort_values("scene_triangles")
-        left.plot(group.scene_triangles, wrong_ppm(group), marker="o", label=f"{scene}: {method}")
+        # A simplified scene has other triangles: only a miss or a false hit is wrong. The line counts
+        # those on every point, the full scene's too; its wrong triangles as well: a hollow marker.
+        hit_miss = 1e6 * (group.exact_false_misses + group.exact_false_hits) / group.exact_rays
+        line, = left.plot(group.scene_triangles, hit_miss, marker="o", label=f"{scene}: {method}")
+        full = group[~simplified(group)]
+        if not full.empty and (wrong_ppm(full) != hit_miss[full.index]).any():
+            left.scatter(full.scene_triangles, wrong_ppm(full), marker="o", s=60, facecolors="none",
+                         edgecolors=line.get_color(), label=f"{scene}: {method}, full scene with wrong triangles")
         line, = right.plot(group.scene_triangles, group.kernel_mrays_s, marker="o", label=f"{scene}: {method}")
         right.plot(group.scene_triangles, group.embree1_mrays_s, ls=":", marker=".", color=line.get_color(),
                    label=f"{scene}: Embree rtcIntersect1 on the same scene")
+        drawn.append(group)
+        ppms += list(hit_miss) + list(wrong_ppm(full))
     left.axhline(1000, color="gray", lw=1, ls="--", label="0.1% of the rays")
-    wrong_ppm_axis(left, "rays wrong vs exact, full scene (per million)")
+    wrong_ppm_axis(left, ppms + [1000], "rays missed or falsely hit vs exact, full scene (per million)")
     right.set_yscale("log")
     right.set_ylabel("Mrays/s (log)")
     for ax in (left, right):
         ax.set_xscale("log")
         ax.set_xlabel("triangles traced (log; the rightmost point is the full scene)")
-        ax.legend(fontsize=7)
-    fig.suptitle(f"Simplified scenes (CGAL edge collapse): accuracy and speed ({size(runs)})\n{device}", fontsize=10)
+        ax.legend(fontsize=7, loc="best")
+    fig.suptitle(f"Simplified scenes (CGAL edge collapse): accuracy and speed ({size(pd.concat(drawn))})\n{device}",
+                 fontsize=10)
     save(fig, folder, "simplification", written)
 
 
@@ -254,12 +463,41 @@ def first_number(text) -> float:
     return float(str(text).strip("[]").split()[0])
 
 
+def dodge(ax, i: int, n: int, step: float = 5.0):
+    """ax.transData moved sideways by a few points for the i-th of n series at the same x: coincident
+    points stay visible and no value changes."""
+    step = min(step, 36.0 / max(n, 1))
+    return transforms.offset_copy(ax.transData, fig=ax.figure, x=(i - (n - 1) / 2) * step, y=0, units="points")
+
+
+def anchor(ax, xs, ys):
+    """Points drawn through dodge() (an offset transform) do not widen the axes: their data do here."""
+    xy = np.column_stack([np.asarray(xs, dtype=float), np.asarray(ys, dtype=float)])
+    xy = xy[np.isfinite(xy).all(axis=1)]
+    if len(xy):
+        ax.update_datalim(xy)
+        ax.autoscale_view()
+
+
+def legend_beside(fig, legend_ax, handles_labels, title=None, fontsize=7):
+    """One legend for the figure in its own (blank) axes to the right: it covers no data."""
+    seen = {}
+    for handle, label in handles_labels:
+        seen.setdefault(label, handle)
+    legend_ax.axis("off")
+    legend_ax.legend(list(seen.values()), list(seen.keys()), loc="upper left", fontsize=fontsize, title=title,
+                     title_fontsize=fontsize, frameon=False, borderaxespad=0.0)
+
+
 def failure_map(runs, failed, device, folder, written):
     """Rays wrong against the exact reference as a scene moves (scene.translate) or scales (scene.scale):
-    one panel per swept axis and scene, one line per method, Embree dashed, refused runs marked."""
-    if "exact_rays" not in runs or "scene_translate" not in runs:
-        return
-    everything = pd.concat([runs, failed.assign(scene=failed.scene_source.map(scene_name))], ignore_index=True)
+    one panel per swept axis and scene, one marker per method and value (no lines: a single ray
+    wrong at one offset is not a trend between offsets), Embree black, refused runs marked."""
+    if "exact_rays" not in runs:
+        return skip(folder, "failure_map", "no exact_rays column (a folder from before the exact reference)")
+    if "scene_translate" not in runs:
+        return skip(folder, "failure_map", "no scene_translate column")
+    everything = concat([runs, failed.assign(scene=failed.scene_source.map(scene_name))])
     everything["ok"] = everything.status == "ok"
     everything["offset"] = everything.scene_translate.map(first_number)
     panels = []
@@ -269,20 +507,32 @@ def failure_map(runs, failed, device, folder, written):
         if group.scene_scale.nunique() > 1:
             panels.append((f"{scene} scaled", "scale", group[group.offset == 0.0], "scene_scale"))
     if not panels:
-        return
-    fig, axes = plt.subplots(1, len(panels), figsize=(5.2 * len(panels), 4.6), squeeze=False)
-    for ax, (title, xlabel, group, x) in zip(axes[0], panels):
+        return skip(folder, "failure_map", "no scene was moved (scene.translate) or scaled (scene.scale) across runs")
+    grid = plt.GridSpec(1, len(panels) + 1, width_ratios=[1] * len(panels) + [0.75])
+    fig = plt.figure(figsize=(4.6 * len(panels) + 3.4, 4.8))
+    axes = [fig.add_subplot(grid[0, i]) for i in range(len(panels))]
+    handles = []
+    methods = sorted({method_label(r) for _, r in everything[everything.ok].iterrows()})
+    markers = dict(zip(methods, "osD^vP<>Xhp*" * 3))
+    for ax, (title, xlabel, group, x) in zip(axes, panels):
         ok = group[group.ok].copy()
         ok["method"] = [method_label(r) for _, r in ok.iterrows()]
+        present = [m for m in methods if (ok.method == m).any()]
+        values = []
         # Sum over the views of a point (e.g. the closed meshes' three look-at directions).
-        for method, runs_of in ok.groupby("method"):
-            ppm = wrong_ppm_summed(runs_of, x)
-            style = ":^" if method.endswith("watertight") else "-o"  # the tests often coincide: dotted on solid
-            ax.plot(ppm.index, ppm, style, label=method, color=method_color(method),
-                    alpha=0.45 if "multipass" in method else 0.9, ms=4)
+        for i, method in enumerate(present):
+            ppm = wrong_ppm_summed(ok[ok.method == method], x)
+            watertight = method.endswith("watertight")
+            ax.plot(ppm.index, ppm, ls="none", marker=markers[method], ms=5, label=method, color=method_color(method),
+                    mfc="none" if watertight else method_color(method), alpha=0.5 if "multipass" in method else 0.9,
+                    transform=dodge(ax, i, len(present) + 1, 3.0))
+            values += list(ppm)
+            anchor(ax, ppm.index, ppm)
         embree = ok.drop_duplicates([x, "camera_look_at", "scene_source"] if "camera_look_at" in ok else [x, "scene_source"])
         ppm = wrong_ppm_summed(embree, x, "embree_exact_")
-        ax.plot(ppm.index, ppm, "k--s", label="Embree (CPU)", ms=4)
+        ax.plot(ppm.index, ppm, ls="none", marker="s", color="k", ms=5, label="Embree rtcIntersect1 (CPU)",
+                transform=dodge(ax, len(present), len(present) + 1, 3.0))
+        values += list(ppm)
         refused = sorted(set(group[~group.ok][x]))
         for v in refused:
             ax.axvline(v, color="tab:red", lw=6, alpha=0.15)
@@ -291,20 +541,27 @@ def failure_map(runs, failed, device, folder, written):
         ax.set_xscale("symlog" if x == "offset" else "log", **({"linthresh": 1.0} if x == "offset" else {}))
         xs = sorted(set(group[x]))  # refused runs too (axvline does not widen the axis)
         ax.set_xlim(-0.5 if x == "offset" else xs[0] / 3, xs[-1] * 3)
-        wrong_ppm_axis(ax, "rays wrong vs exact (per million; log above 1)")
+        wrong_ppm_axis(ax, values, "rays wrong vs exact (per million; log above 1)")
         ax.set_xlabel(xlabel + " (log)")
         ax.set_title(title, fontsize=9)
-        ax.legend(fontsize=6)
+        handles += list(zip(*ax.get_legend_handles_labels()))
+    rank = {m: i for i, m in enumerate(methods)}  # the methods in order, then Embree and the refused runs
+    handles.sort(key=lambda hl: rank.get(hl[1], len(rank) + ("refused" in hl[1])))
+    legend_beside(fig, fig.add_subplot(grid[0, -1]), handles,
+                  "hollow: watertight test; points of one value side by side", fontsize=7)
     fig.suptitle(f"Failure map: leaks, false hits and wrong triangles against the exact reference\n{device}", fontsize=10)
     save(fig, folder, "failure_map", written)
 
 
 def passes_vs_threshold(runs, device, folder, written):
+    if "strategy_oracle_threshold" not in runs:
+        return skip(folder, "passes_vs_threshold", "no strategy_oracle_threshold column")
     oracle = runs[(runs.strategy_type == "multipass") & (runs.strategy_scheduling == "oracle")]
     if oracle.sweep.isin(["oracle"]).any():  # the threshold sweep and the runs at the base threshold
         oracle = oracle[oracle.sweep.isin(["oracle", "architecture"])]
     if oracle.strategy_oracle_threshold.nunique() < 3:
-        return
+        return skip(folder, "passes_vs_threshold", f"oracle thresholds among the multipass runs with oracle scheduling: "
+                    f"{oracle.strategy_oracle_threshold.nunique()} (needs 3)")
     k, m = oracle.strategy_traverse_steps_per_pass.mode()[0], oracle.strategy_intersections_per_pass.mode()[0]
     oracle = oracle[(oracle.strategy_traverse_steps_per_pass == k) & (oracle.strategy_intersections_per_pass == m)]
     scenes = sorted(oracle.scene.unique())
@@ -318,19 +575,27 @@ def passes_vs_threshold(runs, device, folder, written):
         ax.set_xlabel("oracle threshold (waiting / active rays)")
         ax.set_ylabel("passes (log scale)")
         ax.set_title(f"{scene}, {size(group)}")
-        ax.legend(fontsize=7)
+        ax.legend(fontsize=7, loc="best")
     fig.suptitle(f"Passes against oracle threshold, K = {int(k)}, M = {int(m)}; {device}")
     save(fig, folder, "passes_vs_threshold", written)
 
 
 def bandwidth_by_category(runs, device, folder, written):
+    """Bytes read and written per frame by data type: a bar per run (of the architecture sweep, if
+    any), labelled by scene, strategy and every swept key that differs between the bars."""
     if runs.structure_type.nunique() > 1:
-        return  # structures_* charts compare structures
+        return skip(folder, "bandwidth_by_category", "several structures (structure_type): the structures_* charts "
+                    "compare them")
     chosen = runs[runs.sweep == "architecture"] if (runs.sweep == "architecture").any() else runs
-    chosen = chosen.drop_duplicates(["scene", "strategy_type"]).sort_values(["scene", "strategy_type"])
-    fig, ax = plt.subplots(figsize=(max(7, 1.4 * len(chosen)), 4.8))
+    keys = [k for k in swept_keys(chosen) if k not in ("scene_source", "strategy_type")]
+    chosen = chosen.drop_duplicates(["scene", "strategy_type"] + keys).sort_values(["scene", "strategy_type"] + keys)
+    if len(chosen) > 40:
+        return skip(folder, "bandwidth_by_category", f"{len(chosen)} different runs: too many bars for one chart "
+                    f"(the by_<key> charts show them)")
+    labels = run_labels(chosen, ["scene", "strategy_type"], keys)
+    fig, ax = plt.subplots(figsize=(max(7, 1.25 * len(chosen)), 5.0))
     present = [(c, n) for c, n in BYTES if c in chosen and chosen[c].fillna(0).any()]
-    stacked_bars(ax, [f"{r.scene}\n{r.strategy_type}" for r in chosen.itertuples()], chosen, present, 1e-6)
+    stacked_bars(ax, labels, chosen, present, 1e-6)
     ax.set_ylabel("bytes read and written per frame (MB)")
     ax.set_title(f"Bandwidth by data type (Purcell Fig. 8 style), {size(chosen)}\n{device}")
     save(fig, folder, "bandwidth_by_category", written)
@@ -339,7 +604,7 @@ def bandwidth_by_category(runs, device, folder, written):
 def unrolling(runs, device, folder, written):
     unroll = runs[runs.sweep.str.startswith("unroll")]
     if unroll.empty:
-        return
+        return skip(folder, "unrolling", "no runs of a sweep named unroll*")
     fig, axes = plt.subplots(1, 3, figsize=(14, 4.2))
     for suppress, style in ((False, "-"), (True, "--")):
         part = unroll[unroll.strategy_suppress_finished_reads == suppress]
@@ -353,18 +618,21 @@ def unrolling(runs, device, folder, written):
         ax.set_xscale("log", base=2)
         ax.set_xlabel("traversal steps per pass K (log2)")
         ax.set_ylabel(ylabel)
-        ax.legend(fontsize=7)
+        ax.legend(fontsize=7, loc="best")
     fig.suptitle(f"Loop unrolling: K steps by M intersections per pass — {unroll.scene.iloc[0]}, {size(unroll)}; {device}")
     save(fig, folder, "unrolling", written)
 
 
 def grid_resolution(runs, device, folder, written):
     if runs.structure_type.nunique() > 1:
-        return  # structures_* charts compare structures
+        return skip(folder, "grid_resolution", "several structures (structure_type): the structures_* charts compare them")
     grid = runs[runs.sweep == "grid"] if (runs.sweep == "grid").any() else runs
+    if "structure_min_dim" not in grid:
+        return skip(folder, "grid_resolution", "no structure_min_dim column")
     grid = grid[grid.structure_min_dim.notna()]
     if grid.structure_min_dim.nunique() < 3:
-        return
+        return skip(folder, "grid_resolution", f"grid resolutions (structure_min_dim) among the runs: "
+                    f"{grid.structure_min_dim.nunique()} (needs 3)")
     branching = grid[grid.strategy_type == "branching"].sort_values("structure_min_dim")
     data = branching if not branching.empty else grid.drop_duplicates("structure_min_dim").sort_values("structure_min_dim")
     fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2))
@@ -389,18 +657,24 @@ def grid_resolution(runs, device, folder, written):
 
 def kernel_time(runs, device, folder, written):
     if runs.structure_type.nunique() > 1:
-        return  # structures_* charts compare structures
+        return skip(folder, "kernel_time", "several structures (structure_type): the structures_* charts compare them")
     multipass = runs[runs.strategy_type == "multipass"]
     chosen = multipass[multipass.sweep == "architecture"] if (multipass.sweep == "architecture").any() else multipass
     if chosen.empty:
-        return
+        return skip(folder, "kernel_time", "no multipass runs (strategy_type = multipass)")
+    if not all(c in chosen for c, _ in KERNELS):
+        return skip(folder, "kernel_time", "no kernel_ms_setup/traverse/intersect/write columns")
+    total = len(chosen)
     chosen = chosen.head(12)
-    fig, ax = plt.subplots(figsize=(max(7, 1.6 * len(chosen)), 4.5))
-    unique = chosen.scene.nunique() == len(chosen)
-    labels = [r.scene if unique else f"{r.scene}\nrun {int(r.run):03d}" for r in chosen.itertuples()]
+    fig, ax = plt.subplots(figsize=(max(7, 1.6 * len(chosen)), 4.8))
+    keys = [k for k in swept_keys(chosen) if k != "scene_source"]
+    labels = run_labels(chosen, ["scene"], keys)
+    if len(set(labels)) < len(labels):  # runs alike in every key: their run numbers
+        labels = [f"{label}\nrun {int(r.run):03d}" for label, r in zip(labels, chosen.itertuples())]
     stacked_bars(ax, labels, chosen, KERNELS)
     ax.set_ylabel("GPU time per frame (ms, median)")
-    ax.set_title(f"Multipass GPU time by kernel, {size(chosen)}\n{device}")
+    shown = f", the first 12 of {total} runs" if total > 12 else ""
+    ax.set_title(f"Multipass GPU time by kernel, {size(chosen)}{shown}\n{device}")
     save(fig, folder, "kernel_time", written)
 
 
@@ -436,12 +710,19 @@ def grouped_bars(ax, frame, value, scenes, methods, log=True):
         ax.set_yscale("log")
 
 
-def structures_comparable(runs) -> bool:
-    """The structures_* charts draw one bar per scene, structure and strategy: they need several
-    structures and exactly one run for each bar (not, say, a sweep of the triangle test as well)."""
+def structures_comparable(runs):
+    """Why the structures_* charts (one bar per scene, structure and strategy) cannot be drawn: they
+    need several structures and exactly one run for each bar (not, say, a sweep of the triangle test
+    as well); None when they can."""
     if runs.structure_type.nunique() < 2:
-        return False
-    return not with_methods(runs).duplicated(["scene", "method_kind", "strategy_type"]).any()
+        return f"structures (structure_type) among the runs: {runs.structure_type.nunique()} (needs 2)"
+    twice = with_methods(runs).duplicated(["scene", "method_kind", "strategy_type"]).sum()
+    if twice:
+        keys = [k for k in swept_keys(runs) if k not in ("scene_source", "structure_type", "strategy_type",
+                                                             "structure_min_dim")]
+        return (f"{twice} runs share a scene, structure and strategy with another (they differ in "
+                f"{', '.join(keys) or 'no swept key'}): one bar each is not possible; see the by_<key> charts")
+    return None
 
 
 def structure_order(runs):
@@ -451,8 +732,8 @@ def structure_order(runs):
 
 
 def structures_time(runs, device, folder, written):
-    if not structures_comparable(runs):
-        return
+    if structures_comparable(runs):
+        return skip(folder, "structures_time", structures_comparable(runs))
     runs = with_methods(runs)
     scenes = runs.sort_values("scene_triangles").scene.unique().tolist()
     methods = structure_order(runs)
@@ -476,8 +757,8 @@ def structures_time(runs, device, folder, written):
 
 
 def structures_memory(runs, device, folder, written):
-    if not structures_comparable(runs):
-        return
+    if structures_comparable(runs):
+        return skip(folder, "structures_memory", structures_comparable(runs))
     runs = with_methods(runs)
     runs = runs[runs.strategy_type == runs.strategy_type.iloc[0]]  # the structure is the same for both strategies
     scenes = runs.sort_values("scene_triangles").scene.unique().tolist()
@@ -489,14 +770,14 @@ def structures_memory(runs, device, folder, written):
     grouped_bars(right, runs, "structure_build_ms", scenes, methods)
     right.set_ylabel("CPU build time (ms, log)")
     right.set_title("Build time (grid: CGAL exact triangle-box tests; BVH: Embree rtcBuildBVH)")
-    left.legend(fontsize=7)
+    left.legend(fontsize=7, loc="best")
     fig.suptitle(f"Memory and build time per structure; {device}")
     save(fig, folder, "structures_memory", written)
 
 
 def structures_work(runs, device, folder, written):
-    if not structures_comparable(runs):
-        return
+    if structures_comparable(runs):
+        return skip(folder, "structures_work", structures_comparable(runs))
     runs = with_methods(runs)
     scenes = runs.sort_values("scene_triangles").scene.unique().tolist()
     methods = [m for m in structure_order(runs) if m != "auto"]
@@ -520,6 +801,346 @@ def structures_work(runs, device, folder, written):
     right.set_title("Lane utilisation of the branching kernel (Aila & Laine)")
     fig.suptitle(f"Work per ray and lane utilisation, {size(runs)}; {device}")
     save(fig, folder, "structures_work", written)
+
+
+# The by_<key> charts: one per swept key, time and rays wrong against the key's values.
+PALETTE = ["tab:blue", "tab:red", "tab:green", "tab:orange", "tab:purple", "tab:brown", "tab:pink", "tab:olive",
+           "tab:cyan", "tab:gray"]
+MARKERS = "osD^vP<>Xh"
+LINESTYLES = ["-", "--", ":", "-."]
+POOL_ABOVE = 8  # more settings of the other keys than this: one series per method, a dot per run
+FLOAT_BITS = {"intersection_vertex_bits": 32}  # a value apart (float vertices), not joined to the others
+EMBREE_BLIND = ("structure_", "strategy_", "intersection_test")  # keys Embree's runs do not depend on
+
+
+def runs_count(n: int) -> str:
+    return f"{n} run" if n == 1 else f"{n} runs"
+
+
+def interval(frame, prefix):
+    """Error bar ends of `<prefix>_ms_median` per row, and what they are: the bootstrap 95% interval
+    of the median (`<prefix>_ms_ci_low`, `_ci_high`) where a row has it, else the repetitions' range
+    (`<prefix>_ms_min`, `_max`)."""
+    low, high, what = pd.Series(np.nan, frame.index), pd.Series(np.nan, frame.index), []
+    for lo, hi, name in ((f"{prefix}_ms_ci_low", f"{prefix}_ms_ci_high", "bootstrap 95% interval of the median"),
+                         (f"{prefix}_ms_min", f"{prefix}_ms_max", "min-max of the repetitions")):
+        if lo in frame and hi in frame:
+            a, b = pd.to_numeric(frame[lo], errors="coerce"), pd.to_numeric(frame[hi], errors="coerce")
+            use = low.isna() & a.notna() & b.notna()
+            if use.any():
+                low[use], high[use] = a[use], b[use]
+                what.append(f"{name} ({lo.rsplit('_', 1)[0]}_{lo.rsplit('_', 1)[1]}/{hi.rsplit('_', 1)[1]})")
+    return low, high, what
+
+
+def wrong_ppm_of(frame, prefix="exact_"):
+    """The runs' rays wrong per million (the `<prefix>wrong_ppm` column, or its parts), NaN without."""
+    if f"{prefix}wrong_ppm" in frame:
+        return pd.to_numeric(frame[f"{prefix}wrong_ppm"], errors="coerce")
+    if all(f"{prefix}{c}" in frame for c in ("false_misses", "false_hits", "wrong_primitive")) and "exact_rays" in frame:
+        return wrong_ppm(frame, prefix)
+    return pd.Series(np.nan, frame.index)
+
+
+def compact(value: str) -> str:
+    """A vector label short: "[1000000 1000000 1000000]" -> "[1e6 1e6 1e6]"."""
+    text = str(value)
+    if not (text.startswith("[") and text.endswith("]")):
+        return text
+    try:
+        numbers = [float(x) for x in text.strip("[]").replace(",", " ").split()]
+    except ValueError:
+        return text
+    def short(v):
+        return (f"{v:.3g}" if abs(v) >= 1e4 else f"{v:g}").replace("e+0", "e").replace("e+", "e").replace("e-0", "e-")
+    return "[" + " ".join(short(v) for v in numbers) + "]"
+
+
+def category_order(values):
+    """Values in a reader's order: numbers and vectors by their numbers ([1 1 1] before [100 100 100]),
+    words alphabetically."""
+    def order(v):
+        try:
+            return (0, tuple(float(x) for x in str(v).strip("[]").replace(",", " ").split()), "")
+        except ValueError:
+            return (1, (), str(v))
+    return sorted(set(values), key=order)
+
+
+def series_segments(xs, ys, key):
+    """(xs, ys) pieces of a line: split where a value stands apart (float vertices at 32 bits)."""
+    apart = FLOAT_BITS.get(key)
+    if apart is None:
+        return [(xs, ys)]
+    xs, ys = np.asarray(xs, dtype=float), np.asarray(ys, dtype=float)
+    return [(xs[xs < apart], ys[xs < apart]), (xs[xs >= apart], ys[xs >= apart])]
+
+
+def concat(frames):
+    with warnings.catch_warnings():  # pandas 1.5 on object columns of bools and NaN: a FutureWarning
+        warnings.simplefilter("ignore", FutureWarning)
+        return pd.concat(frames, ignore_index=True)
+
+
+def by_key_charts(runs, failed, device, folder, written):
+    """One by_<key> chart per swept key (keys that go one for one with another are drawn in its chart)."""
+    everything = concat([runs, failed])
+    keys = swept_keys(everything)
+    if not keys:
+        return skip(folder, "by_<key>", "no config key takes two values over the runs (nothing swept)")
+    classes = key_classes(everything, keys)
+    for key, followers in classes:
+        for follower in followers:
+            skip(folder, f"by_{follower}", f"{follower} goes one for one with {key} over the runs: drawn in by_{key}")
+        draw(f"by_{key}", folder, by_key, runs, classes, key, followers, device, folder, written, failed)
+
+
+def by_key(runs, classes, key, followers, device, folder, written, failed=None):
+    """GPU time (kernel median, Embree rtcIntersect1 beside it) and rays wrong against the exact
+    reference against the values of `key`: a row per scene, a colour per method (structure x
+    strategy), a marker and line per setting of the other swept keys, error bars said in the caption."""
+    name = f"by_{key}"
+    members = [key] + followers
+    every_key = [k for first, rest in classes for k in [first] + rest]
+    text = as_text(runs, every_key)
+    have = runs[text[key] != ""]
+    if have.empty:
+        return skip(folder, name, f"no successful run has a value of {key}")
+    if text.loc[have.index, key].nunique() < 2:
+        return skip(folder, name, f"{key} = {text.loc[have.index, key].iloc[0]} in every successful run (the runs at "
+                    f"its other values failed)")
+    # Every run with a value, whichever sweep it is of: a series joins runs alike in every other swept
+    # key, so a run another sweep holds at one value joins a series only where it is alike.
+    data = have
+    faceted = "scene_source" not in members
+    xtext = data.scene if not faceted else text.loc[data.index, key]
+    facets = list(data.groupby("scene")) if faceted else [("all scenes", data)]
+    one_value = [scene for scene, group in facets if xtext[group.index].nunique() < 2]
+    facets = [(scene, group) for scene, group in facets if xtext[group.index].nunique() >= 2]
+    if not facets:
+        return skip(folder, name, f"no scene was run at two values of {key} ("
+                    + "; ".join(f"{scene}: {', '.join(sorted(xtext[data.scene == scene].unique()))}"
+                                for scene in sorted(data.scene.unique())[:4]) + ")")
+    # Where the key's values go on the x axis.
+    numbers = pd.to_numeric(xtext, errors="coerce")
+    numeric = bool(numbers.notna().all()) and faceted
+    order = category_order(xtext) if not numeric else sorted(set(numbers))
+    position = numbers if numeric else xtext.map({v: i for i, v in enumerate(order)})
+    # Series: a colour per method, a marker and line per setting of the other swept keys.
+    method_parts = [k for k in METHOD_KEYS if k not in members and k in data]
+    method = data.apply(lambda r: " ".join(STRUCTURE_NAMES.get(r[k], str(r[k])) if k == "structure_type" else str(r[k])
+                                           for k in method_parts) or "runs", axis=1)
+    aside = {k for first, rest in classes if "scene_source" in [first] + rest or set(METHOD_KEYS) & set([first] + rest)
+             for k in [first] + rest}
+    vary, merged = [], []
+    for first, _ in classes:
+        if first in members or first in aside:
+            continue
+        values = text.loc[data.index, first]
+        if values[values != ""].nunique() < 2:
+            continue
+        empty = (values == "").groupby(xtext).all()
+        if empty.any() and not empty.all():
+            merged.append(first)  # does not apply at some values of the key: cannot be held fixed along it
+        else:
+            vary.append(first)
+    combo = text.loc[data.index, vary].apply(tuple, axis=1) if vary else pd.Series([()] * len(data), data.index)
+    frame = data.assign(_x=position, _method=method, _combo=combo, _ppm=wrong_ppm_of(data),
+                        _embree_ppm=wrong_ppm_of(data, "embree_exact_"), _simplified=simplified(data))
+    # A series needs two values of the key; the rest are not drawn (and counted in the caption).
+    counts = frame.groupby((["scene"] if faceted else []) + ["_method", "_combo"])._x.transform("nunique")
+    dropped = frame[counts < 2]
+    frame = frame[counts >= 2]
+    pooled = frame._combo.nunique() > POOL_ABOVE  # too many to tell apart: a faint line each, one style
+    facets = [(scene, frame[frame.scene == scene] if faceted else frame) for scene, _ in facets]
+    facets = [(scene, group) for scene, group in facets if not group.empty]
+    if not facets:
+        return skip(folder, name, f"no method was run at two values of {key} with its other settings alike")
+    methods = sorted(frame._method.unique())
+    colors = {m: PALETTE[i % len(PALETTE)] for i, m in enumerate(methods)}
+    combos = sorted(frame._combo.unique())
+    # A combination's label names the keys that take two values among the drawn series (a key at one
+    # value where it applies says nothing); combinations that read alike share a style.
+    telling = [i for i in range(len(vary)) if len({c[i] for c in combos if c[i] != ""}) > 1]
+    labels_of = {c: ", ".join(f"{short_key(vary[i])}={c[i]}" for i in telling if c[i])
+                 or ", ".join(f"{short_key(vary[i])}: does not apply" for i in telling) for c in combos}
+    names = sorted(set(labels_of.values()))
+    by_label = {n: (MARKERS[i % len(MARKERS)], LINESTYLES[i % len(LINESTYLES)]) if not pooled else ("o", "-")
+                for i, n in enumerate(names)}
+    styles = {c: by_label[labels_of[c]] for c in combos}
+    embree_keys = [i for i, k in enumerate(vary) if not k.startswith(EMBREE_BLIND)]
+
+    caption_lines = []
+    kernel_what, embree_what = set(), set()
+    rows = len(facets)
+    caption_guess = 7
+    height = 3.3 * rows + 1.0 + 0.17 * caption_guess
+    fig = plt.figure(figsize=(14.5, height))
+    grid = plt.GridSpec(rows, 3, figure=fig, width_ratios=[1, 1, 0.55])
+    any_simplified = False
+    for row, (scene, group) in enumerate(facets):
+        left, right = fig.add_subplot(grid[row, 0]), fig.add_subplot(grid[row, 1])
+        series = [(m, c) for m in methods for c in combos if ((group._method == m) & (group._combo == c)).any()]
+        ecombos = sorted({tuple(c[i] for i in embree_keys) for c in group._combo})
+        n = len(series) + len(ecombos)
+        times, ppms = [], []
+        for i, (m, c) in enumerate(series):
+            g = group[(group._method == m) & (group._combo == c)].sort_values("_x")
+            marker, ls = styles[c]
+            tr_left, tr_right = dodge(left, i, n), dodge(right, i, n)
+            low, high, what = interval(g, "kernel")
+            kernel_what.update(what)
+            y = g.kernel_ms_median.astype(float)
+            yerr = np.vstack([(y - low).clip(lower=0).fillna(0), (high - y).clip(lower=0).fillna(0)])
+            alpha = 0.45 if pooled else 0.9
+            left.errorbar(g._x, y, yerr=yerr, fmt=marker, ms=5 if not pooled else 3, color=colors[m], ecolor=colors[m],
+                          elinewidth=0.8, capsize=2, alpha=alpha, transform=tr_left)
+            median = y.groupby(g._x).median()  # time: a line through the medians; rays wrong: points only
+            for xs, ys in series_segments(median.index, median.values, key):  # (one wrong ray is no trend)
+                left.plot(xs, ys, ls=ls, color=colors[m], lw=1.3 if not pooled else 0.8, alpha=alpha, transform=tr_left)
+            full, simple = g[~g._simplified], g[g._simplified]
+            right.scatter(full._x, full._ppm, marker=marker, s=25 if not pooled else 9, color=colors[m], alpha=alpha,
+                          transform=tr_right)
+            if not simple.empty:
+                any_simplified = True
+                right.scatter(simple._x, simple._ppm, marker=marker, s=22, facecolors="none", edgecolors=colors[m],
+                              transform=tr_right)
+            times += list(y) + list(low) + list(high)
+            ppms += list(g._ppm)
+            anchor(left, list(g._x) * 3, list(y) + list(low) + list(high))
+            anchor(right, g._x, g._ppm)
+        for j, ec in enumerate(ecombos):
+            g = group[group._combo.map(lambda c: tuple(c[i] for i in embree_keys)) == ec]
+            g = g.drop_duplicates(["_x", "_combo", "camera_look_at"] if "camera_look_at" in g else ["_x", "_combo"])
+            if g._x.nunique() < 2 or "embree1_ms_median" not in g:
+                continue
+            low, high, what = interval(g, "embree1")
+            embree_what.update(what)
+            at = g.assign(_low=low, _high=high).groupby("_x")
+            y, lo, hi = at.embree1_ms_median.median(), at._low.min(), at._high.max()
+            ls = LINESTYLES[j % len(LINESTYLES)] if not pooled else "-"
+            tr_left, tr_right = dodge(left, len(series) + j, n), dodge(right, len(series) + j, n)
+            left.errorbar(y.index, y, yerr=np.vstack([(y - lo).clip(lower=0).fillna(0), (hi - y).clip(lower=0).fillna(0)]),
+                          fmt="s", ms=4, color="k", elinewidth=0.8, capsize=2, transform=tr_left)
+            ppm = at._embree_ppm.median()
+            for xs, ys in series_segments(y.index, y.values, key):
+                left.plot(xs, ys, ls=ls, color="k", lw=1.0 if not pooled else 0.7, alpha=1.0 if not pooled else 0.5,
+                          transform=tr_left)
+            right.scatter(ppm.index, ppm, marker="s", s=16, color="k", transform=tr_right)
+            times += list(y) + list(lo) + list(hi)
+            ppms += list(ppm)
+            anchor(left, list(y.index) * 3, list(y) + list(lo) + list(hi))
+            anchor(right, ppm.index, ppm)
+        # Axes.
+        positive = finite(times)
+        positive = positive[positive > 0]
+        if not positive.empty and positive.max() / positive.min() >= 10:
+            left.set_yscale("log")
+            left.yaxis.set_minor_formatter(ticker.LogFormatterSciNotation(labelOnlyBase=False, minor_thresholds=(2, 0.5)))
+            left.tick_params(axis="y", which="minor", labelsize=6)
+            left.set_ylabel("GPU ms per frame\n(median; log)")
+        else:
+            left.set_ylim(bottom=0)
+            left.set_ylabel("GPU ms per frame\n(median)")
+        if finite(ppms).empty:
+            all_zero_axis(right, "no exact reference in these runs (exact_wrong_ppm)")
+            right.set_ylabel("rays wrong per million\nvs the exact reference")
+        else:
+            wrong_ppm_axis(right, ppms, "rays wrong per million vs\nthe exact reference (log above 1)")
+        sizes = size(group)
+        left.set_title(f"{scene} ({sizes}): GPU time", fontsize=9)
+        right.set_title(f"{scene} ({sizes}): rays wrong against the exact reference", fontsize=9)
+        for ax in (left, right):
+            x_axis(ax, key, members, order, numeric, data, text, faceted)
+    # The legend, beside the rows.
+    legend_ax = fig.add_subplot(grid[:, 2])
+    handles = [(Line2D([], [], ls="none"), "colour: method" + (" (structure x strategy)" if len(method_parts) == 2 else ""))]
+    handles += [(Line2D([], [], color=colors[m], lw=2), textwrap.fill(m, 44)) for m in methods]
+    if not pooled and len(names) > 1:
+        handles.append((Line2D([], [], ls="none"), "marker, line: other swept keys"))
+        handles += [(Line2D([], [], color="0.3", marker=by_label[n][0], ls=by_label[n][1]), textwrap.fill(n, 44))
+                    for n in names]
+    handles.append((Line2D([], [], color="k", marker="s", ls="-"), "Embree rtcIntersect1 (CPU, the same rays)"))
+    if any_simplified:
+        handles.append((Line2D([], [], color="0.3", marker="o", mfc="none", ls="none"),
+                        "hollow: simplified scene (wrong = missed or false hit only)"))
+    legend_beside(fig, legend_ax, handles, fontsize=7)
+    # The caption: what the bars are and what is not drawn.
+    caption_lines.append("Error bars, kernel: " + ("; ".join(sorted(kernel_what)) or "none (no interval columns)")
+                         + ". Embree: the median of the runs at a value (each times Embree on its rays), bars from the "
+                         + "lowest to the highest end of their " + ("; ".join(sorted(embree_what)) or "(none)") + ".")
+    caption_lines.append("Points of one value are set side by side (a few points apart). Time: lines join a series' "
+                         "medians; rays wrong: points only (a ray or two wrong at one value is no trend between values).")
+    if pooled:
+        caption_lines.append(f"{len(combos)} settings of {', '.join(vary)}: too many to tell apart, a faint line each "
+                             f"(each joins runs alike in all of them).")
+    if merged:
+        caption_lines.append(f"{', '.join(merged)}: no value at some values of {key} (not set or not applicable there), "
+                             f"so not held fixed along it: the runs of one series at a value may differ in it.")
+    if len(dropped):
+        caption_lines.append(f"Not drawn: {runs_count(len(dropped))} whose method and other settings ran at one value of {key} only.")
+    if one_value:
+        caption_lines.append(f"Not drawn: {', '.join(one_value)} (run at one value of {key}).")
+    without = len(runs) - len(have)
+    if without:
+        column = "structure_type" if key.startswith("structure_") else "strategy_type" if key.startswith("strategy_") else None
+        kinds = sorted(runs.loc[text[key] == "", column].map(lambda t: STRUCTURE_NAMES.get(t, t)).unique()) if column else []
+        caption_lines.append(f"Not drawn: {runs_count(without)} without a value of {key}"
+                             + (f" (it does not apply to {', '.join(map(str, kinds))})." if kinds else "."))
+    if failed is not None and key in failed and len(failed):
+        at = failed[key].map(text_value)
+        at = at[at != ""]
+        if len(at):
+            caption_lines.append(f"Failed, not drawn: {runs_count(len(at))} at {key} = {', '.join(category_order(at.unique()))} "
+                                 f"(runs.csv says why).")
+    if FLOAT_BITS.get(key) is not None:
+        caption_lines.append(f"{key} {FLOAT_BITS[key]}: float vertices, not joined to the packed ones.")
+    caption = "\n".join(textwrap.fill(line, 200) for line in caption_lines)
+    lines = caption.count("\n") + 1
+    fig.set_size_inches(14.5, 3.3 * rows + 1.0 + 0.17 * lines)
+    bottom = (0.17 * lines + 0.15) / fig.get_size_inches()[1]
+    fig.text(0.01, 0.01, caption, fontsize=7.5, va="bottom", ha="left", color="0.2")
+    follow = f" (with {', '.join(followers)})" if followers else ""
+    fig.suptitle(f"Against {key}{follow}: GPU time and rays wrong, a colour per method"
+                 f"{', a row per scene' if faceted else ''}\n{device}", fontsize=10)
+    save(fig, folder, name, written, rect=(0, bottom, 1, 1))
+
+
+def x_axis(ax, key, members, order, numeric, data, text, faceted):
+    """The key's values on the x axis; with the keys that follow it under each value."""
+    def label(value):
+        if not faceted:
+            return str(value)
+        rows = text.loc[data.index][text.loc[data.index, key] == text_value(value) if numeric else
+                                    text.loc[data.index, key] == value]
+        parts = [text_value(value) if numeric else compact(value)]
+        parts += [rows[f].iloc[0] for f in members[1:] if not rows.empty]
+        if FLOAT_BITS.get(key) is not None and numeric and value >= FLOAT_BITS[key]:
+            parts[0] = "float"
+        return "\n".join(p for p in parts if p != "")
+    labels = [label(v) for v in order]
+    if numeric:
+        values = np.array(order, dtype=float)
+        if values.min() > 0 and values.max() / values.min() >= 10:
+            powers_of_two = all(float(v).is_integer() and int(v) & (int(v) - 1) == 0 for v in values)
+            ax.set_xscale("log", base=2 if powers_of_two else 10)
+        if len(order) <= 12:
+            ax.set_xticks(values, labels, fontsize=7)
+            ax.xaxis.set_minor_locator(ticker.NullLocator())
+        lo, hi = values.min(), values.max()  # room beyond the end values for the points set side by side
+        if ax.get_xscale() == "log":
+            pad = max(1.15, (hi / lo) ** 0.06)
+            ax.set_xlim(lo / pad, hi * pad)
+        else:
+            ax.set_xlim(lo - 0.06 * (hi - lo), hi + 0.06 * (hi - lo))
+    else:
+        ax.set_xticks(range(len(order)), labels, fontsize=7)
+        ax.set_xlim(-0.5, len(order) - 0.5)
+        if len(order) * max(len(line) for lab in labels for line in lab.split("\n")) > 60:
+            ax.tick_params(axis="x", labelrotation=25)
+            for tick in ax.get_xticklabels():
+                tick.set_ha("right")
+    ax.set_xlabel(" / ".join(members) if faceted else "scene" + (" / " + " / ".join(members[1:]) if members[1:] else ""))
 
 
 def why(error: OSError) -> str:
@@ -546,6 +1167,27 @@ def check_folder(folder: Path):
         raise PlotError(f"{folder}: charts cannot be written there ({why(e)})") from e
 
 
+def missing_column(error):
+    """The column a chart looked for that runs.csv lacks (a folder of an older rtbench, or a CSV cut
+    down by hand), from the KeyError or AttributeError pandas raised; None for another error."""
+    if isinstance(error, KeyError) and error.args and isinstance(error.args[0], str):
+        return error.args[0]
+    found = re.search(r"'(?:DataFrame|Series|Pandas)' object has no attribute '(\w+)'", str(error))
+    return found.group(1) if found else None
+
+
+def draw(name, folder, chart, *args):
+    """One chart; one that needs a column the folder lacks is skipped, saying which."""
+    try:
+        chart(*args)
+    except (KeyError, AttributeError) as e:
+        column = missing_column(e)
+        if column is None:
+            raise
+        plt.close("all")
+        skip(folder, name, f"runs.csv has no {column} column")
+
+
 def run(folder: Path) -> int:
     check_folder(folder)
     try:
@@ -559,13 +1201,15 @@ def run(folder: Path) -> int:
     if runs.empty:
         raise PlotError(f"{folder}: no successful runs to chart")
     written = []
+    everything = runs  # every successful run, packed and simplified scenes too
     for chart in (speed_vs_accuracy, vertex_precision, simplification):
-        chart(runs, device, folder, written)
+        draw(chart.__name__, folder, chart, runs, device, folder, written)
     runs = runs[variant(runs) == ""]  # the other charts compare methods on the scene as it is
     for chart in (passes_vs_threshold, bandwidth_by_category, unrolling, grid_resolution, kernel_time,
                   structures_time, structures_memory, structures_work):
-        chart(runs, device, folder, written)
-    failure_map(runs, failed, device, folder, written)
+        draw(chart.__name__, folder, chart, runs, device, folder, written)
+    draw("failure_map", folder, failure_map, runs, failed, device, folder, written)
+    by_key_charts(everything, failed, device, folder, written)
     print(f"{folder}: wrote {', '.join(written)} (.png, .svg)")
     return 0
 

@@ -276,16 +276,54 @@ void checkCgalName(const std::string& name) {
 
 }  // namespace
 
+std::vector<std::string> cgalMeshNames() {
+    std::vector<std::string> names;
+    for (const auto& [file, hash] : cgalMeshes("cgal:"))
+        if (fs::path(file).parent_path().empty() && fs::path(file).extension() == ".off") names.push_back(fs::path(file).stem().string());
+    return names;
+}
+
+std::vector<std::string> nearestNames(const std::string& name, const std::vector<std::string>& names, std::size_t count) {
+    auto lower = [](std::string s) {
+        std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+        return s;
+    };
+    // Levenshtein distance, case ignored; a name that contains the query comes first.
+    auto distance = [](const std::string& a, const std::string& b) {
+        std::vector<std::size_t> row(b.size() + 1);
+        for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+        for (std::size_t i = 1; i <= a.size(); ++i) {
+            std::size_t diagonal = row[0];
+            row[0] = i;
+            for (std::size_t j = 1; j <= b.size(); ++j) {
+                const std::size_t up = row[j];
+                row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+                diagonal = up;
+            }
+        }
+        return row[b.size()];
+    };
+    const std::string query = lower(name);
+    std::vector<std::pair<std::size_t, std::string>> ranked;
+    for (const std::string& n : names) {
+        const std::string candidate = lower(n);
+        ranked.push_back({candidate.find(query) != std::string::npos ? 0 : 1 + distance(query, candidate), n});
+    }
+    std::sort(ranked.begin(), ranked.end());
+    std::vector<std::string> nearest;
+    for (std::size_t i = 0; i < ranked.size() && i < count; ++i) nearest.push_back(ranked[i].second);
+    return nearest;
+}
+
 std::string resolveCgalMesh(const std::string& name) {
     checkCgalName(name);
     const std::map<std::string, std::string> manifest = cgalMeshes("cgal:" + name);
     if (!manifest.count(name + ".off")) {
-        std::string some;
-        int n = 0;
-        for (const auto& [file, hash] : manifest)
-            if (n++ < 8) some += " " + fs::path(file).stem().string();
-        throw Error("cgal:" + printable(name) + ": no such mesh in libcgal-demo (" + std::to_string(manifest.size()) +
-                    " meshes, e.g." + some + ")");
+        const std::vector<std::string> names = cgalMeshNames();
+        std::string nearest;
+        for (const std::string& n : nearestNames(name, names, 5)) nearest += (nearest.empty() ? "" : ", ") + n;
+        throw Error("cgal:" + printable(name) + ": no such mesh in libcgal-demo (" + std::to_string(names.size()) +
+                    " meshes; nearest: " + nearest + "; `rtbench meshes` lists them)");
     }
     return (cgalCache() / "meshes" / (name + ".off")).string();
 }

@@ -27,6 +27,12 @@ TriangleMesh readMeshBytes(std::string_view bytes, const std::string& nameWithEx
 // without its manifest (emptied, interrupted) is extracted again. Returns the extracted file.
 std::string resolveCgalMesh(const std::string& name);
 
+// The NAMEs of cgal:NAME: libcgal-demo's data/meshes/*.off, sorted.
+std::vector<std::string> cgalMeshNames();
+// The `count` names of `names` nearest to `name`: those containing it (case ignored) first, then by
+// edit distance (for "no such mesh" messages).
+std::vector<std::string> nearestNames(const std::string& name, const std::vector<std::string>& names, std::size_t count);
+
 // Reads `cgal:NAME`; throws rtbench::Error when the cached file differs from what was extracted.
 TriangleMesh readCgalMesh(const std::string& name);
 

@@ -168,6 +168,12 @@ TriangleMesh tetrahedron() {
     return mesh;
 }
 
+const std::vector<std::string>& proceduralSceneNames() {
+    static const std::vector<std::string> names = {"christen_a", "christen_b", "christen_b_thesis", "closed_box", "icosphere",
+                                                   "tetrahedron"};
+    return names;
+}
+
 TriangleMesh proceduralScene(const std::string& name) {
     if (name == "christen_a") return christenSceneA();
     if (name == "christen_b") return christenSceneB();
@@ -175,9 +181,9 @@ TriangleMesh proceduralScene(const std::string& name) {
     if (name == "closed_box") return closedBox();
     if (name == "icosphere") return icosphere();
     if (name == "tetrahedron") return tetrahedron();
-    throw Error("procedural:" + name +
-                ": unknown procedural scene (allowed: christen_a, christen_b, christen_b_thesis, closed_box, "
-                "icosphere, tetrahedron)");
+    std::string allowed;
+    for (const std::string& n : proceduralSceneNames()) allowed += (allowed.empty() ? "" : ", ") + n;
+    throw Error("procedural:" + name + ": unknown procedural scene (allowed: " + allowed + ")");
 }
 
 }  // namespace rtbench

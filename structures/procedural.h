@@ -2,6 +2,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <optional>
 
@@ -33,6 +34,8 @@ TriangleMesh icosphere(int levels = 4);
 // tetrahedron: a regular-ish tetrahedron around the origin (4 triangles).
 TriangleMesh tetrahedron();
 
+// The NAMEs of procedural:NAME.
+const std::vector<std::string>& proceduralSceneNames();
 // "christen_a" | "christen_b" | "christen_b_thesis" | "closed_box" | "icosphere" | "tetrahedron";
 // throws rtbench::Error listing the names otherwise.
 TriangleMesh proceduralScene(const std::string& name);

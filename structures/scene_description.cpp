@@ -18,6 +18,7 @@
 #include "mesh_io.h"
 #include "procedural.h"
 #include "scene_limits.h"
+#include "text.h"
 
 namespace rtbench {
 
@@ -508,6 +509,23 @@ SceneDescription readSceneDescription(const std::string& path) {
     // The description first, then each mesh as first read.
     description.mesh.inputs.insert(description.mesh.inputs.begin(), fingerprint(path, text));
     return description;
+}
+
+void checkSceneSource(const std::string& source, const std::string& baseDir) {
+    if (source.rfind("procedural:", 0) == 0) {
+        const std::string name = source.substr(11);
+        const std::vector<std::string>& known = proceduralSceneNames();
+        if (std::find(known.begin(), known.end(), name) == known.end()) proceduralScene(name);  // throws, naming them
+        return;
+    }
+    if (source.rfind("cgal:", 0) == 0) {
+        resolveCgalMesh(source.substr(5));
+        return;
+    }
+    // Nothing at all at the path; anything else (a link, a folder, a FIFO) the run's reader names.
+    const std::string path = resolvePath(source, baseDir);
+    std::error_code ec;
+    if (!fs::exists(fs::symlink_status(path, ec))) throw Error(printable(path) + ": no such file");
 }
 
 TriangleMesh loadSceneSource(const std::string& source, const std::string& baseDir) {

@@ -80,6 +80,12 @@ SceneDescription readSceneDescription(const std::string& path);
 // resolved path (files, descriptions).
 TriangleMesh loadSceneSource(const std::string& source, const std::string& baseDir);
 
+// What can be known of a scene.source without reading it: a known procedural name, a cgal: name
+// libcgal-demo has (suggesting the nearest when not), something at a file's path (what it is, a
+// link or a FIFO, the run's reader says). Throws rtbench::Error.
+// (A description's meshes are checked when it is read.)
+void checkSceneSource(const std::string& source, const std::string& baseDir);
+
 // sin and cos of an angle in degrees with IEEE basic operations only: exact at multiples of 90,
 // within 1e-15 elsewhere, the same bits on every machine. (Exposed for tests.)
 void sinCosDegrees(double degrees, double& sine, double& cosine);

@@ -120,11 +120,23 @@ TEST_F(EndToEnd, PassCapFailsTheRunWithAClearStatus) {
     EXPECT_THAT(result.rows[0].at("error"), HasSubstr(" rays still active"));
 }
 
-TEST_F(EndToEnd, MissingMeshFailsTheRunWithTheFileName) {
-    const ExperimentResult result = run("[scene]\nsource = \"meshes/absent.off\"\n[camera]\nwidth = 8\nheight = 8\n");
-    ASSERT_EQ(result.rows.size(), 1u);
-    EXPECT_EQ(result.rows[0].at("status"), "failed");
-    EXPECT_EQ(result.rows[0].at("error"), dir_.file("meshes/absent.off") + ": mesh file not found");
+// A scene source that is not there would fail every run of it: the command fails, naming the
+// config, the key and the runs, before any folder is made.
+TEST_F(EndToEnd, AMissingMeshOrCgalNameStopsBeforeAnyFolderIsMade) {
+    EXPECT_THAT(errorOf([&] { run("[scene]\nsource = \"meshes/absent.off\"\n[camera]\nwidth = 8\nheight = 8\n"); }),
+                HasSubstr("key 'scene.source' = \"meshes/absent.off\" (run 000): " + dir_.file("meshes/absent.off") +
+                          ": no such file; nothing was run"));
+    EXPECT_FALSE(fs::exists(dir_.file("out")));
+    // A cgal: name libcgal-demo lacks: the nearest names, not the first in the list.
+    EXPECT_THAT(errorOf([&] { run("[scene]\nsource = \"cgal:dragon\"\n"); }),
+                HasSubstr("meshes; nearest: ChineseDragon-10kv,"));
+    EXPECT_FALSE(fs::exists(dir_.file("out")));
+    // A mesh that is there but does not read is the run's failure, as before.
+    dir_.write("bad.off", "OFF\n3 1 0\n0 0 0\n");
+    const ExperimentResult bad = run("[scene]\nsource = \"" + dir_.file("bad.off") + "\"\n[camera]\nwidth = 8\nheight = 8\n");
+    ASSERT_EQ(bad.rows.size(), 1u);
+    EXPECT_EQ(bad.rows[0].at("status"), "failed");
+    EXPECT_THAT(bad.rows[0].at("error"), HasSubstr("bad.off"));
 }
 
 TEST_F(EndToEnd, HitRecordsMakeTheSameImagesLater) {

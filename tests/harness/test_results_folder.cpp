@@ -104,7 +104,7 @@ TEST_F(ResultsFolder, ASupersededRowTakesItsPerRunFilesAside) {
     const std::string body = "[scene]\nsource = \"flat.off\"\n[structure]\nmin_dim = 2\n";
     ASSERT_EQ(run(body).failed, 0);
     ASSERT_TRUE(fs::exists(folder() / "run-000.hits"));
-    fs::remove(dir_.path() / "flat.off");  // the run fails now: it writes no hit records
+    dir_.write("flat.off", "OFF\n3 1 0\n");  // the run fails now: it writes no hit records
     EXPECT_EQ(run(body).failed, 1);
     EXPECT_FALSE(fs::exists(folder() / "run-000.hits"));
     bool aside = false;
@@ -225,6 +225,32 @@ TEST_F(ResultsFolder, ShardsLockTheirOwnFilesAndMergeTheFolder) {
                 HasSubstr("is writing shard-0-of-2 of this results folder"));
     EXPECT_THAT(errorOf([&] { OutputFolderLock whole(folder().string()); }),
                 HasSubstr("shard runs (pid " + std::to_string(::getpid()) + ") are writing this results folder"));
+}
+
+// The last holder removes a lock file; a lock on a removed file is taken again on the new one.
+TEST_F(ResultsFolder, LockFilesAreRemovedByTheirLastHolder) {
+    fs::create_directories(folder());
+    {
+        const OutputFolderLock whole(folder().string());
+        EXPECT_TRUE(fs::exists(folder() / ".rtbench.lock"));
+    }
+    EXPECT_FALSE(fs::exists(folder() / ".rtbench.lock"));
+    {
+        const OutputFolderLock zero(folder().string(), "shard-0-of-2");
+        {
+            const OutputFolderLock one(folder().string(), "shard-1-of-2");
+        }
+        EXPECT_FALSE(fs::exists(folder() / ".rtbench.shard-1-of-2.lock"));
+        EXPECT_TRUE(fs::exists(folder() / ".rtbench.lock"));  // shard 0 still holds it, shared
+        EXPECT_THAT(errorOf([&] { OutputFolderLock whole(folder().string()); }),
+                    HasSubstr("shard runs (pid " + std::to_string(::getpid()) + ")"));
+    }
+    EXPECT_FALSE(fs::exists(folder() / ".rtbench.lock"));
+    EXPECT_FALSE(fs::exists(folder() / ".rtbench.shard-0-of-2.lock"));
+    // A run leaves none behind.
+    run("[scene]\nsource = \"procedural:christen_a\"\n[structure]\nmin_dim = 2\n");
+    for (const auto& entry : fs::directory_iterator(folder()))
+        EXPECT_EQ(entry.path().filename().string().find(".lock"), std::string::npos) << entry.path();
 }
 
 // -d and --validation are the run's parameters: recorded as they took effect, and a change makes

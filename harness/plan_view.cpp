@@ -1,0 +1,100 @@
+#include "plan_view.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <iomanip>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "columns.h"
+#include "output_folder.h"
+#include "structures/error.h"
+
+namespace rtbench {
+namespace fs = std::filesystem;
+
+std::vector<const RunConfig*> filterRuns(const ExperimentPlan& plan, const std::vector<std::string>& filters) {
+    std::set<std::string> keys;
+    for (const KeySpec& k : configSchema()) keys.insert(k.name);
+    // "section.key=value" names a key (a typo is an error); anything else is text of the label.
+    auto keyOf = [](const std::string& f) {
+        const std::size_t eq = f.find('=');
+        return eq != std::string::npos && f.substr(0, eq).find('.') != std::string::npos ? f.substr(0, eq) : std::string();
+    };
+    for (const std::string& f : filters)
+        if (!keyOf(f).empty() && !keys.count(keyOf(f)))
+            throw Error("--filter " + f + ": no config key " + keyOf(f) + " (rtbench keys lists them)");
+    std::vector<const RunConfig*> kept;
+    for (const RunConfig& run : plan.runs) {
+        const bool all = std::all_of(filters.begin(), filters.end(), [&](const std::string& f) {
+            const std::size_t eq = f.find('=');
+            if (keyOf(f).empty()) return run.label().find(f) != std::string::npos;
+            const std::string key = f.substr(0, eq);
+            return run.has(key) && formatValue(run.values.at(key)) == f.substr(eq + 1);
+        });
+        if (all) kept.push_back(&run);
+    }
+    return kept;
+}
+
+std::string describePlan(const ExperimentPlan& plan, const RunnerOptions& options, const std::vector<std::string>& filters) {
+    if (plan.runs.empty()) throw Error(plan.configPath + ": the plan has no runs");
+    const RunConfig& first = plan.runs.front();
+    const std::string output = options.outputOverride.empty() ? first.getString("experiment.output") : options.outputOverride;
+    const std::string folder = experimentFolder(output, first.getString("experiment.name"));
+    const std::vector<const RunConfig*> runs = filterRuns(plan, filters);
+    // Earlier rows of the same runs: what they took.
+    std::map<std::string, double> earlier;  // run|config_hash -> wall_s
+    const std::string csv = (fs::path(folder) / "runs.csv").string();
+    std::error_code ec;
+    if (fs::is_regular_file(fs::symlink_status(csv, ec))) {
+        try {
+            for (const Row& row : readRunsCsv(csv))
+                if (row.count("wall_s") && !row.at("wall_s").empty())
+                    earlier[row.at("run") + "|" + row.at("config_hash")] = std::stod(row.at("wall_s"));
+        } catch (const Error&) {
+            // an unreadable runs.csv gives no estimate; `rtbench run` says why it cannot resume
+        }
+    }
+    std::set<std::string> swept;
+    for (const RunConfig& run : plan.runs) swept.insert(run.sweptKeys.begin(), run.sweptKeys.end());
+    std::ostringstream out;
+    out << plan.configPath << ": " << plan.runs.size() << " run" << (plan.runs.size() == 1 ? "" : "s");
+    if (!filters.empty()) out << ", " << runs.size() << " selected by --filter";
+    out << " -> " << folder << "/\n";
+    if (!swept.empty()) {
+        out << "swept keys:";
+        for (const std::string& k : swept) out << " " << k;
+        out << "\n";
+    }
+    out << std::left << std::setw(5) << "run" << std::right << std::setw(10) << "rays" << std::setw(16) << "earlier wall s"
+        << "  " << std::left << "parameters\n";
+    double known = 0.0;
+    std::size_t knownRuns = 0;
+    std::uint64_t rays = 0;
+    for (const RunConfig* run : runs) {
+        const std::uint64_t r = std::uint64_t(run->getInt("camera.width")) * std::uint64_t(run->getInt("camera.height"));
+        rays += r;
+        const auto it = earlier.find(runNumber(*run) + "|" + run->hash());
+        std::string took = "-";
+        if (it != earlier.end()) {
+            known += it->second;
+            ++knownRuns;
+            took = formatNumber(it->second, 4);
+        }
+        out << std::left << std::setw(5) << runNumber(*run) << std::right << std::setw(10) << r << std::setw(16) << took << "  "
+            << std::left << run->label() << "\n";
+    }
+    out << runs.size() << " run(s), " << rays << " rays in all; ";
+    if (knownRuns == 0)
+        out << "no earlier row of these runs in " << csv << " to estimate their time from\n";
+    else
+        out << knownRuns << " took " << formatNumber(known, 4) << " s before (a resume keeps the ok ones of the same commit)"
+            << (knownRuns == runs.size() ? std::string("\n")
+                                         : "; at their mean the other " + std::to_string(runs.size() - knownRuns) + " would take ~" +
+                                               formatNumber(known / double(knownRuns) * double(runs.size() - knownRuns), 3) + " s\n");
+    return out.str();
+}
+
+}  // namespace rtbench

@@ -1,0 +1,21 @@
+// `rtbench plan CONFIG` (and `rtbench run --dry-run`): the runs a config makes, with their swept
+// parameters and what they will cost, without running anything.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "config.h"
+#include "runner.h"
+
+namespace rtbench {
+
+// Keeps the runs that match every filter: "section.key=value" (the config key's value as written
+// in runs.csv, e.g. structure.type=bvh) or else a text found in the run's label (min_dim=16).
+// Throws rtbench::Error naming a section.key=value filter whose key is no config key.
+std::vector<const RunConfig*> filterRuns(const ExperimentPlan& plan, const std::vector<std::string>& filters);
+
+// The table: run, rays, the time an earlier row of the same run took (runs.csv in the output
+// folder, same config_hash), its label; then an estimate of the whole from those rows.
+std::string describePlan(const ExperimentPlan& plan, const RunnerOptions& options, const std::vector<std::string>& filters);
+
+}  // namespace rtbench

@@ -1,0 +1,344 @@
+#!/usr/bin/python3
+"""Tests of scripts/plot.py on small synthetic results folders (Debian's python3-matplotlib and
+python3-pandas; headless, Agg).
+
+usage: /usr/bin/python3 scripts/test_plot.py [-v] [TestCase.test_name ...]     exit 0: all passed
+
+Each test writes a runs.csv (config key columns first, then `run`, as rtbench writes them) and a
+context.json into a temporary folder, runs the charts, and checks what they drew: one by_<key> chart
+per swept key (keys no other chart knows among them), one stderr line per skipped chart, panel titles
+that name the image sizes in the panel, a 0..1 axis saying "all zero" for all-zero data, error bars
+from the bootstrap interval columns when present, bars labelled by the swept value, failure-map
+markers without lines and legends off the data, float vertices apart, titles that fit.
+"""
+import contextlib
+import io
+import json
+import os
+import re
+import subprocess
+import sys
+import tempfile
+import unittest
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+os.environ.setdefault("MPLCONFIGDIR", tempfile.mkdtemp(prefix="test_plot_mpl."))
+os.environ["MPLBACKEND"] = "Agg"
+sys.path.insert(0, str(HERE))
+
+import matplotlib  # noqa: E402
+
+matplotlib.use("Agg")
+import numpy as np  # noqa: E402
+import pandas as pd  # noqa: E402
+from matplotlib.collections import LineCollection, PathCollection  # noqa: E402
+
+import plot  # noqa: E402
+
+# Config key columns as rtbench writes them (before `run`), a subset of `rtbench keys`.
+PARAMETERS = ["experiment_name", "experiment_output", "experiment_repetitions", "scene_source", "scene_scale",
+              "scene_translate", "camera_width", "camera_height", "camera_look_at", "camera_fov_deg",
+              "structure_type", "structure_min_dim", "structure_conservative", "structure_leaf_size",
+              "strategy_type", "strategy_workgroup_size", "strategy_traverse_steps_per_pass",
+              "strategy_intersections_per_pass", "strategy_suppress_finished_reads", "strategy_scheduling",
+              "strategy_oracle_threshold", "intersection_test", "intersection_vertex_bits"]
+DEFAULTS = {"experiment_name": "synthetic", "experiment_output": "out", "experiment_repetitions": 5,
+            "scene_source": "cgal:bunny00", "scene_scale": 1.0, "scene_translate": "[0 0 0]", "camera_width": 256,
+            "camera_height": 256, "camera_fov_deg": 45, "structure_type": "bvh", "strategy_type": "branching",
+            "strategy_workgroup_size": 64, "intersection_test": "moller_trumbore", "intersection_vertex_bits": 32}
+SWEEP_KEY = {c: c.replace("_", ".", 1) for c in PARAMETERS}  # camera_fov_deg -> camera.fov_deg
+
+
+def make_runs(settings, swept, sweep="sweep", failed=()):
+    """Rows for runs.csv: one per dict of `settings` (config columns over DEFAULTS), with a label naming
+    the `swept` keys, deterministic metrics (times from the settings, two wrong rays) and status ok, or
+    failed for the indices in `failed`."""
+    rows = []
+    for i, given in enumerate(settings):
+        row = {c: np.nan for c in PARAMETERS}
+        row.update(DEFAULTS)
+        if given.get("structure_type", "bvh") == "bvh":
+            row["structure_leaf_size"] = 4
+        if given.get("structure_type") == "uniform_grid":
+            row["structure_min_dim"], row["structure_conservative"] = 64, False
+        row.update(given)
+        labels = " ".join(f"{SWEEP_KEY[k]}={row[k]}" for k in swept)
+        row.update(run=f"{i:03d}", label=f"{sweep}:{labels}" if sweep else labels,
+                   status="failed" if i in failed else "ok", error="refused" if i in failed else "",
+                   config_hash=f"{i:016x}")
+        rays = int(row["camera_width"]) * int(row["camera_height"])
+        ms = 10.0 + 3.0 * i  # each run its own time: the tests find their points by it
+        row.update(scene_triangles=1000, scene_full_triangles=1000, rays=rays,
+                   kernel_ms_median=ms, kernel_ms_min=ms * 0.9, kernel_ms_max=ms * 1.2,
+                   kernel_mrays_s=rays / ms / 1e3, embree1_ms_median=5.0, embree1_ms_min=4.5, embree1_ms_max=6.0,
+                   embree1_mrays_s=rays / 5.0 / 1e3, speed_ratio_vs_embree1=5.0 / ms,
+                   exact_rays=rays, exact_false_misses=1, exact_false_hits=1, exact_wrong_primitive=0,
+                   exact_wrong_ppm=2e6 / rays, exact_distance_error_mean=1e-7, embree_exact_false_misses=0,
+                   embree_exact_false_hits=0, embree_exact_wrong_primitive=0, embree_exact_wrong_ppm=0.0,
+                   embree_exact_distance_error_mean=5e-8, structure_bytes_per_triangle=100.0, structure_build_ms=3.0,
+                   predicted_work_per_ray=20.0, work_per_ray_mean=18.0, simd_efficiency=0.8,
+                   bytes_stencil=1e6, bytes_state=2e6, bytes_voxel=3e6 + 1e5 * i, bytes_vertices=4e6, bytes_output=1e5,
+                   passes_total=1)
+        if row["status"] == "failed":
+            for c in ("kernel_ms_median", "kernel_ms_min", "kernel_ms_max", "exact_rays", "exact_wrong_ppm"):
+                row[c] = np.nan
+        rows.append(row)
+    frame = pd.DataFrame(rows)
+    metrics = [c for c in frame.columns if c not in PARAMETERS]
+    return frame[PARAMETERS + metrics]
+
+
+def write_folder(root: Path, name: str, frame, device="test device (synthetic)") -> Path:
+    folder = root / name
+    folder.mkdir()
+    frame.to_csv(folder / "runs.csv", index=False)
+    context = {"config_text": "# synthetic\n[experiment]\nname = \"synthetic\"\n", "complete": True,
+               "devices": [{"name": device}]}
+    (folder / "context.json").write_text(json.dumps(context))
+    return folder
+
+
+class Charts:
+    """plot.run on a folder with plot.save wrapped: the figures drawn (by chart name) after they were
+    laid out and written, and what plot.py said on stdout and stderr."""
+
+    def __init__(self, folder: Path):
+        self.figures, original = {}, plot.save
+
+        def keep(fig, folder_, name, written, rect=None):
+            original(fig, folder_, name, written, rect)
+            self.figures[name] = fig
+        out, err = io.StringIO(), io.StringIO()
+        plot.save = keep
+        try:
+            with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+                self.rc = plot.run(folder)
+        finally:
+            plot.save = original
+        self.stdout, self.stderr = out.getvalue(), err.getvalue()
+
+
+def data_axes(fig):
+    return [ax for ax in fig.axes if ax.axison]
+
+
+def kernel_points(ax) -> int:
+    """Points of the kernels' scatters in a speed_vs_accuracy panel (Embree's left out)."""
+    return sum(len(c.get_offsets()) for c in ax.collections
+               if isinstance(c, PathCollection) and not str(c.get_label()).startswith("Embree"))
+
+
+class ByKeyCharts(unittest.TestCase):
+    """One by_<key> chart per swept key, whatever the key."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory(prefix="test_plot.")
+        self.root = Path(self.tmp.name)
+        # Two keys no named chart knows (leaf size, field of view), crossed, over two scenes and two
+        # strategies; one failed run at a work-group size no successful run has.
+        settings = [{"scene_source": scene, "strategy_type": strategy, "structure_leaf_size": leaf,
+                     "camera_fov_deg": fov}
+                    for scene in ("cgal:bunny00", "procedural:christen_a") for strategy in ("branching", "multipass")
+                    for leaf in (2, 4, 8) for fov in (30, 60)]
+        settings.append({"structure_leaf_size": 4, "camera_fov_deg": 30, "strategy_workgroup_size": 128})
+        self.frame = make_runs(settings, ["scene_source", "strategy_type", "structure_leaf_size", "camera_fov_deg"],
+                               failed={len(settings) - 1})
+        self.folder = write_folder(self.root, "sweep", self.frame)
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def test_one_chart_per_swept_key(self):
+        result = subprocess.run([sys.executable, str(HERE / "plot.py"), str(self.folder)], capture_output=True,
+                                text=True, timeout=600)
+        self.assertEqual(result.returncode, 0, result.stderr)
+        drawn = {p.stem for p in self.folder.glob("by_*.png")}
+        swept = {"by_scene_source", "by_strategy_type", "by_structure_leaf_size", "by_camera_fov_deg"}
+        self.assertEqual(drawn, swept, result.stderr)
+        for name in swept:
+            for ext in ("png", "svg"):
+                self.assertGreater((self.folder / f"{name}.{ext}").stat().st_size, 1000, f"{name}.{ext}")
+
+    def test_every_chart_is_written_or_says_why_it_is_not(self):
+        charts = Charts(self.folder)
+        self.assertEqual(charts.rc, 0)
+        written = set(re.search(r"wrote (.*) \(\.png", charts.stdout).group(1).split(", "))
+        lines = charts.stderr.splitlines()
+        pattern = re.compile(rf"^rtbench plot: {re.escape(str(self.folder))}: skipped (\S+): (.+)$")
+        for line in lines:
+            self.assertRegex(line, pattern)
+        skipped = {pattern.match(line).group(1): pattern.match(line).group(2) for line in lines}
+        named = {"speed_vs_accuracy", "vertex_precision", "simplification", "passes_vs_threshold",
+                 "bandwidth_by_category", "unrolling", "grid_resolution", "kernel_time", "structures_time",
+                 "structures_memory", "structures_work", "failure_map"}
+        self.assertEqual(named - written, named & set(skipped), "every named chart written or skipped")
+        self.assertFalse(written & set(skipped), "no chart both written and skipped")
+        # The reasons that were silent before.
+        self.assertIn("grid resolutions", skipped["grid_resolution"])
+        self.assertIn("structure", skipped["structures_time"])
+        self.assertIn("kernel_ms_setup", skipped["kernel_time"])  # multipass runs, but no per-kernel times
+        # A key only a failed run varies: its chart says so.
+        self.assertIn("by_strategy_workgroup_size", skipped)
+        self.assertIn("every successful run", skipped["by_strategy_workgroup_size"])
+
+    def test_a_by_key_chart_has_a_row_per_scene_and_a_colour_per_method(self):
+        charts = Charts(self.folder)
+        fig = charts.figures["by_structure_leaf_size"]
+        titles = [ax.get_title() for ax in data_axes(fig)]
+        self.assertEqual(len(titles), 4, titles)  # 2 scenes x (time, rays wrong)
+        self.assertTrue(any(t.startswith("bunny") for t in titles) and any(t.startswith("scene A") for t in titles))
+        legend = [t.get_text() for ax in fig.axes for t in (ax.get_legend().get_texts() if ax.get_legend() else [])]
+        for method in ("bvh branching", "bvh multipass", "Embree rtcIntersect1 (CPU, the same rays)"):
+            self.assertIn(method, legend)
+        self.assertTrue(any("camera_fov_deg=30" in t for t in legend), legend)  # the other key: a marker each
+        self.assertIn("min-max of the repetitions", " ".join(t.get_text() for t in fig.texts))
+
+
+class ErrorBars(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory(prefix="test_plot.")
+        settings = [{"structure_leaf_size": leaf} for leaf in (2, 4, 8)]
+        self.frame = make_runs(settings, ["structure_leaf_size"])
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def bars(self, frame):
+        fig = Charts(write_folder(Path(self.tmp.name), f"f{len(os.listdir(self.tmp.name))}", frame)) \
+            .figures["by_structure_leaf_size"]
+        time = data_axes(fig)[0]
+        ends = set()
+        for collection in time.collections:
+            if isinstance(collection, LineCollection):
+                ends |= {(round(float(s[0][1]), 6), round(float(s[1][1]), 6)) for s in collection.get_segments()}
+        return ends, " ".join(t.get_text() for t in fig.texts)
+
+    def test_bootstrap_interval_columns_are_used_when_present(self):
+        frame = self.frame.assign(kernel_ms_ci_low=self.frame.kernel_ms_median - 0.5,
+                                  kernel_ms_ci_high=self.frame.kernel_ms_median + 0.25)
+        ends, caption = self.bars(frame)
+        for low, high in zip(frame.kernel_ms_ci_low, frame.kernel_ms_ci_high):
+            self.assertIn((round(low, 6), round(high, 6)), ends)
+        self.assertIn("bootstrap 95% interval of the median (kernel_ms_ci_low/high)", caption)
+
+    def test_min_max_without_them(self):
+        ends, caption = self.bars(self.frame)
+        for low, high in zip(self.frame.kernel_ms_min, self.frame.kernel_ms_max):
+            self.assertIn((round(low, 6), round(high, 6)), ends)
+        self.assertIn("min-max of the repetitions (kernel_ms_min/max)", caption)
+        self.assertNotIn("bootstrap", caption)
+
+
+class SpeedVsAccuracy(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory(prefix="test_plot.")
+        self.root = Path(self.tmp.name)
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def test_panel_titles_name_the_sizes_in_the_panel(self):
+        # The first row at 1024x1024: the old title took its size for the 512x512 runs as well.
+        settings = [{"camera_width": 1024, "camera_height": 1024, "structure_leaf_size": leaf} for leaf in (2, 4, 8)]
+        settings += [{"camera_width": 512, "camera_height": 512, "structure_leaf_size": leaf} for leaf in (2, 4)]
+        charts = Charts(write_folder(self.root, "sizes", make_runs(settings, ["camera_width", "camera_height",
+                                                                              "structure_leaf_size"])))
+        panels = {}
+        for ax in data_axes(charts.figures["speed_vs_accuracy"]):
+            sizes = re.findall(r"\d+x\d+", ax.get_title())
+            self.assertEqual(len(sizes), 1, ax.get_title())
+            panels.setdefault(sizes[0], []).append(kernel_points(ax))
+        self.assertEqual(panels, {"1024x1024": [3, 3], "512x512": [2, 2]})
+        # camera_height goes with camera_width: one chart for both, and a line saying so.
+        self.assertIn("skipped by_camera_height: camera_height goes one for one with camera_width", charts.stderr)
+        self.assertIn("by_camera_width", charts.figures)
+
+    def test_all_zero_data_get_a_0_to_1_axis_that_says_so(self):
+        frame = make_runs([{"structure_leaf_size": leaf} for leaf in (2, 4, 8)], ["structure_leaf_size"])
+        frame[["exact_false_misses", "exact_false_hits", "exact_wrong_ppm"]] = 0
+        charts = Charts(write_folder(self.root, "zero", frame))
+        for name, ax in (("speed_vs_accuracy", data_axes(charts.figures["speed_vs_accuracy"])[0]),
+                         ("by_structure_leaf_size", data_axes(charts.figures["by_structure_leaf_size"])[1])):
+            low, high = ax.get_ylim()
+            self.assertTrue(-0.1 < low <= 0 and high >= 1, f"{name}: y from {low} to {high}")
+            self.assertIn("all zero", [t.get_text() for t in ax.texts], name)
+
+    def test_nonzero_data_stay_inside_the_axis(self):
+        frame = make_runs([{"structure_leaf_size": leaf} for leaf in (2, 4, 8)], ["structure_leaf_size"])
+        charts = Charts(write_folder(self.root, "some", frame))
+        ax = data_axes(charts.figures["speed_vs_accuracy"])[0]
+        self.assertGreater(ax.get_ylim()[1], frame.exact_wrong_ppm.max() * 1.5)
+        self.assertNotIn("all zero", [t.get_text() for t in ax.texts])
+
+    def test_simplified_runs_get_a_front_of_their_own(self):
+        settings = [{"structure_leaf_size": leaf} for leaf in (2, 4, 2, 4)]
+        frame = make_runs(settings, ["structure_leaf_size"])
+        frame.loc[2:, "scene_triangles"] = 100  # runs 2 and 3 on a simplified scene
+        frame.loc[2:, "exact_wrong_primitive"] = np.nan
+        charts = Charts(write_folder(self.root, "simplified", frame))
+        labels = [line.get_label() for line in data_axes(charts.figures["speed_vs_accuracy"])[0].lines]
+        self.assertEqual(sum(label.startswith("Pareto front") for label in labels), 2, labels)
+        self.assertTrue(any("simplified" in label for label in labels if label.startswith("Pareto")), labels)
+
+
+class NamedCharts(unittest.TestCase):
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory(prefix="test_plot.")
+        self.root = Path(self.tmp.name)
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def test_bandwidth_bars_name_the_swept_value(self):
+        settings = [{"structure_type": "uniform_grid", "structure_min_dim": d} for d in (8, 16, 32, 64)]
+        charts = Charts(write_folder(self.root, "bandwidth", make_runs(settings, ["structure_min_dim"])))
+        ax = data_axes(charts.figures["bandwidth_by_category"])[0]
+        labels = [t.get_text() for t in ax.get_xticklabels()]
+        self.assertEqual(len(labels), 4, labels)
+        for d in (8, 16, 32, 64):
+            self.assertTrue(any(f"min_dim={d}" in label for label in labels), labels)
+
+    def test_failure_map_draws_markers_and_keeps_legends_off_the_data(self):
+        settings = [{"scene_translate": f"[{d} {d} {d}]", "intersection_test": test}
+                    for d in (0, 1, 100, 10000) for test in ("moller_trumbore", "watertight")]
+        frame = make_runs(settings, ["scene_translate", "intersection_test"])
+        frame.loc[3, "exact_wrong_primitive"] = 1  # one ray wrong at one offset
+        charts = Charts(write_folder(self.root, "moved", frame))
+        fig = charts.figures["failure_map"]
+        panels = data_axes(fig)
+        self.assertTrue(panels)
+        for ax in panels:
+            self.assertIsNone(ax.get_legend(), "no legend over a panel")
+            for line in ax.lines:
+                if len(line.get_xdata()) > 1 and line.get_label() != "_nolegend_":
+                    self.assertEqual(line.get_linestyle(), "None", f"a line through {line.get_label()}")
+        self.assertTrue(any(ax.get_legend() is not None for ax in fig.axes if not ax.axison), "one legend, beside")
+
+    def test_vertex_precision_keeps_float_apart(self):
+        settings = [{"intersection_vertex_bits": bits} for bits in (8, 12, 16, 32)]
+        charts = Charts(write_folder(self.root, "packed", make_runs(settings, ["intersection_vertex_bits"])))
+        for ax in data_axes(charts.figures["vertex_precision"]):
+            joined = [line for line in ax.lines if line.get_linestyle() != "None" and len(line.get_xdata()) > 1]
+            self.assertTrue(joined)
+            for line in joined:
+                self.assertLess(max(line.get_xdata()), 32, "no line from 16 bits to float")
+            self.assertTrue(any(line.get_marker() == "*" and list(line.get_xdata()) == [32] for line in ax.lines))
+
+    def test_titles_fit_their_figure_and_axes(self):
+        frame = make_runs([{"structure_leaf_size": leaf} for leaf in (2, 4, 8)], ["structure_leaf_size"])
+        device = "A device with a very long name " * 8
+        charts = Charts(write_folder(self.root, "long", frame, device=device))
+        self.assertIn("by_structure_leaf_size", charts.figures)
+        for name, fig in charts.figures.items():
+            renderer = fig.canvas.get_renderer()
+            if fig._suptitle is not None:
+                self.assertLessEqual(fig._suptitle.get_window_extent(renderer).width, fig.bbox.width, name)
+                self.assertGreaterEqual(fig._suptitle.get_window_extent(renderer).x0, 0, name)
+            for ax in data_axes(fig):
+                self.assertLessEqual(ax.title.get_window_extent(renderer).width,
+                                     ax.get_window_extent(renderer).width + 1, f"{name}: {ax.get_title()}")
+
+
+if __name__ == "__main__":
+    unittest.main()

@@ -1,0 +1,65 @@
+// rtbench plan: the runs of a sweep with skip rules, narrowed by --filter, with what earlier rows
+// of them took; and the cgal: name suggestions.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "harness/plan_view.h"
+#include "structures/mesh_io.h"
+#include "tests/error_of.h"
+#include "tests/temp_dir.h"
+
+namespace rtbench {
+namespace {
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+const char* kSweep = R"([experiment]
+name = "p"
+output = "OUT"
+[scene]
+source = "procedural:christen_a"
+[camera]
+width = 10
+height = 20
+[[sweep]]
+name = "grid"
+structure.type = "uniform_grid"
+structure.min_dim = [4, 8, 16]
+strategy.type = ["branching", "multipass"]
+skip = ["structure.min_dim=16 strategy.type=multipass"]
+)";
+
+TEST(Plan, ASweepWithASkipRuleAndFilters) {
+    TempDir dir;
+    std::string text = kSweep;
+    text.replace(text.find("OUT"), 3, dir.file("out"));
+    const ExperimentPlan plan = loadExperiment(dir.write("p.toml", text));
+    ASSERT_EQ(plan.runs.size(), 5u);  // 3 x 2, one skipped
+    EXPECT_EQ(filterRuns(plan, {}).size(), 5u);
+    const std::vector<const RunConfig*> multipass = filterRuns(plan, {"strategy.type=multipass"});
+    ASSERT_EQ(multipass.size(), 2u);
+    EXPECT_EQ(multipass[0]->label(), "grid:structure.min_dim=4 strategy.type=multipass");
+    EXPECT_EQ(filterRuns(plan, {"strategy.type=multipass", "structure.min_dim=8"}).size(), 1u);
+    EXPECT_EQ(filterRuns(plan, {"min_dim=16"}).size(), 1u);  // text of the label
+    EXPECT_TRUE(filterRuns(plan, {"structure.min_dim=5"}).empty());
+    EXPECT_THAT(errorOf([&] { filterRuns(plan, {"structure.min_dimm=4"}); }), HasSubstr("no config key structure.min_dimm"));
+
+    const std::string table = describePlan(plan, {}, {"strategy.type=branching"});
+    EXPECT_THAT(table, HasSubstr("5 runs, 3 selected by --filter -> " + dir.file("out") + "/p/"));
+    EXPECT_THAT(table, HasSubstr("swept keys: strategy.type structure.min_dim"));
+    EXPECT_THAT(table, HasSubstr("grid:structure.min_dim=16 strategy.type=branching"));
+    EXPECT_THAT(table, Not(HasSubstr("strategy.type=multipass")));
+    EXPECT_THAT(table, HasSubstr("3 run(s), 600 rays in all; no earlier row"));
+}
+
+TEST(Plan, NearestNamesPutThoseContainingTheQueryFirst) {
+    const std::vector<std::string> names = {"degtri_sliding", "pinion_small", "ChineseDragon-10kv", "dragknob", "bunny00"};
+    const std::vector<std::string> nearest = nearestNames("dragon", names, 3);
+    ASSERT_EQ(nearest.size(), 3u);
+    EXPECT_EQ(nearest[0], "ChineseDragon-10kv");
+    EXPECT_EQ(nearest[1], "dragknob");  // edit distance 3
+    EXPECT_EQ(nearestNames("bunny", names, 1), std::vector<std::string>{"bunny00"});
+}
+
+}  // namespace
+}  // namespace rtbench
