@@ -53,6 +53,8 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         // Identity and outcome.
         add("run", K::Parameter, "", "run number in the plan (000, 001, ...)");
         add("label", K::Parameter, "", "the swept parameters of the run");
+        add("sweep", K::Parameter, "", "the name of the [[sweep]] the run comes from (empty: the base config)");
+        s.back().since = 5;
         add("status", K::Count, "", "ok or failed");
         add("error", K::Count, "", "why the run failed");
         add("warnings", K::Count, "",
@@ -72,6 +74,14 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("vertex_lattice_step", K::Count, "scene units", "intersection.vertex_bits < 32: the spacing of the vertex lattice");
         add("vertex_snap_error_max", K::Count, "scene units", "intersection.vertex_bits < 32: the largest distance a vertex moved to its lattice point (not simplified scenes)");
         add("rays", K::Count, "rays", "rays traced");
+        for (const char* axis : {"x", "y", "z"}) {
+            add(std::string("camera_eye_") + axis, K::Count, "scene units", std::string("the camera the rays came from (fitted to the scene, or as given, moved with it): eye position, ") + axis);
+            s.back().since = 5;
+        }
+        for (const char* axis : {"x", "y", "z"}) {
+            add(std::string("camera_target_") + axis, K::Count, "scene units", std::string("the camera's point looked at, ") + axis);
+            s.back().since = 5;
+        }
         add("structure_bytes", K::Count, "bytes", "device memory of the structure (its buffers, triangle vertices included)");
         add("structure_bytes_per_triangle", K::Count, "bytes", "structure_bytes / scene_triangles");
         add("structure_build_ms", K::Timing, "ms", "CPU build time of the structure");
@@ -216,13 +226,30 @@ const ColumnSpec& columnSpec(const std::string& name) {
 std::string columnsMarkdown() {
     std::string out = "| column | kind | unit | meaning |\n|---|---|---|---|\n";
     for (const ColumnSpec& c : runColumnSpecs()) {
-        if (c.kind == ColumnKind::Parameter && c.name != "run" && c.name != "label" &&
+        if (c.kind == ColumnKind::Parameter && c.name != "run" && c.name != "label" && c.name != "sweep" &&
             c.name != "config_hash")
             continue;
         if (c.name == "experiment_output") continue;  // a config key, recorded as context
         out += "| `" + c.name + "` | " + columnKindName(c.kind) + " | " + c.unit + " | " + c.help +
                " |\n";
     }
+    return out;
+}
+
+std::string columnsCsv() {
+    std::vector<Row> rows;
+    for (const ColumnSpec& c : runColumnSpecs()) {
+        std::string when;
+        for (const std::string& w : c.appliesWhen) when += (when.empty() ? "" : " and ") + w;
+        rows.push_back({{"column", c.name}, {"kind", columnKindName(c.kind)}, {"unit", c.unit}, {"since_schema", std::to_string(c.since)},
+                        {"written_when", when}, {"meaning", c.help}});
+    }
+    const std::vector<std::string> columns = {"column", "kind", "unit", "since_schema", "written_when", "meaning"};
+    std::string out;
+    for (std::size_t i = 0; i < columns.size(); ++i) out += (i ? "," : "") + columns[i];
+    out += "\n";
+    for (const Row& r : rows)
+        for (std::size_t i = 0; i < columns.size(); ++i) out += (i ? "," : "") + csvField(r.at(columns[i])) + (i + 1 == columns.size() ? "\n" : "");
     return out;
 }
 

@@ -29,6 +29,11 @@ const ColumnSpec& columnSpec(const std::string& name);
 std::vector<Row> readRunsCsv(const std::string& path);
 std::vector<Row> parseRunsCsv(const std::string& text, const std::string& path);
 
+// The column dictionary written beside runs.csv as columns.csv (and by `rtbench columns --csv`):
+// every column, config keys included, with its kind, unit, the schema that added it, when a run
+// writes it, and its meaning.
+std::string columnsCsv();
+
 // A results folder's schema (plan/columns.h kSchemaVersion) as its context.json records it; 1
 // when it does not (folders written before the schema was recorded).
 int schemaVersion(const Json& context);

@@ -122,6 +122,8 @@ int main(int argc, char** argv) {
 
     CLI::App* keys = app.add_subcommand("keys", "List every config key with its type, default and meaning");
     CLI::App* columns = app.add_subcommand("columns", "List the metric columns of runs.csv: kind, unit, meaning (Markdown)");
+    bool columnsAsCsv = false;
+    columns->add_flag("--csv", columnsAsCsv, "every column, config keys included, as the columns.csv a run writes beside runs.csv");
 
     // A first word that is no subcommand is named (CLI11 would only say one is required).
     if (argc > 1 && argv[1][0] != '-') {
@@ -236,7 +238,7 @@ int main(int argc, char** argv) {
             return result.exitStatus();
         }
         if (*columns) {
-            std::cout << rtbench::columnsMarkdown();
+            std::cout << (columnsAsCsv ? rtbench::columnsCsv() : rtbench::columnsMarkdown());
             return 0;
         }
         if (*keys) {

@@ -375,6 +375,11 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const std::str
     const RunScene scene = sceneFor(plan, run, caches, row);
     const TriangleMesh& mesh = scene.traced;
     const PinholeCamera camera = cameraFor(run, scene.full);  // the same rays at every simplification
+    for (int a = 0; a < 3; ++a) {
+        const char axis[2] = {char('x' + a), 0};
+        row[std::string("camera_eye_") + axis] = formatNumber(camera.position[a], 9);
+        row[std::string("camera_target_") + axis] = formatNumber(camera.lookAt[a], 9);
+    }
     const unsigned width = unsigned(run.getInt("camera.width")), height = unsigned(run.getInt("camera.height"));
     refuseOversizedBuffers(vk.info(), rayBufferSizes(std::uint64_t(width) * height, strategy.perRayState ? 16 : 0));
     refuseOversizedRayStream(std::uint64_t(width) * height);
@@ -704,6 +709,7 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
         for (const auto& [key, value] : run.values) row[paramColumn(key)] = formatValue(value);
         row["run"] = runNumber(run);
         row["label"] = run.label();
+        row["sweep"] = run.sweep;
         row["config_hash"] = run.hash();
         row["git_commit"] = gitCommit();
         const VulkanContext& vk = deviceFor(run, caches);
@@ -785,6 +791,7 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
     // The bookkeeping: context.json once now and once at the end; runs.csv written once with the
     // kept rows, then one appended row per run.
     writeJson(contextPath, contextJson(plan, options, caches, started, false));
+    writeFileAtomically((fs::path(result.folder) / "columns.csv").string(), columnsCsv());
     {
         std::vector<Row> keptRows;
         for (std::size_t k = 0; k < mine.size(); ++k)

@@ -18,8 +18,6 @@
 
 namespace rtbench {
 
-namespace {
-// A field as RFC 4180 writes it: quoted when it holds a comma, a quote or a line break.
 std::string csvField(const std::string& raw) {
     const std::string s = validUtf8(raw);
     if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
@@ -27,7 +25,6 @@ std::string csvField(const std::string& raw) {
     for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
     return out + "\"";
 }
-}  // namespace
 
 namespace {
 

@@ -11,6 +11,10 @@
 
 namespace rtbench {
 
+// A field as RFC 4180 writes it: quoted when it holds a comma, a quote or a line break (text that
+// is not UTF-8 written as \xNN).
+std::string csvField(const std::string& raw);
+
 // Writes `rows` under `columns` (missing cells empty) to path atomically (writeFileAtomically); a
 // row that sets a column not in `columns` is an error (a typo never silently drops a value).
 void writeCsv(const std::string& path, const std::vector<std::string>& columns, const std::vector<Row>& rows);

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <map>
 #include <set>
 
@@ -232,6 +234,16 @@ TEST_F(EndToEnd, SamplesHoldEveryRepetitionOfEveryRoundAndTheRowSummarizesThem) 
             EXPECT_FALSE(row.at("kernel_ms_traverse").empty());
         }
     }
+    // The column dictionary beside them; the run's sweep and its effective camera in the row.
+    {
+        std::ifstream in(result.folder + "/columns.csv");
+        std::stringstream text;
+        text << in.rdbuf();
+        EXPECT_EQ(text.str(), columnsCsv());
+    }
+    EXPECT_EQ(result.rows[0].at("sweep"), "");
+    EXPECT_FALSE(result.rows[0].at("camera_eye_z").empty());
+    EXPECT_FALSE(result.rows[0].at("camera_target_y").empty());
     // A resume keeps the rows and their samples; --force sets both aside.
     const ExperimentResult again = runExperiment(plan, quietOptions());
     EXPECT_EQ(again.reused, 2);
