@@ -176,6 +176,30 @@ TEST_F(Golden, AMissingColumnIsAnErrorNamingIt) {
     EXPECT_THAT(errorOfCheck(), HasSubstr("missing column(s) run"));
 }
 
+// A file of the newest schema that lacks one of its columns was cut or edited: an error naming
+// the column, not a file of an older schema.
+TEST(Columns, AFileMissingSomeOfASchemasColumnsIsAnError) {
+    std::vector<std::string> columns = runColumns();
+    Row row;
+    for (const std::string& c : columns) row[c] = "";
+    row["run"] = "000";
+    std::erase(columns, "kernel_ms_ci_low");
+    row.erase("kernel_ms_ci_low");
+    TempDir dir;
+    const std::string path = dir.file("runs.csv");
+    writeCsv(path, columns, {row});
+    EXPECT_THAT(errorOf([&] { readRunsCsv(path); }), HasSubstr("missing column(s) kernel_ms_ci_low (of results schema 5"));
+    // Without any schema-5 column it is a schema-4 file, and reads.
+    std::vector<std::string> older;
+    for (const ColumnSpec& c : runColumnSpecs())
+        if (c.since < 5) older.push_back(c.name);
+    Row old;
+    for (const std::string& c : older) old[c] = "";
+    old["run"] = "000";
+    writeCsv(path, older, {old});
+    EXPECT_EQ(readRunsCsv(path).size(), 1u);
+}
+
 TEST_F(Golden, ACutRowIsAnErrorNamingItsLine) {
     const std::string t = text();
     std::size_t third = t.find('\n', t.find('\n', t.find('\n') + 1) + 1);  // end of line 3

@@ -94,6 +94,27 @@ TEST_F(Compare, AnInjectedSlowdownIsFlaggedAndNoiseAloneIsNot) {
     EXPECT_EQ(faster.exitStatus(), 0);
 }
 
+// A median 10% slower is no slowdown when the samples do not say so: B's 8, 8, 8, 8, 11, 11, 14,
+// 14, 14, 14 against A's ten near 10 (U = 60 of 100, p = 0.47).
+TEST_F(Compare, ALargeChangeWithoutEvidenceIsNotFlagged) {
+    std::vector<Row> a, b;
+    for (const Row& row : rows_) {
+        addSamples(a, row, "kernel", 10.0, 1.0);
+        for (int i = 0; i < 10; ++i)
+            b.push_back({{"run", row.at("run")}, {"config_hash", row.at("config_hash")}, {"method", "kernel"},
+                         {"round", std::to_string(i)}, {"repetition", std::to_string(i)},
+                         {"ms", i < 4 ? "8" : i < 6 ? "11" : "14"}, {"t_s", std::to_string(i)}});
+    }
+    writeCsv(a_ + "/samples.csv", sampleColumns(), a);
+    writeCsv(b_ + "/samples.csv", sampleColumns(), b);
+    const CompareResult r = compare();
+    ASSERT_EQ(r.runs.size(), 3u);
+    EXPECT_GT(r.runs[0].change, 0.05);
+    EXPECT_GT(r.runs[0].p, 0.05);
+    EXPECT_FALSE(r.runs[0].regression);
+    EXPECT_EQ(r.exitStatus(), 0);
+}
+
 TEST_F(Compare, ACountDifferenceIsReportedAsACount) {
     writeSamples(0.0);
     std::vector<Row> rows = rows_;
