@@ -34,10 +34,11 @@ std::string contextString(const Json& context, const std::string& path, const ch
 // The rows must be the recorded plan's runs: each row a run of the plan with its config hash, and,
 // when context.json says the sweep completed, every run of the plan a row. The recorded plan must
 // be the plan its config text gives. A lost, extra or edited row is an error naming the run.
+// A folder of an older results schema hashed its runs without the keys added since (`newerKeys`).
 void checkRowsAgainstPlan(const Json& context, const std::string& contextPath, const ExperimentPlan& plan,
-                          const std::vector<Row>& rows, const std::string& csvPath) {
+                          const std::vector<Row>& rows, const std::string& csvPath, const std::set<std::string>& newerKeys) {
     std::map<std::string, std::string> derived, recordedPlan;
-    for (const RunConfig& run : plan.runs) derived[runNumber(run)] = run.hash();
+    for (const RunConfig& run : plan.runs) derived[runNumber(run)] = newerKeys.empty() ? run.hash() : run.hashWithout(newerKeys);
     try {
         for (const Json& run : context.at("plan"))
             recordedPlan[run.at("run").get<std::string>()] = run.at("config_hash").get<std::string>();
@@ -111,8 +112,12 @@ CheckResult checkResults(const std::string& folder, const CheckOptions& options,
         applyRecordedOverrides(plan, overrides);
     }
     const std::string csvPath = (fs::path(folder) / "runs.csv").string();
-    const std::vector<Row> recorded = readRunsCsv(csvPath);
-    checkRowsAgainstPlan(context, contextPath, plan, recorded, csvPath);
+    int schema = kSchemaVersion;
+    const std::vector<Row> recorded = readRunsCsv(csvPath, &schema);
+    std::set<std::string> newerKeys;  // keys the folder's schema did not have
+    for (const KeySpec& k : configSchema())
+        if (columnSpec(paramColumn(k.name)).since > schema) newerKeys.insert(k.name);
+    checkRowsAgainstPlan(context, contextPath, plan, recorded, csvPath, newerKeys);
     if (!options.embreeConfigOverride.empty()) overrideEmbreeConfig(plan, options.embreeConfigOverride);
 
     CheckResult result;
@@ -164,6 +169,8 @@ CheckResult checkResults(const std::string& folder, const CheckOptions& options,
             if (!options.embreeConfigOverride.empty() &&
                 (column == "baseline_embree_config" || column == "config_hash"))
                 continue;  // changed on purpose by the override
+            if (column == "config_hash" && !newerKeys.empty())
+                continue;  // an older schema's hash, checked against the plan above
             switch (spec.kind) {
                 case ColumnKind::Parameter:
                 case ColumnKind::Count:
@@ -219,7 +226,7 @@ CheckResult checkResults(const std::string& folder, const CheckOptions& options,
             }))
             newer += (newer.empty() ? "" : ", ") + column;
     if (!newer.empty())
-        out << "(recorded under results schema " << schemaVersion(context) << "; columns of schema " << kSchemaVersion
+        out << "(recorded under results schema " << schema << "; columns of schema " << kSchemaVersion
             << " not compared: " << newer << ")\n";
     if (context.contains("complete") && context["complete"] == false)
         out << "(the recorded sweep was interrupted: " << recorded.size() << " of "

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 #include <set>
+#include <sstream>
 
 #include "config.h"
 #include "methods/registry.h"
@@ -134,7 +135,7 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         since5("timing_stop", K::Timing, "", "why the timing stopped: repetitions (experiment.repetitions, fixed), converged (every interval within experiment.target_ci), max_repetitions, time_budget");
         since5("timing_s", K::Timing, "s", "wall time of the timed rounds");
         since5("timing_warning", K::Timing, "", "noise guard: why the run's timings are not results of record (a coefficient of variation above experiment.noise_cv, other processes above experiment.noise_other_cpu); empty when clean");
-        since5("other_cpu_fraction", K::Timing, "fraction", "noise guard: CPU time other processes took while the run was timed, over cores x wall time (Linux /proc/stat, hypervisor steal included)");
+        since5("other_cpu_fraction", K::Timing, "fraction", "noise guard: CPU time other processes took while the run ran (from its scene to the end of its timing), over cores x wall time (Linux /proc/stat, hypervisor steal included); empty when that window held under 100 clock ticks of the machine");
         since5("load_average", K::Timing, "", "noise guard: 1-minute load average when the timing ended");
         since5("device_host_threads", K::Context, "threads", "threads the device runs on the host's cores (lavapipe: LP_NUM_THREADS, else one per core up to 32; 0 for a GPU), beside embree_threads, against the machine's cores (context.json cpu_threads)");
         // Agreement with Embree, a second view of accuracy: depends on Embree's floating-point path.
@@ -258,18 +259,30 @@ int schemaVersion(const Json& context) {
     return it != context.end() && it->is_number_integer() ? it->get<int>() : 1;
 }
 
-std::vector<Row> readRunsCsv(const std::string& path) {
-    return parseRunsCsv(readInputFile(path, kMaxResultsFileBytes, "CSV file"), path);
+std::vector<Row> readRunsCsv(const std::string& path, int* schema) {
+    return parseRunsCsv(readInputFile(path, kMaxResultsFileBytes, "CSV file"), path, schema);
 }
 
-std::vector<Row> parseRunsCsv(const std::string& text, const std::string& path) {
+std::vector<Row> parseRunsCsv(const std::string& text, const std::string& path, int* schemaOut) {
     const std::vector<Row> rows = parseCsv(text, path);
+    if (schemaOut) *schemaOut = kSchemaVersion;
     const std::vector<std::string> declared = runColumns();
     const std::set<std::string> declaredSet(declared.begin(), declared.end());
+    // The header: the first row's columns, or (a file of no rows) its first line's names.
+    std::set<std::string> header;
     if (!rows.empty()) {
+        for (const auto& [c, value] : rows[0]) header.insert(c);
+    } else {
+        std::string line = text.substr(0, text.find('\n')), name;
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        std::istringstream names(line);
+        while (std::getline(names, name, ',')) header.insert(name);
+    }
+    if (!header.empty()) {
         // A column a run of this file would have written must be there; a method's own column may
-        // be absent when no row ran that method.
+        // be absent when no row ran that method (with no rows: only the columns every run writes).
         auto needed = [&](const ColumnSpec& c) {
+            if (rows.empty()) return c.appliesWhen.empty();
             return std::any_of(rows.begin(), rows.end(), [&](const Row& row) {
                 return conditionsHold(c.appliesWhen, [&](const std::string& key) {
                     const auto it = row.find(paramColumn(key));
@@ -282,22 +295,23 @@ std::vector<Row> parseRunsCsv(const std::string& text, const std::string& path) 
         int schema = kSchemaVersion;
         for (int v = 1; v <= kSchemaVersion && schema == kSchemaVersion; ++v)
             for (const ColumnSpec& c : runColumnSpecs())
-                if (c.since == v && !rows[0].count(c.name) && needed(c)) {
+                if (c.since == v && !header.count(c.name) && needed(c)) {
                     schema = v - 1;
                     break;
                 }
         std::string missing, unknown;
         bool laterPresent = false;
         for (const ColumnSpec& c : runColumnSpecs()) {
-            if (c.since > schema && rows[0].count(c.name)) laterPresent = true;
-            if (!rows[0].count(c.name) && needed(c) && (c.since <= schema + 1))
+            if (c.since > schema && header.count(c.name)) laterPresent = true;
+            if (!header.count(c.name) && needed(c) && (c.since <= schema + 1))
                 missing += (missing.empty() ? "" : ", ") + c.name;
         }
-        for (const auto& [c, value] : rows[0])
+        for (const std::string& c : header)
             if (!declaredSet.count(c)) unknown += (unknown.empty() ? "" : ", ") + c;
         if (schema < 1 || laterPresent)
             throw Error(path + ": missing column(s) " + missing + " (of results schema " + std::to_string(schema + 1) +
                         "; the file has other columns of it or none of schema 1: cut, edited, or written by another rtbench?)");
+        if (schemaOut) *schemaOut = schema;
         if (!unknown.empty()) throw Error(path + ": unknown column(s) " + unknown);
     }
     std::set<std::string> runs;

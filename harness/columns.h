@@ -26,8 +26,9 @@ const ColumnSpec& columnSpec(const std::string& name);
 // columns of one results schema (ColumnSpec::since: a file of an older schema lacks the later
 // columns, and its rows lack those keys), and every row has a run number, unique in the file. Throws rtbench::Error
 // naming the file and the missing or unknown column, or the row and run.
-std::vector<Row> readRunsCsv(const std::string& path);
-std::vector<Row> parseRunsCsv(const std::string& text, const std::string& path);
+// `schema`, when given, gets the file's results schema (kSchemaVersion for a file without rows).
+std::vector<Row> readRunsCsv(const std::string& path, int* schema = nullptr);
+std::vector<Row> parseRunsCsv(const std::string& text, const std::string& path, int* schema = nullptr);
 
 // The column dictionary written beside runs.csv as columns.csv (and by `rtbench columns --csv`):
 // every column, config keys included, with its kind, unit, the schema that added it, when a run

@@ -24,7 +24,6 @@ struct Side {
     std::vector<Row> rows;
     std::set<std::string> columns;
     std::map<std::string, std::vector<double>> samples;
-    bool hasSamples = false;
 };
 
 Side load(const std::string& folder) {
@@ -39,7 +38,6 @@ Side load(const std::string& folder) {
         for (const auto& [column, value] : side.rows.front()) side.columns.insert(column);
     const std::string samples = (fs::path(folder) / "samples.csv").string();
     if (fs::exists(fs::symlink_status(samples, ec))) {
-        side.hasSamples = true;
         for (const Row& s : readSamplesCsv(samples)) {
             char* end = nullptr;
             const double ms = std::strtod(s.at("ms").c_str(), &end);
@@ -62,7 +60,7 @@ double numberOf(const Row& row, const std::string& column) {
     return v.empty() || *end ? std::nan("") : x;
 }
 
-// A run's samples of one method, or its row's median when the folder has none.
+// A run's samples of one method; none when the folder (or the run) has none.
 std::vector<double> timesOf(const Side& side, const Row& row, const std::string& method) {
     const auto it = side.samples.find(get(row, "run") + "|" + get(row, "config_hash") + "|" + method);
     if (it != side.samples.end()) return it->second;
@@ -133,7 +131,8 @@ CompareResult compareFolders(const std::string& folderA, const std::string& fold
         }
         // Counts: deterministic, compared exactly (the columns both files have).
         for (const ColumnSpec& c : runColumnSpecs())
-            if (c.kind == ColumnKind::Count && c.name != "error" && a.columns.count(c.name) && b.columns.count(c.name) &&
+            if (c.kind == ColumnKind::Count && c.name != "error" && c.name != "warnings" && a.columns.count(c.name) &&
+                b.columns.count(c.name) &&
                 get(rowA, c.name) != get(rowB, c.name))
                 run.countDifferences.push_back(c.name + ": " + get(rowA, c.name) + " -> " + get(rowB, c.name));
         result.countDifferences += int(run.countDifferences.size());
@@ -157,8 +156,9 @@ CompareResult compareFolders(const std::string& folderA, const std::string& fold
             run.improvement = run.p < options.alpha && run.change < -options.threshold;
         } else {
             run.changeLow = run.changeHigh = std::nan("");
-            run.note = std::string("no samples.csv in ") + (kernelA.empty() && kernelB.empty() ? "A and B" : kernelA.empty() ? "A" : "B") +
-                       " (recorded before results schema 5): medians only, no test";
+            run.note = std::string("no samples of this run in ") +
+                       (kernelA.empty() && kernelB.empty() ? "A and B" : kernelA.empty() ? "A" : "B") +
+                       " (no samples.csv before results schema 5): medians only, no test";
         }
         if (!get(rowA, "timing_warning").empty() || !get(rowB, "timing_warning").empty())
             run.note += std::string(run.note.empty() ? "" : "; ") + "timing_warning on " +

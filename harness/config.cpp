@@ -88,7 +88,6 @@ const std::vector<KeySpec>& configSchema() {
         // Timing in rounds, adaptive repetitions and the noise guard (harness/timing_rounds.h).
         auto timingKey = [&](KeySpec k) {
             k.since = 5;
-            k.hashedAtDefault = false;  // their defaults time as rtbench did before them
             add(std::move(k));
         };
         timingKey({"experiment.rounds", ValueType::Int, "the repetitions are split into this many rounds, each timing the kernel, then Embree rtcIntersect1, then rtcIntersect16, so that drift hits all of them (at most one round per repetition)", std::int64_t(5), false, 1, 1000});
@@ -96,7 +95,7 @@ const std::vector<KeySpec>& configSchema() {
         timingKey({"experiment.max_repetitions", ValueType::Int, "adaptive repetitions: at most this many of each method", std::int64_t(200), false, 1, 100000});
         timingKey({"experiment.time_budget_s", ValueType::Float, "adaptive repetitions: stop adding rounds once a run's timing has taken this long", 30.0, false, 0, 1e6});
         timingKey({"experiment.noise_cv", ValueType::Float, "noise guard: a timing_warning when a method's coefficient of variation exceeds this", 0.05, false, 0, 1e3});
-        timingKey({"experiment.noise_other_cpu", ValueType::Float, "noise guard: a timing_warning when other processes took more than this fraction of the machine's CPU time while the run was timed", 0.1, false, 0, 1});
+        timingKey({"experiment.noise_other_cpu", ValueType::Float, "noise guard: a timing_warning when other processes took more than this fraction of the machine's CPU time while the run ran", 0.1, false, 0, 1});
         add({"scene.source", ValueType::String, "mesh file (.off/.obj/.ply/.stl, relative to the config), scene description (.toml, relative to the config: meshes with transforms and seeded scatters, see structures/scene_description.h), cgal:NAME, or procedural:christen_a|christen_b|christen_b_thesis|closed_box|icosphere|tetrahedron", {}, true});
         add({"scene.scale", ValueType::Float, "uniform scale applied to every vertex, in float: v * scale + translate (camera.position and camera.look_at move with the scene)", 1.0, false, 1e-30, 1e30});
         add({"scene.translate", ValueType::Float3, "translation applied after scene.scale, in float (stability sweeps move a scene away from the origin)", std::array<double, 3>{0, 0, 0}});
@@ -472,8 +471,6 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
                     return run.has(key) ? std::optional<std::string>(formatValue(run.values.at(key))) : std::nullopt;
                 });
                 if (!applies) run.values.erase(spec.name);
-                else if (!spec.hashedAtDefault && spec.defaultValue && run.has(spec.name) && run.values.at(spec.name) == *spec.defaultValue)
-                    run.unhashedDefaults.push_back(spec.name);
             }
             bool skipped = false;
             for (std::size_t k = 0; k < sweep.skip.size(); ++k)

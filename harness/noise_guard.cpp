@@ -66,6 +66,9 @@ CpuTimes sampleCpuTimes() {
 double otherCpuFraction(const CpuTimes& before, const CpuTimes& after, unsigned cores, double ticksPerSecond) {
     const double wall = after.wallSeconds - before.wallSeconds;
     if (!before.valid || !after.valid || wall <= 0 || cores == 0 || ticksPerSecond <= 0) return -1.0;
+    // /proc counts in clock ticks (10 ms at USER_HZ 100): a window of fewer than kMinTicks of the
+    // machine's capacity cannot tell one stray tick from a busy neighbour.
+    if (wall * double(cores) * ticksPerSecond < kMinTicks) return -1.0;
     const double others = (after.machineBusyTicks - before.machineBusyTicks) - (after.selfTicks - before.selfTicks);
     return std::clamp(others / ticksPerSecond / (wall * double(cores)), 0.0, 1.0);
 }
@@ -77,7 +80,7 @@ double loadAverage() {
 
 unsigned deviceHostThreads(bool cpuDevice, unsigned cores) {
     if (!cpuDevice) return 0;
-    if (const char* env = std::getenv("LP_NUM_THREADS")) return unsigned(std::strtoul(env, nullptr, 10));
+    if (const char* env = std::getenv("LP_NUM_THREADS")) return std::min(unsigned(std::strtoul(env, nullptr, 10)), 32u);
     return std::min(cores, 32u);
 }
 

@@ -22,7 +22,9 @@ double selfTicks(const std::string& procSelfStat);     // -1 when malformed
 
 // What other processes used between two samples, as a fraction of the machine's CPU time
 // (cores x wall time): 0 on a quiet machine, 1 when others kept every core busy. Hypervisor
-// steal time counts as others'. -1 when either sample is invalid or no time passed.
+// steal time counts as others'. -1 when either sample is invalid or the window held fewer than
+// kMinTicks clock ticks of the machine's capacity (too short to tell).
+constexpr double kMinTicks = 100.0;
 double otherCpuFraction(const CpuTimes& before, const CpuTimes& after, unsigned cores, double ticksPerSecond);
 
 // The 1-minute load average (getloadavg), -1 when unknown.

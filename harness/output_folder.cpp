@@ -82,17 +82,27 @@ namespace {
 // A holder removes its lock file when it ends (~OutputFolderLock); a lock taken on a file that
 // was removed meanwhile guards nothing, so it is taken again on the file the path names now.
 int tryLock(const std::string& path, int operation, std::string& holder) {
+    auto stillNamed = [&](int fd) {
+        struct stat opened{}, named{};
+        return ::fstat(fd, &opened) == 0 && ::lstat(path.c_str(), &named) == 0 && opened.st_dev == named.st_dev &&
+               opened.st_ino == named.st_ino;
+    };
     for (int attempt = 0; attempt < 100; ++attempt) {
         const int fd = openLockFile(path);
-        if (::flock(fd, operation | LOCK_NB) == 0) {
-            struct stat locked{}, named{};
-            if (::fstat(fd, &locked) == 0 && ::lstat(path.c_str(), &named) == 0 && locked.st_dev == named.st_dev &&
-                locked.st_ino == named.st_ino)
-                return fd;
-            ::close(fd);  // removed or replaced after we opened it
+        const bool locked = ::flock(fd, operation | LOCK_NB) == 0;
+        const int why = errno;
+        if (!stillNamed(fd)) {  // removed or replaced after we opened it (its last holder ending)
+            ::close(fd);
             continue;
         }
-        const int why = errno;
+        if (locked) return fd;
+        // A holder that is ending takes its lock exclusively for a moment before removing the
+        // file: one that is gone a moment later was no writer.
+        ::usleep(20000);
+        if (why == EWOULDBLOCK && !stillNamed(fd)) {
+            ::close(fd);
+            continue;
+        }
         holder = pidIn(fd);
         ::close(fd);
         if (why != EWOULDBLOCK) throw Error(path + ": cannot lock: " + std::strerror(why));

@@ -248,20 +248,19 @@ SampleStats writeTimingColumns(const std::string& prefix, const std::vector<doub
 // `samples`, the statistics to `row`. Returns rtcIntersect1's hits.
 std::vector<gpu::HitRecord> timeMethods(const RunConfig& run, const VulkanContext& vk, KernelTimer& kernel,
                                         EmbreeReference& embree, const std::vector<gpu::Ray>& rays, const Caches& caches,
-                                        Row& row, std::vector<TimingSample>& samples) {
+                                        const CpuTimes& before, Row& row, std::vector<TimingSample>& samples) {
     std::vector<gpu::HitRecord> embreeHits, scratch;
     std::vector<TimedMethod> methods;
     methods.push_back({"kernel", [&](int warmups, int repetitions) { return kernel.time(warmups, repetitions); }});
     for (EmbreeMode mode : {EmbreeMode::Intersect1, EmbreeMode::Intersect16})
         methods.push_back({mode == EmbreeMode::Intersect1 ? "embree1" : "embree16", [&, mode](int warmups, int repetitions) {
                                TimedBatch batch;
-                               for (int i = 0; i < warmups; ++i) embree.trace(rays, mode, scratch);
+                               for (int i = 0; i < warmups; ++i) batch.warmupMs += embree.trace(rays, mode, scratch);
                                for (int i = 0; i < repetitions; ++i)
                                    batch.ms.push_back(embree.trace(rays, mode, mode == EmbreeMode::Intersect1 ? embreeHits : scratch));
                                return batch;
                            }});
     const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-    const CpuTimes before = sampleCpuTimes();
     const RoundsResult timed = timeInRounds(methods, [&] { return kernel.timeHostLoops(); }, roundsOptions(run), caches.started);
     const CpuTimes after = sampleCpuTimes();
     samples = timed.samples;
@@ -365,6 +364,7 @@ void writeImageAccuracy(const std::vector<gpu::Ray>& rays, const RunScene& scene
 // value goes to `row`; a self-check that fails throws after the row is complete.
 void executeRun(const ExperimentPlan& plan, const RunConfig& run, const std::string& folder, Caches& caches, Row& row,
                 std::vector<TimingSample>& samples) {
+    const CpuTimes started = sampleCpuTimes();  // the noise guard's window: the whole run up to its timing's end
     VulkanContext& vk = deviceFor(run, caches);
     const std::size_t messagesBefore = vk.validationMessages().size();
     const StructureType& structureKind = structureType(run.getString("structure.type"));
@@ -409,7 +409,7 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const std::str
 
     // Time: the kernel, uninstrumented, and Embree on the same rays, in rounds.
     EmbreeReference& embree = embreeFor(run, scene, caches, row);
-    const std::vector<gpu::HitRecord> embreeHits = timeMethods(run, vk, *method.timer, embree, rays, caches, row, samples);
+    const std::vector<gpu::HitRecord> embreeHits = timeMethods(run, vk, *method.timer, embree, rays, caches, started, row, samples);
     method.timer->checkHits();
 
     // The kernel's image: its shading, and where its hits differ from Embree's.
@@ -502,17 +502,20 @@ std::string identity(const Row& row) {
            "|" + get("cpu") + "|" + get("inputs_hash");
 }
 
-// "<folder>/superseded-<UTC time>[-k]-": the prefix of what one invocation sets aside (rows, the
-// context they were run under, their per-run files), names merge and resume never read, and no
-// existing file's.
-std::string supersededPrefix(const std::string& folder, const std::string& csvName) {
+// "<folder>/superseded-<UTC time>[-k]-": the prefix of what one invocation sets aside (rows,
+// samples, the context they were run under, their per-run files), names merge and resume never
+// read, and the start of no existing file's name.
+std::string supersededPrefix(const std::string& folder) {
     std::string stamp = utcNow();
     stamp.erase(std::remove(stamp.begin(), stamp.end(), ':'), stamp.end());
     stamp.erase(std::remove(stamp.begin(), stamp.end(), '-'), stamp.end());
+    std::set<std::string> names;  // every name in the folder: a prefix no file has yet
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(folder, ec)) names.insert(entry.path().filename().string());
     for (int k = 0;; ++k) {
-        const std::string prefix = (fs::path(folder) / ("superseded-" + stamp + (k ? "-" + std::to_string(k) : "") + "-")).string();
-        std::error_code ec;
-        if (!fs::exists(fs::symlink_status(prefix + csvName, ec))) return prefix;
+        const std::string name = "superseded-" + stamp + (k ? "-" + std::to_string(k) : "") + "-";
+        const auto after = names.lower_bound(name);
+        if (after == names.end() || after->rfind(name, 0) != 0) return (fs::path(folder) / name).string();
     }
 }
 
@@ -524,7 +527,7 @@ std::string supersededPrefix(const std::string& folder, const std::string& csvNa
 std::string setAside(const std::string& folder, const std::string& csvName, const std::string& contextPath,
                      const std::vector<std::string>& columns, const std::vector<Row>& rows,
                      const std::string& samplesName, const std::vector<Row>& samples) {
-    const std::string prefix = supersededPrefix(folder, csvName);
+    const std::string prefix = supersededPrefix(folder);
     if (!rows.empty()) writeCsv(prefix + csvName, columns, rows);
     if (!samples.empty()) writeCsv(prefix + samplesName, sampleColumns(), samples);
     std::error_code ec;
@@ -546,7 +549,7 @@ std::string readResumable(const std::string& folder, const std::string& path, co
     std::string text = readInputFile(path, kMaxResultsFileBytes, "CSV file");
     if (text.empty() || text.back() == '\n') return text;
     const std::size_t end = text.rfind('\n');
-    const std::string prefix = supersededPrefix(folder, name);
+    const std::string prefix = supersededPrefix(folder);
     writeFileAtomically(prefix + name + ".cut-row", end == std::string::npos ? text : text.substr(end + 1));
     text.resize(end == std::string::npos ? 0 : end + 1);
     std::cerr << "[rtbench] " << path << ": its last row was cut while written; set aside in " << prefix << name
@@ -678,14 +681,14 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
             if (!options.force)
                 throw Error(std::string(e.what()) + "; cannot resume from it (--force re-runs every run and replaces it)");
             rows.clear();  // --force replaces it; the unreadable file is kept aside
-            const std::string aside = supersededPrefix(result.folder, name) + name;
+            const std::string aside = supersededPrefix(result.folder) + name;
             fs::rename(path, aside, ec);
             if (ec) throw Error(path + ": cannot move the unreadable file aside: " + ec.message());
             std::cerr << "[rtbench] " << path << " could not be read (" << e.what() << "); kept as " << aside << "\n";
         }
         return rows;
     };
-    earlierRows = readEarlier(csvPath, csvName, parseRunsCsv);
+    earlierRows = readEarlier(csvPath, csvName, [](const std::string& text, const std::string& path) { return parseRunsCsv(text, path); });
     earlierSamples = readEarlier(samplesPath, samplesName, parseSamplesCsv);
     std::map<std::string, const Row*> earlier;  // by identity
     std::set<std::string> earlierRuns;           // "run|config_hash" of those
@@ -988,6 +991,20 @@ std::vector<Row> mergeShards(const std::string& folder) {
     if (withSamples && withSamples != shards.size())
         throw Error(folder + ": " + std::to_string(withSamples) + " of " + std::to_string(shards.size()) +
                     " shards have a samples file; a shard's samples.shard-*.csv is missing");
+    // Every ok row's repetitions are there: as many kernel, Embree 1 and Embree 16 samples as it
+    // says it took.
+    if (withSamples) {
+        std::map<std::string, std::size_t> count;  // run|method
+        for (const Row& sample : samples) ++count[sample.at("run") + "|" + sample.at("method")];
+        for (const auto& [run, row] : byRun) {
+            const auto reps = row.find("timing_repetitions");
+            if (row.at("status") != "ok" || reps == row.end() || reps->second.empty()) continue;
+            for (const char* method : {"kernel", "embree1", "embree16"})
+                if (std::to_string(count[run + "|" + method]) != reps->second)
+                    throw Error(folder + ": run " + run + " took " + reps->second + " repetitions of each method, the shards' samples hold " +
+                                std::to_string(count[run + "|" + method]) + " of " + method);
+        }
+    }
     std::stable_sort(samples.begin(), samples.end(), [](const Row& a, const Row& b) { return a.at("run") < b.at("run"); });
     const std::string samplesPath = (fs::path(folder) / "samples.csv").string();
     checkWritableFile(samplesPath);

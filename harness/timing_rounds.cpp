@@ -78,7 +78,7 @@ RoundsResult timeInRounds(const std::vector<TimedMethod>& methods,
         for (const TimedMethod& method : methods) {
             const double batchStart = seconds(origin, Clock::now());
             const TimedBatch batch = method.time(round == 0 ? options.warmups : 0, count);
-            double t = batchStart;
+            double t = batchStart + batch.warmupMs / 1e3;
             for (std::size_t i = 0; i < batch.ms.size(); ++i) {
                 add(method.name, round, batch.ms[i], t);
                 for (const auto& [part, ms] : batch.parts) add(method.name + "_" + part, round, ms.at(i), t);
@@ -92,7 +92,9 @@ RoundsResult timeInRounds(const std::vector<TimedMethod>& methods,
             result.stop = "repetitions";
             break;
         }
-        bool converged = true;
+        // An interval of a handful of samples says little (one sample's is a point): judged from
+        // kMinAdaptiveRepetitions on.
+        bool converged = result.repetitions >= kMinAdaptiveRepetitions;
         for (const TimedMethod& method : methods)
             converged = converged && summarize(result.of(method.name)).relativeHalfWidth() <= options.targetCi;
         if (converged) {

@@ -1,8 +1,9 @@
 // Timing in rounds. A run's repetitions are split into rounds; each round times the strategy's
 // host-controlled loops (if any), then a batch of the kernel, then of each Embree method, so that
 // drift (clocks, caches, a neighbour's load) hits all of them alike. With experiment.target_ci,
-// rounds are added until every method's bootstrap interval of the median is narrow enough
-// (nvbench's noise criterion), up to a count and a time budget. Every sample is kept.
+// rounds are added until every method's bootstrap interval of the median is narrow enough (a
+// stopping rule like nvbench's, which stops on the relative standard deviation instead), from
+// kMinAdaptiveRepetitions on, up to a count and a time budget. Every sample is kept.
 #pragma once
 #include <chrono>
 #include <functional>
@@ -15,6 +16,8 @@
 #include "plan/keys.h"
 
 namespace rtbench {
+
+constexpr int kMinAdaptiveRepetitions = 5;
 
 struct RoundsOptions {
     int warmups = 1;        // untimed, before each method's first batch
@@ -39,8 +42,9 @@ struct TimingSample {
     int round = 0;       // 0-based
     int repetition = 0;  // 0-based, over the run, per method
     double ms = 0.0;
-    // Steady-clock seconds since `origin` when the repetition began: a batch's start plus the
-    // times of the repetitions before it in the batch (on a GPU, their GPU times).
+    // Steady-clock seconds since `origin` (the invocation's start: kept rows and merged shards
+    // keep their own) when the repetition began: its batch's start plus the warm-ups' and the
+    // earlier repetitions' times (on a GPU, their GPU times).
     double t = 0.0;
 };
 

@@ -24,6 +24,7 @@ struct TimingOptions {
 
 // One batch of timed repetitions, uninstrumented.
 struct TimedBatch {
+    double warmupMs = 0.0;   // the untimed warm-ups before them, together
     std::vector<double> ms;  // each repetition's GPU time
     // A repetition made of parts (multipass: its pass kinds): each part's GPU time per repetition.
     // Part p's median goes to the column kernel_ms_<p>, which the strategy declares.

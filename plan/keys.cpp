@@ -1,6 +1,5 @@
 #include "keys.h"
 
-#include <algorithm>
 #include <cstdio>
 #include <sstream>
 
@@ -44,13 +43,18 @@ std::array<double, 3> RunConfig::getVec3(const std::string& key) const {
 
 std::string RunConfig::canonical() const {
     std::string out;
-    for (const auto& [key, value] : values)
-        if (std::find(unhashedDefaults.begin(), unhashedDefaults.end(), key) == unhashedDefaults.end())
-            out += key + "=" + formatValue(value) + ";";
+    for (const auto& [key, value] : values) out += key + "=" + formatValue(value) + ";";
     return out;
 }
 
 std::string RunConfig::hash() const { return hex64(fnv1a64(canonical())); }
+
+std::string RunConfig::hashWithout(const std::set<std::string>& keys) const {
+    std::string out;
+    for (const auto& [key, value] : values)
+        if (!keys.count(key)) out += key + "=" + formatValue(value) + ";";
+    return hex64(fnv1a64(out));
+}
 
 std::string RunConfig::label() const {
     std::string params;

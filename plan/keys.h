@@ -7,6 +7,7 @@
 #include <functional>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <variant>
@@ -42,11 +43,9 @@ struct KeySpec {
     // False for keys that place the results (experiment.name, experiment.output): one value per
     // config, never a list, the same in every [[sweep]].
     bool sweepable = true;
-    // The results schema (kSchemaVersion, plan/columns.h) that added the key's column.
+    // The results schema (kSchemaVersion, plan/columns.h) that added the key's column (keys
+    // of earlier schemas get theirs from harness/columns.cpp's history).
     int since = 1;
-    // False for a key whose default does what rtbench did before the key existed: at its default
-    // it is left out of config_hash, so the runs of older results folders keep their identity.
-    bool hashedAtDefault = true;
 };
 
 // One run: every schema key that has a value (given or default), scalar.
@@ -56,8 +55,6 @@ struct RunConfig {
 
     std::map<std::string, ConfigValue> values;  // "section.key" -> value
     std::vector<std::string> sweptKeys;         // keys that vary across the plan
-    // Keys left out of canonical() and hash(): at their default and !KeySpec::hashedAtDefault.
-    std::vector<std::string> unhashedDefaults;
 
     bool has(const std::string& key) const { return values.count(key) != 0; }
     std::int64_t getInt(const std::string& key) const;
@@ -69,6 +66,9 @@ struct RunConfig {
     std::string canonical() const;
     // fnv1a64 of canonical(), hex.
     std::string hash() const;
+    // The same with these keys left out too: the hash an older rtbench gave the run, whose schema
+    // had no such keys (rtbench check on an older results folder).
+    std::string hashWithout(const std::set<std::string>& keys) const;
     // A short label naming the swept parameters, e.g. "structure.min_dim=32".
     std::string label() const;
 };

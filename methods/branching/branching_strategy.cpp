@@ -44,6 +44,7 @@ public:
             std::size_t(warmups + repetitions), {&timed_, buffers_->descriptorSet(timed_), buffers_->pushConstants(), buffers_->rayCount()});
         const std::vector<double> ms = vk_.dispatchAll(calls);
         TimedBatch batch;
+        for (int i = 0; i < warmups; ++i) batch.warmupMs += ms[std::size_t(i)];
         batch.ms.assign(ms.begin() + warmups, ms.end());
         return batch;
     }

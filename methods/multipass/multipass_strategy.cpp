@@ -105,6 +105,7 @@ public:
         const std::size_t passes = counts_.sequence.size();
         static const char* names[kPassKinds] = {"setup", "traverse", "intersect", "write"};
         TimedBatch batch;
+        for (std::size_t i = 0; i < std::size_t(warmups) * passes; ++i) batch.warmupMs += ms[i];
         for (int k = 0; k < kPassKinds; ++k) batch.parts.push_back({names[k], {}});
         for (int i = warmups; i < warmups + repetitions; ++i) {
             std::array<double, kPassKinds> byKind{};

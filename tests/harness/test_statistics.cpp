@@ -88,7 +88,7 @@ TEST(Statistics, MannWhitneyExactPValuesByCounting) {
     EXPECT_DOUBLE_EQ(t.u, 25.0);
     EXPECT_NEAR(t.p, 2.0 / 252.0, 1e-12);
     // Interleaved {1,3,5} and {2,4,6}: U = 0+1+2 = 3. U's distribution for 3 and 3 has counts
-    // 1,1,2,3,3,3,3,2,1,1 for U = 0..9: P(U <= 3) = 7/20, P(U >= 3) = 13/20, so p = 14/20.
+    // 1,1,2,3,3,3,3,2,1,1 for U = 0..9: P(U <= 3) = 7/20, P(U >= 3) = 16/20, so p = 14/20.
     t = mannWhitneyU({1, 3, 5}, {2, 4, 6});
     EXPECT_DOUBLE_EQ(t.u, 3.0);
     EXPECT_NEAR(t.p, 0.7, 1e-12);

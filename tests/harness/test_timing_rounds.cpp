@@ -100,6 +100,15 @@ TEST(TimingRounds, AdaptiveRoundsStopWhenTheIntervalIsNarrow) {
     EXPECT_EQ(r.repetitions, 5);
 }
 
+TEST(TimingRounds, AdaptiveRoundsJudgeNoIntervalOfFewerThanFiveSamples) {
+    RoundsOptions o = fixed(1, 5, 0);
+    o.targetCi = 0.02;
+    FakeMethod steady{"kernel", {10.0}};
+    const RoundsResult r = timeInRounds({steady.method()}, nullptr, o, std::chrono::steady_clock::now());
+    EXPECT_EQ(r.stop, "converged");
+    EXPECT_EQ(r.repetitions, kMinAdaptiveRepetitions);  // not 1: one sample's interval is a point
+}
+
 TEST(TimingRounds, AdaptiveRoundsStopAtTheCountOrTheBudget) {
     RoundsOptions o = fixed(5, 5, 0);
     o.targetCi = 0.02;
@@ -129,6 +138,10 @@ TEST(NoiseGuard, ProcParsers) {
     after.machineBusyTicks = 300, after.selfTicks = 60, after.wallSeconds = 6.0;
     // Others: 200 - 50 = 150 ticks = 1.5 s of 2 cores x 1 s.
     EXPECT_DOUBLE_EQ(otherCpuFraction(before, after, 2, 100.0), 0.75);
+    // A window of 2 cores x 0.1 s is 20 ticks: too short to tell.
+    after.wallSeconds = 5.1;
+    EXPECT_DOUBLE_EQ(otherCpuFraction(before, after, 2, 100.0), -1.0);
+    after.wallSeconds = 6.0;
     after.valid = false;
     EXPECT_DOUBLE_EQ(otherCpuFraction(before, after, 2, 100.0), -1.0);
     EXPECT_EQ(deviceHostThreads(false, 16), 0u);
