@@ -90,6 +90,8 @@ const std::vector<KeySpec>& configSchema() {
             k.since = 5;
             add(std::move(k));
         };
+        timingKey({"experiment.order", ValueType::String, "run: each run timed whole, one after another; interleaved: every run prepared first, then timed one round at a time across the sweep (round r of every run before round r + 1 of any), so runs compared in one table were timed under the same conditions; every run keeps its device buffers until the sweep's timing ends, and a row is written only when its run is finished", std::string("run"), false, -1e300, 1e300, {"run", "interleaved"}});
+        s.back().sweepable = false;  // one order for the whole sweep
         timingKey({"experiment.rounds", ValueType::Int, "the repetitions are split into this many rounds, each timing the kernel, then Embree rtcIntersect1, then rtcIntersect16, so that drift hits all of them (at most one round per repetition)", std::int64_t(5), false, 1, 1000});
         timingKey({"experiment.target_ci", ValueType::Float, "adaptive repetitions: after experiment.repetitions, add rounds until the 95% bootstrap interval of every median (kernel, Embree 1 and 16) is within +- this fraction of it, or experiment.max_repetitions or experiment.time_budget_s is reached (0: a fixed count)", 0.0, false, 0, 1});
         timingKey({"experiment.max_repetitions", ValueType::Int, "adaptive repetitions: at most this many of each method", std::int64_t(200), false, 1, 100000});

@@ -11,6 +11,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <regex>
 #include <set>
 #include <fstream>
@@ -243,36 +244,39 @@ SampleStats writeTimingColumns(const std::string& prefix, const std::vector<doub
     return s;
 }
 
-// The kernel and Embree rtcIntersect1 and rtcIntersect16 on the same rays, timed in rounds
-// (harness/timing_rounds.h) under the noise guard (harness/noise_guard.h); every sample goes to
-// `samples`, the statistics to `row`. Returns rtcIntersect1's hits.
-std::vector<gpu::HitRecord> timeMethods(const RunConfig& run, const VulkanContext& vk, KernelTimer& kernel,
-                                        EmbreeReference& embree, const std::vector<gpu::Ray>& rays, const Caches& caches,
-                                        const CpuTimes& before, Row& row, std::vector<TimingSample>& samples) {
-    std::vector<gpu::HitRecord> embreeHits, scratch;
+// The methods a run's rounds time: the kernel (its KernelTimer) and Embree rtcIntersect1 and
+// rtcIntersect16 on the same rays; rtcIntersect1's hits go to `embreeHits`.
+std::vector<TimedMethod> timedMethods(KernelTimer& kernel, EmbreeReference& embree, const std::vector<gpu::Ray>& rays,
+                                      std::vector<gpu::HitRecord>& embreeHits, std::vector<gpu::HitRecord>& scratch) {
     std::vector<TimedMethod> methods;
-    methods.push_back({"kernel", [&](int warmups, int repetitions) { return kernel.time(warmups, repetitions); }});
+    methods.push_back({"kernel", [&kernel](int warmups, int repetitions) { return kernel.time(warmups, repetitions); }});
     for (EmbreeMode mode : {EmbreeMode::Intersect1, EmbreeMode::Intersect16})
-        methods.push_back({mode == EmbreeMode::Intersect1 ? "embree1" : "embree16", [&, mode](int warmups, int repetitions) {
+        methods.push_back({mode == EmbreeMode::Intersect1 ? "embree1" : "embree16",
+                           [&embree, &rays, &embreeHits, &scratch, mode](int warmups, int repetitions) {
                                TimedBatch batch;
                                for (int i = 0; i < warmups; ++i) batch.warmupMs += embree.trace(rays, mode, scratch);
                                for (int i = 0; i < repetitions; ++i)
                                    batch.ms.push_back(embree.trace(rays, mode, mode == EmbreeMode::Intersect1 ? embreeHits : scratch));
                                return batch;
                            }});
-    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-    const RoundsResult timed = timeInRounds(methods, [&] { return kernel.timeHostLoops(); }, roundsOptions(run), caches.started);
-    const CpuTimes after = sampleCpuTimes();
-    samples = timed.samples;
+    return methods;
+}
 
+// A run's timing (harness/timing_rounds.h) into `row`: each method's statistics, the strategy's
+// own series, the speed ratio with its interval, and the noise guard's reading of the window
+// from `before` to now (harness/noise_guard.h).
+void writeTimingResults(const RunConfig& run, const VulkanContext& vk, std::size_t rays, const RoundsResult& timed,
+                        const CpuTimes& before, Row& row) {
+    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+    const CpuTimes after = sampleCpuTimes();
     const SampleStats k = writeTimingColumns("kernel", timed.of("kernel"), row);
-    row["kernel_mrays_s"] = num(k.median > 0 ? double(rays.size()) / (k.median * 1e3) : 0.0);
+    row["kernel_mrays_s"] = num(k.median > 0 ? double(rays) / (k.median * 1e3) : 0.0);
     std::vector<std::string> noisy;
     const double noiseCv = run.getFloat("experiment.noise_cv");
     if (k.cv > noiseCv) noisy.push_back("kernel CV " + num(k.cv, 3));
     for (const char* m : {"embree1", "embree16"}) {
         const SampleStats e = writeTimingColumns(m, timed.of(m), row);
-        row[std::string(m) + "_mrays_s"] = num(double(rays.size()) / (e.median * 1e3));
+        row[std::string(m) + "_mrays_s"] = num(double(rays) / (e.median * 1e3));
         if (e.cv > noiseCv) noisy.push_back(std::string(m) + " CV " + num(e.cv, 3));
     }
     // The strategy's own series: the parts of a repetition, its host-controlled loops.
@@ -301,7 +305,6 @@ std::vector<gpu::HitRecord> timeMethods(const RunConfig& run, const VulkanContex
         noisy.push_back("other processes took " + num(100 * other, 3) + "% of the machine's CPU time (> experiment.noise_other_cpu " +
                         num(run.getFloat("experiment.noise_other_cpu"), 3) + ")");
     for (const std::string& n : noisy) row["timing_warning"] += (row["timing_warning"].empty() ? "" : "; ") + n;
-    return embreeHits;
 }
 
 // The exact first hits of the sampled rays, computed once per scene, rays and sample size.
@@ -358,21 +361,41 @@ void writeImageAccuracy(const std::vector<gpu::Ray>& rays, const RunScene& scene
     row["image_pixels_differ"] = std::to_string(c.differing);
 }
 
+// A run from its scene to its timing: what its rounds and the rest of it need. It holds the
+// run's device buffers (the strategy's timer) until the run is finished.
+struct RunInProgress {
+    const RunConfig* run = nullptr;
+    VulkanContext* vk = nullptr;
+    std::size_t messagesBefore = 0;
+    CpuTimes started;  // the noise guard's window: from here to the end of the timing
+    std::optional<RunScene> scene;
+    unsigned width = 0, height = 0;
+    std::vector<gpu::Ray> rays;
+    std::unique_ptr<Structure> structure;
+    StrategyRun method;
+    EmbreeReference* embree = nullptr;
+    std::vector<gpu::HitRecord> embreeHits, scratch;  // written by the Embree batches
+    std::unique_ptr<Rounds> rounds;
+};
+
 // One run, as the data flows: scene -> rays -> structure -> method (strategy on the device, checked
-// against the structure's CPU reference) -> Embree on the same rays -> the exact reference on a
-// sample of them -> metrics -> images. Every
-// value goes to `row`; a self-check that fails throws after the row is complete.
-void executeRun(const ExperimentPlan& plan, const RunConfig& run, const std::string& folder, Caches& caches, Row& row,
-                std::vector<TimingSample>& samples) {
-    const CpuTimes started = sampleCpuTimes();  // the noise guard's window: the whole run up to its timing's end
+// against the structure's CPU reference) -> timing in rounds with Embree on the same rays -> the
+// exact reference on a sample of them -> metrics -> images. Every value goes to `row`; a
+// self-check that fails throws after the row is complete. prepareRun does all up to the timing;
+// Rounds::runRound the timing, a round at a time; finishRun the rest.
+std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunConfig& run, Caches& caches, Row& row) {
+    auto p = std::make_unique<RunInProgress>();
+    p->run = &run;
+    p->started = sampleCpuTimes();
     VulkanContext& vk = deviceFor(run, caches);
-    const std::size_t messagesBefore = vk.validationMessages().size();
+    p->vk = &vk;
+    p->messagesBefore = vk.validationMessages().size();
     const StructureType& structureKind = structureType(run.getString("structure.type"));
     const StrategyType& strategy = strategyType(run.getString("strategy.type"));
 
     // Scene and rays. Refuse before allocating: the per-ray buffers on the device (the largest
     // traversal state a structure keeps is checked again at upload) and the per-ray host data.
-    const RunScene scene = sceneFor(plan, run, caches, row);
+    const RunScene& scene = p->scene.emplace(sceneFor(plan, run, caches, row));
     const TriangleMesh& mesh = scene.traced;
     const PinholeCamera camera = cameraFor(run, scene.full);  // the same rays at every simplification
     for (int a = 0; a < 3; ++a) {
@@ -380,36 +403,55 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const std::str
         row[std::string("camera_eye_") + axis] = formatNumber(camera.position[a], 9);
         row[std::string("camera_target_") + axis] = formatNumber(camera.lookAt[a], 9);
     }
-    const unsigned width = unsigned(run.getInt("camera.width")), height = unsigned(run.getInt("camera.height"));
-    refuseOversizedBuffers(vk.info(), rayBufferSizes(std::uint64_t(width) * height, strategy.perRayState ? 16 : 0));
-    refuseOversizedRayStream(std::uint64_t(width) * height);
-    const std::vector<gpu::Ray> rays = generatePrimaryRays(camera, width, height);
+    p->width = unsigned(run.getInt("camera.width"));
+    p->height = unsigned(run.getInt("camera.height"));
+    refuseOversizedBuffers(vk.info(), rayBufferSizes(std::uint64_t(p->width) * p->height, strategy.perRayState ? 16 : 0));
+    refuseOversizedRayStream(std::uint64_t(p->width) * p->height);
+    p->rays = generatePrimaryRays(camera, p->width, p->height);
+    const std::vector<gpu::Ray>& rays = p->rays;
     validateRays(rays);
     row["rays"] = std::to_string(rays.size());
 
     // Structure.
-    const std::unique_ptr<Structure> structure = structureKind.build(mesh, rays, run, vk.info());
-    structure->setTriangleTest(run.getString("intersection.test") == "watertight" ? gpu::kTriangleTestWatertight
-                                                                                  : gpu::kTriangleTestMollerTrumbore);
-    structure->writeColumns(row);
-    row["structure_bytes"] = std::to_string(structure->memoryBytes);
-    row["structure_bytes_per_triangle"] = num(double(structure->memoryBytes) / double(std::max<std::size_t>(mesh.triangles.size(), 1)));
-    row["structure_build_ms"] = num(structure->buildMs, 4);
-    row["predicted_work_per_ray"] = num(structure->predictedWork(rays) / double(rays.size()));
+    p->structure = structureKind.build(mesh, rays, run, vk.info());
+    Structure& structure = *p->structure;
+    structure.setTriangleTest(run.getString("intersection.test") == "watertight" ? gpu::kTriangleTestWatertight
+                                                                                 : gpu::kTriangleTestMollerTrumbore);
+    structure.writeColumns(row);
+    row["structure_bytes"] = std::to_string(structure.memoryBytes);
+    row["structure_bytes_per_triangle"] = num(double(structure.memoryBytes) / double(std::max<std::size_t>(mesh.triangles.size(), 1)));
+    row["structure_build_ms"] = num(structure.buildMs, 4);
+    row["predicted_work_per_ray"] = num(structure.predictedWork(rays) / double(rays.size()));
 
     // Method: the strategy runs the structure's kernels once, instrumented, and checks them
     // against its CPU reference.
     TimingOptions timing;
     timing.workgroupSize = unsigned(run.getInt("strategy.workgroup_size"));
-    timing.warmups = timing.repetitions = 0;  // timed below, in rounds with Embree
-    const StrategyRun method = strategy.run(vk, *structure, rays, run, timing, row);
-    row["cpu_reference_mismatches"] = std::to_string(method.cpuMismatches);
-    row["cpu_counts_match"] = method.countsMismatch.empty() ? "1" : "0";
-    writeArchitectureColumns(method.metrics, *structure, rays.size(), row);
+    timing.warmups = timing.repetitions = 0;  // timed in rounds with Embree
+    p->method = strategy.run(vk, structure, rays, run, timing, row);
+    row["cpu_reference_mismatches"] = std::to_string(p->method.cpuMismatches);
+    row["cpu_counts_match"] = p->method.countsMismatch.empty() ? "1" : "0";
+    writeArchitectureColumns(p->method.metrics, structure, rays.size(), row);
 
     // Time: the kernel, uninstrumented, and Embree on the same rays, in rounds.
-    EmbreeReference& embree = embreeFor(run, scene, caches, row);
-    const std::vector<gpu::HitRecord> embreeHits = timeMethods(run, vk, *method.timer, embree, rays, caches, started, row, samples);
+    p->embree = &embreeFor(run, scene, caches, row);
+    KernelTimer& kernel = *p->method.timer;
+    p->rounds = std::make_unique<Rounds>(timedMethods(kernel, *p->embree, p->rays, p->embreeHits, p->scratch),
+                                         [&kernel] { return kernel.timeHostLoops(); }, roundsOptions(run), caches.started);
+    return p;
+}
+
+void finishRun(RunInProgress& p, const std::string& folder, Caches& caches, Row& row, std::vector<TimingSample>& samples) {
+    const RunConfig& run = *p.run;
+    VulkanContext& vk = *p.vk;
+    const RunScene& scene = *p.scene;
+    const TriangleMesh& mesh = scene.traced;
+    const std::vector<gpu::Ray>& rays = p.rays;
+    const StrategyRun& method = p.method;
+    const unsigned width = p.width, height = p.height;
+    const std::vector<gpu::HitRecord>& embreeHits = p.embreeHits;
+    samples = p.rounds->result().samples;
+    writeTimingResults(run, vk, rays.size(), p.rounds->result(), p.started, row);
     method.timer->checkHits();
 
     // The kernel's image: its shading, and where its hits differ from Embree's.
@@ -440,8 +482,8 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const std::str
     if (run.getBool("output.hit_records") || (wantImages && !imagesSupported())) writeHitRecords(prefix + ".hits", image, row["run"], row["config_hash"]);
     if (wantImages && imagesSupported()) writeImages(prefix, image);
 
-    if (vk.validationMessages().size() != messagesBefore)
-        throw Error("the Vulkan validation layer reported: " + vk.validationMessages()[messagesBefore]);
+    if (vk.validationMessages().size() != p.messagesBefore)
+        throw Error("the Vulkan validation layer reported: " + vk.validationMessages()[p.messagesBefore]);
     // The row is complete; a kernel that disagrees with its CPU reference fails it all the same.
     if (method.truncatedRays) throw Error(method.truncatedWhy);
     if (method.cpuMismatches)
@@ -452,6 +494,14 @@ void executeRun(const ExperimentPlan& plan, const RunConfig& run, const std::str
     if (method.branchingMismatches)
         throw Error("the multipass hit records differ from the branching caster's on " +
                     std::to_string(method.branchingMismatches) + " of " + std::to_string(rays.size()) + " rays");
+}
+
+// One run, whole: prepared, timed round after round, finished.
+void executeRun(const ExperimentPlan& plan, const RunConfig& run, const std::string& folder, Caches& caches, Row& row,
+                std::vector<TimingSample>& samples) {
+    const std::unique_ptr<RunInProgress> p = prepareRun(plan, run, caches, row);
+    while (!p->rounds->done()) p->rounds->runRound();
+    finishRun(*p, folder, caches, row, samples);
 }
 
 // What is needed to re-run and to judge the experiment: written when the sweep starts, with every
@@ -810,34 +860,20 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
                                              : std::string())
                   << " -> " << result.folder << "/" << csvName << "\n";
     const auto experimentStart = std::chrono::steady_clock::now();
+    using Clock = std::chrono::steady_clock;
+    auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
     double executedSeconds = 0.0;
     int executed = 0;
-    for (std::size_t k = 0; k < mine.size(); ++k) {
-        const RunConfig& run = *mine[k];
+    // A run's row is complete (ok, or failed with `error`): said on the console, then its samples
+    // and its row appended. The samples come first: an interrupt between them leaves samples
+    // without a row, which a resume sets aside, never a row without its samples.
+    auto record = [&](std::size_t k, const std::string& error, double seconds, const std::vector<TimingSample>& samples) {
         Row& row = rows[k];
-        if (kept[k]) {
-            ++result.reused;
-            if (!options.quiet) std::cout << "[run " << k + 1 << "/" << mine.size() << "] " << run.label() << ": done before, kept\n";
-            continue;
-        }
-        if (!options.quiet) {
-            // Progress: runs done, elapsed, and an estimate for the rest from the runs executed so far.
-            const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - experimentStart).count();
-            std::cout << "[run " << k + 1 << "/" << mine.size() << ", " << std::fixed << std::setprecision(0) << elapsed << " s";
-            if (executed > 0) std::cout << ", ~" << executedSeconds / executed * double(mine.size() - k) << " s left";
-            std::cout << "] " << run.label() << " ..." << std::defaultfloat << std::flush;
-        }
-        const auto start = std::chrono::steady_clock::now();
-        std::vector<TimingSample> samples;
-        try {
-            executeRun(plan, run, result.folder, caches, row, samples);
-            row["status"] = "ok";
-        } catch (const std::exception& e) {
-            row["status"] = "failed";
-            row["error"] = e.what();
+        row["status"] = error.empty() ? "ok" : "failed";
+        if (!error.empty()) {
+            row["error"] = error;
             ++result.failed;
         }
-        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         executedSeconds += seconds;
         ++executed;
         row["wall_s"] = formatNumber(seconds, 4);
@@ -852,10 +888,89 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
         if (!row["timing_warning"].empty())
             std::cerr << "[rtbench] run " << row["run"] << " timing warning: " << row["timing_warning"]
                       << " (not a timing of record)\n";
-        // The samples before the row: an interrupt between them leaves samples without a row,
-        // which a resume sets aside, never a row without its samples.
         appendCsvRows(samplesPath, sampleColumns(), sampleRows(row, samples));
         appendCsvRow(csvPath, columns, row);  // an interrupt loses nothing done
+    };
+    // Progress: runs done, elapsed, and an estimate for the rest from the runs executed so far.
+    auto progress = [&](const char* what, std::size_t k) {
+        if (options.quiet) return;
+        std::cout << "[" << what << " " << k + 1 << "/" << mine.size() << ", " << std::fixed << std::setprecision(0)
+                  << since(experimentStart) << " s";
+        if (executed > 0 && std::string(what) == "run") std::cout << ", ~" << executedSeconds / executed * double(mine.size() - k) << " s left";
+        std::cout << "] " << mine[k]->label() << " ..." << std::defaultfloat << std::flush;
+    };
+    for (std::size_t k = 0; k < mine.size(); ++k)
+        if (kept[k]) {
+            ++result.reused;
+            if (!options.quiet) std::cout << "[run " << k + 1 << "/" << mine.size() << "] " << mine[k]->label() << ": done before, kept\n";
+        }
+    if (first.getString("experiment.order") != "interleaved") {
+        for (std::size_t k = 0; k < mine.size(); ++k) {
+            if (kept[k]) continue;
+            progress("run", k);
+            const auto start = Clock::now();
+            std::vector<TimingSample> samples;
+            std::string error;
+            try {
+                executeRun(plan, *mine[k], result.folder, caches, rows[k], samples);
+            } catch (const std::exception& e) {
+                error = e.what();
+            }
+            record(k, error, since(start), samples);
+        }
+    } else {
+        // Interleaved (experiment.order): every run is prepared (its instrumented run and checks),
+        // then timed one round at a time across the sweep, round r of every run before round r + 1
+        // of any, so runs compared in one table were timed under the same conditions; then each is
+        // finished. Every prepared run keeps its device buffers until then.
+        std::vector<std::unique_ptr<RunInProgress>> running(mine.size());
+        std::vector<double> seconds(mine.size(), 0.0);
+        for (std::size_t k = 0; k < mine.size(); ++k) {
+            if (kept[k]) continue;
+            progress("prepare", k);
+            const auto start = Clock::now();
+            try {
+                running[k] = prepareRun(plan, *mine[k], caches, rows[k]);
+                if (!options.quiet) std::cout << " prepared\n";
+            } catch (const std::exception& e) {
+                record(k, e.what(), since(start), {});
+            }
+            seconds[k] += since(start);
+        }
+        for (int round = 0;; ++round) {
+            std::size_t timing = 0;
+            for (std::size_t k = 0; k < mine.size(); ++k) {
+                if (!running[k] || running[k]->rounds->done()) continue;
+                ++timing;
+                const auto start = Clock::now();
+                try {
+                    running[k]->rounds->runRound();
+                } catch (const std::exception& e) {
+                    running[k].reset();  // its buffers go now
+                    if (!options.quiet) std::cout << "[round " << round + 1 << "] " << mine[k]->label() << ":";
+                    record(k, e.what(), seconds[k] + since(start), {});
+                }
+                seconds[k] += since(start);
+            }
+            if (!timing) break;
+            if (!options.quiet)
+                std::cout << "[round " << round + 1 << ", " << std::fixed << std::setprecision(0) << since(experimentStart)
+                          << " s] " << timing << " run(s) timed\n" << std::defaultfloat;
+        }
+        for (std::size_t k = 0; k < mine.size(); ++k) {
+            if (!running[k]) continue;
+            progress("finish", k);
+            const auto start = Clock::now();
+            std::vector<TimingSample> samples;
+            std::string error;
+            try {
+                finishRun(*running[k], result.folder, caches, rows[k], samples);
+            } catch (const std::exception& e) {
+                error = e.what();
+            }
+            running[k].reset();
+            record(k, error, seconds[k] + since(start), samples);
+        }
     }
     result.rows = rows;
     writeCsv(csvPath, columns, result.rows);  // in plan order

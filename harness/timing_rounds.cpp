@@ -49,69 +49,71 @@ std::vector<Row> readSamplesCsv(const std::string& path) {
     return parseSamplesCsv(readInputFile(path, kMaxResultsFileBytes, "CSV file"), path);
 }
 
-RoundsResult timeInRounds(const std::vector<TimedMethod>& methods,
-                          const std::function<std::vector<std::pair<std::string, double>>()>& hostLoops,
-                          const RoundsOptions& options, std::chrono::steady_clock::time_point origin) {
-    using Clock = std::chrono::steady_clock;
-    const auto seconds = [](Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };
-    RoundsResult result;
-    std::map<std::string, std::size_t> index;  // series name -> position
-    std::map<std::string, int> taken;          // samples per series so far
-    auto add = [&](const std::string& name, int round, double ms, double t) {
-        if (!index.count(name)) {
-            index[name] = result.series.size();
-            result.series.push_back({name, {}});
-        }
-        result.series[index[name]].second.push_back(ms);
-        result.samples.push_back({name, round, taken[name]++, ms, t});
-    };
-    const int initialRounds = std::max(1, std::min(options.rounds, options.repetitions));
-    const int perRound = (options.repetitions + initialRounds - 1) / initialRounds;
+namespace {
+using Clock = std::chrono::steady_clock;
+double seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
+}  // namespace
+
+Rounds::Rounds(std::vector<TimedMethod> methods, HostLoops hostLoops, const RoundsOptions& options, Clock::time_point origin)
+    : methods_(std::move(methods)), hostLoops_(std::move(hostLoops)), options_(options), origin_(origin),
+      initialRounds_(std::max(1, std::min(options.rounds, options.repetitions))),
+      perRound_((options.repetitions + initialRounds_ - 1) / initialRounds_) {}
+
+void Rounds::add(const std::string& name, int round, double ms, double t) {
+    if (!index_.count(name)) {
+        index_[name] = result_.series.size();
+        result_.series.push_back({name, {}});
+    }
+    result_.series[index_[name]].second.push_back(ms);
+    result_.samples.push_back({name, round, taken_[name]++, ms, t});
+}
+
+void Rounds::runRound() {
+    if (done()) return;
     const Clock::time_point start = Clock::now();
-    for (int round = 0;; ++round) {
-        // The initial rounds split experiment.repetitions evenly; adaptive rounds add perRound.
-        int count = round < initialRounds
-                        ? options.repetitions * (round + 1) / initialRounds - options.repetitions * round / initialRounds
-                        : std::min(perRound, options.maxRepetitions - result.repetitions);
-        if (hostLoops)
-            for (const auto& [name, ms] : hostLoops()) add(name, round, ms, seconds(origin, Clock::now()) - ms / 1e3);
-        for (const TimedMethod& method : methods) {
-            const double batchStart = seconds(origin, Clock::now());
-            const TimedBatch batch = method.time(round == 0 ? options.warmups : 0, count);
-            double t = batchStart + batch.warmupMs / 1e3;
-            for (std::size_t i = 0; i < batch.ms.size(); ++i) {
-                add(method.name, round, batch.ms[i], t);
-                for (const auto& [part, ms] : batch.parts) add(method.name + "_" + part, round, ms.at(i), t);
-                t += batch.ms[i] / 1e3;
-            }
-        }
-        result.repetitions += count;
-        result.rounds = round + 1;
-        if (round + 1 < initialRounds) continue;
-        if (options.targetCi <= 0) {
-            result.stop = "repetitions";
-            break;
-        }
-        // An interval of a handful of samples says little (one sample's is a point): judged from
-        // kMinAdaptiveRepetitions on.
-        bool converged = result.repetitions >= kMinAdaptiveRepetitions;
-        for (const TimedMethod& method : methods)
-            converged = converged && summarize(result.of(method.name)).relativeHalfWidth() <= options.targetCi;
-        if (converged) {
-            result.stop = "converged";
-            break;
-        }
-        if (result.repetitions >= options.maxRepetitions) {
-            result.stop = "max_repetitions";
-            break;
-        }
-        if (seconds(start, Clock::now()) >= options.budgetSeconds) {
-            result.stop = "time_budget";
-            break;
+    const int round = result_.rounds;
+    // The initial rounds split experiment.repetitions evenly; adaptive rounds add perRound_.
+    const int count = round < initialRounds_ ? options_.repetitions * (round + 1) / initialRounds_ -
+                                                   options_.repetitions * round / initialRounds_
+                                             : std::min(perRound_, options_.maxRepetitions - result_.repetitions);
+    if (hostLoops_)
+        for (const auto& [name, ms] : hostLoops_()) add(name, round, ms, seconds(origin_, Clock::now()) - ms / 1e3);
+    for (const TimedMethod& method : methods_) {
+        const double batchStart = seconds(origin_, Clock::now());
+        const TimedBatch batch = method.time(round == 0 ? options_.warmups : 0, count);
+        double t = batchStart + batch.warmupMs / 1e3;
+        for (std::size_t i = 0; i < batch.ms.size(); ++i) {
+            add(method.name, round, batch.ms[i], t);
+            for (const auto& [part, ms] : batch.parts) add(method.name + "_" + part, round, ms.at(i), t);
+            t += batch.ms[i] / 1e3;
         }
     }
-    result.seconds = seconds(start, Clock::now());
-    return result;
+    result_.repetitions += count;
+    result_.rounds = round + 1;
+    result_.seconds += seconds(start, Clock::now());
+    if (result_.rounds < initialRounds_) return;
+    if (options_.targetCi <= 0) {
+        result_.stop = "repetitions";
+        return;
+    }
+    // An interval of a handful of samples says little (one sample's is a point): judged from
+    // kMinAdaptiveRepetitions on.
+    bool converged = result_.repetitions >= kMinAdaptiveRepetitions;
+    for (const TimedMethod& method : methods_)
+        converged = converged && summarize(result_.of(method.name)).relativeHalfWidth() <= options_.targetCi;
+    if (converged)
+        result_.stop = "converged";
+    else if (result_.repetitions >= options_.maxRepetitions)
+        result_.stop = "max_repetitions";
+    else if (result_.seconds >= options_.budgetSeconds)
+        result_.stop = "time_budget";
+}
+
+RoundsResult timeInRounds(const std::vector<TimedMethod>& methods, const HostLoops& hostLoops, const RoundsOptions& options,
+                          std::chrono::steady_clock::time_point origin) {
+    Rounds rounds(methods, hostLoops, options, origin);
+    while (!rounds.done()) rounds.runRound();
+    return rounds.result();
 }
 
 }  // namespace rtbench

@@ -7,6 +7,7 @@
 #pragma once
 #include <chrono>
 #include <functional>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -55,13 +56,39 @@ struct RoundsResult {
     int rounds = 0;
     int repetitions = 0;  // of each method
     std::string stop;     // repetitions, converged, max_repetitions, time_budget
-    double seconds = 0.0;
+    double seconds = 0.0;  // spent in the rounds (a run's own, in an interleaved sweep too)
     const std::vector<double>& of(const std::string& name) const;  // empty when none
 };
 
-RoundsResult timeInRounds(const std::vector<TimedMethod>& methods,
-                          const std::function<std::vector<std::pair<std::string, double>>()>& hostLoops,
-                          const RoundsOptions& options, std::chrono::steady_clock::time_point origin);
+// The strategy's host-controlled loops, timed once per round (KernelTimer::timeHostLoops).
+using HostLoops = std::function<std::vector<std::pair<std::string, double>>()>;
+
+// One run's rounds, a round at a time: a sweep timed in interleaved order (experiment.order)
+// runs round r of every run before round r + 1 of any.
+class Rounds {
+public:
+    Rounds(std::vector<TimedMethod> methods, HostLoops hostLoops, const RoundsOptions& options,
+           std::chrono::steady_clock::time_point origin);
+    bool done() const { return !result_.stop.empty(); }
+    // The next round: the host loops, then a batch of each method; then whether to stop.
+    void runRound();
+    const RoundsResult& result() const { return result_; }
+
+private:
+    void add(const std::string& name, int round, double ms, double t);
+    std::vector<TimedMethod> methods_;
+    HostLoops hostLoops_;
+    RoundsOptions options_;
+    std::chrono::steady_clock::time_point origin_;
+    int initialRounds_, perRound_;
+    RoundsResult result_;
+    std::map<std::string, std::size_t> index_;  // series name -> position in result_.series
+    std::map<std::string, int> taken_;          // samples per series so far
+};
+
+// All of one run's rounds.
+RoundsResult timeInRounds(const std::vector<TimedMethod>& methods, const HostLoops& hostLoops, const RoundsOptions& options,
+                          std::chrono::steady_clock::time_point origin);
 
 // The columns of samples.csv, in order.
 const std::vector<std::string>& sampleColumns();

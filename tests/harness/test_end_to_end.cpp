@@ -261,6 +261,43 @@ TEST_F(EndToEnd, SamplesHoldEveryRepetitionOfEveryRoundAndTheRowSummarizesThem) 
     EXPECT_EQ(readCsv(result.folder + "/samples.csv").size(), samples.size());
 }
 
+// experiment.order = "interleaved": every run's round r is timed before any run's round r + 1,
+// and the runs' counts are those of a sweep timed run by run.
+TEST_F(EndToEnd, AnInterleavedSweepTimesRoundByRoundAcrossTheRuns) {
+    auto config = [&](const std::string& name, const std::string& order) {
+        return dir_.write(name + ".toml", "[experiment]\nname = \"" + name + "\"\noutput = \"" + dir_.file("out") +
+                                              "\"\nrepetitions = 3\nrounds = 3\nwarmups = 0\norder = \"" + order +
+                                              "\"\n[device]\nname = \"" + testDeviceName() + "\"\n" + std::string(kSweep));
+    };
+    ExperimentPlan interleaved = loadExperiment(config("interleaved", "interleaved"));
+    ExperimentPlan byRun = loadExperiment(config("by_run", "run"));
+    interleaved.runs.resize(3);
+    byRun.runs.resize(3);
+    const ExperimentResult a = runExperiment(interleaved, quietOptions());
+    const ExperimentResult b = runExperiment(byRun, quietOptions());
+    ASSERT_EQ(a.rows.size(), 3u);
+    std::map<int, std::pair<double, double>> span;  // round -> earliest and latest start, over all runs
+    for (const Row& s : readCsv(a.folder + "/samples.csv")) {
+        const int round = std::stoi(s.at("round"));
+        const double t = std::stod(s.at("t_s"));
+        auto [it, fresh] = span.emplace(round, std::make_pair(t, t));
+        it->second.first = std::min(it->second.first, t);
+        it->second.second = std::max(it->second.second, t);
+    }
+    ASSERT_EQ(span.size(), 3u);
+    EXPECT_LT(span[0].second, span[1].first);
+    EXPECT_LT(span[1].second, span[2].first);
+    for (std::size_t r = 0; r < 3; ++r) {
+        ASSERT_EQ(a.rows[r].at("status"), "ok") << a.rows[r].at("error");
+        EXPECT_EQ(a.rows[r].at("timing_rounds"), "3");
+        for (const ColumnSpec& c : runColumnSpecs()) {
+            if (c.kind != ColumnKind::Count || c.name == "warnings") continue;
+            EXPECT_EQ(a.rows[r].count(c.name) ? a.rows[r].at(c.name) : "", b.rows[r].count(c.name) ? b.rows[r].at(c.name) : "")
+                << c.name;
+        }
+    }
+}
+
 // Samples written before an interrupt cut the run's row belong to no row: a resume sets them
 // aside and re-runs the run.
 TEST_F(EndToEnd, SamplesWithoutTheirRowAreSetAsideOnResume) {
