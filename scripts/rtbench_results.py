@@ -41,7 +41,8 @@ def load(folder: Path):
     failed = runs[runs.status != "ok"]
     runs = runs[runs.status == "ok"].copy()
     runs["scene"] = runs.scene_source.map(scene_name)
-    runs["sweep"] = runs.label.map(sweep_of)
+    # The sweep's name: its own column from results schema 5 on, else the label's prefix.
+    runs["sweep"] = runs["sweep"].fillna("").astype(str) if "sweep" in runs else runs.label.map(sweep_of)
     for column in ["strategy_scheduling", "strategy_suppress_finished_reads"]:
         if column not in runs:
             runs[column] = None
