@@ -74,13 +74,6 @@ void checkRowsAgainstPlan(const Json& context, const std::string& contextPath, c
                         " says the sweep completed: rows were lost");
 }
 
-// The value of a numeric cell; NaN for an empty or text cell.
-double number(const std::string& s) {
-    char* end = nullptr;
-    const double v = std::strtod(s.c_str(), &end);
-    return s.empty() || *end != '\0' ? std::nan("") : v;
-}
-
 }  // namespace
 
 CheckResult checkResults(const std::string& folder, const CheckOptions& options,
@@ -161,7 +154,7 @@ CheckResult checkResults(const std::string& folder, const CheckOptions& options,
             continue;
         }
         const Row& fresh = *found->second;
-        const double rays = number(old.at("rays"));
+        const double rays = cellNumber(old.at("rays"));
         for (const auto& [column, value] : old) {
             const std::string again = fresh.count(column) ? fresh.at(column) : "";
             if (again == value) continue;
@@ -178,7 +171,7 @@ CheckResult checkResults(const std::string& folder, const CheckOptions& options,
                     ++result.deterministicDifferences;
                     break;
                 case ColumnKind::Reference: {
-                    const double a = number(value), b = number(again);
+                    const double a = cellNumber(value), b = cellNumber(again);
                     const double tolerance = spec.perRay ? spec.tolerance * rays : spec.tolerance;
                     std::ostringstream kind;
                     kind << "reference (tolerance " << tolerance << ")";
@@ -193,7 +186,7 @@ CheckResult checkResults(const std::string& folder, const CheckOptions& options,
                 }
                 case ColumnKind::Timing: {
                     // Text (timing_stop, timing_warning) differs or not; numbers by the tolerance.
-                    const double a = number(value), b = number(again);
+                    const double a = cellNumber(value), b = cellNumber(again);
                     const bool numeric = !std::isnan(a) && !std::isnan(b);
                     if (numeric && std::abs(b - a) <= options.timingTolerance * std::max(std::abs(a), 1e-9))
                         break;

@@ -245,13 +245,7 @@ std::string columnsCsv() {
         rows.push_back({{"column", c.name}, {"kind", columnKindName(c.kind)}, {"unit", c.unit}, {"since_schema", std::to_string(c.since)},
                         {"written_when", when}, {"meaning", c.help}});
     }
-    const std::vector<std::string> columns = {"column", "kind", "unit", "since_schema", "written_when", "meaning"};
-    std::string out;
-    for (std::size_t i = 0; i < columns.size(); ++i) out += (i ? "," : "") + columns[i];
-    out += "\n";
-    for (const Row& r : rows)
-        for (std::size_t i = 0; i < columns.size(); ++i) out += (i ? "," : "") + csvField(r.at(columns[i])) + (i + 1 == columns.size() ? "\n" : "");
-    return out;
+    return csvText("columns.csv", {"column", "kind", "unit", "since_schema", "written_when", "meaning"}, rows);
 }
 
 int schemaVersion(const Json& context) {

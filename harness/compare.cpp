@@ -39,9 +39,8 @@ Side load(const std::string& folder) {
     const std::string samples = (fs::path(folder) / "samples.csv").string();
     if (fs::exists(fs::symlink_status(samples, ec))) {
         for (const Row& s : readSamplesCsv(samples)) {
-            char* end = nullptr;
-            const double ms = std::strtod(s.at("ms").c_str(), &end);
-            if (s.at("ms").empty() || *end) throw Error(samples + ": run " + s.at("run") + ": ms '" + s.at("ms") + "' is not a number");
+            const double ms = cellNumber(s.at("ms"));
+            if (std::isnan(ms)) throw Error(samples + ": run " + s.at("run") + ": ms '" + s.at("ms") + "' is not a number");
             side.samples[s.at("run") + "|" + s.at("config_hash") + "|" + s.at("method")].push_back(ms);
         }
     }
@@ -51,13 +50,6 @@ Side load(const std::string& folder) {
 std::string get(const Row& row, const std::string& column) {
     const auto it = row.find(column);
     return it == row.end() ? std::string() : it->second;
-}
-
-double numberOf(const Row& row, const std::string& column) {
-    const std::string v = get(row, column);
-    char* end = nullptr;
-    const double x = std::strtod(v.c_str(), &end);
-    return v.empty() || *end ? std::nan("") : x;
 }
 
 // A run's samples of one method; none when the folder (or the run) has none.
@@ -141,11 +133,11 @@ CompareResult compareFolders(const std::string& folderA, const std::string& fold
         const std::vector<double> kernelA = timesOf(a, rowA, "kernel"), kernelB = timesOf(b, rowB, "kernel");
         const std::vector<double> embreeA = timesOf(a, rowA, "embree1"), embreeB = timesOf(b, rowB, "embree1");
         const bool sampled = !kernelA.empty() && !kernelB.empty();
-        run.medianA = sampled ? median(kernelA) : numberOf(rowA, "kernel_ms_median");
-        run.medianB = sampled ? median(kernelB) : numberOf(rowB, "kernel_ms_median");
+        run.medianA = sampled ? median(kernelA) : cellNumber(get(rowA, "kernel_ms_median"));
+        run.medianB = sampled ? median(kernelB) : cellNumber(get(rowB, "kernel_ms_median"));
         run.change = run.medianB / run.medianA - 1.0;
-        const double embreeMedianA = !embreeA.empty() ? median(embreeA) : numberOf(rowA, "embree1_ms_median");
-        const double embreeMedianB = !embreeB.empty() ? median(embreeB) : numberOf(rowB, "embree1_ms_median");
+        const double embreeMedianA = !embreeA.empty() ? median(embreeA) : cellNumber(get(rowA, "embree1_ms_median"));
+        const double embreeMedianB = !embreeB.empty() ? median(embreeB) : cellNumber(get(rowB, "embree1_ms_median"));
         run.embreeChange = embreeMedianB / embreeMedianA - 1.0;
         if (sampled) {
             const Interval ratio = bootstrapRatioOfMedians(kernelB, kernelA);

@@ -373,7 +373,6 @@ struct RunInProgress {
     std::vector<gpu::Ray> rays;
     std::unique_ptr<Structure> structure;
     StrategyRun method;
-    EmbreeReference* embree = nullptr;
     std::vector<gpu::HitRecord> embreeHits, scratch;  // written by the Embree batches
     std::unique_ptr<Rounds> rounds;
 };
@@ -434,9 +433,9 @@ std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunC
     writeArchitectureColumns(p->method.metrics, structure, rays.size(), row);
 
     // Time: the kernel, uninstrumented, and Embree on the same rays, in rounds.
-    p->embree = &embreeFor(run, scene, caches, row);
+    EmbreeReference& embree = embreeFor(run, scene, caches, row);
     KernelTimer& kernel = *p->method.timer;
-    p->rounds = std::make_unique<Rounds>(timedMethods(kernel, *p->embree, p->rays, p->embreeHits, p->scratch),
+    p->rounds = std::make_unique<Rounds>(timedMethods(kernel, embree, p->rays, p->embreeHits, p->scratch),
                                          [&kernel] { return kernel.timeHostLoops(); }, roundsOptions(run), caches.started);
     return p;
 }
@@ -635,7 +634,6 @@ std::vector<Row> sampleRows(const Row& row, const std::vector<TimingSample>& sam
     return rows;
 }
 
-
 }  // namespace
 
 std::string runNumber(const RunConfig& run) {
@@ -716,7 +714,6 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
     checkWritableFile(contextPath);
     checkWritableFile(samplesPath);
     const std::vector<std::string> columns = runColumns();
-
 
     // Rows of an earlier invocation that can stand: ok, and the same run in every input.
     std::vector<Row> earlierRows, earlierSamples;
@@ -1074,20 +1071,22 @@ std::vector<Row> mergeShards(const std::string& folder) {
     }
     std::vector<Row> merged;
     for (const auto& [run, row] : byRun) merged.push_back(row);
-    const std::string csvPath = (fs::path(folder) / "runs.csv").string();
-    checkWritableFile(csvPath);
-    if (fs::exists(fs::symlink_status(csvPath, ec))) {
-        // Merging again is fine; replacing other results is not.
+    // Merging again is fine; replacing other results is not.
+    auto refuseToReplace = [&](const std::string& path, auto read, const std::vector<Row>& merge) {
+        checkWritableFile(path);
+        if (!fs::exists(fs::symlink_status(path, ec))) return;
         std::vector<Row> existing;
         try {
-            existing = readRunsCsv(csvPath);
+            existing = read(path);
         } catch (const Error& e) {
-            throw Error(csvPath + ": exists and is not the merge of these shards (" + e.what() + "); move it away first");
+            throw Error(path + ": exists and is not the merge of these shards (" + e.what() + "); move it away first");
         }
-        if (existing != merged)
-            throw Error(csvPath + ": exists and differs from the merge of these shards (" + std::to_string(existing.size()) +
-                        " rows against " + std::to_string(merged.size()) + "); move it away first");
-    }
+        if (existing != merge)
+            throw Error(path + ": exists and differs from the merge of these shards (" + std::to_string(existing.size()) +
+                        " rows against " + std::to_string(merge.size()) + "); move it away first");
+    };
+    const std::string csvPath = (fs::path(folder) / "runs.csv").string();
+    refuseToReplace(csvPath, [](const std::string& path) { return readRunsCsv(path); }, merged);
     // The shards' timing samples, of the merged rows only, in run order.
     std::vector<Row> samples;
     std::size_t withSamples = 0;
@@ -1095,7 +1094,7 @@ std::vector<Row> mergeShards(const std::string& folder) {
         const fs::path path = fs::path(folder) / ("samples." + shard + ".csv");
         if (!fs::exists(fs::symlink_status(path, ec))) continue;
         ++withSamples;
-        for (Row& sample : parseSamplesCsv(readInputFile(path.string(), kMaxResultsFileBytes, "CSV file"), path.string())) {
+        for (Row& sample : readSamplesCsv(path.string())) {
             const auto row = byRun.find(sample.at("run"));
             if (row == byRun.end() || row->second.at("config_hash") != sample.at("config_hash"))
                 throw Error(path.string() + ": a sample of run " + sample.at("run") + " (config_hash " + sample.at("config_hash") +
@@ -1122,17 +1121,10 @@ std::vector<Row> mergeShards(const std::string& folder) {
     }
     std::stable_sort(samples.begin(), samples.end(), [](const Row& a, const Row& b) { return a.at("run") < b.at("run"); });
     const std::string samplesPath = (fs::path(folder) / "samples.csv").string();
-    checkWritableFile(samplesPath);
-    if (withSamples && fs::exists(fs::symlink_status(samplesPath, ec))) {
-        std::vector<Row> existing;
-        try {
-            existing = parseSamplesCsv(readInputFile(samplesPath, kMaxResultsFileBytes, "CSV file"), samplesPath);
-        } catch (const Error& e) {
-            throw Error(samplesPath + ": exists and is not the merge of these shards (" + e.what() + "); move it away first");
-        }
-        if (existing != samples)
-            throw Error(samplesPath + ": exists and differs from the merge of these shards' samples; move it away first");
-    }
+    if (withSamples)
+        refuseToReplace(samplesPath, readSamplesCsv, samples);
+    else
+        checkWritableFile(samplesPath);
     writeCsv(csvPath, runColumns(), merged);
     if (withSamples) writeCsv(samplesPath, sampleColumns(), samples);
     Json context = reference.json;

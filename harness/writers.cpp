@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -18,6 +19,8 @@
 
 namespace rtbench {
 
+namespace {
+// A field as RFC 4180 writes it: quoted when it holds a comma, a quote or a line break.
 std::string csvField(const std::string& raw) {
     const std::string s = validUtf8(raw);
     if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
@@ -25,6 +28,7 @@ std::string csvField(const std::string& raw) {
     for (char c : s) out += c == '"' ? std::string("\"\"") : std::string(1, c);
     return out + "\"";
 }
+}  // namespace
 
 namespace {
 
@@ -116,13 +120,23 @@ std::string csvLine(const std::string& path, const std::vector<std::string>& col
 
 }  // namespace
 
-void writeCsv(const std::string& path, const std::vector<std::string>& columns, const std::vector<Row>& rows) {
+double cellNumber(const std::string& cell) {
+    char* end = nullptr;
+    const double v = std::strtod(cell.c_str(), &end);
+    return cell.empty() || *end != '\0' ? std::nan("") : v;
+}
+
+std::string csvText(const std::string& name, const std::vector<std::string>& columns, const std::vector<Row>& rows) {
     const std::set<std::string> declared(columns.begin(), columns.end());
     std::string out;
     for (std::size_t c = 0; c < columns.size(); ++c) out += (c ? "," : "") + csvField(columns[c]);
     out += "\n";
-    for (std::size_t r = 0; r < rows.size(); ++r) out += csvLine(path, columns, declared, rows[r], r + 1);
-    writeFileAtomically(path, out);
+    for (std::size_t r = 0; r < rows.size(); ++r) out += csvLine(name, columns, declared, rows[r], r + 1);
+    return out;
+}
+
+void writeCsv(const std::string& path, const std::vector<std::string>& columns, const std::vector<Row>& rows) {
+    writeFileAtomically(path, csvText(path, columns, rows));
 }
 
 void appendCsvRow(const std::string& path, const std::vector<std::string>& columns, const Row& row) {

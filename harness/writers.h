@@ -11,13 +11,14 @@
 
 namespace rtbench {
 
-// A field as RFC 4180 writes it: quoted when it holds a comma, a quote or a line break (text that
-// is not UTF-8 written as \xNN).
-std::string csvField(const std::string& raw);
+// The value of a numeric cell as rtbench writes it; NaN for an empty or text cell.
+double cellNumber(const std::string& cell);
 
 // Writes `rows` under `columns` (missing cells empty) to path atomically (writeFileAtomically); a
 // row that sets a column not in `columns` is an error (a typo never silently drops a value).
 void writeCsv(const std::string& path, const std::vector<std::string>& columns, const std::vector<Row>& rows);
+// The text writeCsv writes (`name` names the file in errors).
+std::string csvText(const std::string& name, const std::vector<std::string>& columns, const std::vector<Row>& rows);
 
 // Appends one row to an existing CSV written by writeCsv with the same columns: one write of the
 // whole line (O_APPEND, never through a symlink), synced; a failed write (a full disk) cuts the
