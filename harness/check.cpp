@@ -109,7 +109,7 @@ CheckResult checkResults(const std::string& folder, const CheckOptions& options,
     const std::vector<Row> recorded = readRunsCsv(csvPath, &schema);
     std::set<std::string> newerKeys;  // keys the folder's schema did not have
     for (const KeySpec& k : configSchema())
-        if (columnSpec(paramColumn(k.name)).since > schema) newerKeys.insert(k.name);
+        if (columnSpec(keyColumns(k).front()).since > schema) newerKeys.insert(k.name);
     checkRowsAgainstPlan(context, contextPath, plan, recorded, csvPath, newerKeys);
     if (!options.embreeConfigOverride.empty()) overrideEmbreeConfig(plan, options.embreeConfigOverride);
 

@@ -1,6 +1,7 @@
 #include "columns.h"
 
 #include <algorithm>
+#include <cstdlib>
 #include <map>
 #include <set>
 #include <sstream>
@@ -42,10 +43,13 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
     static const std::vector<ColumnSpec> specs = [] {
         using K = ColumnKind;
         std::vector<ColumnSpec> s;
-        for (const KeySpec& key : configSchema())
-            s.push_back({paramColumn(key.name),
-                         key.name == "experiment.output" ? K::Context : K::Parameter, "",
-                         key.help, 0.0, false, key.appliesWhen, key.since});
+        for (const KeySpec& key : configSchema()) {
+            const std::vector<std::string> columns = keyColumns(key);
+            for (std::size_t a = 0; a < columns.size(); ++a)
+                s.push_back({columns[a], key.name == "experiment.output" ? K::Context : K::Parameter, "",
+                             columns.size() == 1 ? key.help : key.help + " (" + "xyz"[a] + ")", 0.0, false,
+                             key.appliesWhen, std::max(key.since, addedInSchema(paramColumn(key.name)))});
+        }
         auto add = [&](std::string name, K kind, std::string unit, std::string help,
                        double tolerance = 0.0, bool perRay = false) {
             s.push_back(
@@ -237,15 +241,46 @@ std::string columnsMarkdown() {
     return out;
 }
 
+const char* columnValueType(const ColumnSpec& column) {
+    static const std::map<std::string, const char*> keyTypes = [] {
+        std::map<std::string, const char*> m;
+        for (const KeySpec& key : configSchema()) {
+            const char* type = "text";
+            switch (key.type) {
+                case ValueType::Int:
+                case ValueType::Int3: type = "integer"; break;
+                case ValueType::Float:
+                case ValueType::Float3: type = "number"; break;
+                case ValueType::Bool: type = "boolean"; break;
+                case ValueType::String: type = "text"; break;
+            }
+            for (const std::string& c : keyColumns(key)) m[c] = type;
+        }
+        return m;
+    }();
+    if (const auto it = keyTypes.find(column.name); it != keyTypes.end()) return it->second;
+    static const std::set<std::string> text = {"run", "label", "sweep", "status", "error", "warnings", "config_hash",
+                                               "inputs_hash", "input_files", "git_commit", "device", "driver", "cpu",
+                                               "embree_isa", "timing_stop", "timing_warning", "auto_choice", "auto_predictions"};
+    if (text.count(column.name)) return "text";
+    if (column.name == "cpu_counts_match") return "integer";  // 1 or 0
+    static const std::set<std::string> countedUnits = {"rays", "triangles", "bytes", "passes", "cells", "references", "nodes",
+                                                       "leaves", "levels", "voxels", "tests", "steps", "pixels", "threads",
+                                                       "repetitions", "rounds"};
+    const std::string& n = column.name;
+    const bool averaged = n.find("_mean") != std::string::npos || (n.find("_per_") != std::string::npos && !n.ends_with("_max"));
+    return countedUnits.count(column.unit) && !averaged ? "integer" : "number";
+}
+
 std::string columnsCsv() {
     std::vector<Row> rows;
     for (const ColumnSpec& c : runColumnSpecs()) {
         std::string when;
         for (const std::string& w : c.appliesWhen) when += (when.empty() ? "" : " and ") + w;
-        rows.push_back({{"column", c.name}, {"kind", columnKindName(c.kind)}, {"unit", c.unit}, {"since_schema", std::to_string(c.since)},
-                        {"written_when", when}, {"meaning", c.help}});
+        rows.push_back({{"column", c.name}, {"kind", columnKindName(c.kind)}, {"type", columnValueType(c)}, {"unit", c.unit},
+                        {"since_schema", std::to_string(c.since)}, {"written_when", when}, {"meaning", c.help}});
     }
-    return csvText("columns.csv", {"column", "kind", "unit", "since_schema", "written_when", "meaning"}, rows);
+    return csvText("columns.csv", {"column", "kind", "type", "unit", "since_schema", "written_when", "meaning"}, rows);
 }
 
 int schemaVersion(const Json& context) {
@@ -257,8 +292,47 @@ std::vector<Row> readRunsCsv(const std::string& path, int* schema) {
     return parseRunsCsv(readInputFile(path, kMaxResultsFileBytes, "CSV file"), path, schema);
 }
 
+namespace {
+
+// Before results schema 6 a 3-vector key was one "[x y z]" cell (formatValue); its three numbers
+// are split into the key's three columns here, so every reader sees today's columns. Returns
+// whether the file had such a cell's column.
+bool splitVectorCells(std::set<std::string>& header, std::vector<Row>& rows, const std::string& path) {
+    bool found = false;
+    for (const KeySpec& key : configSchema()) {
+        const std::vector<std::string> columns = keyColumns(key);
+        const std::string old = paramColumn(key.name);
+        if (columns.size() != 3 || !header.count(old)) continue;
+        found = true;
+        header.erase(old);
+        header.insert(columns.begin(), columns.end());
+        for (std::size_t r = 0; r < rows.size(); ++r) {
+            const std::string cell = rows[r][old];
+            rows[r].erase(old);
+            std::string parts[3];
+            if (!cell.empty()) {
+                std::istringstream in(cell.front() == '[' && cell.back() == ']' ? cell.substr(1, cell.size() - 2) : "");
+                std::string extra;
+                auto number = [](const std::string& t) {
+                    char* end = nullptr;
+                    std::strtod(t.c_str(), &end);
+                    return !t.empty() && *end == '\0';
+                };
+                if (!(in >> parts[0] >> parts[1] >> parts[2]) || (in >> extra) || !number(parts[0]) || !number(parts[1]) ||
+                    !number(parts[2]))
+                    throw Error(path + ": row " + std::to_string(r + 1) + ", column " + old + ": '" + cell +
+                                "' is not a 3-vector \"[x y z]\"");
+            }
+            for (int a = 0; a < 3; ++a) rows[r][columns[a]] = parts[a];
+        }
+    }
+    return found;
+}
+
+}  // namespace
+
 std::vector<Row> parseRunsCsv(const std::string& text, const std::string& path, int* schemaOut) {
-    const std::vector<Row> rows = parseCsv(text, path);
+    std::vector<Row> rows = parseCsv(text, path);
     if (schemaOut) *schemaOut = kSchemaVersion;
     const std::vector<std::string> declared = runColumns();
     const std::set<std::string> declaredSet(declared.begin(), declared.end());
@@ -272,6 +346,7 @@ std::vector<Row> parseRunsCsv(const std::string& text, const std::string& path, 
         std::istringstream names(line);
         while (std::getline(names, name, ',')) header.insert(name);
     }
+    const bool vectorsInOneCell = splitVectorCells(header, rows, path);
     if (!header.empty()) {
         // A column a run of this file would have written must be there; a method's own column may
         // be absent when no row ran that method (with no rows: only the columns every run writes).
@@ -293,6 +368,8 @@ std::vector<Row> parseRunsCsv(const std::string& text, const std::string& path, 
                     schema = v - 1;
                     break;
                 }
+        // Schema 6 added no column: it split the 3-vector cells.
+        if (vectorsInOneCell) schema = std::min(schema, 5);
         std::string missing, unknown;
         bool laterPresent = false;
         for (const ColumnSpec& c : runColumnSpecs()) {

@@ -30,9 +30,16 @@ const ColumnSpec& columnSpec(const std::string& name);
 std::vector<Row> readRunsCsv(const std::string& path, int* schema = nullptr);
 std::vector<Row> parseRunsCsv(const std::string& text, const std::string& path, int* schema = nullptr);
 
+// What a column's cells hold, for readers that type them (pandas: Int64, float64, boolean,
+// string): integer, number (inf and nan included), boolean ("true"/"false") or text. A config
+// key's column has its key's type; a metric is an integer when its unit counts things and it is
+// not a mean, ratio or fraction; text when it names or explains (run "000", hashes, labels).
+// Empty cells (a column a run does not write) are missing values of any type.
+const char* columnValueType(const ColumnSpec& column);
+
 // The column dictionary written beside runs.csv as columns.csv (and by `rtbench columns --csv`):
-// every column, config keys included, with its kind, unit, the schema that added it, when a run
-// writes it, and its meaning.
+// every column, config keys included, with its kind, value type, unit, the schema that added it,
+// when a run writes it, and its meaning.
 std::string columnsCsv();
 
 // A results folder's schema (plan/columns.h kSchemaVersion) as its context.json records it; 1

@@ -68,8 +68,8 @@ std::string percent(double fraction) {
 
 // The columns that identify a run's work: its config keys, but not where the results went or how
 // they were timed (experiment.*) nor the device (compare one config across devices).
-bool isMatchKey(const std::string& column, const std::set<std::string>& keyColumns) {
-    return keyColumns.count(column) && column.rfind("experiment_", 0) != 0 && column.rfind("device_", 0) != 0;
+bool isMatchKey(const std::string& column, const std::set<std::string>& parameterColumns) {
+    return parameterColumns.count(column) && column.rfind("experiment_", 0) != 0 && column.rfind("device_", 0) != 0;
 }
 
 }  // namespace
@@ -84,12 +84,13 @@ CompareResult compareFolders(const std::string& folderA, const std::string& fold
     for (const std::string& c : b.columns)
         if (!a.columns.count(c)) result.columnsOnlyB.push_back(c);
 
-    std::set<std::string> keyColumns;
-    for (const KeySpec& k : configSchema()) keyColumns.insert(paramColumn(k.name));
+    std::set<std::string> parameterColumns;
+    for (const KeySpec& k : configSchema())
+        for (const std::string& c : keyColumns(k)) parameterColumns.insert(c);
     // Matched on the key columns both files have, in declared order.
     std::vector<std::string> matchOn;
     for (const std::string& c : runColumns())
-        if (isMatchKey(c, keyColumns) && a.columns.count(c) && b.columns.count(c)) matchOn.push_back(c);
+        if (isMatchKey(c, parameterColumns) && a.columns.count(c) && b.columns.count(c)) matchOn.push_back(c);
     auto keyOf = [&](const Row& row) {
         std::string key;
         for (const std::string& c : matchOn) key += c + "=" + get(row, c) + ";";

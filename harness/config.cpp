@@ -146,6 +146,17 @@ const std::vector<KeySpec>& configSchema() {
     return schema;
 }
 
+const KeySpec& keySpec(const std::string& name) {
+    static const std::map<std::string, const KeySpec*> byName = [] {
+        std::map<std::string, const KeySpec*> m;
+        for (const KeySpec& k : configSchema()) m[k.name] = &k;
+        return m;
+    }();
+    const auto it = byName.find(name);
+    if (it == byName.end()) throw Error("config key '" + name + "' is not declared (harness/config.cpp or a method's own keys)");
+    return *it->second;
+}
+
 
 namespace {
 
@@ -504,7 +515,7 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
     }
     if (!unread.empty()) {
         const auto& [key, node] = *unread.begin();
-        const KeySpec& spec = *std::find_if(schema.begin(), schema.end(), [&](const KeySpec& k) { return k.name == key; });
+        const KeySpec& spec = keySpec(key);
         throw Error(where(path, node->source()) + ": key '" + key + "' is never read: it applies only when " +
                     join(spec.appliesWhen, " and "));
     }

@@ -13,6 +13,8 @@ namespace rtbench {
 // Every key rtbench reads: the common keys, then each structure's and strategy's (with
 // appliesWhen naming its structure.type or strategy.type). Unknown keys are errors.
 const std::vector<KeySpec>& configSchema();
+// The spec of one key of configSchema(); throws naming the key when there is none.
+const KeySpec& keySpec(const std::string& name);
 
 struct ExperimentPlan {
     std::string configPath;

@@ -756,7 +756,8 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
     for (std::size_t k = 0; k < mine.size(); ++k) {
         const RunConfig& run = *mine[k];
         Row& row = rows[k];
-        for (const auto& [key, value] : run.values) row[paramColumn(key)] = formatValue(value);
+        for (const auto& [key, value] : run.values)
+            for (const auto& [column, cell] : keyCells(keySpec(key), value)) row[column] = cell;
         row["run"] = runNumber(run);
         row["label"] = run.label();
         row["sweep"] = run.sweep;

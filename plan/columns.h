@@ -43,8 +43,11 @@ struct ColumnSpec {
 //        conservative grids;
 //   3  + simplified and packed scenes (scene.simplify_*, intersection.vertex_bits), image_*;
 //   4  + a run's identity: inputs_hash, input_files, cpu;
-//   5  timing in rounds: samples.csv, spread and intervals, adaptive repetitions, the noise guard.
-constexpr int kSchemaVersion = 5;
+//   5  timing in rounds: samples.csv, spread and intervals, adaptive repetitions, the noise guard;
+//   6  a 3-vector key (camera.position, scene.translate, ...) as three numeric columns <key>_x,
+//      _y, _z instead of one "[x y z]" cell (readers split an older file's cells); columns.csv
+//      gives each column's value type.
+constexpr int kSchemaVersion = 6;
 
 // The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".
 std::string paramColumn(const std::string& key);

@@ -1,5 +1,7 @@
 #include "keys.h"
 
+#include "columns.h"
+
 #include <cstdio>
 #include <sstream>
 
@@ -21,6 +23,25 @@ std::string formatValue(const ConfigValue& value) {
         }
     };
     return std::visit(Visitor{}, value);
+}
+
+namespace {
+bool isVector(const KeySpec& key) { return key.type == ValueType::Int3 || key.type == ValueType::Float3; }
+}  // namespace
+
+std::vector<std::string> keyColumns(const KeySpec& key) {
+    const std::string column = paramColumn(key.name);
+    if (!isVector(key)) return {column};
+    return {column + "_x", column + "_y", column + "_z"};
+}
+
+std::vector<std::pair<std::string, std::string>> keyCells(const KeySpec& key, const ConfigValue& value) {
+    const std::vector<std::string> columns = keyColumns(key);
+    if (!isVector(key)) return {{columns[0], formatValue(value)}};
+    const auto& v = std::get<std::array<double, 3>>(value);
+    std::vector<std::pair<std::string, std::string>> cells;
+    for (int a = 0; a < 3; ++a) cells.emplace_back(columns[a], formatValue(v[a]));
+    return cells;
 }
 
 bool conditionsHold(const std::vector<std::string>& conditions,

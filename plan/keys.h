@@ -75,6 +75,12 @@ struct RunConfig {
 
 std::string formatValue(const ConfigValue& value);
 
+// A key's runs.csv columns, each with its cell of `value`: "section_key", or for a 3-vector key
+// (Int3, Float3) "section_key_x", "_y" and "_z", each a plain number (results schema 6; before it,
+// one "[x y z]" cell that readers split, harness/columns.cpp).
+std::vector<std::string> keyColumns(const KeySpec& key);
+std::vector<std::pair<std::string, std::string>> keyCells(const KeySpec& key, const ConfigValue& value);
+
 // Whether every "section.key=value" condition (KeySpec::appliesWhen, ColumnSpec::appliesWhen)
 // holds, `valueOf(key)` giving the key's value as formatValue writes it, or nothing when unset.
 bool conditionsHold(const std::vector<std::string>& conditions,

@@ -249,7 +249,8 @@ KIND_COLORS = {"grid": "tab:blue", "grid conservative": "tab:cyan", "bvh": "tab:
 SECTIONS = ("experiment", "scene", "camera", "structure", "strategy", "intersection", "baseline", "accuracy",
             "device", "output")
 NOT_SWEPT = {"experiment_name", "experiment_output"}  # the same for every run of a config
-METHOD_KEYS = ("structure_type", "strategy_type")  # the colour of the by_<key> charts
+METHOD_KEYS = ("structure_type", "strategy_type")
+LOOK_AT = ("camera_look_at_x", "camera_look_at_y", "camera_look_at_z")  # camera.look_at, three columns  # the colour of the by_<key> charts
 STRUCTURE_NAMES = {"uniform_grid": "grid", "brute_force": "brute force"}
 
 
@@ -350,7 +351,7 @@ def speed_vs_accuracy(runs, device, folder, written):
                 for x, y, tag in zip(group.kernel_mrays_s, ppm, tags):
                     left.annotate(tag, (x, y), fontsize=6, xytext=(3, 2), textcoords="offset points", color=color)
             points[how == "simplified"] += list(zip(group.kernel_mrays_s, ppm))
-        embree = of_scene[of_scene.variant == ""].drop_duplicates(["camera_width", "camera_height", "camera_look_at"])
+        embree = of_scene[of_scene.variant == ""].drop_duplicates(["camera_width", "camera_height", *LOOK_AT])
         embree_ppm = wrong_ppm(embree, "embree_exact_")
         left.scatter(embree.embree1_mrays_s, embree_ppm, marker="s",
                      color=COLORS["Embree rtcIntersect1"], label="Embree rtcIntersect1 (CPU, same rays)")
@@ -458,11 +459,6 @@ def simplification(runs, device, folder, written):
     save(fig, folder, "simplification", written)
 
 
-def first_number(text) -> float:
-    """The first number of a 3-vector as the CSV writes it: "[100 100 100]" -> 100."""
-    return float(str(text).strip("[]").split()[0])
-
-
 def dodge(ax, i: int, n: int, step: float = 5.0):
     """ax.transData moved sideways by a few points for the i-th of n series at the same x: coincident
     points stay visible and no value changes."""
@@ -495,11 +491,11 @@ def failure_map(runs, failed, device, folder, written):
     wrong at one offset is not a trend between offsets), Embree black, refused runs marked."""
     if "exact_rays" not in runs:
         return skip(folder, "failure_map", "no exact_rays column (a folder from before the exact reference)")
-    if "scene_translate" not in runs:
-        return skip(folder, "failure_map", "no scene_translate column")
+    if "scene_translate_x" not in runs:
+        return skip(folder, "failure_map", "no scene_translate columns")
     everything = concat([runs, failed.assign(scene=failed.scene_source.map(scene_name))])
     everything["ok"] = everything.status == "ok"
-    everything["offset"] = everything.scene_translate.map(first_number)
+    everything["offset"] = everything.scene_translate_x.astype(float)
     panels = []
     for scene, group in everything.groupby("scene"):
         if group.offset.nunique() > 1:
@@ -528,7 +524,7 @@ def failure_map(runs, failed, device, folder, written):
                     transform=dodge(ax, i, len(present) + 1, 3.0))
             values += list(ppm)
             anchor(ax, ppm.index, ppm)
-        embree = ok.drop_duplicates([x, "camera_look_at", "scene_source"] if "camera_look_at" in ok else [x, "scene_source"])
+        embree = ok.drop_duplicates([x, *LOOK_AT, "scene_source"] if "camera_look_at_x" in ok else [x, "scene_source"])
         ppm = wrong_ppm_summed(embree, x, "embree_exact_")
         ax.plot(ppm.index, ppm, ls="none", marker="s", color="k", ms=5, label="Embree rtcIntersect1 (CPU)",
                 transform=dodge(ax, len(present), len(present) + 1, 3.0))
@@ -1011,7 +1007,7 @@ def by_key(runs, classes, key, followers, device, folder, written, failed=None):
             anchor(right, g._x, g._ppm)
         for j, ec in enumerate(ecombos):
             g = group[group._combo.map(lambda c: tuple(c[i] for i in embree_keys)) == ec]
-            g = g.drop_duplicates(["_x", "_combo", "camera_look_at"] if "camera_look_at" in g else ["_x", "_combo"])
+            g = g.drop_duplicates(["_x", "_combo", *LOOK_AT] if "camera_look_at_x" in g else ["_x", "_combo"])
             if g._x.nunique() < 2 or "embree1_ms_median" not in g:
                 continue
             low, high, what = interval(g, "embree1")

@@ -34,9 +34,44 @@ def sweep_of(label: str) -> str:
     return "" if "=" in label or label == "single run" else label
 
 
+# pandas dtypes of columns.csv's value types (harness/columns.h columnValueType).
+DTYPES = {"integer": "Int64", "number": "float64", "boolean": "boolean", "text": "string"}
+AXES = ("_x", "_y", "_z")
+# The 3-vector config keys (plan/keys.h keyColumns), by their one column before results schema 6.
+VECTOR_KEYS = ("scene_translate", "camera_position", "camera_look_at", "camera_up", "structure_resolution")
+
+
+def split_vector_cells(runs: pd.DataFrame) -> pd.DataFrame:
+    """A folder before results schema 6 wrote a 3-vector key as one "[x y z]" cell: three numeric
+    columns <key>_x, _y, _z instead, as rtbench's own readers do (harness/columns.cpp)."""
+    for column in [c for c in VECTOR_KEYS if c in runs.columns]:
+        cells = runs[column].astype("string").str.strip("[]").str.split(" ", expand=True)
+        for a, axis in enumerate(AXES):
+            values = pd.to_numeric(cells[a]) if a in cells else pd.Series(float("nan"), index=runs.index)
+            runs.insert(runs.columns.get_loc(column), column + axis, values.astype(float))
+        runs = runs.drop(columns=column)
+    return runs
+
+
+def read_runs(folder: Path) -> pd.DataFrame:
+    """A folder's runs.csv with clean types: each column's pandas dtype from the folder's columns.csv
+    (integers Int64, booleans boolean, text string, missing cells <NA>); a folder without one (before
+    results schema 5) gets pandas' own guesses. 3-vectors are three numeric columns either way."""
+    folder = Path(folder)
+    dictionary = folder / "columns.csv"
+    dtypes = None
+    if dictionary.exists():
+        columns = pd.read_csv(dictionary, dtype="string", keep_default_na=False)
+        dtypes = {c: DTYPES[t] for c, t in zip(columns.column, columns.type)} if "type" in columns else None
+    if dtypes is None:
+        return split_vector_cells(pd.read_csv(folder / "runs.csv", dtype={"run": "string", "config_hash": "string"}))
+    header = pd.read_csv(folder / "runs.csv", nrows=0).columns
+    return split_vector_cells(pd.read_csv(folder / "runs.csv", dtype={c: dtypes.get(c, "string") for c in header}))
+
+
 def load(folder: Path):
     """(ok runs with `scene` and `sweep` columns added, failed runs, context dict, device name)."""
-    runs = pd.read_csv(folder / "runs.csv")
+    runs = read_runs(folder)
     context = json.loads((folder / "context.json").read_text())
     failed = runs[runs.status != "ok"]
     runs = runs[runs.status == "ok"].copy()

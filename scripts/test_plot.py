@@ -35,6 +35,7 @@ import pandas as pd  # noqa: E402
 from matplotlib.collections import LineCollection, PathCollection  # noqa: E402
 
 import plot  # noqa: E402
+import rtbench_results  # noqa: E402
 
 # Config key columns as rtbench writes them (before `run`), a subset of `rtbench keys`.
 PARAMETERS = ["experiment_name", "experiment_output", "experiment_repetitions", "scene_source", "scene_scale",
@@ -338,6 +339,47 @@ class NamedCharts(unittest.TestCase):
             for ax in data_axes(fig):
                 self.assertLessEqual(ax.title.get_window_extent(renderer).width,
                                      ax.get_window_extent(renderer).width + 1, f"{name}: {ax.get_title()}")
+
+
+class ReadRuns(unittest.TestCase):
+    """rtbench_results.read_runs: the dtypes columns.csv gives, and an older folder's vector cells."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory()
+        self.folder = Path(self.tmp.name)
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def test_types_come_from_the_column_dictionary(self):
+        (self.folder / "runs.csv").write_text(
+            "camera_up_x,camera_up_y,camera_up_z,structure_conservative,run,config_hash,grid_res_x,exact_wrong_ppm\n"
+            "0,1,0,true,007,0012345678901234,64,inf\n"
+            "0,1,0,,008,00ab,,2.5\n")
+        (self.folder / "columns.csv").write_text(
+            "column,kind,type,unit,since_schema,written_when,meaning\n"
+            "camera_up_x,parameter,number,,1,,\ncamera_up_y,parameter,number,,1,,\ncamera_up_z,parameter,number,,1,,\n"
+            "structure_conservative,parameter,boolean,,2,,\nrun,parameter,text,,1,,\nconfig_hash,parameter,text,,1,,\n"
+            "grid_res_x,count,integer,cells,1,,\nexact_wrong_ppm,count,number,ppm,2,,\n")
+        runs = rtbench_results.read_runs(self.folder)
+        self.assertEqual(list(runs.run), ["007", "008"], "run numbers keep their zeros")
+        self.assertEqual(runs.config_hash[0], "0012345678901234", "a hash of digits stays text")
+        self.assertEqual(str(runs.grid_res_x.dtype), "Int64")
+        self.assertEqual(runs.grid_res_x[0], 64)
+        self.assertTrue(pd.isna(runs.grid_res_x[1]))
+        self.assertEqual(str(runs.structure_conservative.dtype), "boolean")
+        self.assertTrue(runs.structure_conservative[0])
+        self.assertEqual(runs.exact_wrong_ppm[0], float("inf"))
+        self.assertEqual(runs.camera_up_y.dtype, np.float64)
+
+    def test_an_older_folders_vector_cells_become_three_numeric_columns(self):
+        (self.folder / "runs.csv").write_text("scene_translate,camera_look_at,run\n[1e6 -2 0.5],,000\n[0 0 0],,001\n")
+        runs = rtbench_results.read_runs(self.folder)
+        self.assertEqual(list(runs.columns), ["scene_translate_x", "scene_translate_y", "scene_translate_z",
+                                              "camera_look_at_x", "camera_look_at_y", "camera_look_at_z", "run"])
+        self.assertEqual(list(runs.iloc[0][:3]), [1e6, -2.0, 0.5])
+        self.assertTrue(runs.camera_look_at_z.isna().all())
+        self.assertEqual(list(runs.run), ["000", "001"])
 
 
 if __name__ == "__main__":

@@ -200,6 +200,46 @@ TEST(Columns, AFileMissingSomeOfASchemasColumnsIsAnError) {
     EXPECT_EQ(readRunsCsv(path).size(), 1u);
 }
 
+// Before schema 6 a 3-vector key was one "[x y z]" cell: a reader sees its three columns.
+TEST(Columns, AnOlderFilesVectorCellsAreSplitIntoThreeColumns) {
+    std::vector<std::string> columns;
+    Row row;
+    for (const std::string& c : runColumns()) {
+        const bool component = c.size() > 2 && (c.ends_with("_x") || c.ends_with("_y") || c.ends_with("_z")) &&
+                               columnSpec(c).kind == ColumnKind::Parameter;
+        const std::string name = component ? c.substr(0, c.size() - 2) : c;
+        if (std::find(columns.begin(), columns.end(), name) == columns.end()) columns.push_back(name);
+        row[name] = component ? "[0.5 -2 1e-3]" : "";
+    }
+    ASSERT_TRUE(row.count("camera_up") && row.count("scene_translate") && row.count("camera_position"));
+    row["run"] = "000";
+    row["camera_position"] = "";  // unset: three empty cells
+    TempDir dir;
+    const std::string path = dir.file("runs.csv");
+    writeCsv(path, columns, {row});
+    int schema = 0;
+    const std::vector<Row> rows = readRunsCsv(path, &schema);
+    EXPECT_EQ(schema, 5);
+    EXPECT_EQ(rows.at(0).at("camera_up_x"), "0.5");
+    EXPECT_EQ(rows.at(0).at("camera_up_y"), "-2");
+    EXPECT_EQ(rows.at(0).at("scene_translate_z"), "1e-3");
+    EXPECT_EQ(rows.at(0).at("camera_position_y"), "");
+    EXPECT_FALSE(rows.at(0).count("camera_up"));
+    // Today's file reads as schema 6.
+    Row now;
+    for (const std::string& c : runColumns()) now[c] = "";
+    now["run"] = "000";
+    writeCsv(path, runColumns(), {now});
+    readRunsCsv(path, &schema);
+    EXPECT_EQ(schema, kSchemaVersion);
+    // A cell that is not three numbers in brackets is an error naming the row and column.
+    for (const char* bad : {"[1 2]", "1 2 3", "[1 2 3 4]", "[1 x 3]"}) {
+        row["camera_up"] = bad;
+        writeCsv(path, columns, {row});
+        EXPECT_THAT(errorOf([&] { readRunsCsv(path); }), HasSubstr("row 1, column camera_up: '" + std::string(bad) + "' is not a 3-vector"));
+    }
+}
+
 TEST_F(Golden, ACutRowIsAnErrorNamingItsLine) {
     const std::string t = text();
     std::size_t third = t.find('\n', t.find('\n', t.find('\n') + 1) + 1);  // end of line 3

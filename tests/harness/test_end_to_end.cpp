@@ -1,6 +1,7 @@
 // A whole experiment through the runner: config -> scene -> grid -> kernel -> Embree -> CSV.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <regex>
 
 #include <filesystem>
 #include <fstream>
@@ -95,6 +96,38 @@ TEST_F(EndToEnd, MultipassRowsCarryPassesBandwidthAndTheirChecks) {
     EXPECT_EQ(branching.at("bytes_stencil"), "0");
     EXPECT_EQ(multipass.at("bytes_output"), branching.at("bytes_output"));
     EXPECT_LT(std::stod(multipass.at("simd_efficiency")), 1.0);
+}
+
+// columns.csv's value types hold for what the runs write: every cell of an integer column is an
+// integer, of a number column a number, of a boolean column true or false (what pandas reads them
+// as, scripts/rtbench_results.py), over every structure and strategy.
+TEST_F(EndToEnd, EveryCellHasItsColumnsDeclaredValueType) {
+    const ExperimentResult result = run(
+        "[scene]\nsource = \"procedural:christen_a\"\ntranslate = [0.25, -1, 0]\n[camera]\nwidth = 24\nheight = 16\n"
+        "[structure]\ntype = [\"uniform_grid\", \"bvh\", \"auto\", \"brute_force\"]\n"
+        "[strategy]\ntype = [\"branching\", \"multipass\"]\n[output]\nimages = false\n");
+    ASSERT_EQ(result.rows.size(), 8u);
+    const std::regex integer("-?[0-9]+"), number("-?([0-9]+\\.?[0-9]*|\\.[0-9]+)([eE][-+]?[0-9]+)?|-?inf|nan");
+    std::map<std::string, int> checked;
+    for (const Row& row : result.rows) {
+        ASSERT_EQ(row.at("status"), "ok") << row.at("label") << ": " << row.at("error");
+        for (const auto& [column, cell] : row) {
+            if (cell.empty()) continue;
+            const std::string type = columnValueType(columnSpec(column));
+            if (type == "integer") EXPECT_TRUE(std::regex_match(cell, integer)) << column << " = " << cell;
+            if (type == "number") EXPECT_TRUE(std::regex_match(cell, number)) << column << " = " << cell;
+            if (type == "boolean") EXPECT_TRUE(cell == "true" || cell == "false") << column << " = " << cell;
+            ++checked[type];
+        }
+    }
+    EXPECT_EQ(result.rows[0].at("scene_translate_y"), "-1");
+    EXPECT_EQ(result.rows[0].at("run"), "000");
+    EXPECT_EQ(columnValueType(columnSpec("run")), std::string("text"));
+    EXPECT_EQ(columnValueType(columnSpec("grid_res_x")), std::string("integer"));
+    EXPECT_EQ(columnValueType(columnSpec("voxels_per_ray_mean")), std::string("number"));
+    EXPECT_EQ(columnValueType(columnSpec("triangles_per_ray_max")), std::string("integer"));
+    EXPECT_EQ(columnValueType(columnSpec("structure_bytes_per_triangle")), std::string("number"));
+    for (const char* type : {"integer", "number", "boolean", "text"}) EXPECT_GT(checked[type], 10) << type;
 }
 
 TEST_F(EndToEnd, AFailingRunWritesItsReasonAndTheOthersGoOn) {

@@ -137,8 +137,18 @@ TEST(Columns, TheReadmeTableIsTheDeclaredColumns) {
 TEST(Columns, TheCsvHeaderIsEveryConfigKeyThenEveryMetric) {
     const std::vector<std::string> columns = runColumns();
     std::size_t k = 0;
-    for (const KeySpec& key : configSchema()) EXPECT_EQ(columns.at(k++), paramColumn(key.name));
+    for (const KeySpec& key : configSchema()) {
+        const std::string base = paramColumn(key.name);
+        if (key.type == ValueType::Int3 || key.type == ValueType::Float3) {  // three numeric columns (schema 6)
+            for (const char* axis : {"_x", "_y", "_z"}) EXPECT_EQ(columns.at(k++), base + axis);
+        } else {
+            EXPECT_EQ(columns.at(k++), base);
+        }
+    }
     EXPECT_EQ(columns.at(k), "run");
+    for (const char* c : {"camera_position_x", "camera_look_at_z", "scene_translate_y", "camera_up_x"})
+        EXPECT_EQ(std::count(columns.begin(), columns.end(), c), 1) << c;
+    EXPECT_EQ(std::count(columns.begin(), columns.end(), "camera_position"), 0);
     EXPECT_EQ(columns.back(), "wall_s");
     EXPECT_EQ(std::set<std::string>(columns.begin(), columns.end()).size(),
               columns.size());  // no duplicates
