@@ -27,7 +27,7 @@ import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 from matplotlib import ticker, transforms  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
-from rtbench_results import load, method_name, scene_name  # noqa: E402
+from rtbench_results import AXES, VECTOR_KEYS, load, method_name, scene_name  # noqa: E402
 COLORS = {"branching": "tab:blue", "multipass": "tab:orange", "Embree rtcIntersect1": "tab:green"}
 BYTES = [("bytes_stencil", "stencil"), ("bytes_state", "state variables"), ("bytes_stack", "node stack"),
          ("bytes_voxel", "voxel data"), ("bytes_node", "BVH nodes"), ("bytes_triangle_list", "triangle lists"),
@@ -255,15 +255,17 @@ STRUCTURE_NAMES = {"uniform_grid": "grid", "brute_force": "brute force"}
 
 
 def parameter_columns(frame) -> list:
+    """The config key columns, a 3-vector key as its one "[x y z]" column (rtbench_results.with_vector_text)."""
     columns = list(frame.columns)
     head = columns[:columns.index("run")] if "run" in columns else [c for c in columns if c.split("_")[0] in SECTIONS]
-    return [c for c in head if c not in NOT_SWEPT]
+    components = {key + axis for key in VECTOR_KEYS if key in columns for axis in AXES}
+    return [c for c in head if c not in NOT_SWEPT and c not in components]
 
 
 def text_value(value) -> str:
     """One spelling per value, as a label: 64 and 64.0 alike, False as "false", an empty cell as ""."""
-    if value is None or (isinstance(value, float) and math.isnan(value)):
-        return ""
+    if value is None or value is pd.NA or (isinstance(value, float) and math.isnan(value)):
+        return ""  # pandas' missing values: NaN, and <NA> in the typed columns of read_runs
     if isinstance(value, (bool, np.bool_)):
         return "true" if value else "false"
     if isinstance(value, (int, float, np.integer, np.floating)):

@@ -20,7 +20,7 @@ def method_name(run) -> str:
     """structure (with its grid resolution rule) for one run: "grid 64", "bvh", "auto (bvh)"."""
     kind = run.structure_type
     if kind == "uniform_grid":
-        name = f"grid {int(run.structure_min_dim)}" if run.get("structure_min_dim") == run.get("structure_min_dim") else "grid"
+        name = f"grid {int(run.structure_min_dim)}" if pd.notna(run.get("structure_min_dim")) else "grid"
         return name + (" conservative" if str(run.get("structure_conservative")).lower() == "true" else "")
     if kind == "auto":
         return f"auto ({run.auto_choice})"
@@ -69,9 +69,22 @@ def read_runs(folder: Path) -> pd.DataFrame:
     return split_vector_cells(pd.read_csv(folder / "runs.csv", dtype={c: dtypes.get(c, "string") for c in header}))
 
 
+def with_vector_text(runs: pd.DataFrame) -> pd.DataFrame:
+    """Adds a text column "[x y z]" per 3-vector key (before its _x column), as the config writes the
+    value: the charts treat the key as one swept value, not three."""
+    for key in VECTOR_KEYS:
+        if key + "_x" not in runs.columns or key in runs.columns:
+            continue
+        parts = [runs[key + axis] for axis in AXES]
+        text = [pd.NA if any(pd.isna(v) for v in values) else "[" + " ".join(f"{float(v):.9g}" for v in values) + "]"
+                for values in zip(*parts)]
+        runs.insert(runs.columns.get_loc(key + "_x"), key, pd.array(text, dtype="string"))
+    return runs
+
+
 def load(folder: Path):
     """(ok runs with `scene` and `sweep` columns added, failed runs, context dict, device name)."""
-    runs = read_runs(folder)
+    runs = with_vector_text(read_runs(folder))
     context = json.loads((folder / "context.json").read_text())
     failed = runs[runs.status != "ok"]
     runs = runs[runs.status == "ok"].copy()

@@ -161,6 +161,23 @@ class ByKeyCharts(unittest.TestCase):
             for ext in ("png", "svg"):
                 self.assertGreater((self.folder / f"{name}.{ext}").stat().st_size, 1000, f"{name}.{ext}")
 
+    def test_a_vector_key_is_one_chart_in_three_columns_or_one(self):
+        """camera.look_at written as three columns (results schema 6) or one "[x y z]" cell (before): one
+        by_camera_look_at chart either way, not one per component."""
+        settings = [{"camera_look_at": f"[{x} 0 {z}]"} for x, z in ((0, 0), (1, 0), (1, 1))]
+        for form in ("one cell", "three columns"):
+            frame = make_runs(settings, ["camera_look_at"])
+            if form == "three columns":
+                cells = frame.camera_look_at.str.strip("[]").str.split(" ", expand=True).astype(float)
+                at = frame.columns.get_loc("camera_look_at")
+                for a, axis in enumerate("xyz"):
+                    frame.insert(at + a, f"camera_look_at_{axis}", cells[a])
+                frame = frame.drop(columns="camera_look_at")
+            charts = Charts(write_folder(self.root, form.replace(" ", "_"), frame))
+            self.assertEqual(charts.rc, 0, charts.stderr)
+            drawn = {name for name in charts.figures if name.startswith("by_")}
+            self.assertEqual(drawn, {"by_camera_look_at"}, form)
+
     def test_every_chart_is_written_or_says_why_it_is_not(self):
         charts = Charts(self.folder)
         self.assertEqual(charts.rc, 0)
@@ -371,6 +388,9 @@ class ReadRuns(unittest.TestCase):
         self.assertTrue(runs.structure_conservative[0])
         self.assertEqual(runs.exact_wrong_ppm[0], float("inf"))
         self.assertEqual(runs.camera_up_y.dtype, np.float64)
+        self.assertEqual(plot.text_value(runs.grid_res_x[1]), "", "a missing value (<NA>) is no value, not a label")
+        self.assertEqual(rtbench_results.method_name(pd.Series({"structure_type": "uniform_grid",
+                                                                 "structure_min_dim": pd.NA})), "grid")
 
     def test_an_older_folders_vector_cells_become_three_numeric_columns(self):
         (self.folder / "runs.csv").write_text("scene_translate,camera_look_at,run\n[1e6 -2 0.5],,000\n[0 0 0],,001\n")
