@@ -229,13 +229,13 @@ const ColumnSpec& columnSpec(const std::string& name) {
 }
 
 std::string columnsMarkdown() {
-    std::string out = "| column | kind | unit | meaning |\n|---|---|---|---|\n";
+    std::string out = "| column | kind | type | unit | meaning |\n|---|---|---|---|---|\n";
     for (const ColumnSpec& c : runColumnSpecs()) {
         if (c.kind == ColumnKind::Parameter && c.name != "run" && c.name != "label" && c.name != "sweep" &&
             c.name != "config_hash")
             continue;
         if (c.name == "experiment_output") continue;  // a config key, recorded as context
-        out += "| `" + c.name + "` | " + columnKindName(c.kind) + " | " + c.unit + " | " + c.help +
+        out += "| `" + c.name + "` | " + columnKindName(c.kind) + " | " + columnValueType(c) + " | " + c.unit + " | " + c.help +
                " |\n";
     }
     return out;

@@ -46,8 +46,8 @@ std::string columnsCsv();
 // when it does not (folders written before the schema was recorded).
 int schemaVersion(const Json& context);
 
-// The metric columns (all but the config keys) as a Markdown table: column, kind, unit, meaning.
-// The README holds this table; a test keeps the two equal.
+// The metric columns (all but the config keys) as a Markdown table: column, kind, value type,
+// unit, meaning. docs/columns.md holds this table; a test keeps the two equal.
 std::string columnsMarkdown();
 
 }  // namespace rtbench

@@ -121,7 +121,7 @@ int main(int argc, char** argv) {
     compare->add_flag("--markdown", compareOptions.markdown, "print a Markdown table");
 
     CLI::App* keys = app.add_subcommand("keys", "List every config key with its type, default and meaning");
-    CLI::App* columns = app.add_subcommand("columns", "List the metric columns of runs.csv: kind, unit, meaning (Markdown)");
+    CLI::App* columns = app.add_subcommand("columns", "List the metric columns of runs.csv: kind, value type, unit, meaning (Markdown)");
     bool columnsAsCsv = false;
     columns->add_flag("--csv", columnsAsCsv, "every column, config keys included, as the columns.csv a run writes beside runs.csv");
 

@@ -120,16 +120,16 @@ TEST(Writers, QuotedFieldsWithCommasQuotesAndLineBreaksRoundTrip) {
     EXPECT_EQ(readCsv(dir.file("r.csv")).at(0), row);
 }
 
-// The README documents every column of runs.csv, with the kind `rtbench check` compares it by.
-TEST(Columns, TheReadmeTableIsTheDeclaredColumns) {
-    std::ifstream in(RTBENCH_SOURCE_DIR "/README.md");
+// docs/columns.md documents every column of runs.csv, with the kind `rtbench check` compares it by.
+TEST(Columns, TheColumnsPageIsTheDeclaredColumns) {
+    std::ifstream in(RTBENCH_SOURCE_DIR "/docs/columns.md");
     std::stringstream text;
     text << in.rdbuf();
     const std::string readme = text.str();
     const std::string begin = "<!-- columns: begin (rtbench columns) -->\n",
                       end = "<!-- columns: end -->";
     const std::size_t from = readme.find(begin), to = readme.find(end);
-    ASSERT_NE(from, std::string::npos) << "README.md has no columns table";
+    ASSERT_NE(from, std::string::npos) << "docs/columns.md has no columns table";
     ASSERT_NE(to, std::string::npos);
     EXPECT_EQ(readme.substr(from + begin.size(), to - from - begin.size()), columnsMarkdown());
 }

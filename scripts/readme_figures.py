@@ -1,0 +1,462 @@
+#!/usr/bin/python3
+"""The README's "Results of record" section, written from results/ (never typed): each folder's
+machine, device and command from its context.json, its tables and findings from its runs.csv,
+its charts. The section sits between the two markers below in README.md.
+
+usage: /usr/bin/python3 scripts/readme_figures.py            rewrite the section in README.md
+       /usr/bin/python3 scripts/readme_figures.py --check    exit 1 (with a diff) when it differs, or
+                                                             when the README's first config is not
+                                                             configs/first.toml
+       /usr/bin/python3 scripts/readme_figures.py --print    print the section
+       --readme PATH                                         another README (the test's altered copy)
+"""
+import difflib
+import json
+import sys
+from pathlib import Path
+
+import pandas as pd
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from rtbench_results import method_name, read_runs, scene_name  # noqa: E402
+
+ROOT = Path(__file__).resolve().parent.parent
+BEGIN = "<!-- results: begin (scripts/readme_figures.py writes this section from results/; do not edit) -->"
+END = "<!-- results: end -->"
+
+
+def num(value, digits=3) -> str:
+    """A value to `digits` significant digits, thousands separated: 1,759 / 0.0105 / 5.72."""
+    if value is None or pd.isna(value):
+        return "—"
+    value = float(value)
+    if value == float("inf"):
+        return "inf"
+    if abs(value) >= 10 ** digits:
+        return f"{value:,.0f}"
+    text = f"{value:.{digits}g}"
+    if "e" in text:
+        return f"{value:.{digits - 1}e}"
+    if abs(value) >= 1000:
+        return f"{value:,.0f}"
+    return text
+
+
+def count(value) -> str:
+    return "—" if pd.isna(value) else f"{int(value):,}"
+
+
+def reasons(errors) -> str:
+    """Failure reasons, counted: each error's first clause with its numbers as N."""
+    clauses = errors.fillna("").str.replace(r" ?\([^)]*\)", "", regex=True) \
+        .str.replace(r"(?<!\w)[-+]?\d[\d,.]*(?:e[-+]?\d+)?", "N", regex=True) \
+        .str.replace(",", "").str.split(r" with |: the |; ", regex=True).str[0]
+    return "; ".join(f"{n}× \"{why.strip()}\"" for why, n in clauses.value_counts().items())
+
+
+def plural(n: int, word: str) -> str:
+    return f"{n} {word}" + ("" if n == 1 else "s")
+
+
+def size(row) -> str:
+    return f"{int(row.camera_width)}×{int(row.camera_height)}"
+
+
+def span(low, high) -> str:
+    """low–high, or one value when they are equal."""
+    return num(low) if num(low) == num(high) else f"{num(low)}–{num(high)}"
+
+
+def interval(low, high, digits=3) -> str:
+    return f"[{num(low, digits)}, {num(high, digits)}]"
+
+
+def folder_of(name: str) -> Path:
+    return ROOT / "results" / name
+
+
+def load(name: str):
+    folder = folder_of(name)
+    runs = read_runs(folder)
+    context = json.loads((folder / "context.json").read_text())
+    runs["scene"] = runs.scene_source.map(scene_name)
+    return runs, context
+
+
+def provenance(name: str, runs, context) -> str:
+    """Who, where and how: the machine, device, command, commit and date of a folder, and what the
+    noise guard said of its runs."""
+    device = context["devices"][0] if context.get("devices") else {}
+    ok = runs[runs.status == "ok"]
+    failed = len(runs) - len(ok)
+    flagged = int((ok.timing_warning.fillna("") != "").sum()) if "timing_warning" in ok else None
+    reps = sorted(set(int(r) for r in ok.timing_repetitions.dropna())) if "timing_repetitions" in ok else []
+    lines = [f"Machine: {context.get('cpu', '?')}, {context.get('cpu_threads', '?')} hardware threads "
+             f"(host `{context.get('host', '?')}`). Device: {device.get('name', '?')} ({device.get('driver', '?')}, "
+             f"subgroup size {device.get('subgroup_size', '?')}). Embree {context.get('embree_version', '?')}.",
+             f"Command: `{context.get('command', '?')}` (by `scripts/records.sh`) at commit "
+             f"`{str(context.get('git_commit', '?'))[:12]}`, {str(context.get('date_utc', '?'))[:10]}. "
+             f"{plural(len(runs), 'run')}: {len(ok)} ok, {failed} failed with their reason in `error`."]
+    if flagged is not None:
+        wall = runs.wall_s.sum()
+        timing = "one timed repetition of each method per run (no spread, no interval)" if reps == [1] else \
+            f"{'/'.join(map(str, reps)) or '?'} timed repetitions of each method per run, in rounds"
+        lines.append(f"Timing: {timing}; the noise guard flagged {flagged} of the {len(ok)} ok runs (`timing_warning`: "
+                     f"a coefficient of variation over {num(ok.experiment_noise_cv.iloc[0]) if len(ok) else '?'} or "
+                     f"other processes over {num(100 * ok.experiment_noise_other_cpu.iloc[0]) if len(ok) else '?'}% of "
+                     f"the CPU; they took at most {num(100 * ok.other_cpu_fraction.max(), 2)}%); "
+                     f"{num(wall, 2) + ' s' if wall < 120 else num(wall / 60, 2) + ' min'} of wall time in all.")
+    return " ".join(lines)
+
+
+def charts(name: str, captions: dict) -> list:
+    """Markdown images of the charts that exist, in the order given."""
+    return [f"![{caption}](results/{name}/{chart}.png)" for chart, caption in captions.items()
+            if (folder_of(name) / f"{chart}.png").exists()]
+
+
+def bunny() -> list:
+    runs, context = load("bunny")
+    r = runs.iloc[0]
+    out = ["### `results/bunny/`: the default experiment", "", provenance("bunny", runs, context), ""]
+    if r.status != "ok":
+        return out + [f"The run failed: {r.error}", ""]
+    out += [f"{scene_name(r.scene_source)} ({count(r.scene_triangles)} triangles), {size(r)} primary rays ({count(r.hits)} hit), {method_name(r)} "
+            f"({count(r.grid_res_x)}×{count(r.grid_res_y)}×{count(r.grid_res_z)} voxels), {r.strategy_type} kernel, "
+            f"{r.intersection_test}.", "",
+            "| | median ms [95% interval] | CV | Mrays/s |", "|---|---|---|---|"]
+    for label, m, rate in [("kernel (GPU timestamps)", "kernel", "kernel_mrays_s"),
+                           ("Embree `rtcIntersect1`", "embree1", "embree1_mrays_s"),
+                           ("Embree `rtcIntersect16`", "embree16", "embree16_mrays_s")]:
+        out.append(f"| {label} | {num(r[m + '_ms_median'])} {interval(r[m + '_ms_ci_low'], r[m + '_ms_ci_high'])} | "
+                   f"{num(r[m + '_ms_cv'], 2)} | {num(r[rate])} |")
+    out += ["",
+            f"- Speed against Embree `rtcIntersect1` on the same rays, in the same run: **{num(r.speed_ratio_vs_embree1)}** "
+            f"(95% interval {interval(r.speed_ratio_ci_low, r.speed_ratio_ci_high)}).",
+            f"- Against the exact reference on {count(r.exact_rays)} rays: the kernel gets {count(r.exact_false_misses)} "
+            f"false misses, {count(r.exact_false_hits)} false hits and {count(r.exact_wrong_primitive)} wrong triangles "
+            f"({num(r.exact_wrong_ppm)} per million); Embree {count(r.embree_exact_false_misses)}, "
+            f"{count(r.embree_exact_false_hits)} and {count(r.embree_exact_wrong_primitive)} "
+            f"({num(r.embree_exact_wrong_ppm)} per million). In the shaded image {count(r.image_pixels_differ)} pixels "
+            f"differ from the exact render (PSNR {num(r.image_psnr_db)} dB).",
+            f"- The GPU's hit records and counts against its CPU reference: {count(r.cpu_reference_mismatches)} rays differ; "
+            f"counts match: {'yes' if r.cpu_counts_match == 1 else 'no'}.",
+            f"- Work per ray: {num(r.voxels_per_ray_mean)} voxels and {num(r.triangles_per_ray_mean)} triangle tests "
+            f"(predicted {num(r.predicted_work_per_ray)} operations, measured {num(r.work_per_ray_mean)}); SIMD efficiency "
+            f"{num(100 * r.simd_efficiency)}%; {num(r.bytes_per_ray)} bytes per ray.",
+            f"- Grid: {num(100 * r.grid_empty_fraction)}% of {count(r.grid_cells)} voxels empty, "
+            f"{num(r.grid_refs_per_triangle)} references per triangle, {num(r.grid_bytes / 1e6)} MB, built in "
+            f"{num(r.grid_build_ms)} ms; Embree's BVH in {num(r.embree_build_ms)} ms. The whole run: {num(r.wall_s)} s.", ""]
+    for png, caption in [("run-000-shaded", "bunny, shaded"),
+                         ("run-000-diff", "bunny, against Embree (yellow: another triangle; red/blue: hit/miss differs)")]:
+        if (folder_of("bunny") / f"{png}.png").exists():
+            out.append(f"![{caption}](results/bunny/{png}.png)")
+    return out + [""]
+
+
+# Counts that say two runs did the same work (structures: auto against its chosen candidate).
+SAME_WORK = ("hits", "passes_total", "bytes_total", "work_per_ray_mean", "simd_efficiency", "exact_wrong_ppm")
+
+
+def structures() -> list:
+    runs, context = load("structures")
+    ok = runs[runs.status == "ok"].copy()
+    ok["method"] = [method_name(r) for _, r in ok.iterrows()]
+    out = ["### `results/structures/`: which structure does a scene need?", "", provenance("structures", runs, context), "",
+           f"Full tables: [`results/structures/tables.md`](results/structures/tables.md). GPU ms per frame at "
+           f"{size(ok.iloc[0])} (median [95% interval]; "
+           f"the fastest in bold, × Embree `rtcIntersect1` in the same run):", ""]
+    columns = ["grid 32", "grid 64", "grid 128", "bvh", "brute force"]
+    for strategy in ["branching", "multipass"]:
+        part = ok[ok.strategy_type == strategy]
+        out += [f"{strategy}:", "", "| scene (triangles) | " + " | ".join(columns) + " | auto's choice |",
+                "|---|" + "---|" * (len(columns) + 1)]
+        for scene, group in sorted(part.groupby("scene"), key=lambda g: g[1].scene_triangles.iloc[0]):
+            plain = group[group.structure_type != "auto"]
+            best = plain.kernel_ms_median.min()
+            cells = []
+            for column in columns:
+                row = plain[plain.method == column]
+                if row.empty:
+                    failed = runs[(runs.status != "ok") & (runs.scene_source == group.scene_source.iloc[0]) &
+                                  (runs.strategy_type == strategy)]
+                    failed = failed[[method_name(f) == column for _, f in failed.iterrows()]]
+                    cells.append("failed" if not failed.empty else "—")
+                    continue
+                row = row.iloc[0]
+                text = f"{num(row.kernel_ms_median)} {interval(row.kernel_ms_ci_low, row.kernel_ms_ci_high)}"
+                if row.kernel_ms_median == best:
+                    text = f"**{num(row.kernel_ms_median)}** {interval(row.kernel_ms_ci_low, row.kernel_ms_ci_high)} " \
+                           f"({num(row.speed_ratio_vs_embree1, 2)}×)"
+                cells.append(text)
+            auto = group[group.structure_type == "auto"]
+            choice = auto.auto_choice.iloc[0] if not auto.empty else "—"
+            out.append(f"| {scene} ({count(group.scene_triangles.iloc[0])}) | " + " | ".join(cells) + f" | {choice} |")
+        out.append("")
+    # auto against its chosen candidate's own run: the same work, timed apart.
+    pairs = []
+    candidates = ok[(ok.structure_type.isin(["bvh", "brute_force"])) |
+                    ((ok.structure_type == "uniform_grid") & (ok.structure_min_dim == 64) &
+                     ~ok.structure_conservative.fillna(False).astype(bool))]
+    right = total = tied = 0
+    for _, auto in ok[ok.structure_type == "auto"].iterrows():
+        pool = candidates[(candidates.scene_source == auto.scene_source) & (candidates.strategy_type == auto.strategy_type)]
+        chosen = pool[pool.structure_type == auto.auto_choice]
+        if chosen.empty:
+            continue
+        c = chosen.iloc[0]
+        overlap = auto.kernel_ms_ci_low <= c.kernel_ms_ci_high and c.kernel_ms_ci_low <= auto.kernel_ms_ci_high
+        same = all(auto[k] == c[k] for k in SAME_WORK)
+        pairs.append((auto.kernel_ms_median / c.kernel_ms_median, overlap, auto.scene, auto.strategy_type, same))
+        fastest = pool.sort_values("kernel_ms_median").iloc[0]
+        total += 1
+        if fastest.structure_type == auto.auto_choice:
+            right += 1
+        elif c.kernel_ms_ci_low <= fastest.kernel_ms_ci_high:
+            tied += 1
+    if pairs:
+        ratios = [max(p[0], 1 / p[0]) for p in pairs]
+        worst = pairs[ratios.index(max(ratios))]
+        within = sum(r <= 1.05 for r in ratios)
+        same = sum(p[4] for p in pairs)
+        out += [f"- **`auto` and the run of the structure it chose** trace the same rays through the same structure "
+                f"({same} of {len(pairs)} pairs equal in {', '.join(f'`{k}`' for k in SAME_WORK)}) and were timed "
+                f"apart: their medians differ by at most {num(100 * (max(ratios) - 1), 2)}% (worst: {worst[2]}, "
+                f"{worst[3]}, auto / candidate {num(worst[0])}), {within} of {len(pairs)} pairs within 5%, and "
+                f"{sum(p[1] for p in pairs)} of {len(pairs)} pairs have overlapping 95% intervals.",
+                f"- **`auto` picked the fastest of its candidates** (grid at min_dim 64, BVH, brute force) in {right} of "
+                f"{total} cases by the medians" + (f"; in {tied} more its choice's interval overlaps the fastest's (a tie "
+                                                  f"at this noise)." if tied else ".")]
+    failed = runs[runs.status != "ok"]
+    if not failed.empty:
+        out.append(f"- {len(failed)} runs failed, each naming why: {reasons(failed.error)}.")
+    agree = ok.hit_miss_agreement.min()
+    wrong = int(ok.exact_false_misses.sum() + ok.exact_false_hits.sum() + ok.exact_wrong_primitive.sum())
+    out += [f"- Against the exact reference the ok runs get {wrong:,} of {count(ok.exact_rays.sum())} rays wrong; "
+            f"hit/miss agreement with Embree is at least {num(100 * agree, 4)}%; CPU-reference mismatches in all: "
+            f"{count(ok.cpu_reference_mismatches.sum())}.", ""]
+    out += charts("structures", {"structures_time": "time per scene and speed against Embree, per structure",
+                                 "structures_memory": "memory and build time per structure",
+                                 "structures_work": "work per ray: the cost model against the measurement"})
+    return out + [""]
+
+
+def purcell2002() -> list:
+    runs, context = load("purcell2002")
+    ok = runs[runs.status == "ok"].copy()
+    out = ["### `results/purcell2002/`: multipass against branching (Purcell et al. 2002)", "",
+           provenance("purcell2002", runs, context), "",
+           "Full tables: [`results/purcell2002/tables.md`](results/purcell2002/tables.md). Multipass: K = 4 traversal "
+           "steps and M = 2 intersections per pass, oracle threshold 0.2 (Purcell's), unless swept.", ""]
+    arch = ok[ok.sweep == "architecture"].sort_values(["scene_triangles", "strategy_type"])
+    if not arch.empty:
+        out += [f"| {size(arch.iloc[0])} | passes (traverse+intersect) | lower bound | SIMD efficiency | MB moved | GPU ms | × Embree rtcIntersect1 |",
+                "|---|---|---|---|---|---|---|"]
+        for _, r in arch.iterrows():
+            passes = "1" if r.strategy_type == "branching" else \
+                f"{count(r.passes_total)} ({count(r.passes_traverse)}+{count(r.passes_intersect)})"
+            out.append(f"| {r.scene}, {r.strategy_type} | {passes} | {count(r.get('passes_lower_bound'))} | "
+                       f"{num(100 * r.simd_efficiency)}% | {num(r.bytes_total / 1e6)} | {num(r.kernel_ms_median)} | "
+                       f"{num(r.speed_ratio_vs_embree1)} |")
+        slow = []
+        for scene, g in arch.groupby("scene"):
+            b, m = g[g.strategy_type == "branching"], g[g.strategy_type == "multipass"]
+            if len(b) and len(m):
+                slow.append((m.kernel_ms_median.iloc[0] / b.kernel_ms_median.iloc[0],
+                             m.bytes_total.iloc[0] / b.bytes_total.iloc[0],
+                             m.passes_total.iloc[0] - 2, m.passes_lower_bound.iloc[0],
+                             m.multipass_live_ms_median.iloc[0] / m.kernel_ms_median.iloc[0]))
+        if slow:
+            out += ["",
+                    f"- Multipass needs {num(min(s[2] / s[3] for s in slow), 2)}–{num(max(s[2] / s[3] for s in slow), 2)}× "
+                    f"Purcell's lower bound in traverse + intersect passes, moves {num(min(s[1] for s in slow), 2)}–"
+                    f"{num(max(s[1] for s in slow), 2)}× the branching kernel's bytes, and is {num(min(s[0] for s in slow), 2)}–"
+                    f"{num(max(s[0] for s in slow), 2)}× slower on this device (the replayed passes' GPU time). The live "
+                    f"loop, with the oracle's read-back after every pass (`multipass_live_ms_median`), takes "
+                    f"{num(min(s[4] for s in slow), 2)}–{num(max(s[4] for s in slow), 2)}× that GPU time."]
+    oracle = ok[ok.sweep.isin(["oracle", "architecture"]) & (ok.strategy_type == "multipass") &
+                (ok.strategy_scheduling.fillna("oracle") != "naive")]
+    if not oracle.empty:
+        parts = []
+        for scene, g in oracle.groupby("scene"):
+            g = g.sort_values("strategy_oracle_threshold")
+            best = g.passes_total.min()
+            parts.append(f"{scene} " + ", ".join(f"{count(p)} ({num(t)})" for t, p in zip(g.strategy_oracle_threshold,
+                                                                                          g.passes_total))
+                         + f": fewest at threshold {num(g[g.passes_total == best].strategy_oracle_threshold.iloc[0])}")
+        out.append("- **The oracle**, passes (threshold): " + "; ".join(parts) + ".")
+    unroll = ok[ok.sweep == "unroll"]
+    if not unroll.empty:
+        lo, hi = unroll.loc[unroll.passes_total.idxmin()], unroll.loc[unroll.passes_total.idxmax()]
+        out.append(f"- **Loop unrolling** ({scene_name(unroll.scene_source.iloc[0])}, {size(unroll.iloc[0])}): "
+                   f"passes from {count(hi.passes_total)} (K = {count(hi.strategy_traverse_steps_per_pass)}, M = "
+                   f"{count(hi.strategy_intersections_per_pass)}) to {count(lo.passes_total)} (K = "
+                   f"{count(lo.strategy_traverse_steps_per_pass)}, M = {count(lo.strategy_intersections_per_pass)}); bytes per "
+                   f"ray from {num(hi.bytes_per_ray)} to {num(lo.bytes_per_ray)}.")
+    grid = ok[(ok.sweep == "grid") & (ok.strategy_type == "branching")]
+    if not grid.empty:
+        fastest = grid.loc[grid.kernel_ms_median.idxmin()]
+        out.append(f"- **Grid resolution** (branching): fastest at min_dim {count(fastest.structure_min_dim)} "
+                   f"({num(fastest.kernel_mrays_s)} Mrays/s); triangle tests per ray from "
+                   f"{num(grid.triangles_per_ray_mean.max())} to {num(grid.triangles_per_ray_mean.min())} and voxels per ray "
+                   f"from {num(grid.voxels_per_ray_mean.min())} to {num(grid.voxels_per_ray_mean.max())} over min_dim "
+                   f"{count(grid.structure_min_dim.min())}–{count(grid.structure_min_dim.max())}.")
+    multipass = ok[ok.strategy_type == "multipass"]
+    out += [f"- Exactness: in {int((ok.cpu_reference_mismatches == 0).sum())} of the {len(ok)} ok runs the GPU's hit "
+            f"records equal the CPU simulator's on every ray, and in {int((ok.cpu_counts_match == 1).sum())} its pass, "
+            f"event and lane counts; in {int((multipass.branching_mismatches == 0).sum())} of the {len(multipass)} "
+            f"multipass runs the hit records equal the branching caster's on every ray.", ""]
+    out += charts("purcell2002", {"passes_vs_threshold": "passes against oracle threshold",
+                                  "bandwidth_by_category": "bandwidth by data type", "unrolling": "loop unrolling",
+                                  "grid_resolution": "grid resolution", "kernel_time": "multipass GPU time by kernel"})
+    return out + [""]
+
+
+def wrong(frame, prefix="exact_"):
+    return frame[prefix + "false_misses"] + frame[prefix + "false_hits"] + frame[prefix + "wrong_primitive"].fillna(0)
+
+
+def stability() -> list:
+    runs, context = load("stability")
+    ok = runs[runs.status == "ok"].copy()
+    ok["method"] = [method_name(r) for _, r in ok.iterrows()]
+    ok["wrong"] = wrong(ok)
+    ok["embree_wrong"] = wrong(ok, "embree_exact_")
+    out = ["### `results/stability/`: where methods fail", "", provenance("stability", runs, context), "",
+           "Every ray of every run is judged against the exact reference. Most rays wrong in one run "
+           "(of its rays), by scene, ray-triangle test and sweep, over every structure and offset or scale:", "",
+           "| scene | sweep | rays per run | Möller–Trumbore | watertight | Embree |", "|---|---|---|---|---|---|"]
+    for (scene, sweep), g in ok.groupby(["scene", "sweep"]):
+        mt = g[g.intersection_test == "moller_trumbore"].wrong.max()
+        wt = g[g.intersection_test == "watertight"].wrong.max()
+        out.append(f"| {scene} | {sweep} | {count(g.exact_rays.max())} | {count(mt)} | {count(wt)} | "
+                   f"{count(g.embree_wrong.max())} |")
+    failed = runs[runs.status != "ok"]
+    if len(failed):
+        out += ["", f"- {len(failed)} runs were refused, each naming why: {reasons(failed.error)}."]
+    out.append("")
+    out += charts("stability", {"failure_map": "rays wrong against offset and scale"})
+    return out + [""]
+
+
+def accuracy() -> list:
+    runs, context = load("accuracy")
+    ok = runs[runs.status == "ok"].copy()
+    ok["method"] = [method_name(r) for _, r in ok.iterrows()]
+    out = ["### `results/accuracy/`: speed against accuracy", "", provenance("accuracy", runs, context), "",
+           "Every ray judged against the exact reference on the full scene. The fastest run for its accuracy on each "
+           "scene (the Pareto front: no other run both faster and at most as wrong):", "",
+           "| scene | method | test | vertices | triangles kept | Mrays/s | × Embree | wrong per million |",
+           "|---|---|---|---|---|---|---|---|"]
+    for scene, g in ok.groupby("scene"):
+        g = g.sort_values(["exact_wrong_ppm", "kernel_mrays_s"], ascending=[True, False])
+        best = -1.0
+        for _, r in g.iterrows():
+            if r.kernel_mrays_s > best:
+                best = r.kernel_mrays_s
+                bits = "float" if r.intersection_vertex_bits == 32 else f"{count(r.intersection_vertex_bits)} bits"
+                kept = "all" if pd.isna(r.scene_simplify_ratio) else f"{num(100 * r.scene_simplify_ratio)}%"
+                out.append(f"| {scene} | {r.method} | {r.intersection_test} | {bits} | {kept} | {num(r.kernel_mrays_s)} | "
+                           f"{num(r.speed_ratio_vs_embree1, 2)} | {num(r.exact_wrong_ppm)} |")
+    out.append("")
+    for scene, g in ok.groupby("scene"):
+        full = g[g.scene_simplify_ratio.isna() & (g.intersection_vertex_bits == 32)]
+        line = f"- {scene}, float vertices, all triangles: " + "; ".join(
+            f"{test} {span(t.exact_wrong_ppm.min(), t.exact_wrong_ppm.max())} wrong per million"
+            for test, t in full.groupby("intersection_test")) + \
+            f"; Embree {span(full.embree_exact_wrong_ppm.min(), full.embree_exact_wrong_ppm.max())} (over " \
+            f"{plural(len(full), 'run')}: structures and resolutions)."
+        out.append(line)
+        simplified = g[g.scene_simplify_ratio.notna()]
+        if not simplified.empty:
+            enough = simplified[simplified.exact_wrong_ppm <= 1000]
+            if not enough.empty:
+                r = enough.loc[enough.scene_triangles.idxmin()]
+                out.append(f"- {scene} simplified: {count(r.scene_triangles)} triangles "
+                           f"({num(100 * r.scene_simplify_ratio)}% kept) are the fewest with at most 0.1% wrong pixels "
+                           f"({num(r.exact_wrong_ppm)} per million).")
+    out.append("")
+    out += charts("accuracy", {"speed_vs_accuracy": "speed against accuracy, per scene",
+                               "vertex_precision": "accuracy against vertex bandwidth",
+                               "simplification": "accuracy and speed against triangles kept"})
+    return out + [""]
+
+
+def golden() -> list:
+    runs, context = load("golden")
+    return ["### `results/golden/`: the counts CI checks", "",
+            f"{len(runs)} runs at {size(runs.iloc[0])} rays "
+            f"(`configs/golden.toml`: every structure, both strategies and both ray-triangle tests, packed vertices, a "
+            f"mesh file), recorded by `{context.get('command', '?')}` at commit `{str(context.get('git_commit'))[:12]}` on "
+            f"{context.get('cpu', '?')} with {context['devices'][0]['name']}. CI runs `build/rtbench check "
+            f"results/golden` (CTest `cli.check_golden`), and `Golden.ReproducesWithEmbreeForcedToEveryIsaThisCpuRuns` "
+            f"again with Embree forced to each ISA the CPU runs.", ""]
+
+
+def h200() -> list:
+    folder = folder_of("nvidia-h200")
+    rows = []
+    for sub in sorted(p for p in folder.iterdir() if (p / "runs.csv").exists()):
+        runs = read_runs(sub)
+        reference = runs.error.fillna("").str.contains("differ from the CPU reference")
+        rows.append((sub.name, len(runs), int((runs.status != "ok").sum()), int(reference.sum()),
+                     reasons(runs[(runs.status != "ok") & ~reference].error)))
+    context = json.loads((folder / rows[0][0] / "context.json").read_text()) if rows else {}
+    device = context.get("devices", [{}])[0]
+    return ["### `results/nvidia-h200/`: the configs of record on an NVIDIA H200, failed, and why", "",
+            f"{device.get('name', '?')} ({device.get('driver', '?')}) at commit `{str(context.get('git_commit'))[:12]}`: " +
+            "; ".join(f"{name}: {failed} of {n} runs failed, {reference} of them the CPU-reference check" +
+                      (f" (the others: {others})" if others else "") for name, n, failed, reference, others in rows) +
+            ". Vulkan lets division be off by 2.5 ulp and NVIDIA's driver "
+            "uses it; the fix (`rtDivide`, docs/method.md) came after, and no GPU has been lent since to measure it. "
+            "[`results/nvidia-h200/README.md`](results/nvidia-h200/README.md) has the details.", ""]
+
+
+def section() -> str:
+    out = [BEGIN, "",
+           "Written by `scripts/readme_figures.py` from the folders in `results/` (the test `scripts.readme_figures` "
+           "fails when this section differs from what it writes): every figure below comes from a `runs.csv`, and "
+           "each folder names the machine, device, command and commit its `context.json` records. Timings are "
+           "medians with 95% bootstrap intervals; a speed claim is a ratio measured in the same run. Counts (passes, "
+           "bytes, work, rays wrong) are the same on every machine with the same device; timings are this machine's.", ""]
+    for part in (bunny, structures, purcell2002, stability, accuracy, golden, h200):
+        out += part()
+    while out and out[-1] == "":
+        out.pop()
+    return "\n".join(out) + "\n\n" + END
+
+
+def first_config_differs(text: str) -> bool:
+    """Whether the README's ```toml block is not configs/first.toml as it is (the test runs that file)."""
+    config = (ROOT / "configs" / "first.toml").read_text()
+    return f"```toml\n{config}```" not in text
+
+
+def main(argv) -> int:
+    readme = Path(argv[argv.index("--readme") + 1]) if "--readme" in argv else ROOT / "README.md"
+    text = readme.read_text()
+    new = section()
+    if "--print" in argv:
+        print(new)
+        return 0
+    if BEGIN not in text or END not in text:
+        print(f"{readme}: no results section (the markers {BEGIN} ... {END})", file=sys.stderr)
+        return 1
+    start, end = text.index(BEGIN), text.index(END) + len(END)
+    if "--check" in argv:
+        if first_config_differs(text):
+            print(f"{readme}: its ```toml block is not configs/first.toml", file=sys.stderr)
+            return 1
+        if text[start:end] == new:
+            return 0
+        sys.stdout.writelines(difflib.unified_diff(text[start:end].splitlines(True), new.splitlines(True),
+                                                   "README.md (committed)", "scripts/readme_figures.py (from results/)"))
+        print("\nREADME.md's results section differs from results/: run /usr/bin/python3 scripts/readme_figures.py",
+              file=sys.stderr)
+        return 1
+    readme.write_text(text[:start] + new + text[end:])
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
