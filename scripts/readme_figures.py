@@ -417,7 +417,8 @@ def section() -> str:
            "Written by `scripts/readme_figures.py` from the folders in `results/` (the test `scripts.readme_figures` "
            "fails when this section differs from what it writes): every figure below comes from a `runs.csv`, and "
            "each folder names the machine, device, command and commit its `context.json` records. Timings are "
-           "medians with 95% bootstrap intervals; a speed claim is a ratio measured in the same run. Counts (passes, "
+           "medians with 95% bootstrap intervals of the repetitions of one run (an interval says nothing of the spread "
+           "between runs in separate processes); a speed claim is a ratio measured in the same run. Counts (passes, "
            "bytes, work, rays wrong) are the same on every machine with the same device; timings are this machine's.", ""]
     for part in (bunny, structures, purcell2002, stability, accuracy, golden, h200):
         out += part()
