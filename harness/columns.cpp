@@ -1,7 +1,7 @@
 #include "columns.h"
 
 #include <algorithm>
-#include <cstdlib>
+#include <cmath>
 #include <map>
 #include <set>
 #include <sstream>
@@ -313,11 +313,7 @@ bool splitVectorCells(std::set<std::string>& header, std::vector<Row>& rows, con
             if (!cell.empty()) {
                 std::istringstream in(cell.front() == '[' && cell.back() == ']' ? cell.substr(1, cell.size() - 2) : "");
                 std::string extra;
-                auto number = [](const std::string& t) {
-                    char* end = nullptr;
-                    std::strtod(t.c_str(), &end);
-                    return !t.empty() && *end == '\0';
-                };
+                const auto number = [](const std::string& t) { return !std::isnan(cellNumber(t)); };
                 if (!(in >> parts[0] >> parts[1] >> parts[2]) || (in >> extra) || !number(parts[0]) || !number(parts[1]) ||
                     !number(parts[2]))
                     throw Error(path + ": row " + std::to_string(r + 1) + ", column " + old + ": '" + cell +

@@ -27,7 +27,7 @@ import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 from matplotlib import ticker, transforms  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
-from rtbench_results import AXES, VECTOR_KEYS, load, method_name, scene_name  # noqa: E402
+from rtbench_results import AXES, VECTOR_KEYS, load, method_name, scene_name, wrong_rays  # noqa: E402
 COLORS = {"branching": "tab:blue", "multipass": "tab:orange", "Embree rtcIntersect1": "tab:green"}
 BYTES = [("bytes_stencil", "stencil"), ("bytes_state", "state variables"), ("bytes_stack", "node stack"),
          ("bytes_voxel", "voxel data"), ("bytes_node", "BVH nodes"), ("bytes_triangle_list", "triangle lists"),
@@ -165,8 +165,7 @@ def pareto(points):
 def wrong_ppm(frame, prefix="exact_"):
     """Rays wrong against the exact reference per million: false misses + false hits + wrong triangle
     (a simplified scene has other triangles: no wrong triangle counted)."""
-    wrong = frame[prefix + "false_misses"] + frame[prefix + "false_hits"] + frame[prefix + "wrong_primitive"].fillna(0)
-    return 1e6 * wrong / frame.exact_rays
+    return 1e6 * wrong_rays(frame, prefix) / frame.exact_rays
 
 
 def finite(values):

@@ -18,7 +18,7 @@ from pathlib import Path
 import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rtbench_results import method_name, read_runs, scene_name  # noqa: E402
+from rtbench_results import method_name, read_runs, scene_name, wrong_rays  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 BEGIN = "<!-- results: begin (scripts/readme_figures.py writes this section from results/; do not edit) -->"
@@ -80,6 +80,7 @@ def load(name: str):
     runs = read_runs(folder)
     context = json.loads((folder / "context.json").read_text())
     runs["scene"] = runs.scene_source.map(scene_name)
+    runs["method"] = [method_name(r) for _, r in runs.iterrows()]
     return runs, context
 
 
@@ -121,7 +122,7 @@ def bunny() -> list:
     out = ["### `results/bunny/`: the default experiment", "", provenance("bunny", runs, context), ""]
     if r.status != "ok":
         return out + [f"The run failed: {r.error}", ""]
-    out += [f"{scene_name(r.scene_source)} ({count(r.scene_triangles)} triangles), {size(r)} primary rays ({count(r.hits)} hit), {method_name(r)} "
+    out += [f"{scene_name(r.scene_source)} ({count(r.scene_triangles)} triangles), {size(r)} primary rays ({count(r.hits)} hit), {r.method} "
             f"({count(r.grid_res_x)}×{count(r.grid_res_y)}×{count(r.grid_res_z)} voxels), {r.strategy_type} kernel, "
             f"{r.intersection_test}.", "",
             "| | median ms [95% interval] | CV | Mrays/s |", "|---|---|---|---|"]
@@ -161,7 +162,6 @@ SAME_WORK = ("hits", "passes_total", "bytes_total", "work_per_ray_mean", "simd_e
 def structures() -> list:
     runs, context = load("structures")
     ok = runs[runs.status == "ok"].copy()
-    ok["method"] = [method_name(r) for _, r in ok.iterrows()]
     out = ["### `results/structures/`: which structure does a scene need?", "", provenance("structures", runs, context), "",
            f"Full tables: [`results/structures/tables.md`](results/structures/tables.md). GPU ms per frame at "
            f"{size(ok.iloc[0])} (median [95% interval]; "
@@ -180,7 +180,7 @@ def structures() -> list:
                 if row.empty:
                     failed = runs[(runs.status != "ok") & (runs.scene_source == group.scene_source.iloc[0]) &
                                   (runs.strategy_type == strategy)]
-                    failed = failed[[method_name(f) == column for _, f in failed.iterrows()]]
+                    failed = failed[failed.method == column]
                     cells.append("failed" if not failed.empty else "—")
                     continue
                 row = row.iloc[0]
@@ -231,7 +231,7 @@ def structures() -> list:
     if not failed.empty:
         out.append(f"- {len(failed)} runs failed, each naming why: {reasons(failed.error)}.")
     agree = ok.hit_miss_agreement.min()
-    wrong = int(ok.exact_false_misses.sum() + ok.exact_false_hits.sum() + ok.exact_wrong_primitive.sum())
+    wrong = int(wrong_rays(ok).sum())
     out += [f"- Against the exact reference the ok runs get {wrong:,} of {count(ok.exact_rays.sum())} rays wrong; "
             f"hit/miss agreement with Embree is at least {num(100 * agree, 4)}%; CPU-reference mismatches in all: "
             f"{count(ok.cpu_reference_mismatches.sum())}.", ""]
@@ -312,16 +312,11 @@ def purcell2002() -> list:
     return out + [""]
 
 
-def wrong(frame, prefix="exact_"):
-    return frame[prefix + "false_misses"] + frame[prefix + "false_hits"] + frame[prefix + "wrong_primitive"].fillna(0)
-
-
 def stability() -> list:
     runs, context = load("stability")
     ok = runs[runs.status == "ok"].copy()
-    ok["method"] = [method_name(r) for _, r in ok.iterrows()]
-    ok["wrong"] = wrong(ok)
-    ok["embree_wrong"] = wrong(ok, "embree_exact_")
+    ok["wrong"] = wrong_rays(ok)
+    ok["embree_wrong"] = wrong_rays(ok, "embree_exact_")
     out = ["### `results/stability/`: where methods fail", "", provenance("stability", runs, context), "",
            "Every ray of every run is judged against the exact reference. Most rays wrong in one run "
            "(of its rays), by scene, ray-triangle test and sweep, over every structure and offset or scale:", "",
@@ -342,7 +337,6 @@ def stability() -> list:
 def accuracy() -> list:
     runs, context = load("accuracy")
     ok = runs[runs.status == "ok"].copy()
-    ok["method"] = [method_name(r) for _, r in ok.iterrows()]
     out = ["### `results/accuracy/`: speed against accuracy", "", provenance("accuracy", runs, context), "",
            "Every ray judged against the exact reference on the full scene. The fastest run for its accuracy on each "
            "scene (the Pareto front: no other run both faster and at most as wrong):", "",

@@ -27,6 +27,12 @@ def method_name(run) -> str:
     return {"brute_force": "brute force"}.get(kind, kind)
 
 
+def wrong_rays(frame, prefix="exact_"):
+    """Rays wrong against the exact reference: false misses + false hits + wrong triangle (a simplified
+    scene has other triangles: no wrong triangle counted). prefix "embree_exact_" for Embree's."""
+    return frame[prefix + "false_misses"] + frame[prefix + "false_hits"] + frame[prefix + "wrong_primitive"].fillna(0)
+
+
 def sweep_of(label: str) -> str:
     """The [[sweep]] name in a run label: "name:key=value ...", "name", "key=value ..." or "single run"."""
     if ":" in label:
