@@ -99,7 +99,8 @@ ComputePipeline GpuBuffers::createKernel(const std::string& name, const KernelSp
                                       {gpu::kSpecLatticeOriginX, floatBits(spec.vertexLattice.origin.x)},
                                       {gpu::kSpecLatticeOriginY, floatBits(spec.vertexLattice.origin.y)},
                                       {gpu::kSpecLatticeOriginZ, floatBits(spec.vertexLattice.origin.z)},
-                                      {gpu::kSpecLatticeStep, floatBits(spec.vertexLattice.step)}});
+                                      {gpu::kSpecLatticeStep, floatBits(spec.vertexLattice.step)},
+                                      {gpu::kSpecQuery, spec.query}});
 }
 
 GpuBuffers::~GpuBuffers() {

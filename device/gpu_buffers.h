@@ -19,6 +19,7 @@ struct KernelSpec {
     std::uint32_t intersectionsPerPass = 1;
     bool suppressFinishedReads = false;
     std::uint32_t triangleTest = gpu::kTriangleTestMollerTrumbore;
+    std::uint32_t query = gpu::kQueryClosest;  // gpu::kQuery*: closest hit or any hit
     VertexLattice vertexLattice;  // bits != 0: the structure's vertices are packed to it
 };
 

@@ -370,7 +370,7 @@ struct RunInProgress {
     CpuTimes started;  // the noise guard's window: from here to the end of the timing
     std::optional<RunScene> scene;
     unsigned width = 0, height = 0;
-    std::vector<gpu::Ray> rays;
+    RayBatch batch;
     std::unique_ptr<Structure> structure;
     StrategyRun method;
     std::vector<gpu::HitRecord> embreeHits, scratch;  // written by the Embree batches
@@ -406,8 +406,8 @@ std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunC
     p->height = unsigned(run.getInt("camera.height"));
     refuseOversizedBuffers(vk.info(), rayBufferSizes(std::uint64_t(p->width) * p->height, strategy.perRayState ? 16 : 0));
     refuseOversizedRayStream(std::uint64_t(p->width) * p->height);
-    p->rays = generatePrimaryRays(camera, p->width, p->height);
-    const std::vector<gpu::Ray>& rays = p->rays;
+    p->batch.rays = generatePrimaryRays(camera, p->width, p->height);
+    const std::vector<gpu::Ray>& rays = p->batch.rays;
     validateRays(rays);
     row["rays"] = std::to_string(rays.size());
 
@@ -427,7 +427,7 @@ std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunC
     TimingOptions timing;
     timing.workgroupSize = unsigned(run.getInt("strategy.workgroup_size"));
     timing.warmups = timing.repetitions = 0;  // timed in rounds with Embree
-    p->method = strategy.run(vk, structure, rays, run, timing, row);
+    p->method = strategy.run(vk, structure, p->batch, run, timing, row);
     row["cpu_reference_mismatches"] = std::to_string(p->method.cpuMismatches);
     row["cpu_counts_match"] = p->method.countsMismatch.empty() ? "1" : "0";
     writeArchitectureColumns(p->method.metrics, structure, rays.size(), row);
@@ -435,7 +435,7 @@ std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunC
     // Time: the kernel, uninstrumented, and Embree on the same rays, in rounds.
     EmbreeReference& embree = embreeFor(run, scene, caches, row);
     KernelTimer& kernel = *p->method.timer;
-    p->rounds = std::make_unique<Rounds>(timedMethods(kernel, embree, p->rays, p->embreeHits, p->scratch),
+    p->rounds = std::make_unique<Rounds>(timedMethods(kernel, embree, p->batch.rays, p->embreeHits, p->scratch),
                                          [&kernel] { return kernel.timeHostLoops(); }, roundsOptions(run), caches.started);
     return p;
 }
@@ -445,7 +445,7 @@ void finishRun(RunInProgress& p, const std::string& folder, Caches& caches, Row&
     VulkanContext& vk = *p.vk;
     const RunScene& scene = *p.scene;
     const TriangleMesh& mesh = scene.traced;
-    const std::vector<gpu::Ray>& rays = p.rays;
+    const std::vector<gpu::Ray>& rays = p.batch.rays;
     const StrategyRun& method = p.method;
     const unsigned width = p.width, height = p.height;
     const std::vector<gpu::HitRecord>& embreeHits = p.embreeHits;

@@ -24,6 +24,7 @@ layout(constant_id = kSpecLatticeOriginX) const float latticeOriginX = 0.0;
 layout(constant_id = kSpecLatticeOriginY) const float latticeOriginY = 0.0;
 layout(constant_id = kSpecLatticeOriginZ) const float latticeOriginZ = 0.0;
 layout(constant_id = kSpecLatticeStep) const float latticeStep = 0.0;
+layout(constant_id = kSpecQuery) const uint query = kQueryClosest;
 
 layout(std430, set = 0, binding = kBindingRays) readonly buffer RayBuffer { Ray rays[]; };
 layout(std430, set = 0, binding = kBindingHits) writeonly buffer HitBuffer { HitRecord hits[]; };

@@ -43,6 +43,12 @@ RTBENCH_CONST kSpecLatticeOriginX = 7;   // packed vertices: the lattice's origi
 RTBENCH_CONST kSpecLatticeOriginY = 8;
 RTBENCH_CONST kSpecLatticeOriginZ = 9;
 RTBENCH_CONST kSpecLatticeStep = 10;     // ... and its spacing, a power of two (float bits)
+RTBENCH_CONST kSpecQuery = 11;           // kQuery*: what a ray asks of the scene
+
+// ---- queries (pbrt's Intersect and IntersectP; Embree's rtcIntersect and rtcOccluded) ----
+RTBENCH_CONST kQueryClosest = 0;  // the nearest hit in [tMin, tMax)
+RTBENCH_CONST kQueryAny = 1;      // whether anything is hit in [tMin, tMax): the first hit found ends
+                                  // the walk (shadow rays); its record is that hit, not the nearest
 
 // ---- ray-triangle tests (kernels/ray_math.glsl) ----
 RTBENCH_CONST kTriangleTestMollerTrumbore = 0;  // Moller & Trumbore 1997

@@ -7,7 +7,7 @@
 
 // Up to intersectionsPerPass triangles at positions [position, end); once the range ends, the rest
 // of the unrolled iterations read and discard the last one (unless suppressed), as non-branching
-// hardware would. True when the range ended in this pass.
+// hardware would. True when the range ended in this pass, or the query was answered (rtQueryDone).
 bool mpIntersectRange(Ray ray, RT_INOUT(uint) position, uint end, RT_INOUT(RayHitState) hit, RT_INOUT(MpEvents) e) {
     RtTriangleRay r = rtTriangleRay(ray);
     bool ended = false;
@@ -18,7 +18,7 @@ bool mpIntersectRange(Ray ray, RT_INOUT(uint) position, uint end, RT_INOUT(RayHi
             e.tested += 1u;
             if (rtIntersectStored(r, tri, hit.t, hit.u, hit.v)) hit.primitive = tri;
             position += 1u;
-            ended = position == end;
+            ended = position == end || rtQueryDone(hit.primitive);
         } else if (suppressFinishedReads == 0u) {
             mpDiscardTriangleRead(mpTriangleAt(end - 1u), e);
         }

@@ -79,9 +79,16 @@ bool rtIntersectStored(RtTriangleRay r, uint tri, RT_INOUT(float) t, RT_INOUT(fl
     return rtIntersect(r, v0, v1, v2, t, u, v);
 }
 
-// Tests triangle `tri` and keeps it when it is hit nearer.
-void rtTestTriangle(RtTriangleRay r, uint tri, RT_INOUT(RtNearest) n) {
+// The query's one hook (pbrt's Intersect and IntersectP, bvh v2's IsAnyHit): true when a walk
+// holding the hit `primitive` has answered its query and ends there: an any-hit query's first
+// hit. A closest-hit walk ends by its own rule (no nearer hit can follow). Every traversal loop,
+// branching and multipass, asks it after each triangle test.
+bool rtQueryDone(uint primitive) { return query == kQueryAny && primitive != kNoHit; }
+
+// Tests triangle `tri` and keeps it when it is hit nearer; true when that answers the query.
+bool rtTestTriangle(RtTriangleRay r, uint tri, RT_INOUT(RtNearest) n) {
     if (rtIntersectStored(r, tri, n.t, n.u, n.v)) n.primitive = tri;
+    return rtQueryDone(n.primitive);
 }
 
 // The record's hit fields from the nearest hit, if there is one.

@@ -1,4 +1,4 @@
-// Opens a structure's shared GLSL as C++ (see methods/shared_source.h); close with
+// Opens a structure's shared GLSL as C++ (see methods/shared_kernels.h); close with
 // methods/shared_source_end.h. No include guard: it is meant to be included once per structure.
 #define RT_OUT(T) T&
 #define RT_INOUT(T) T&

@@ -5,3 +5,8 @@
 #undef RT_INOUT
 #undef RT_OUT
 #pragma GCC diagnostic pop
+// The shared sources' include guards, so that the next structure's kernels include them again
+// (methods/structure_kernels.h holds every structure's in one translation unit).
+#undef RT_RAY_MATH_GLSL
+#undef RT_TRAVERSAL_COMMON_GLSL
+#undef RT_MULTIPASS_INTERSECT_GLSL

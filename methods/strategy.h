@@ -10,6 +10,7 @@
 
 #include "device/vulkan_context.h"
 #include "methods/accounting.h"
+#include "methods/ray_batch.h"
 #include "methods/structure.h"
 
 namespace rtbench {
@@ -69,10 +70,10 @@ struct StrategyType {
     std::vector<ColumnSpec> columns;  // written only by its runs
     // Whether it keeps per-ray traversal state on the device (sizes the buffers before allocating).
     bool perRayState = false;
-    // Uploads, runs one instrumented run (and the timed repetitions `timing` asks for), compares
-    // with the CPU reference, writes its own columns to `row`, and returns its timer.
-    StrategyRun (*run)(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
-                       const RunConfig& config, const TimingOptions& timing, Row& row);
+    // Uploads, runs one instrumented run of the batch's query (and the timed repetitions `timing`
+    // asks for), compares with its CPU model, writes its own columns to `row`, returns its timer.
+    StrategyRun (*run)(VulkanContext& vk, const Structure& structure, const RayBatch& batch, const RunConfig& config,
+                       const TimingOptions& timing, Row& row);
 };
 
 // Throws, with the count of differing rays, when a timed run's hits differ from the instrumented

@@ -13,7 +13,7 @@
 
 #include "device/gpu_buffers.h"
 #include "kernels/gpu_layout.h"
-#include "methods/multipass/multipass_schedule.h"
+#include "methods/structure_kernels.h"
 #include "plan/columns.h"
 #include "plan/keys.h"
 #include "structures/mesh.h"
@@ -35,10 +35,10 @@ struct StructureCosts {
     std::uint64_t bytesPerTriangle = sizeof(gpu::Triangle);  // per triangle tested: its vertices (packed: 20)
 };
 
-// The CPU reference's multipass run: hit records with per-ray counters, and the pass counts.
-struct MultipassResult {
-    std::vector<gpu::HitRecord> hits;
-    MultipassCounts counts;
+// Bounds on one ray's walk, from the structure's statistics: what a strategy caps its passes by.
+struct WalkBounds {
+    std::uint64_t maxCellsPerRay = 1;       // cells (voxels, nodes and leaves) one ray visits at most
+    std::uint64_t maxTrianglesPerCell = 0;  // triangles one cell lists at most
 };
 
 // What a build produced, ready for any strategy.
@@ -53,16 +53,13 @@ public:
     virtual std::vector<std::uint8_t> params() const = 0;
     virtual StructureCosts costs() const = 0;
 
-    // CPU reference, running the kernels' own source: every hit record, bit for bit.
-    virtual std::vector<gpu::HitRecord> trace(const std::vector<gpu::Ray>& rays) const = 0;
-    // One ray's branching traversal, logging the triangle-loop trips of each outer-loop iteration
-    // (one entry per voxel or node visited): what the kernel's subgroup ballots see.
-    virtual void traceLoops(const gpu::Ray& ray, std::vector<std::uint32_t>& loopLog) const = 0;
-    // The multipass passes on the CPU, with the strategy's scheduler.
-    virtual MultipassResult simulateMultipass(const std::vector<gpu::Ray>& rays,
-                                              const MultipassOptions& options) const = 0;
-    // A cap on multipass passes no correct run reaches (a fault that stops progress fails).
-    virtual std::uint64_t multipassPassCap(const MultipassOptions& options) const = 0;
+    // The kernels' own source compiled as C++ over this structure's data, configured as its
+    // kernels are (triangle test, vertex lattice; closest-hit query): what the strategies' CPU
+    // models run (std::visit).
+    virtual StructureKernels cpuKernels() const = 0;
+    // CPU reference: every ray's hit record for the query (gpu::kQuery*), bit for bit the kernels'.
+    std::vector<gpu::HitRecord> trace(const std::vector<gpu::Ray>& rays, std::uint32_t query = gpu::kQueryClosest) const;
+    virtual WalkBounds walkBounds() const = 0;
 
     // The cost model (methods/cost_model.h): the cell or node visits plus triangle tests these
     // rays are predicted to take, from the structure's statistics alone, before any ray is traced.

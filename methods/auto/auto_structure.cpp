@@ -21,16 +21,8 @@ public:
     std::vector<StructureBuffer> buffers() const override { return chosen_->buffers(); }
     std::vector<std::uint8_t> params() const override { return chosen_->params(); }
     StructureCosts costs() const override { return chosen_->costs(); }
-    std::vector<gpu::HitRecord> trace(const std::vector<gpu::Ray>& rays) const override { return chosen_->trace(rays); }
-    void traceLoops(const gpu::Ray& ray, std::vector<std::uint32_t>& loopLog) const override {
-        chosen_->traceLoops(ray, loopLog);
-    }
-    MultipassResult simulateMultipass(const std::vector<gpu::Ray>& rays, const MultipassOptions& options) const override {
-        return chosen_->simulateMultipass(rays, options);
-    }
-    std::uint64_t multipassPassCap(const MultipassOptions& options) const override {
-        return chosen_->multipassPassCap(options);
-    }
+    StructureKernels cpuKernels() const override { return chosen_->cpuKernels(); }
+    WalkBounds walkBounds() const override { return chosen_->walkBounds(); }
     double predictedWork(const std::vector<gpu::Ray>& rays) const override { return chosen_->predictedWork(rays); }
     const VertexLattice& vertexLattice() const override { return chosen_->vertexLattice(); }
     void setTriangleTest(std::uint32_t test) override {

@@ -60,7 +60,7 @@ private:
 }  // namespace
 
 BranchingRun runBranching(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
-                          const TimingOptions& timing) {
+                          const TimingOptions& timing, std::uint32_t query) {
     if (timing.workgroupSize % vk.info().subgroupSize)
         throw Error("strategy.workgroup_size " + std::to_string(timing.workgroupSize) +
                     " is not a multiple of the subgroup size " + std::to_string(vk.info().subgroupSize));
@@ -71,6 +71,7 @@ BranchingRun runBranching(VulkanContext& vk, const Structure& structure, const s
     spec.workgroupSize = timing.workgroupSize;
     spec.triangleTest = structure.triangleTest();
     spec.vertexLattice = structure.vertexLattice();
+    spec.query = query;
     {
         ComputePipeline counted = buffers->createKernel(kernel, spec);
         vk.dispatch(counted, buffers->descriptorSet(counted), buffers->pushConstants(), rays.size());
@@ -90,17 +91,19 @@ BranchingRun runBranching(VulkanContext& vk, const Structure& structure, const s
 
 namespace {
 
-StrategyRun runBranchingStrategy(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
+StrategyRun runBranchingStrategy(VulkanContext& vk, const Structure& structure, const RayBatch& batch,
                                  const RunConfig&, const TimingOptions& timing, Row& row) {
-    BranchingRun kernel = runBranching(vk, structure, rays, timing);
+    const std::vector<gpu::Ray>& rays = batch.rays;
+    BranchingRun kernel = runBranching(vk, structure, rays, timing, batch.query);
     StrategyRun run;
     run.metrics = branchingMetrics(kernel.hits, kernel.activeLanes, kernel.laneSlots, structure.costs());
-    run.cpuMismatches = recordMismatches(kernel.hits, structure.trace(rays));
+    run.cpuMismatches = recordMismatches(kernel.hits, structure.trace(rays, batch.query));
     // A device that ends long loops (llvmpipe) leaves the rays of such a subgroup unfinished, their
     // records wrong without a sign: the lane model knows each subgroup's loop iterations exactly.
     // A small margin covers the fixed loops around the traversal's (the slab test's 3 axes...).
     const std::uint64_t limit = vk.info().loopIterationLimit, margin = 64;
-    const LaneCounts lanes = branchingLaneCounts(structure, rays, vk.info().subgroupSize, limit ? limit - margin : 0);
+    const LaneCounts lanes =
+        branchingLaneCounts(structure, rays, vk.info().subgroupSize, limit ? limit - margin : 0, batch.query);
     if (lanes.activeLanes != kernel.activeLanes || lanes.laneSlots != kernel.laneSlots)
         run.countsMismatch = "subgroup lane counts differ (" + std::to_string(kernel.activeLanes) + "/" +
                              std::to_string(kernel.laneSlots) + " on the device, " + std::to_string(lanes.activeLanes) +

@@ -17,8 +17,8 @@ struct BranchingRun {
 
 // Uploads structure and rays, runs one instrumented dispatch for hits and counters, then the
 // warm-ups and timed repetitions `timing` asks for (none: the timer does them later) with
-// instrumentation off; checks the timed runs' hits equal the counted ones.
+// instrumentation off; checks the timed runs' hits equal the counted ones. `query`: gpu::kQuery*.
 BranchingRun runBranching(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
-                          const TimingOptions& timing);
+                          const TimingOptions& timing, std::uint32_t query = gpu::kQueryClosest);
 
 }  // namespace rtbench

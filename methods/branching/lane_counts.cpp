@@ -12,8 +12,11 @@ LaneCounts operator+(const LaneCounts& a, const LaneCounts& b) {
             std::max(a.maxSubgroupIterations, b.maxSubgroupIterations), a.raysInLongSubgroups + b.raysInLongSubgroups};
 }
 
-LaneCounts branchingLaneCounts(const Structure& structure, const std::vector<gpu::Ray>& rays,
-                               unsigned subgroupSize, std::uint64_t iterationLimit) {
+namespace {
+
+template <class Kernels>
+LaneCounts laneCounts(const Kernels& kernels, const std::vector<gpu::Ray>& rays, unsigned subgroupSize,
+                      std::uint64_t iterationLimit) {
     const std::size_t subgroups = (rays.size() + subgroupSize - 1) / subgroupSize;
     auto count = [&](const tbb::blocked_range<std::size_t>& range, LaneCounts sum) {
         std::vector<std::vector<std::uint32_t>> lanes(subgroupSize);  // triangle-loop trips per outer iteration
@@ -23,7 +26,9 @@ LaneCounts branchingLaneCounts(const Structure& structure, const std::vector<gpu
                 lanes[l].clear();
                 const std::size_t ray = g * subgroupSize + l;
                 if (ray >= rays.size()) continue;  // lanes past the stream return at once
-                structure.traceLoops(rays[ray], lanes[l]);
+                Kernels k = kernels;
+                k.loopLog = &lanes[l];
+                k.rtTrace(rays[ray]);
                 longest = std::max(longest, lanes[l].size());
             }
             std::uint64_t iterations = 0;
@@ -47,6 +52,18 @@ LaneCounts branchingLaneCounts(const Structure& structure, const std::vector<gpu
     };
     return tbb::parallel_reduce(tbb::blocked_range<std::size_t>(0, subgroups, 256), LaneCounts{}, count,
                                 [](const LaneCounts& a, const LaneCounts& b) { return a + b; });
+}
+
+}  // namespace
+
+LaneCounts branchingLaneCounts(const Structure& structure, const std::vector<gpu::Ray>& rays,
+                               unsigned subgroupSize, std::uint64_t iterationLimit, std::uint32_t query) {
+    return std::visit(
+        [&](auto kernels) {
+            kernels.query = query;
+            return laneCounts(kernels, rays, subgroupSize, iterationLimit);
+        },
+        structure.cpuKernels());
 }
 
 }  // namespace rtbench

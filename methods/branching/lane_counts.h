@@ -23,9 +23,11 @@ struct LaneCounts {
 // A sum of counts (the parallel reduction's join).
 LaneCounts operator+(const LaneCounts& a, const LaneCounts& b);
 
-// Uses Structure::traceLoops: per ray, the triangle-loop trips of each outer-loop iteration.
+// Runs the structure's shared rtTrace (Structure::cpuKernels) with the loop log on: per ray, the
+// triangle-loop trips of each outer-loop iteration, for the query (gpu::kQuery*).
 // iterationLimit (0: none) counts the rays of subgroups that run more loop iterations.
 LaneCounts branchingLaneCounts(const Structure& structure, const std::vector<gpu::Ray>& rays,
-                               unsigned subgroupSize, std::uint64_t iterationLimit = 0);
+                               unsigned subgroupSize, std::uint64_t iterationLimit = 0,
+                               std::uint32_t query = gpu::kQueryClosest);
 
 }  // namespace rtbench

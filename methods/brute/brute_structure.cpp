@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "brute_reference.h"
 #include "methods/shared_source.h"
 #include "methods/triangle_store.h"
 #include "methods/brute/brute_layout.h"
@@ -9,22 +10,6 @@
 
 namespace rtbench {
 
-namespace bruteref {
-// The shared GLSL source as C++ (methods/shared_source.h).
-using namespace glm;
-using namespace rtbench::gpu;
-#include "methods/shared_source_begin.h"
-struct BruteKernels : KernelConstants {
-    using RtTraversalState = BruteTraversalState;
-    const Triangle* triangles;
-    const std::uint32_t* packedTriangles;
-    BruteParams params;
-#include "../../kernels/ray_math.glsl"
-#include "../../kernels/traversal_common.glsl"
-#include "brute_traversal.glsl"
-};
-#include "methods/shared_source_end.h"
-}  // namespace bruteref
 
 namespace {
 
@@ -70,17 +55,8 @@ public:
         return k;
     }
 
-    void traceLoops(const gpu::Ray& ray, std::vector<std::uint32_t>& loopLog) const override {
-        // One outer iteration whose triangle loop runs over every triangle: no need to trace.
-        (void)ray;
-        loopLog.assign(1, std::uint32_t(triangles_.size()));
-    }
-
     // One "cell" holding every triangle.
-    std::uint64_t multipassPassCap(const MultipassOptions& options) const override {
-        if (options.maxPasses) return options.maxPasses;
-        return rtbench::multipassPassCap(1, triangles_.size(), options);
-    }
+    WalkBounds walkBounds() const override { return {1, triangles_.size()}; }
 
     // Every ray tests every triangle.
     double predictedWork(const std::vector<gpu::Ray>& rays) const override {

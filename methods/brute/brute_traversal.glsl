@@ -14,7 +14,7 @@ HitRecord rtTrace(Ray ray) {
     for (uint tri = 0u; tri < params.counts.x; ++tri) {
         RT_ON_INNER();
         h.trianglesTested += 1u;
-        rtTestTriangle(r, tri, nearest);
+        if (rtTestTriangle(r, tri, nearest)) break;
     }
     rtRecordNearest(nearest, h);
     return h;

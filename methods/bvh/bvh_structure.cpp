@@ -1,44 +1,17 @@
 #include "bvh_structure.h"
 
 #include "methods/cost_model.h"
+#include "bvh_reference.h"
 #include "methods/shared_source.h"
 #include "methods/triangle_store.h"
 #include "structures/error.h"
 
 namespace rtbench {
 
-namespace bvhref {
-// The shared GLSL source as C++ (methods/shared_source.h).
-using namespace glm;
-using namespace rtbench::gpu;
-#include "methods/shared_source_begin.h"
-struct BvhKernels : KernelConstants {
-    using RtTraversalState = BvhTraversalState;
-    const BvhNode* nodes;
-    const std::uint32_t* triangleList;
-    const Triangle* triangles;
-    const std::uint32_t* packedTriangles;
-    BvhParams params;
-#include "../../kernels/ray_math.glsl"
-#include "../../kernels/traversal_common.glsl"
-#include "bvh_traversal.glsl"
-};
-#include "methods/shared_source_end.h"
-}  // namespace bvhref
 
 namespace {
 
 std::string num(double v, int significant = 6) { return formatNumber(v, significant); }
-
-bvhref::BvhKernels kernelsOf(const FlatBvh& bvh) {
-    bvhref::BvhKernels k{};
-    k.nodes = bvh.nodes.data();
-    k.triangleList = bvh.triangleList.data();
-    k.triangles = bvh.triangles.data();
-    k.packedTriangles = nullptr;
-    k.params = bvh.params;
-    return k;
-}
 
 class BvhStructure final : public SharedSourceStructure<bvhref::BvhKernels> {
 public:
@@ -71,17 +44,14 @@ public:
     const VertexLattice& vertexLattice() const override { return vertices_.lattice(); }
 
     bvhref::BvhKernels kernels() const override {
-        bvhref::BvhKernels k = kernelsOf(bvh_);
+        bvhref::BvhKernels k = bvhKernels(bvh_);
         vertices_.bind(k);
         return k;
     }
 
     // A ray visits each reference at most once: inner nodes + leaves bound its steps; a leaf holds
     // at most largestLeaf triangles.
-    std::uint64_t multipassPassCap(const MultipassOptions& options) const override {
-        if (options.maxPasses) return options.maxPasses;
-        return rtbench::multipassPassCap(bvh_.stats.innerNodes + bvh_.stats.leaves, bvh_.stats.largestLeaf, options);
-    }
+    WalkBounds walkBounds() const override { return {bvh_.stats.innerNodes + bvh_.stats.leaves, bvh_.stats.largestLeaf}; }
 
     // The tree's SAH cost (computed by the flattener with both costs 1) per ray entering its box.
     double predictedWork(const std::vector<gpu::Ray>& rays) const override {
@@ -131,8 +101,18 @@ std::unique_ptr<Structure> buildBvhStructure(const TriangleMesh& mesh, const std
 
 }  // namespace
 
+bvhref::BvhKernels bvhKernels(const FlatBvh& bvh) {
+    bvhref::BvhKernels k{};
+    k.nodes = bvh.nodes.data();
+    k.triangleList = bvh.triangleList.data();
+    k.triangles = bvh.triangles.data();
+    k.packedTriangles = nullptr;
+    k.params = bvh.params;
+    return k;
+}
+
 std::vector<gpu::HitRecord> traceBvhReference(const FlatBvh& bvh, const std::vector<gpu::Ray>& rays) {
-    return traceAll(kernelsOf(bvh), rays);
+    return traceAll(bvhKernels(bvh), rays);
 }
 
 std::unique_ptr<Structure> bvhStructure(FlatBvh bvh) { return std::make_unique<BvhStructure>(std::move(bvh)); }

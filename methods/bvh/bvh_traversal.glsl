@@ -6,7 +6,8 @@
 // Algorithm: a per-ray stack walk of a binary BVH whose nodes hold both children's boxes (Aila &
 // Laine 2009): at an inner node both child boxes are clipped against [tMin, nearest hit so far];
 // the walk continues with the nearer child hit and pushes the other; a leaf's triangles are all
-// tested (Moller-Trumbore, closest hit kept); then the next reference is popped. As in Aila &
+// tested (Moller-Trumbore, closest hit kept; an any-hit query ends at its first hit); then the next
+// reference is popped. As in Aila &
 // Laine's kernels the stack holds references only, so a popped subtree is not re-tested against
 // a nearer hit found meanwhile: a popped inner node's child boxes are, a popped leaf's triangles
 // are tested (and rejected by distance).
@@ -77,8 +78,9 @@ HitRecord rtTrace(Ray ray) {
             for (uint i = first; i < end; ++i) {
                 RT_ON_INNER();
                 h.trianglesTested += 1u;
-                rtTestTriangle(r, triangleList[i], nearest);
+                if (rtTestTriangle(r, triangleList[i], nearest)) break;
             }
+            if (rtQueryDone(nearest.primitive)) break;
             next = false;
         } else {
             h.cellsVisited += 1u;
@@ -174,10 +176,12 @@ uint mpTriangleAt(uint position) { return triangleList[position]; }
 #include "../../kernels/multipass_intersect.glsl"
 
 // Intersect pass: up to intersectionsPerPass triangles of the current leaf; after its last one
-// the walk pops (traversing) or is done.
+// the walk pops (traversing) or is done; an answered query is done.
 uint mpIntersect(Ray ray, RT_INOUT(BvhTraversalState) ts, RT_INOUT(RayHitState) hit, RT_INOUT(MpEvents) e) {
     uint listPos = ts.walk.z;
-    uint state = mpIntersectRange(ray, listPos, ts.walk.w, hit, e) ? mpBvhPop(ts, hit) : kStateWaiting;
+    uint state = kStateWaiting;
+    if (mpIntersectRange(ray, listPos, ts.walk.w, hit, e))
+        state = rtQueryDone(hit.primitive) ? kStateDoneHit : mpBvhPop(ts, hit);
     ts.walk.z = listPos;
     return state;
 }

@@ -25,9 +25,10 @@ RtDda mpRestore(Ray ray, GridTraversalState ts) {
 }
 
 // After the current voxel's triangles (or an empty voxel): done when the nearest hit so far lies
-// within the voxel, else traverse on (the branching loop's termination test).
+// within the voxel or answers the query, else traverse on (the branching loop's termination test).
 uint mpAfterVoxel(RtDda s, RayHitState hit) {
-    return hit.primitive != kNoHit && hit.t <= rtDdaVoxelExit(s) ? kStateDoneHit : kStateTraversing;
+    return rtQueryDone(hit.primitive) || (hit.primitive != kNoHit && hit.t <= rtDdaVoxelExit(s)) ? kStateDoneHit
+                                                                                                : kStateTraversing;
 }
 
 // Enters the DDA's current voxel: reads its triangle-list range.

@@ -1,12 +1,12 @@
 // CPU reference of the uniform grid: the functional simulator of Purcell §4.1. It runs the
 // kernels' own source (kernels/ray_math.glsl, kernels/traversal_common.glsl and this folder's
-// grid_traversal.glsl and grid_multipass.glsl, compiled as C++ here: methods/shared_source.h), so
+// grid_traversal.glsl and grid_multipass.glsl, compiled as C++ here: methods/shared_kernels.h), so
 // its hits, per-ray counters and multipass events must equal the GPU kernels' on the same rays,
 // bit for bit.
 #pragma once
 #include <vector>
 
-#include "methods/shared_source.h"
+#include "methods/shared_kernels.h"
 #include "uniform_grid.h"
 
 namespace rtbench {

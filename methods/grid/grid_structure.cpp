@@ -4,6 +4,7 @@
 
 #include "device/gpu_buffers.h"
 #include "grid_reference.h"
+#include "methods/shared_source.h"
 #include "methods/cost_model.h"
 #include "methods/triangle_store.h"
 #include "structures/error.h"
@@ -76,10 +77,9 @@ public:
     }
 
     // A ray visits at most resX + resY + resZ voxels; a voxel lists at most maxReferencesInCell.
-    std::uint64_t multipassPassCap(const MultipassOptions& options) const override {
-        if (options.maxPasses) return options.maxPasses;
+    WalkBounds walkBounds() const override {
         const auto& r = grid_.stats.resolution;
-        return rtbench::multipassPassCap(std::uint64_t(r[0]) + r[1] + r[2], grid_.stats.maxReferencesInCell, options);
+        return {std::uint64_t(r[0]) + r[1] + r[2], grid_.stats.maxReferencesInCell};
     }
 
     // Every voxel has the same surface area: a line through the box crosses cells x A_cell / A_box

@@ -109,7 +109,8 @@ bool rtEnterGrid(Ray ray, RT_OUT(RtDda) s) {
 }
 
 // The branching ray caster (Purcell §3.1 in one loop): walk the grid, test every triangle of each
-// non-empty voxel, stop in the first voxel whose exit lies at or beyond the nearest hit so far.
+// non-empty voxel, stop in the first voxel whose exit lies at or beyond the nearest hit so far
+// (an any-hit query: at its first hit).
 HitRecord rtTrace(Ray ray) {
     HitRecord h = rtEmptyRecord();
     RtDda s;
@@ -125,9 +126,9 @@ HitRecord rtTrace(Ray ray) {
         for (uint i = first; i < end; ++i) {
             RT_ON_INNER();
             h.trianglesTested += 1u;
-            rtTestTriangle(r, triangleList[i], nearest);
+            if (rtTestTriangle(r, triangleList[i], nearest)) break;
         }
-        if (nearest.primitive != kNoHit && nearest.t <= rtDdaVoxelExit(s)) break;
+        if (rtQueryDone(nearest.primitive) || (nearest.primitive != kNoHit && nearest.t <= rtDdaVoxelExit(s))) break;
         h.traversalSteps += 1u;
         if (!rtDdaStep(s)) break;
     }

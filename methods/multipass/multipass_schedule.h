@@ -23,7 +23,7 @@ struct MultipassOptions {
     // intersect until no ray waits, and again.
     std::string scheduling = "oracle";
     double oracleThreshold = 0.2;
-    std::uint64_t maxPasses = 0;  // 0: automatic cap from the structure (Structure::multipassPassCap)
+    std::uint64_t maxPasses = 0;  // 0: automatic cap from the structure (Structure::walkBounds)
 };
 
 class PassScheduler {

@@ -1,8 +1,8 @@
 // CPU functional simulator of the multipass ray caster (Purcell §4.1) for any structure: runs the
-// kernels' per-ray source (the structure's structure.glsl, compiled as C++ into `Kernels`) pass by
-// pass with the strategy's scheduler, so its hits, per-ray counters, pass sequence and event
-// counts must equal the GPU's exactly. `Kernels` provides mpSetup / mpTraverse / mpIntersect /
-// mpNoEvents / mpHitRecord and the type RtTraversalState.
+// kernels' per-ray source (the structure's structure.glsl, compiled as C++: Structure::cpuKernels)
+// pass by pass with the strategy's scheduler, so its hits, per-ray counters, pass sequence and
+// event counts must equal the GPU's exactly. Each structure's kernels provide mpSetup /
+// mpTraverse / mpIntersect / mpNoEvents / mpHitRecord and the type RtTraversalState.
 #pragma once
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_reduce.h>
@@ -10,14 +10,31 @@
 #include <cstdint>
 #include <vector>
 
+#include "methods/multipass/multipass_schedule.h"
 #include "methods/structure.h"
 
 namespace rtbench {
 
+// The CPU reference's multipass run: hit records with per-ray counters, and the pass counts.
+struct MultipassResult {
+    std::vector<gpu::HitRecord> hits;
+    MultipassCounts counts;
+};
+
+// The pass cap of a structure's runs: strategy.max_passes, else multipassPassCap of its walk bounds.
+inline std::uint64_t multipassPassCap(const Structure& structure, const MultipassOptions& options) {
+    if (options.maxPasses) return options.maxPasses;
+    const WalkBounds b = structure.walkBounds();
+    return multipassPassCap(b.maxCellsPerRay, b.maxTrianglesPerCell, options);
+}
+
 // Throws rtbench::Error when `cap` passes have run with rays still active.
 template <class Kernels>
-MultipassResult simulateMultipass(const Kernels& base, const std::vector<gpu::Ray>& rays,
-                                  const MultipassOptions& options, std::uint64_t cap) {
+MultipassResult simulateMultipassOver(Kernels base, const std::vector<gpu::Ray>& rays,
+                                      const MultipassOptions& options, std::uint64_t cap) {
+    base.traverseStepsPerPass = options.traverseStepsPerPass;
+    base.intersectionsPerPass = options.intersectionsPerPass;
+    base.suppressFinishedReads = options.suppressFinishedReads ? 1u : 0u;
     const std::size_t n = rays.size();
     std::vector<std::uint8_t> stencil(n);
     std::vector<typename Kernels::RtTraversalState> traversal(n);
@@ -67,6 +84,18 @@ MultipassResult simulateMultipass(const Kernels& base, const std::vector<gpu::Ra
     Kernels write = base;
     for (std::size_t i = 0; i < n; ++i) result.hits[i] = write.mpHitRecord(hitState[i], counters[i]);
     return result;
+}
+
+// The multipass passes on the CPU for a structure and a query (gpu::kQuery*), capped as the
+// device's run is.
+inline MultipassResult simulateMultipass(const Structure& structure, const std::vector<gpu::Ray>& rays,
+                                         const MultipassOptions& options, std::uint32_t query = gpu::kQueryClosest) {
+    return std::visit(
+        [&](auto kernels) {
+            kernels.query = query;
+            return simulateMultipassOver(kernels, rays, options, multipassPassCap(structure, options));
+        },
+        structure.cpuKernels());
 }
 
 }  // namespace rtbench

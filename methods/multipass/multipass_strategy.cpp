@@ -2,6 +2,7 @@
 
 #include <chrono>
 
+#include "multipass_simulator.h"
 #include "structures/error.h"
 
 namespace rtbench {
@@ -41,17 +42,18 @@ MultipassCounts runPasses(VulkanContext& vk, GpuBuffers& buffers, Pipelines& pip
     });
 }
 
-StrategyRun runMultipassStrategy(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
+StrategyRun runMultipassStrategy(VulkanContext& vk, const Structure& structure, const RayBatch& batch,
                                  const RunConfig& config, const TimingOptions& timing, Row& row) {
+    const std::vector<gpu::Ray>& rays = batch.rays;
     const MultipassOptions options = multipassOptions(config);
-    MultipassRun kernel = runMultipass(vk, structure, rays, options, timing);
+    MultipassRun kernel = runMultipass(vk, structure, rays, options, timing, batch.query);
     StrategyRun run;
     run.metrics = multipassMetrics(kernel.hits, kernel.counts, options, structure.costs());
-    const MultipassResult cpu = structure.simulateMultipass(rays, options);
+    const MultipassResult cpu = simulateMultipass(structure, rays, options, batch.query);
     run.cpuMismatches = recordMismatches(kernel.hits, cpu.hits);
     if (!(cpu.counts == kernel.counts)) run.countsMismatch = "pass sequence or event counts differ";
     // The two architectures must produce identical hit records (and work counters).
-    run.branchingMismatches = recordMismatches(kernel.hits, structure.trace(rays));
+    run.branchingMismatches = recordMismatches(kernel.hits, structure.trace(rays, batch.query));
     row["branching_mismatches"] = std::to_string(run.branchingMismatches);
     row["passes_setup"] = std::to_string(run.metrics.passesSetup);
     row["passes_traverse"] = std::to_string(run.metrics.passesTraverse);
@@ -141,13 +143,13 @@ private:
 }  // namespace
 
 MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
-                          const MultipassOptions& options, const TimingOptions& timing) {
+                          const MultipassOptions& options, const TimingOptions& timing, std::uint32_t query) {
     if (options.traverseStepsPerPass < 1 || options.intersectionsPerPass < 1)
         throw Error("multipass: traverse_steps_per_pass and intersections_per_pass must be at least 1");
     MultipassRun run;
     auto buffers = std::make_unique<GpuBuffers>(vk, rays, structure.costs().traversalStateBytes, structure.buffers(),
                                                 structure.params());
-    const std::uint64_t cap = structure.multipassPassCap(options);
+    const std::uint64_t cap = multipassPassCap(structure, options);
     KernelSpec spec;
     spec.workgroupSize = timing.workgroupSize;
     spec.triangleTest = structure.triangleTest();
@@ -155,6 +157,7 @@ MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const s
     spec.traverseStepsPerPass = options.traverseStepsPerPass;
     spec.intersectionsPerPass = options.intersectionsPerPass;
     spec.suppressFinishedReads = options.suppressFinishedReads;
+    spec.query = query;
     auto counted = std::make_unique<Pipelines>(vk, *buffers, structure.kernelPrefix(), spec);
     run.counts = runPasses(vk, *buffers, *counted, options, cap);
     run.hits = buffers->downloadHits();

@@ -27,8 +27,9 @@ struct MultipassRun {
 // One instrumented run (the oracle reads the ray-state counts after every pass), then the
 // warm-ups and timed repetitions `timing` asks for (none: the timer does them later), replaying
 // its pass sequence in one submission with instrumentation off; their hits must equal the
-// instrumented run's. Throws rtbench::Error when the pass cap is reached.
+// instrumented run's. Throws rtbench::Error when the pass cap is reached. `query`: gpu::kQuery*.
 MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
-                          const MultipassOptions& options, const TimingOptions& timing);
+                          const MultipassOptions& options, const TimingOptions& timing,
+                          std::uint32_t query = gpu::kQueryClosest);
 
 }  // namespace rtbench

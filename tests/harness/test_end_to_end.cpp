@@ -114,9 +114,15 @@ TEST_F(EndToEnd, EveryCellHasItsColumnsDeclaredValueType) {
         for (const auto& [column, cell] : row) {
             if (cell.empty()) continue;
             const std::string type = columnValueType(columnSpec(column));
-            if (type == "integer") EXPECT_TRUE(std::regex_match(cell, integer)) << column << " = " << cell;
-            if (type == "number") EXPECT_TRUE(std::regex_match(cell, number)) << column << " = " << cell;
-            if (type == "boolean") EXPECT_TRUE(cell == "true" || cell == "false") << column << " = " << cell;
+            if (type == "integer") {
+                EXPECT_TRUE(std::regex_match(cell, integer)) << column << " = " << cell;
+            }
+            if (type == "number") {
+                EXPECT_TRUE(std::regex_match(cell, number)) << column << " = " << cell;
+            }
+            if (type == "boolean") {
+                EXPECT_TRUE(cell == "true" || cell == "false") << column << " = " << cell;
+            }
             ++checked[type];
         }
     }

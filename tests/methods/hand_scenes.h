@@ -17,6 +17,7 @@
 #include "methods/bvh/bvh_structure.h"
 #include "methods/grid/grid_structure.h"
 #include "methods/grid/uniform_grid.h"
+#include "methods/multipass/multipass_simulator.h"
 #include "methods/multipass/multipass_strategy.h"
 #include "methods/structure.h"
 #include "structures/mesh.h"
@@ -97,7 +98,7 @@ inline Answers answersOf(VulkanContext& vk, const Structure& s, const std::vecto
     a.branching = runBranching(vk, s, rays, {64, 0, 1}).hits;
     const MultipassOptions o;
     a.multipass = runMultipass(vk, s, rays, o, {64, 0, 1}).hits;
-    a.simulated = s.simulateMultipass(rays, o).hits;
+    a.simulated = simulateMultipass(s, rays, o).hits;
     return a;
 }
 

@@ -7,6 +7,7 @@
 #include "methods/branching/lane_counts.h"
 #include "methods/brute/brute_structure.h"
 #include "methods/bvh/bvh_structure.h"
+#include "methods/multipass/multipass_simulator.h"
 #include "methods/multipass/multipass_strategy.h"
 #include "structures/error.h"
 #include "structures/procedural.h"
@@ -54,7 +55,7 @@ TEST_F(BruteKernels, BothStrategiesEqualTheCpuReferenceAndTheBvhsNearestHits) {
     MultipassOptions o;
     o.intersectionsPerPass = 64;
     const MultipassRun multipass = runMultipass(*vk_, *brute, rays, o, {64, 0, 1});
-    const MultipassResult simulated = brute->simulateMultipass(rays, o);
+    const MultipassResult simulated = simulateMultipass(*brute, rays, o);
     expectIdentical(multipass.hits, simulated.hits);
     EXPECT_TRUE(multipass.counts == simulated.counts);
     expectIdentical(multipass.hits, cpu);

@@ -16,6 +16,7 @@
 #include "methods/grid/grid_reference.h"
 #include "methods/grid/uniform_grid.h"
 #include "methods/metrics.h"
+#include "methods/multipass/multipass_simulator.h"
 #include "methods/multipass/multipass_strategy.h"
 #include "structures/camera.h"
 #include "structures/error.h"
@@ -216,7 +217,7 @@ TEST_F(BvhKernels, MultipassEqualsItsSimulatorAndTheBranchingWalk) {
                 o.intersectionsPerPass = m;
                 o.suppressFinishedReads = suppress;
                 const MultipassRun gpuRun = runMultipass(*vk_, *bvh, rays, o, {64, 0, 1});
-                const MultipassResult cpu = bvh->simulateMultipass(rays, o);
+                const MultipassResult cpu = simulateMultipass(*bvh, rays, o);
                 expectIdentical(gpuRun.hits, cpu.hits);
                 EXPECT_TRUE(gpuRun.counts == cpu.counts);
                 expectIdentical(gpuRun.hits, branching);  // the two strategies walk the same tree the same way

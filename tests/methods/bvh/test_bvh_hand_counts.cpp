@@ -199,7 +199,7 @@ TEST_F(BvhHandKernels, MultipassPassesEventsAndStackBytesByHand) {
                      std::to_string(hand.options.intersectionsPerPass) +
                      (hand.options.suppressFinishedReads ? " suppressed" : ""));
         const MultipassRun gpuRun = runMultipass(*vk_, *s, rays, hand.options, {64, 0, 1});
-        const MultipassResult cpuRun = s->simulateMultipass(rays, hand.options);
+        const MultipassResult cpuRun = simulateMultipass(*s, rays, hand.options);
         for (const MultipassCounts* c : {&gpuRun.counts, &cpuRun.counts}) {
             SCOPED_TRACE(c == &gpuRun.counts ? "kernels" : "simulator");
             EXPECT_EQ(c->sequence, hand.sequence);

@@ -167,7 +167,7 @@ TEST_F(GridHandKernels, MultipassEventsOfTheCornerRayByHand) {
     using K = PassKind;
     EXPECT_EQ(r.counts.sequence, (std::vector<K>{K::Setup, K::Intersect, K::Traverse, K::Intersect, K::Traverse,
                                                  K::Intersect, K::Intersect, K::Write}));
-    EXPECT_TRUE(r.counts == s->simulateMultipass(rays, o).counts);
+    EXPECT_TRUE(r.counts == simulateMultipass(*s, rays, o).counts);
     EXPECT_EQ(r.counts.structureReads, 10u);
     EXPECT_EQ(r.counts.triangleReads, 4u);
     EXPECT_EQ(r.counts.stencilWrites, 1u + 5u);  // setup; waiting/traversing changes 4, done 1

@@ -11,6 +11,7 @@
 #include "methods/branching/lane_counts.h"
 #include "methods/grid/grid_structure.h"
 #include "methods/grid/uniform_grid.h"
+#include "methods/multipass/multipass_simulator.h"
 #include "methods/multipass/multipass_strategy.h"
 #include "structures/camera.h"
 #include "structures/procedural.h"
@@ -158,7 +159,7 @@ TEST_F(MultipassKernels, AgreesWithBranchingAndTheCpuSimulatorForEveryUnrollAndT
                     const MultipassOptions o = oracle(threshold, k, m, suppress);
                     const MultipassRun gpu = run(grid, rays, o);
                     EXPECT_EQ(recordMismatches(gpu.hits, branching.hits), 0u);  // bit for bit, counters too
-                    const MultipassResult cpu = gridStructure(grid)->simulateMultipass(rays, o);
+                    const MultipassResult cpu = simulateMultipass(*gridStructure(grid), rays, o);
                     EXPECT_EQ(recordMismatches(gpu.hits, cpu.hits), 0u);
                     EXPECT_TRUE(gpu.counts == cpu.counts);
                     const ArchitectureMetrics metrics = multipassMetrics(gpu.hits, gpu.counts, o, gridStructure(grid)->costs());
@@ -188,7 +189,7 @@ TEST_F(MultipassKernels, PassCapTurnsARunawayIntoAClearError) {
     } catch (const std::exception& e) {
         EXPECT_STREQ(e.what(), "multipass: pass cap of 4 reached with 1 rays still active");  // ray 0 still walks
     }
-    EXPECT_THROW(gridStructure(handGrid())->simulateMultipass(handRays(), o), std::exception);
+    EXPECT_THROW(simulateMultipass(*gridStructure(handGrid()), handRays(), o), std::exception);
 }
 
 TEST_F(MultipassKernels, BranchingLaneCountsEqualTheCpuModel) {

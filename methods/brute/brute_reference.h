@@ -1,0 +1,26 @@
+// CPU reference of brute force: its kernels' own source (kernels/ray_math.glsl,
+// kernels/traversal_common.glsl and brute_traversal.glsl) compiled as C++
+// (methods/shared_kernels.h).
+#pragma once
+#include "brute_layout.h"
+#include "methods/shared_kernels.h"
+
+namespace rtbench {
+
+namespace bruteref {
+using namespace glm;
+using namespace rtbench::gpu;
+#include "methods/shared_source_begin.h"
+struct BruteKernels : KernelConstants {
+    using RtTraversalState = BruteTraversalState;
+    const Triangle* triangles;
+    const std::uint32_t* packedTriangles;
+    BruteParams params;
+#include "../../kernels/ray_math.glsl"
+#include "../../kernels/traversal_common.glsl"
+#include "brute_traversal.glsl"
+};
+#include "methods/shared_source_end.h"
+}  // namespace bruteref
+
+}  // namespace rtbench
