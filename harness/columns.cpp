@@ -8,6 +8,7 @@
 
 #include "config.h"
 #include "methods/registry.h"
+#include "workloads/registry.h"
 #include "structures/error.h"
 #include "structures/input_file.h"
 
@@ -78,7 +79,9 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("scene_simplify_ms", K::Timing, "ms", "scene.simplify_*: wall time of the edge collapses");
         add("vertex_lattice_step", K::Count, "scene units", "intersection.vertex_bits < 32: the spacing of the vertex lattice");
         add("vertex_snap_error_max", K::Count, "scene units", "intersection.vertex_bits < 32: the largest distance a vertex moved to its lattice point (not simplified scenes)");
-        add("rays", K::Count, "rays", "rays traced");
+        add("rays", K::Count, "rays", "rays traced: the batch of rays.type the run measures");
+        add("query", K::Count, "", "what the rays ask: closest (the nearest hit) or any (whether anything is hit in [tMin, tMax): the walk ends at its first hit; Embree's rtcOccluded)");
+        s.back().since = 7;
         for (const char* axis : {"x", "y", "z"}) {
             add(std::string("camera_eye_") + axis, K::Count, "scene units", std::string("the camera the rays came from (fitted to the scene, or as given, moved with it): eye position, ") + axis);
             s.back().since = 5;
@@ -101,6 +104,7 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
             }
         };
         for (const StructureType* t : structureTypes()) addMethodColumns("structure.type", t->name, t->columns);
+        for (const RayType* t : rayTypes()) addMethodColumns("rays.type", t->name, t->columns);
         // Time (harness/timing_rounds.h: every sample is in samples.csv).
         auto since5 = [&](std::string name, K kind, std::string unit, std::string help) {
             add(std::move(name), kind, std::move(unit), std::move(help));
@@ -160,13 +164,15 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("exact_rays", K::Count, "rays", "rays traced by the exact reference (accuracy.exact_rays)");
         add("exact_ties", K::Count, "rays", "of those, rays whose exact first hit is shared by several triangles (each is correct)");
         add("exact_ms", K::Timing, "ms", "wall time of the exact reference on those rays");
+        add("exact_parent_wrong", K::Count, "rays", "rays after the first hit: of the exact_rays, those whose camera ray's hit is not an exact first hit (they leave from another surface than the exact scene's; still judged as the rays they are)");
+        s.back().since = 7;
         for (const bool embree : {false, true}) {
             const std::string p = embree ? "embree_exact_" : "exact_";
             const std::string who = embree ? "Embree" : "the kernel";
             const K kind = embree ? K::Reference : K::Count;
             add(p + "false_misses", kind, "rays", "the exact ray hits, " + who + " missed (a leak)", 1e-4, true);
             add(p + "false_hits", kind, "rays", "the exact ray misses, " + who + " hit", 1e-4, true);
-            add(p + "wrong_primitive", kind, "rays", "both hit; " + who + "'s triangle is not one the exact ray hits first (empty for a simplified scene: other triangles)", 1e-4, true);
+            add(p + "wrong_primitive", kind, "rays", "both hit; " + who + "'s triangle is not one the exact ray hits first (empty for a simplified scene: other triangles, and for any-hit rays: any triangle answers)", 1e-4, true);
             add(p + "wrong_ppm", kind, "ppm", "false misses + false hits + wrong primitive, per million exact_rays (of primary rays: wrong pixels)", 100.0);
             add(p + "distance_error_mean", kind, "", "|t - t_exact| / t_exact, mean over rays both hit", 1e-6);
             add(p + "distance_error_max", kind, "", "|t - t_exact| / t_exact, max", 1e-6);
@@ -261,7 +267,8 @@ const char* columnValueType(const ColumnSpec& column) {
     if (const auto it = keyTypes.find(column.name); it != keyTypes.end()) return it->second;
     static const std::set<std::string> text = {"run", "label", "sweep", "status", "error", "warnings", "config_hash",
                                                "inputs_hash", "input_files", "git_commit", "device", "driver", "cpu",
-                                               "embree_isa", "timing_stop", "timing_warning", "auto_choice", "auto_predictions"};
+                                               "embree_isa", "timing_stop", "timing_warning", "auto_choice", "auto_predictions",
+                                               "query"};
     if (text.count(column.name)) return "text";
     if (column.name == "cpu_counts_match") return "integer";  // 1 or 0
     static const std::set<std::string> countedUnits = {"rays", "triangles", "bytes", "passes", "cells", "references", "nodes",

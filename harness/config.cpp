@@ -13,6 +13,7 @@
 
 #include "embree_config.h"
 #include "methods/registry.h"
+#include "workloads/registry.h"
 #include "output_folder.h"
 #include "structures/error.h"
 #include "structures/input_file.h"
@@ -133,6 +134,19 @@ const std::vector<KeySpec>& configSchema() {
         add({"strategy.type", ValueType::String, strategyHelp, strategies.front(), false, -1e300, 1e300, strategies});
         add({"strategy.workgroup_size", ValueType::Int, "invocations per workgroup (specialization constant)", std::int64_t(64), false, 1, 1024});
         for (const StrategyType* t : strategyTypes()) addMethodKeys("strategy.type", t->name, t->keys);
+        // What the run traces (workloads/registry.cpp), and each ray type's own keys.
+        std::vector<std::string> rayTypeNames;
+        std::string rayTypeHelp = "the rays the run measures:";
+        for (const RayType* t : rayTypes()) {
+            rayTypeNames.push_back(t->name);
+            rayTypeHelp += " " + t->name + " (" + t->help + ");";
+        }
+        rayTypeHelp.pop_back();
+        add({"rays.type", ValueType::String, rayTypeHelp, rayTypeNames.front(), false, -1e300, 1e300, rayTypeNames});
+        s.back().since = 7;
+        add({"rays.query", ValueType::String, "what the rays ask: own (the ray type's: closest for primary, any for shadow), closest (the nearest hit: what a shadow ray costs without early termination) or any (the walk ends at its first hit)", std::string("own"), false, -1e300, 1e300, {"own", "closest", "any"}});
+        s.back().since = 7;
+        for (const RayType* t : rayTypes()) addMethodKeys("rays.type", t->name, t->keys);
         add({"intersection.test", ValueType::String, "ray-triangle test of every structure and strategy, on the GPU and in the CPU reference: moller_trumbore (Moller & Trumbore 1997) or watertight (Woop, Benthin & Wald 2013: no ray slips between triangles sharing an edge)", std::string("moller_trumbore"), false, -1e300, 1e300, {"moller_trumbore", "watertight"}});
         add({"intersection.vertex_bits", ValueType::Int, "32: float vertices; 1..16: every vertex snapped to a lattice of 2^bits points per axis over the scene's box and stored packed (20 bytes a triangle instead of 48); every method traces the snapped scene, the exact reference the original", std::int64_t(32), false, 1, 32, vertexBitsChoices()});
         add({"baseline.embree_config", ValueType::String, "Embree device config string, e.g. \"isa=avx2\" (keys isa, max_isa, threads, start_threads, set_affinity, verbose)", std::string(""), false, -1e300, 1e300, {}, {}, checkEmbreeConfig});

@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cstring>
+#include <limits>
 
 #include "structures/error.h"
 #include "structures/scene_limits.h"
@@ -86,11 +87,25 @@ std::string EmbreeReference::isa() const {
     return "no native packets";
 }
 
+namespace {
+
+// An any-hit answer: tfar is -inf when the ray is occluded (rtcOccluded).
+gpu::HitRecord toOcclusion(float tfar) {
+    gpu::HitRecord h{};
+    const bool occluded = tfar == -std::numeric_limits<float>::infinity();
+    h.t = occluded ? 0.0f : gpu::kNoHitT;
+    h.primitive = occluded ? kOccluded : gpu::kNoHit;
+    return h;
+}
+
+}  // namespace
+
 double EmbreeReference::trace(const std::vector<gpu::Ray>& rays, EmbreeMode mode,
-                              std::vector<gpu::HitRecord>& hits) {
+                              std::vector<gpu::HitRecord>& hits, std::uint32_t query) {
     validateRays(rays);  // Embree asserts (and aborts the process) on origins beyond 1.844e18
     hits.resize(rays.size());
     const std::size_t n = rays.size();
+    const bool anyHit = query == gpu::kQueryAny;
     const auto start = std::chrono::steady_clock::now();
     if (mode == EmbreeMode::Intersect1) {
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const auto& range) {
@@ -109,8 +124,13 @@ double EmbreeReference::trace(const std::vector<gpu::Ray>& rays, EmbreeMode mode
                 rh.ray.tfar = r.directionTMax.w;
                 rh.ray.mask = 0xFFFFFFFFu;
                 rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-                rtcIntersect1(scene_, &context, &rh);
-                hits[i] = toHit(rh.ray.tfar, rh.hit.primID, rh.hit.u, rh.hit.v, rh.hit.geomID);
+                if (anyHit) {
+                    rtcOccluded1(scene_, &context, &rh.ray);
+                    hits[i] = toOcclusion(rh.ray.tfar);
+                } else {
+                    rtcIntersect1(scene_, &context, &rh);
+                    hits[i] = toHit(rh.ray.tfar, rh.hit.primID, rh.hit.u, rh.hit.v, rh.hit.geomID);
+                }
             }
         });
     } else {
@@ -139,16 +159,21 @@ double EmbreeReference::trace(const std::vector<gpu::Ray>& rays, EmbreeMode mode
                     rh.ray.flags[k] = 0;
                     rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
                 }
-                rtcIntersect16(valid, scene_, &context, &rh);
+                if (anyHit)
+                    rtcOccluded16(valid, scene_, &context, &rh.ray);
+                else
+                    rtcIntersect16(valid, scene_, &context, &rh);
                 for (int k = 0; k < 16; ++k) {
                     const std::size_t i = p * 16 + k;
-                    if (i < n) hits[i] = toHit(rh.ray.tfar[k], rh.hit.primID[k], rh.hit.u[k], rh.hit.v[k], rh.hit.geomID[k]);
+                    if (i >= n) continue;
+                    hits[i] = anyHit ? toOcclusion(rh.ray.tfar[k])
+                                     : toHit(rh.ray.tfar[k], rh.hit.primID[k], rh.hit.u[k], rh.hit.v[k], rh.hit.geomID[k]);
                 }
             }
         });
     }
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-    checkDevice("rtcIntersect");
+    checkDevice(anyHit ? "rtcOccluded" : "rtcIntersect");
     return ms;
 }
 

@@ -10,7 +10,10 @@
 
 namespace rtbench {
 
-enum class EmbreeMode { Intersect1, Intersect16 };
+enum class EmbreeMode { Intersect1, Intersect16 };  // one ray at a time, or packets of 16
+
+// An any-hit record from Embree: the ray is occluded by a triangle it does not name.
+constexpr std::uint32_t kOccluded = gpu::kNoHit - 1;
 
 class EmbreeReference {
 public:
@@ -22,10 +25,13 @@ public:
     EmbreeReference(const EmbreeReference&) = delete;
     EmbreeReference& operator=(const EmbreeReference&) = delete;
 
-    // Traces all rays (TBB parallel_for over chunks); returns wall time in ms. hits[i] gets
-    // t, primitive and barycentrics (work counters 0); t = kNoHitT, primitive = kNoHit on a miss.
-    // Throws rtbench::Error, before tracing, for a ray outside the range of scene_limits.h.
-    double trace(const std::vector<gpu::Ray>& rays, EmbreeMode mode, std::vector<gpu::HitRecord>& hits);
+    // Traces all rays (TBB parallel_for over chunks); returns wall time in ms. The closest-hit
+    // query (rtcIntersect1/16): hits[i] gets t, primitive and barycentrics (work counters 0); t =
+    // kNoHitT, primitive = kNoHit on a miss. The any-hit query (rtcOccluded1/16): an occluded
+    // ray gets primitive kOccluded (Embree names no triangle), t = 0. Throws rtbench::Error,
+    // before tracing, for a ray outside the range of scene_limits.h.
+    double trace(const std::vector<gpu::Ray>& rays, EmbreeMode mode, std::vector<gpu::HitRecord>& hits,
+                 std::uint32_t query = gpu::kQueryClosest);
 
     double buildMs() const { return buildMs_; }
     int threads() const;

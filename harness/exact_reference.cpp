@@ -184,10 +184,12 @@ std::vector<std::uint32_t> sampleRays(std::size_t rayCount, std::uint64_t maxRay
     return sample;
 }
 
-ExactAccuracy compareExact(const std::vector<gpu::HitRecord>& hits, const ExactHits& exact, bool sameTriangles) {
+ExactAccuracy compareExact(const std::vector<gpu::HitRecord>& hits, const ExactHits& exact, bool sameTriangles,
+                           std::uint32_t query) {
     ExactAccuracy a;
     a.rays = exact.rays.size();
-    a.primitivesCompared = sameTriangles;
+    a.distancesCompared = query != gpu::kQueryAny;
+    a.primitivesCompared = sameTriangles && a.distancesCompared;
     double errorSum = 0.0;
     std::uint64_t errorCount = 0;
     for (std::size_t i = 0; i < exact.rays.size(); ++i) {
@@ -200,8 +202,8 @@ ExactAccuracy compareExact(const std::vector<gpu::HitRecord>& hits, const ExactH
             continue;
         }
         if (!hit) continue;
-        if (sameTriangles && !exact.isFirstHit(i, h.primitive)) ++a.wrongPrimitive;
-        if (e.t > 0.0) {
+        if (a.primitivesCompared && !exact.isFirstHit(i, h.primitive)) ++a.wrongPrimitive;
+        if (a.distancesCompared && e.t > 0.0) {
             const double error = std::abs(double(h.t) - e.t) / e.t;
             errorSum += error;
             ++errorCount;

@@ -60,6 +60,7 @@ struct ExactAccuracy {
     std::uint64_t falseHits = 0;       // the exact ray misses; the method hit
     std::uint64_t wrongPrimitive = 0;  // both hit; the method's triangle is not among the exact first hits
     bool primitivesCompared = true;    // false: the method traced other triangles (a simplified scene)
+    bool distancesCompared = true;     // false: an any-hit query (its hit is any, not the first)
     std::uint64_t ties = 0;            // rays whose exact first hit is shared by several triangles
     double distanceErrorMean = 0.0;    // |t - t_exact| / t_exact over rays both hit (t_exact > 0)
     double distanceErrorMax = 0.0;
@@ -70,6 +71,9 @@ struct ExactAccuracy {
 
 // sameTriangles: the method's triangle i is the reference scene's triangle i (false for a
 // simplified scene: then no ray counts as a wrong primitive, and only hit or miss and distance count).
-ExactAccuracy compareExact(const std::vector<gpu::HitRecord>& hits, const ExactHits& exact, bool sameTriangles = true);
+// An any-hit query (gpu::kQueryAny) is judged by hit or miss alone: the ray hits something in
+// [tMin, tMax) exactly when its exact first hit there exists; its record names no nearest triangle.
+ExactAccuracy compareExact(const std::vector<gpu::HitRecord>& hits, const ExactHits& exact, bool sameTriangles = true,
+                           std::uint32_t query = gpu::kQueryClosest);
 
 }  // namespace rtbench

@@ -107,6 +107,30 @@ HitImage makeHitImage(std::uint32_t width, std::uint32_t height, const std::vect
     return image;
 }
 
+HitImage makeBatchImage(std::uint32_t width, std::uint32_t height, const std::vector<gpu::Ray>& cameraRays,
+                        const std::vector<gpu::HitRecord>& cameraHits, const TriangleMesh& mesh,
+                        const std::vector<std::uint32_t>& pixels, const std::vector<gpu::HitRecord>& kernel,
+                        const std::vector<gpu::HitRecord>& embree) {
+    HitImage image;
+    image.width = width;
+    image.height = height;
+    image.shade.assign(cameraRays.size(), -1.0f);
+    image.diff.assign(cameraRays.size(), static_cast<std::uint8_t>(HitDiff::BothMiss));
+    std::vector<bool> lit(cameraRays.size(), false);
+    for (std::size_t i = 0; i < pixels.size(); ++i) {
+        const bool hit = kernel[i].primitive != gpu::kNoHit, refHit = embree[i].primitive != gpu::kNoHit;
+        const HitDiff d = hit == refHit ? (hit ? HitDiff::SameHit : HitDiff::BothMiss)
+                                        : (hit ? HitDiff::OnlyKernelHit : HitDiff::OnlyEmbreeHit);
+        image.diff[pixels[i]] = static_cast<std::uint8_t>(d);
+        lit[pixels[i]] = !hit;
+    }
+    for (std::size_t p = 0; p < cameraRays.size(); ++p) {
+        const float shade = shadeHit(mesh, cameraHits[p].primitive, cameraRays[p]);
+        image.shade[p] = shade < 0.0f || lit[p] ? shade : kUnlitShade * shade;
+    }
+    return image;
+}
+
 float shadeHit(const TriangleMesh& mesh, std::uint32_t primitive, const gpu::Ray& ray) {
     if (primitive == gpu::kNoHit) return -1.0f;
     const glm::uvec3 t = mesh.triangles[primitive];

@@ -1,4 +1,5 @@
-// Images of a run: the shaded ray cast and a map of the rays whose hit differs from Embree.
+// Images of a run: the shaded ray cast (or, for rays after the first hit, the camera's pixels as
+// those rays change them) and a map of the rays whose hit differs from Embree.
 // PNGs need OpenImageIO (a build option); without it a run keeps per-ray records (<run>.hits)
 // and `rtbench images RESULTS_DIR` writes the PNGs later on a machine that has it.
 #pragma once
@@ -33,6 +34,17 @@ std::uint8_t pixelGrey(float shade);
 HitImage makeHitImage(std::uint32_t width, std::uint32_t height, const std::vector<gpu::Ray>& rays,
                       const TriangleMesh& mesh, const std::vector<gpu::HitRecord>& kernel,
                       const std::vector<gpu::HitRecord>& embree);
+
+// A batch of rays after the first hit (harness/workload.h), in the camera's pixels: each pixel is
+// shaded as its camera ray's hit (cameraHits), times kUnlitShade where its batch ray hit (a
+// shadow ray: occluded) or where it has none (a hit the light does not face); the diff map
+// compares the batch ray's hit or miss with Embree's (BothMiss where a pixel has none).
+// pixels[i] is the camera ray batch ray i continues.
+constexpr float kUnlitShade = 0.3f;
+HitImage makeBatchImage(std::uint32_t width, std::uint32_t height, const std::vector<gpu::Ray>& cameraRays,
+                        const std::vector<gpu::HitRecord>& cameraHits, const TriangleMesh& mesh,
+                        const std::vector<std::uint32_t>& pixels, const std::vector<gpu::HitRecord>& kernel,
+                        const std::vector<gpu::HitRecord>& embree);
 
 // The .hits format, version 2 (all integers little-endian):
 //   "RTBHITS2", uint32 width, uint32 height, uint16 n + n bytes of the run number,

@@ -39,6 +39,7 @@
 #include "structures/scene_limits.h"
 #include "structures/simplify.h"
 #include "version.h"
+#include "workloads/registry.h"
 
 namespace rtbench {
 namespace fs = std::filesystem;
@@ -245,19 +246,21 @@ SampleStats writeTimingColumns(const std::string& prefix, const std::vector<doub
 }
 
 // The methods a run's rounds time: the kernel (its KernelTimer) and Embree rtcIntersect1 and
-// rtcIntersect16 on the same rays; rtcIntersect1's hits go to `embreeHits`.
-std::vector<TimedMethod> timedMethods(KernelTimer& kernel, EmbreeReference& embree, const std::vector<gpu::Ray>& rays,
+// rtcIntersect16 (any hit: rtcOccluded1 and 16) on the same rays; the single rays' hits go to
+// `embreeHits`.
+std::vector<TimedMethod> timedMethods(KernelTimer& kernel, EmbreeReference& embree, const RayBatch& batch,
                                       std::vector<gpu::HitRecord>& embreeHits, std::vector<gpu::HitRecord>& scratch) {
     std::vector<TimedMethod> methods;
     methods.push_back({"kernel", [&kernel](int warmups, int repetitions) { return kernel.time(warmups, repetitions); }});
     for (EmbreeMode mode : {EmbreeMode::Intersect1, EmbreeMode::Intersect16})
         methods.push_back({mode == EmbreeMode::Intersect1 ? "embree1" : "embree16",
-                           [&embree, &rays, &embreeHits, &scratch, mode](int warmups, int repetitions) {
-                               TimedBatch batch;
-                               for (int i = 0; i < warmups; ++i) batch.warmupMs += embree.trace(rays, mode, scratch);
+                           [&embree, &batch, &embreeHits, &scratch, mode](int warmups, int repetitions) {
+                               TimedBatch timed;
+                               for (int i = 0; i < warmups; ++i) timed.warmupMs += embree.trace(batch.rays, mode, scratch, batch.query);
                                for (int i = 0; i < repetitions; ++i)
-                                   batch.ms.push_back(embree.trace(rays, mode, mode == EmbreeMode::Intersect1 ? embreeHits : scratch));
-                               return batch;
+                                   timed.ms.push_back(embree.trace(batch.rays, mode, mode == EmbreeMode::Intersect1 ? embreeHits : scratch,
+                                                                   batch.query));
+                               return timed;
                            }});
     return methods;
 }
@@ -325,11 +328,26 @@ const ExactHits& traceExact(const RunConfig& run, const TriangleMesh& mesh, cons
     return exact;
 }
 
+// Rays after the first hit: of the sampled rays, those whose camera ray's hit is not an exact
+// first hit on the full scene (counted, never silently compared against another ray: each sampled
+// ray is still judged as the ray it is).
+std::uint64_t exactParentsWrong(const RunConfig& run, const RunScene& scene, const std::vector<gpu::Ray>& cameraRays,
+                                const Workload& workload, const ExactHits& exact, Caches& caches) {
+    std::vector<std::uint32_t> pixels;  // increasing: the batch's rays are in pixel order
+    pixels.reserve(exact.rays.size());
+    for (std::uint32_t ray : exact.rays) pixels.push_back(workload.pixels[ray]);
+    const std::string key = sceneKey(run);
+    if (!caches.exact.count(key)) caches.exact[key] = std::make_shared<ExactReference>(scene.full);
+    const ExactHits parents = caches.exact[key]->trace(cameraRays, pixels);
+    return compareExact(workload.cameraHits, parents, scene.sameTriangles).wrong();
+}
+
 void writeExactColumns(const std::string& prefix, const ExactAccuracy& a, Row& row) {
     row[prefix + "false_misses"] = std::to_string(a.falseMisses);
     row[prefix + "false_hits"] = std::to_string(a.falseHits);
     if (a.primitivesCompared) row[prefix + "wrong_primitive"] = std::to_string(a.wrongPrimitive);
     row[prefix + "wrong_ppm"] = num(a.wrongPerMillion(), 6);
+    if (!a.distancesCompared) return;
     row[prefix + "distance_error_mean"] = num(a.distanceErrorMean, 4);
     row[prefix + "distance_error_max"] = num(a.distanceErrorMax, 4);
 }
@@ -370,7 +388,8 @@ struct RunInProgress {
     CpuTimes started;  // the noise guard's window: from here to the end of the timing
     std::optional<RunScene> scene;
     unsigned width = 0, height = 0;
-    RayBatch batch;
+    std::vector<gpu::Ray> cameraRays;
+    Workload workload;  // the batch the run measures
     std::unique_ptr<Structure> structure;
     StrategyRun method;
     std::vector<gpu::HitRecord> embreeHits, scratch;  // written by the Embree batches
@@ -391,6 +410,7 @@ std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunC
     p->messagesBefore = vk.validationMessages().size();
     const StructureType& structureKind = structureType(run.getString("structure.type"));
     const StrategyType& strategy = strategyType(run.getString("strategy.type"));
+    const RayType& rayKind = rayType(run.getString("rays.type"));
 
     // Scene and rays. Refuse before allocating: the per-ray buffers on the device (the largest
     // traversal state a structure keeps is checked again at upload) and the per-ray host data.
@@ -406,16 +426,28 @@ std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunC
     p->height = unsigned(run.getInt("camera.height"));
     refuseOversizedBuffers(vk.info(), rayBufferSizes(std::uint64_t(p->width) * p->height, strategy.perRayState ? 16 : 0));
     refuseOversizedRayStream(std::uint64_t(p->width) * p->height);
-    p->batch.rays = generatePrimaryRays(camera, p->width, p->height);
-    const std::vector<gpu::Ray>& rays = p->batch.rays;
-    validateRays(rays);
-    row["rays"] = std::to_string(rays.size());
+    p->cameraRays = generatePrimaryRays(camera, p->width, p->height);
+    validateRays(p->cameraRays);
 
-    // Structure.
-    p->structure = structureKind.build(mesh, rays, run, vk.info());
+    // Structure: built for the camera rays (brute force refuses by their count, auto chooses by
+    // its prediction for them).
+    p->structure = structureKind.build(mesh, p->cameraRays, run, vk.info());
     Structure& structure = *p->structure;
     structure.setTriangleTest(run.getString("intersection.test") == "watertight" ? gpu::kTriangleTestWatertight
                                                                                  : gpu::kTriangleTestMollerTrumbore);
+
+    // Workload: the batch of rays the run measures (rays.type), from the camera rays and, after
+    // the first hit, from the structure's hits of them.
+    const WorkloadInputs inputs{run, mesh, p->cameraRays, structure, camera.up,
+                                [&run](glm::vec3 point) { return sceneTransform(run, point); }};
+    p->workload = rayKind.make(inputs, row);
+    if (const std::string query = run.getString("rays.query"); query != "own")
+        p->workload.batch.query = query == "any" ? gpu::kQueryAny : gpu::kQueryClosest;
+    const RayBatch& batch = p->workload.batch;
+    const std::vector<gpu::Ray>& rays = batch.rays;
+    validateRays(rays);
+    row["rays"] = std::to_string(rays.size());
+    row["query"] = queryName(batch.query);
     structure.writeColumns(row);
     row["structure_bytes"] = std::to_string(structure.memoryBytes);
     row["structure_bytes_per_triangle"] = num(double(structure.memoryBytes) / double(std::max<std::size_t>(mesh.triangles.size(), 1)));
@@ -427,7 +459,7 @@ std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunC
     TimingOptions timing;
     timing.workgroupSize = unsigned(run.getInt("strategy.workgroup_size"));
     timing.warmups = timing.repetitions = 0;  // timed in rounds with Embree
-    p->method = strategy.run(vk, structure, p->batch, run, timing, row);
+    p->method = strategy.run(vk, structure, batch, run, timing, row);
     row["cpu_reference_mismatches"] = std::to_string(p->method.cpuMismatches);
     row["cpu_counts_match"] = p->method.countsMismatch.empty() ? "1" : "0";
     writeArchitectureColumns(p->method.metrics, structure, rays.size(), row);
@@ -435,7 +467,7 @@ std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunC
     // Time: the kernel, uninstrumented, and Embree on the same rays, in rounds.
     EmbreeReference& embree = embreeFor(run, scene, caches, row);
     KernelTimer& kernel = *p->method.timer;
-    p->rounds = std::make_unique<Rounds>(timedMethods(kernel, embree, p->batch.rays, p->embreeHits, p->scratch),
+    p->rounds = std::make_unique<Rounds>(timedMethods(kernel, embree, batch, p->embreeHits, p->scratch),
                                          [&kernel] { return kernel.timeHostLoops(); }, roundsOptions(run), caches.started);
     return p;
 }
@@ -445,7 +477,9 @@ void finishRun(RunInProgress& p, const std::string& folder, Caches& caches, Row&
     VulkanContext& vk = *p.vk;
     const RunScene& scene = *p.scene;
     const TriangleMesh& mesh = scene.traced;
-    const std::vector<gpu::Ray>& rays = p.batch.rays;
+    const Workload& workload = p.workload;
+    const std::vector<gpu::Ray>& rays = workload.batch.rays;
+    const std::uint32_t query = workload.batch.query;
     const StrategyRun& method = p.method;
     const unsigned width = p.width, height = p.height;
     const std::vector<gpu::HitRecord>& embreeHits = p.embreeHits;
@@ -454,26 +488,34 @@ void finishRun(RunInProgress& p, const std::string& folder, Caches& caches, Row&
     method.timer->checkHits();
 
     // The kernel's image: its shading, and where its hits differ from Embree's.
-    const HitImage image = makeHitImage(width, height, rays, mesh, method.hits, embreeHits);
+    const HitImage image = workload.fromCamera()
+                               ? makeHitImage(width, height, rays, mesh, method.hits, embreeHits)
+                               : makeBatchImage(width, height, p.cameraRays, workload.cameraHits, mesh, workload.pixels,
+                                                method.hits, embreeHits);
 
     // Ground truth: the exact first hits of a sample of the rays on the full scene, for the kernel
     // and for Embree; the shaded pixels of those rays against the exact render.
     const ExactHits& exact = traceExact(run, scene.full, rays, caches, row);
-    const ExactAccuracy kernelAccuracy = compareExact(method.hits, exact, scene.sameTriangles);
+    const ExactAccuracy kernelAccuracy = compareExact(method.hits, exact, scene.sameTriangles, query);
     row["exact_ties"] = std::to_string(kernelAccuracy.ties);
     writeExactColumns("exact_", kernelAccuracy, row);
-    writeExactColumns("embree_exact_", compareExact(embreeHits, exact, scene.sameTriangles), row);
-    writeImageAccuracy(rays, scene, method.hits, image, exact, row);
+    writeExactColumns("embree_exact_", compareExact(embreeHits, exact, scene.sameTriangles, query), row);
+    if (workload.fromCamera())
+        writeImageAccuracy(rays, scene, method.hits, image, exact, row);
+    else  // the sampled rays' camera rays, judged too: did they leave from the exact scene's surface?
+        row["exact_parent_wrong"] = std::to_string(exactParentsWrong(run, scene, p.cameraRays, workload, exact, caches));
 
     // Metrics: agreement with Embree.
-    const Agreement a = compareHits(method.hits, embreeHits);
+    const Agreement a = compareHits(method.hits, embreeHits, query);
     row["hits"] = std::to_string(method.metrics.work.hits);
     row["hit_miss_agreement"] = num(a.hitMissAgreement, 8);
-    row["same_primitive_agreement"] = num(a.samePrimitiveAgreement, 8);
-    row["rel_distance_error_mean"] = num(a.relDistanceErrorMean, 4);
-    row["rel_distance_error_max"] = num(a.relDistanceErrorMax, 4);
     row["hit_miss_mismatches"] = std::to_string(a.hitMissMismatches);
-    row["primitive_mismatches"] = std::to_string(a.primitiveMismatches);
+    if (a.primitivesCompared) {
+        row["same_primitive_agreement"] = num(a.samePrimitiveAgreement, 8);
+        row["rel_distance_error_mean"] = num(a.relDistanceErrorMean, 4);
+        row["rel_distance_error_max"] = num(a.relDistanceErrorMax, 4);
+        row["primitive_mismatches"] = std::to_string(a.primitiveMismatches);
+    }
 
     // Writers: images, or the per-ray records to make them later.
     const std::string prefix = (fs::path(folder) / ("run-" + row["run"])).string();

@@ -6,9 +6,11 @@
 
 namespace rtbench {
 
-Agreement compareHits(const std::vector<gpu::HitRecord>& hits, const std::vector<gpu::HitRecord>& reference) {
+Agreement compareHits(const std::vector<gpu::HitRecord>& hits, const std::vector<gpu::HitRecord>& reference,
+                      std::uint32_t query) {
     Agreement a;
     a.rays = hits.size();
+    a.primitivesCompared = query != gpu::kQueryAny;
     double errorSum = 0.0;
     for (std::size_t i = 0; i < hits.size(); ++i) {
         const bool hit = hits[i].primitive != gpu::kNoHit;
@@ -19,6 +21,7 @@ Agreement compareHits(const std::vector<gpu::HitRecord>& hits, const std::vector
         }
         if (!hit) continue;
         ++a.bothHit;
+        if (!a.primitivesCompared) continue;
         if (hits[i].primitive != reference[i].primitive) ++a.primitiveMismatches;
         const double ref = reference[i].t;
         const double err = ref != 0.0 ? std::abs(double(hits[i].t) - ref) / std::abs(ref) : std::abs(double(hits[i].t));
@@ -26,7 +29,7 @@ Agreement compareHits(const std::vector<gpu::HitRecord>& hits, const std::vector
         a.relDistanceErrorMax = std::max(a.relDistanceErrorMax, err);
     }
     if (a.rays) a.hitMissAgreement = 1.0 - double(a.hitMissMismatches) / double(a.rays);
-    if (a.bothHit) {
+    if (a.bothHit && a.primitivesCompared) {
         a.samePrimitiveAgreement = 1.0 - double(a.primitiveMismatches) / double(a.bothHit);
         a.relDistanceErrorMean = errorSum / double(a.bothHit);
     }

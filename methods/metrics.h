@@ -16,9 +16,12 @@ struct Agreement {
     double samePrimitiveAgreement = 1.0;   // among rays both hit: fraction with the same triangle
     double relDistanceErrorMean = 0.0;     // |t - tRef| / tRef over rays both hit
     double relDistanceErrorMax = 0.0;
+    bool primitivesCompared = true;  // false for an any-hit query: its answer is hit or miss
 };
 
-Agreement compareHits(const std::vector<gpu::HitRecord>& hits, const std::vector<gpu::HitRecord>& reference);
+// `query` (gpu::kQuery*): an any-hit answer names no nearest triangle, so only hit or miss counts.
+Agreement compareHits(const std::vector<gpu::HitRecord>& hits, const std::vector<gpu::HitRecord>& reference,
+                      std::uint32_t query = gpu::kQueryClosest);
 
 struct WorkStats {
     std::uint64_t hits = 0;

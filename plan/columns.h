@@ -47,7 +47,9 @@ struct ColumnSpec {
 //   6  a 3-vector key (camera.position, scene.translate, ...) as three numeric columns <key>_x,
 //      _y, _z instead of one "[x y z]" cell (readers split an older file's cells); columns.csv
 //      gives each column's value type.
-constexpr int kSchemaVersion = 6;
+//   7  ray types (rays.type: primary, shadow) and the query they ask (the query column: closest or
+//      any hit, Embree's rtcOccluded for any); the ray type's own keys and columns.
+constexpr int kSchemaVersion = 7;
 
 // The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".
 std::string paramColumn(const std::string& key);

@@ -205,6 +205,7 @@ TEST(Columns, AnOlderFilesVectorCellsAreSplitIntoThreeColumns) {
     std::vector<std::string> columns;
     Row row;
     for (const std::string& c : runColumns()) {
+        if (columnSpec(c).since > 5) continue;  // a schema-5 file
         const bool component = c.size() > 2 && (c.ends_with("_x") || c.ends_with("_y") || c.ends_with("_z")) &&
                                columnSpec(c).kind == ColumnKind::Parameter;
         const std::string name = component ? c.substr(0, c.size() - 2) : c;
@@ -225,7 +226,7 @@ TEST(Columns, AnOlderFilesVectorCellsAreSplitIntoThreeColumns) {
     EXPECT_EQ(rows.at(0).at("scene_translate_z"), "1e-3");
     EXPECT_EQ(rows.at(0).at("camera_position_y"), "");
     EXPECT_FALSE(rows.at(0).count("camera_up"));
-    // Today's file reads as schema 6.
+    // Today's file reads as today's schema.
     Row now;
     for (const std::string& c : runColumns()) now[c] = "";
     now["run"] = "000";

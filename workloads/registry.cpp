@@ -1,0 +1,23 @@
+#include "registry.h"
+
+#include "structures/error.h"
+#include "workloads/camera/camera_rays.h"
+#include "workloads/shadow/shadow_rays.h"
+
+namespace rtbench {
+
+const std::vector<const RayType*>& rayTypes() {
+    static const std::vector<const RayType*> types = {&cameraRayType(), &shadowRayType()};
+    return types;
+}
+
+const RayType& rayType(const std::string& name) {
+    std::string known;
+    for (const RayType* t : rayTypes()) {
+        if (t->name == name) return *t;
+        known += (known.empty() ? "" : ", ") + t->name;
+    }
+    throw Error("unknown rays.type '" + name + "' (known: " + known + ")");
+}
+
+}  // namespace rtbench

@@ -1,0 +1,48 @@
+// What a run traces: the ray-type half of the method seam (rays.type), beside the structure and
+// the strategy. A ray type makes the batch of rays a run measures, from the camera's rays and,
+// for rays after the first hit, from the hits the structure's kernels find for those (their CPU
+// reference, bit for bit the device's). Each lives in workloads/<name>/ with its keys and
+// columns; the runner knows none by name: workloads/registry.cpp lists them.
+#pragma once
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "methods/ray_batch.h"
+#include "methods/structure.h"
+#include "plan/columns.h"
+#include "plan/keys.h"
+#include "structures/mesh.h"
+
+namespace rtbench {
+
+struct WorkloadInputs {
+    const RunConfig& run;
+    const TriangleMesh& scene;                // as the methods trace it (the structure's triangles)
+    const std::vector<gpu::Ray>& cameraRays;  // one per pixel, row by row
+    const Structure& structure;
+    glm::vec3 cameraUp;
+    // A point given in the scene's own coordinates, moved as the scene is (scene.scale, scene.translate).
+    std::function<glm::vec3(glm::vec3)> toScene;
+};
+
+// The rays a run measures and where they come from.
+struct Workload {
+    RayBatch batch;
+    // Rays after the first hit: each ray's pixel (the camera ray it continues), and the camera
+    // rays' hits they were made from. Both empty for the camera rays themselves (ray i is pixel i).
+    std::vector<std::uint32_t> pixels;
+    std::vector<gpu::HitRecord> cameraHits;
+    bool fromCamera() const { return pixels.empty() && cameraHits.empty(); }
+};
+
+struct RayType {
+    std::string name;  // the rays.type value
+    std::string help;
+    std::vector<KeySpec> keys;        // read only when rays.type is this name
+    std::vector<ColumnSpec> columns;  // written only by its runs
+    // Makes the batch; writes its own columns. Throws rtbench::Error for what it cannot make.
+    Workload (*make)(const WorkloadInputs& inputs, Row& row);
+};
+
+}  // namespace rtbench
