@@ -164,7 +164,7 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("exact_rays", K::Count, "rays", "rays traced by the exact reference (accuracy.exact_rays)");
         add("exact_ties", K::Count, "rays", "of those, rays whose exact first hit is shared by several triangles (each is correct)");
         add("exact_ms", K::Timing, "ms", "wall time of the exact reference on those rays");
-        add("exact_parent_wrong", K::Count, "rays", "rays after the first hit: of the exact_rays, those whose camera ray's hit is not an exact first hit (they leave from another surface than the exact scene's; still judged as the rays they are)");
+        add("exact_parent_wrong", K::Count, "rays", "rays after the first hit: of the exact_rays, those with a ray earlier on their path (the camera ray, an earlier reflection) whose hit is not an exact first hit (they leave from another surface than the exact scene's; still judged as the rays they are)");
         s.back().since = 7;
         for (const bool embree : {false, true}) {
             const std::string p = embree ? "embree_exact_" : "exact_";

@@ -176,6 +176,13 @@ bool ExactHits::isFirstHit(std::size_t i, std::uint32_t primitive) const {
     return std::binary_search(first, last, primitive);
 }
 
+ExactHits::Verdict ExactHits::judge(std::size_t i, std::uint32_t primitive, bool primitivesCompared) const {
+    const bool hit = primitive != gpu::kNoHit, exactHit = hits[i].primitive != gpu::kNoHit;
+    if (hit != exactHit) return hit ? Verdict::FalseHit : Verdict::FalseMiss;
+    if (hit && primitivesCompared && !isFirstHit(i, primitive)) return Verdict::WrongPrimitive;
+    return Verdict::Right;
+}
+
 std::vector<std::uint32_t> sampleRays(std::size_t rayCount, std::uint64_t maxRays) {
     const std::size_t stride = maxRays == 0 || maxRays >= rayCount ? 1 : std::size_t((rayCount + maxRays - 1) / maxRays);
     std::vector<std::uint32_t> sample;
@@ -195,14 +202,12 @@ ExactAccuracy compareExact(const std::vector<gpu::HitRecord>& hits, const ExactH
     for (std::size_t i = 0; i < exact.rays.size(); ++i) {
         const gpu::HitRecord& h = hits[exact.rays[i]];
         const ExactHit& e = exact.hits[i];
-        const bool hit = h.primitive != gpu::kNoHit, exactHit = e.primitive != gpu::kNoHit;
         a.ties += e.tieCount > 1;
-        if (hit != exactHit) {
-            ++(hit ? a.falseHits : a.falseMisses);
-            continue;
-        }
-        if (!hit) continue;
-        if (a.primitivesCompared && !exact.isFirstHit(i, h.primitive)) ++a.wrongPrimitive;
+        const ExactHits::Verdict verdict = exact.judge(i, h.primitive, a.primitivesCompared);
+        if (verdict == ExactHits::Verdict::FalseHit) ++a.falseHits;
+        if (verdict == ExactHits::Verdict::FalseMiss) ++a.falseMisses;
+        if (verdict == ExactHits::Verdict::WrongPrimitive) ++a.wrongPrimitive;
+        if (h.primitive == gpu::kNoHit || e.primitive == gpu::kNoHit) continue;
         if (a.distancesCompared && e.t > 0.0) {
             const double error = std::abs(double(h.t) - e.t) / e.t;
             errorSum += error;

@@ -28,6 +28,10 @@ struct ExactHits {
 
     // Whether `primitive` is one of the triangles sample i's ray hits first.
     bool isFirstHit(std::size_t i, std::uint32_t primitive) const;
+    // A closest-hit answer `primitive` (kNoHit: a miss) for sample i's ray, judged: right, or which
+    // way wrong. primitivesCompared false: by hit or miss alone (an any-hit answer, a simplified scene).
+    enum class Verdict { Right, FalseMiss, FalseHit, WrongPrimitive };
+    Verdict judge(std::size_t i, std::uint32_t primitive, bool primitivesCompared) const;
 };
 
 // A deterministic sample of ray indices: every ray if maxRays is 0 or at least rayCount, else

@@ -88,12 +88,12 @@ struct FileDescriptor {
 
 HitImage makeHitImage(std::uint32_t width, std::uint32_t height, const std::vector<gpu::Ray>& rays,
                       const TriangleMesh& mesh, const std::vector<gpu::HitRecord>& kernel,
-                      const std::vector<gpu::HitRecord>& embree) {
+                      const std::vector<gpu::HitRecord>& embree, const std::vector<std::uint32_t>& pixels) {
     HitImage image;
     image.width = width;
     image.height = height;
-    image.shade.assign(rays.size(), -1.0f);
-    image.diff.assign(rays.size(), 0);
+    image.shade.assign(std::size_t(width) * height, -1.0f);
+    image.diff.assign(std::size_t(width) * height, static_cast<std::uint8_t>(HitDiff::BothMiss));
     for (std::size_t i = 0; i < rays.size(); ++i) {
         const bool hit = kernel[i].primitive != gpu::kNoHit, refHit = embree[i].primitive != gpu::kNoHit;
         HitDiff d = !hit && !refHit              ? HitDiff::BothMiss
@@ -101,8 +101,9 @@ HitImage makeHitImage(std::uint32_t width, std::uint32_t height, const std::vect
                     : !hit && refHit             ? HitDiff::OnlyEmbreeHit
                     : kernel[i].primitive == embree[i].primitive ? HitDiff::SameHit
                                                                  : HitDiff::OtherPrimitive;
-        image.diff[i] = static_cast<std::uint8_t>(d);
-        image.shade[i] = shadeHit(mesh, kernel[i].primitive, rays[i]);
+        const std::size_t pixel = pixels.empty() ? i : pixels[i];
+        image.diff[pixel] = static_cast<std::uint8_t>(d);
+        image.shade[pixel] = shadeHit(mesh, kernel[i].primitive, rays[i]);
     }
     return image;
 }

@@ -31,9 +31,11 @@ float shadeHit(const TriangleMesh& mesh, std::uint32_t primitive, const gpu::Ray
 // where the PNG draws its background colour instead.
 std::uint8_t pixelGrey(float shade);
 
+// The rays' own hits, ray i at pixel pixels[i] (empty: ray i is pixel i; a pixel with no ray is
+// background and BothMiss), shaded by shadeHit; the diff map against Embree's hits.
 HitImage makeHitImage(std::uint32_t width, std::uint32_t height, const std::vector<gpu::Ray>& rays,
                       const TriangleMesh& mesh, const std::vector<gpu::HitRecord>& kernel,
-                      const std::vector<gpu::HitRecord>& embree);
+                      const std::vector<gpu::HitRecord>& embree, const std::vector<std::uint32_t>& pixels = {});
 
 // A batch of rays after the first hit (harness/workload.h), in the camera's pixels: each pixel is
 // shaded as its camera ray's hit (cameraHits), times kUnlitShade where its batch ray hit (a

@@ -310,6 +310,13 @@ void writeTimingResults(const RunConfig& run, const VulkanContext& vk, std::size
     for (const std::string& n : noisy) row["timing_warning"] += (row["timing_warning"].empty() ? "" : "; ") + n;
 }
 
+// The exact reference of a scene, built once per scene.
+const ExactReference& exactReferenceFor(const RunConfig& run, const TriangleMesh& full, Caches& caches) {
+    const std::string key = sceneKey(run);
+    if (!caches.exact.count(key)) caches.exact[key] = std::make_shared<ExactReference>(full);
+    return *caches.exact[key];
+}
+
 // The exact first hits of the sampled rays, computed once per scene, rays and sample size.
 const ExactHits& traceExact(const RunConfig& run, const TriangleMesh& mesh, const std::vector<gpu::Ray>& rays,
                             Caches& caches, Row& row) {
@@ -318,28 +325,49 @@ const ExactHits& traceExact(const RunConfig& run, const TriangleMesh& mesh, cons
     const std::string key = scene + "|" + std::to_string(fnv1a64({reinterpret_cast<const char*>(rays.data()),
                                                                     rays.size() * sizeof(gpu::Ray)})) +
                             "|" + std::to_string(sampleSize);
-    if (!caches.exactHits.count(key)) {
-        if (!caches.exact.count(scene)) caches.exact[scene] = std::make_shared<ExactReference>(mesh);
-        caches.exactHits[key] = std::make_shared<ExactHits>(caches.exact[scene]->trace(rays, sampleRays(rays.size(), sampleSize)));
-    }
+    if (!caches.exactHits.count(key))
+        caches.exactHits[key] = std::make_shared<ExactHits>(exactReferenceFor(run, mesh, caches).trace(rays, sampleRays(rays.size(), sampleSize)));
     const ExactHits& exact = *caches.exactHits[key];
     row["exact_rays"] = std::to_string(exact.rays.size());
     row["exact_ms"] = num(exact.ms, 4);
     return exact;
 }
 
-// Rays after the first hit: of the sampled rays, those whose camera ray's hit is not an exact
-// first hit on the full scene (counted, never silently compared against another ray: each sampled
-// ray is still judged as the ray it is).
+// Rays after the first hit: of the sampled rays, those with a ray earlier on their path (the
+// camera ray, a reflection before) whose hit is not an exact first hit on the full scene: they
+// left from another surface than the exact scene's (counted, never silently compared against
+// another ray: each sampled ray is still judged as the ray it is).
 std::uint64_t exactParentsWrong(const RunConfig& run, const RunScene& scene, const std::vector<gpu::Ray>& cameraRays,
                                 const Workload& workload, const ExactHits& exact, Caches& caches) {
-    std::vector<std::uint32_t> pixels;  // increasing: the batch's rays are in pixel order
-    pixels.reserve(exact.rays.size());
-    for (std::uint32_t ray : exact.rays) pixels.push_back(workload.pixels[ray]);
-    const std::string key = sceneKey(run);
-    if (!caches.exact.count(key)) caches.exact[key] = std::make_shared<ExactReference>(scene.full);
-    const ExactHits parents = caches.exact[key]->trace(cameraRays, pixels);
-    return compareExact(workload.cameraHits, parents, scene.sameTriangles).wrong();
+    const ExactReference& reference = exactReferenceFor(run, scene.full, caches);
+    // Generation g of the path: 0 the camera rays, g > 0 workload.between[g - 1].
+    const std::size_t generations = workload.between.size() + 1;
+    // path[g][i]: sampled ray i's ancestor in generation g.
+    std::vector<std::vector<std::uint32_t>> path(generations, std::vector<std::uint32_t>(exact.rays.size()));
+    for (std::size_t i = 0; i < exact.rays.size(); ++i) {
+        std::uint32_t ray = workload.parents[exact.rays[i]];
+        for (std::size_t g = generations; g-- > 0;) {
+            path[g][i] = ray;
+            if (g > 0) ray = workload.between[g - 1].parents[ray];
+        }
+    }
+    std::vector<bool> wrong(exact.rays.size(), false);
+    for (std::size_t g = 0; g < generations; ++g) {
+        const std::vector<gpu::Ray>& rays = g == 0 ? cameraRays : workload.between[g - 1].rays;
+        const std::vector<gpu::HitRecord>& hits = g == 0 ? workload.cameraHits : workload.between[g - 1].hits;
+        std::vector<std::uint32_t> ancestors = path[g];
+        std::sort(ancestors.begin(), ancestors.end());
+        ancestors.erase(std::unique(ancestors.begin(), ancestors.end()), ancestors.end());
+        const ExactHits truth = reference.trace(rays, ancestors);
+        std::vector<bool> ancestorWrong(ancestors.size());
+        for (std::size_t a = 0; a < ancestors.size(); ++a)
+            ancestorWrong[a] = truth.judge(a, hits[ancestors[a]].primitive, scene.sameTriangles) != ExactHits::Verdict::Right;
+        for (std::size_t i = 0; i < exact.rays.size(); ++i) {
+            const std::size_t a = std::size_t(std::lower_bound(ancestors.begin(), ancestors.end(), path[g][i]) - ancestors.begin());
+            if (ancestorWrong[a]) wrong[i] = true;
+        }
+    }
+    return std::uint64_t(std::count(wrong.begin(), wrong.end(), true));
 }
 
 void writeExactColumns(const std::string& prefix, const ExactAccuracy& a, Row& row) {
@@ -488,8 +516,8 @@ void finishRun(RunInProgress& p, const std::string& folder, Caches& caches, Row&
     method.timer->checkHits();
 
     // The kernel's image: its shading, and where its hits differ from Embree's.
-    const HitImage image = workload.fromCamera()
-                               ? makeHitImage(width, height, rays, mesh, method.hits, embreeHits)
+    const HitImage image = workload.fromCamera() || workload.image == BatchImage::Hits
+                               ? makeHitImage(width, height, rays, mesh, method.hits, embreeHits, workload.pixels)
                                : makeBatchImage(width, height, p.cameraRays, workload.cameraHits, mesh, workload.pixels,
                                                 method.hits, embreeHits);
 

@@ -62,4 +62,22 @@ bool rtShadowRay(vec3 v0, vec3 v1, vec3 v2, float u, float v, vec3 incoming, vec
     return true;
 }
 
+// Mirror reflection, Christen 2005 §5.2.1's iterations: the ray with direction `incoming` that hit
+// triangle (v0, v1, v2) at (u, v) leaves on the side it came from, by rtOffsetRay, in the mirror
+// direction d - 2 (d.n / n.n) n (n the scaled normal, so no square root; the length of d is kept),
+// closest hit, as far as a camera ray. False, and no ray, for a triangle with no normal.
+bool rtReflectRay(vec3 v0, vec3 v1, vec3 v2, float u, float v, vec3 incoming, RT_OUT(Ray) reflected) {
+    precise vec3 e1 = v1 - v0;
+    precise vec3 e2 = v2 - v0;
+    vec3 n = rtScaledNormal(e1, e2);
+    if (n.x == 0.0f && n.y == 0.0f && n.z == 0.0f) return false;
+    if (rtDot(n, incoming) > 0.0f) n = -n;  // toward the side the ray came from
+    vec3 origin = rtOffsetRay(rtSurfacePoint(v0, v1, v2, u, v), n);
+    precise float scale = rtDivide(2.0f * rtDot(incoming, n), rtDot(n, n));
+    precise vec3 direction = incoming - n * scale;
+    reflected.originTMin = vec4(origin, 0.0f);
+    reflected.directionTMax = vec4(direction, kNoHitT);
+    return true;
+}
+
 #endif  // RT_SHADING_GLSL

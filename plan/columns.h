@@ -49,7 +49,8 @@ struct ColumnSpec {
 //      gives each column's value type.
 //   7  ray types (rays.type: primary, shadow) and the query they ask (the query column: closest or
 //      any hit, Embree's rtcOccluded for any); the ray type's own keys and columns.
-constexpr int kSchemaVersion = 7;
+//   8  + reflection rays (reflection.iteration, reflection_*).
+constexpr int kSchemaVersion = 8;
 
 // The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".
 std::string paramColumn(const std::string& key);

@@ -18,7 +18,7 @@ from pathlib import Path
 import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rtbench_results import method_name, read_runs, scene_name, wrong_rays  # noqa: E402
+from rtbench_results import commit_text, method_name, read_runs, scene_name, wrong_rays  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 BEGIN = "<!-- results: begin (scripts/readme_figures.py writes this section from results/; do not edit) -->"
@@ -96,7 +96,7 @@ def provenance(name: str, runs, context) -> str:
              f"(host `{context.get('host', '?')}`). Device: {device.get('name', '?')} ({device.get('driver', '?')}, "
              f"subgroup size {device.get('subgroup_size', '?')}). Embree {context.get('embree_version', '?')}.",
              f"Command: `{context.get('command', '?')}` (by `scripts/records.sh`) at commit "
-             f"`{str(context.get('git_commit', '?'))[:12]}`, {str(context.get('date_utc', '?'))[:10]}. "
+             f"`{commit_text(context)}`, {str(context.get('date_utc', '?'))[:10]}. "
              f"{plural(len(runs), 'run')}: {len(ok)} ok, {failed} failed with their reason in `error`."]
     if flagged is not None:
         wall = runs.wall_s.sum()
@@ -376,12 +376,47 @@ def accuracy() -> list:
     return out + [""]
 
 
+def raytypes() -> list:
+    runs, context = load("raytypes")
+    ok = runs[runs.status == "ok"].copy()
+    ok["method"] = ok.structure_type.map({"uniform_grid": "grid"}).fillna(ok.structure_type) + " / " + ok.strategy_type
+    out = ["### `results/raytypes/`: rays after the first hit (Purcell Table 3, Christen Fig. 6.11)", "",
+           provenance("raytypes", runs, context), "",
+           "Full tables: [`results/raytypes/tables.md`](results/raytypes/tables.md). A frame's GPU time for shadow rays "
+           "(any hit) and for the first and last reflection iteration, against the camera rays' on the same scene and "
+           "method; early termination as the same shadow rays' closest-hit time over their any-hit time; SIMD "
+           "efficiency of the camera rays and of the last iteration's (branching: lane utilisation; multipass: "
+           "Purcell's measure). Each ratio is of two runs' medians (separate runs of one sweep, so no interval; "
+           "`timing_warning` flags most of them as noisy on this machine): read them to a first digit. Purcell's "
+           "shadow caster: 0.85 × ray casting's instructions, 1.15 × its bandwidth.", "",
+           "| scene | method | shadow × primary | closest / any | reflection 1 × primary | last iteration | its × primary | "
+           "SIMD eff. primary → last |", "|---|---|---|---|---|---|---|---|"]
+    for (scene, method), g in ok.groupby(["scene", "method"]):
+        primary = g[g.rays_type == "primary"]
+        shadow_any = g[(g.rays_type == "shadow") & (g["query"] == "any")]
+        shadow_closest = g[(g.rays_type == "shadow") & (g["query"] == "closest")]
+        reflection = g[g.rays_type == "reflection"].sort_values("reflection_iteration")
+        if primary.empty or shadow_any.empty or shadow_closest.empty or reflection.empty:
+            continue
+        base = primary.kernel_ms_median.iloc[0]
+        last = reflection.iloc[-1]
+        out.append(f"| {scene} | {method} | {num(shadow_any.kernel_ms_median.iloc[0] / base, 2)} | "
+                   f"{num(shadow_closest.kernel_ms_median.iloc[0] / shadow_any.kernel_ms_median.iloc[0], 2)} | "
+                   f"{num(reflection.kernel_ms_median.iloc[0] / base, 2)} | {count(last.reflection_iteration)} | "
+                   f"{num(last.kernel_ms_median / base, 2)} | {num(100 * primary.simd_efficiency.iloc[0], 3)}% → "
+                   f"{num(100 * last.simd_efficiency, 3)}% |")
+    out.append("")
+    out += charts("raytypes", {"raytypes_cost": "a frame's cost by ray type against the camera rays'",
+                               "raytypes_iterations": "time against reflection iterations, and SIMD efficiency"})
+    return out + [""]
+
+
 def golden() -> list:
     runs, context = load("golden")
     return ["### `results/golden/`: the counts CI checks", "",
             f"{len(runs)} runs at {size(runs.iloc[0])} rays "
             f"(`configs/golden.toml`: every structure, both strategies and both ray-triangle tests, packed vertices, a "
-            f"mesh file), recorded by `{context.get('command', '?')}` at commit `{str(context.get('git_commit'))[:12]}` on "
+            f"mesh file), recorded by `{context.get('command', '?')}` at commit `{commit_text(context)}` on "
             f"{context.get('cpu', '?')} with {context['devices'][0]['name']}. CI runs `build/rtbench check "
             f"results/golden` (CTest `cli.check_golden`), and `Golden.ReproducesWithEmbreeForcedToEveryIsaThisCpuRuns` "
             f"again with Embree forced to each ISA the CPU runs.", ""]
@@ -398,7 +433,7 @@ def h200() -> list:
     context = json.loads((folder / rows[0][0] / "context.json").read_text()) if rows else {}
     device = context.get("devices", [{}])[0]
     return ["### `results/nvidia-h200/`: the configs of record on an NVIDIA H200, failed, and why", "",
-            f"{device.get('name', '?')} ({device.get('driver', '?')}) at commit `{str(context.get('git_commit'))[:12]}`: " +
+            f"{device.get('name', '?')} ({device.get('driver', '?')}) at commit `{commit_text(context)}`: " +
             "; ".join(f"{name}: {failed} of {n} runs failed, {reference} of them the CPU-reference check" +
                       (f" (the others: {others})" if others else "") for name, n, failed, reference, others in rows) +
             ". Vulkan lets division be off by 2.5 ulp and NVIDIA's driver "
@@ -414,7 +449,7 @@ def section() -> str:
            "medians with 95% bootstrap intervals of the repetitions of one run (an interval says nothing of the spread "
            "between runs in separate processes); a speed claim is a ratio measured in the same run. Counts (passes, "
            "bytes, work, rays wrong) are the same on every machine with the same device; timings are this machine's.", ""]
-    for part in (bunny, structures, purcell2002, stability, accuracy, golden, h200):
+    for part in (bunny, structures, purcell2002, stability, accuracy, raytypes, golden, h200):
         out += part()
     while out and out[-1] == "":
         out.pop()

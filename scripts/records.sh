@@ -1,6 +1,6 @@
 #!/bin/bash
 # Runs the configs of record and makes their charts and tables: results/bunny, results/structures,
-# results/purcell2002, results/stability, results/accuracy (or under OUT, e.g. results/nvidia-h200 on a GPU machine; DEVICE picks the
+# results/purcell2002, results/stability, results/accuracy, results/raytypes (or under OUT, e.g. results/nvidia-h200 on a GPU machine; DEVICE picks the
 # Vulkan device by a name substring).
 #   scripts/records.sh [OUT] [DEVICE]        (about 35 minutes on 2 cores with lavapipe)
 # Environment:
@@ -10,7 +10,7 @@
 #                         draws the charts and tables here
 set -euo pipefail
 cd "$(dirname "$0")/.."
-configs=(bunny structures purcell2002 stability accuracy)
+configs=(bunny structures purcell2002 stability accuracy raytypes)
 bin=${RTBENCH_BIN:-build/rtbench}
 
 charts() {
@@ -22,6 +22,7 @@ charts() {
   done
   /usr/bin/python3 scripts/structures_tables.py "$out/structures" > /dev/null
   /usr/bin/python3 scripts/purcell_tables.py "$out/purcell2002" > /dev/null
+  /usr/bin/python3 scripts/raytypes_tables.py "$out/raytypes" > /dev/null
 }
 
 if [ "${1:-}" = "--charts" ]; then
@@ -44,4 +45,4 @@ for config in "${configs[@]}"; do
   echo "== $config: $(( $(date +%s) - start )) s"
 done
 [ "${CHARTS:-1}" = 0 ] || charts "$out"
-echo "== done: $out/{bunny,structures,purcell2002,stability,accuracy}"
+echo "== done: $out/{bunny,structures,purcell2002,stability,accuracy,raytypes}"

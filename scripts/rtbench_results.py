@@ -27,6 +27,14 @@ def method_name(run) -> str:
     return {"brute_force": "brute force"}.get(kind, kind)
 
 
+def commit_text(context) -> str:
+    """The commit a folder was made at, short: "2c376b45fb82", or "2c376b45fb82 with uncommitted
+    changes (diff 4088b93b)" for a working tree that differed from it (rtbench's "-dirty-" hash)."""
+    commit = str(context.get("git_commit", "?"))
+    base, _, diff = commit.partition("-dirty-")
+    return base[:12] + (f" with uncommitted changes (diff {diff})" if "-dirty" in commit else "")
+
+
 def wrong_rays(frame, prefix="exact_"):
     """Rays wrong against the exact reference: false misses + false hits + wrong triangle (a simplified
     scene has other triangles: no wrong triangle counted). prefix "embree_exact_" for Embree's."""

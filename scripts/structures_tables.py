@@ -9,7 +9,7 @@ usage: scripts/structures_tables.py RESULTS_DIR
 import sys
 from pathlib import Path
 
-from rtbench_results import load, method_name
+from rtbench_results import commit_text, load, method_name
 
 
 def fmt(value, digits=3):
@@ -28,7 +28,7 @@ def main() -> int:
     runs["method"] = [method_name(r) for _, r in runs.iterrows()]
     lines = [f"# Structures side by side — {device}, {context.get('cpu', '?')}",
              "",
-             f"Command: `{context.get('command', '?')}` at commit {context.get('git_commit', '?')[:10]}, {context.get('date_utc', '?')}.",
+             f"Command: `{context.get('command', '?')}` at commit {commit_text(context)}, {context.get('date_utc', '?')}.",
              "GPU time is the median of the timed repetitions; Embree is rtcIntersect1 on the same rays in the same run.",
              ""]
     lines += ["| scene | triangles | strategy | structure | GPU ms | × Embree | bytes/triangle | build ms | predicted work/ray | measured work/ray |",

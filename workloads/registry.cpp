@@ -2,12 +2,13 @@
 
 #include "structures/error.h"
 #include "workloads/camera/camera_rays.h"
+#include "workloads/reflection/reflection_rays.h"
 #include "workloads/shadow/shadow_rays.h"
 
 namespace rtbench {
 
 const std::vector<const RayType*>& rayTypes() {
-    static const std::vector<const RayType*> types = {&cameraRayType(), &shadowRayType()};
+    static const std::vector<const RayType*> types = {&cameraRayType(), &shadowRayType(), &reflectionRayType()};
     return types;
 }
 

@@ -26,13 +26,32 @@ struct WorkloadInputs {
     std::function<glm::vec3(glm::vec3)> toScene;
 };
 
+// Rays traced before the batch, one generation of a path (a reflection iteration): each ray, its
+// hit by the run's structure, and the ray of the generation before it was made from.
+struct Generation {
+    std::vector<gpu::Ray> rays;
+    std::vector<gpu::HitRecord> hits;
+    std::vector<std::uint32_t> parents;  // into the generation before (the first: the camera rays)
+};
+
+// What the batch's image shows in the camera's pixels (harness/images.h makeBatchImage).
+enum class BatchImage {
+    Shadows,  // the camera hits, darkened where the batch's ray hit something (shadow rays)
+    Hits,     // the batch rays' own hits, each at its pixel (what a mirror shows)
+};
+
 // The rays a run measures and where they come from.
 struct Workload {
     RayBatch batch;
-    // Rays after the first hit: each ray's pixel (the camera ray it continues), and the camera
-    // rays' hits they were made from. Both empty for the camera rays themselves (ray i is pixel i).
+    // Rays after the first hit: each ray's pixel (the camera ray its path starts from), the camera
+    // rays' hits, the generations traced between those and the batch, and each batch ray's
+    // parent in the last of them (in the camera rays when there are none). All empty for the
+    // camera rays themselves (ray i is pixel i).
     std::vector<std::uint32_t> pixels;
     std::vector<gpu::HitRecord> cameraHits;
+    std::vector<Generation> between;
+    std::vector<std::uint32_t> parents;
+    BatchImage image = BatchImage::Shadows;
     bool fromCamera() const { return pixels.empty() && cameraHits.empty(); }
 };
 

@@ -37,13 +37,15 @@ Workload shadowWorkload(const WorkloadInputs& in, Row& row) {
     Workload w;
     w.batch.query = gpu::kQueryAny;
     w.cameraHits = in.structure.trace(in.cameraRays);
-    const glm::vec3 light = in.run.has("light.position")
-                                ? in.toScene(glm::vec3(in.run.getVec3("light.position")[0], in.run.getVec3("light.position")[1],
-                                                       in.run.getVec3("light.position")[2]))
-                                : defaultLight(in.scene.bounds(), in.cameraUp);
+    const glm::vec3 light = [&in] {
+        if (!in.run.has("light.position")) return defaultLight(in.scene.bounds(), in.cameraUp);
+        const std::array<double, 3> given = in.run.getVec3("light.position");
+        return in.toScene(glm::vec3(given[0], given[1], given[2]));
+    }();
     ShadowRays shadow = makeShadowRays(in.scene, in.cameraRays, w.cameraHits, light);
     w.batch.rays = std::move(shadow.rays);
     w.pixels = std::move(shadow.pixels);
+    w.parents = w.pixels;
     std::uint64_t cameraHits = 0;
     for (const gpu::HitRecord& h : w.cameraHits) cameraHits += h.primitive != gpu::kNoHit;
     row["camera_rays"] = std::to_string(in.cameraRays.size());

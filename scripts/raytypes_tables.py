@@ -1,0 +1,179 @@
+#!/usr/bin/python3
+"""Tables and charts for a raytypes results folder (configs/raytypes.toml): what rays after the
+first hit cost against camera rays (Purcell et al. 2002 Table 3), time against the number of
+reflection iterations (Christen 2005 Fig. 6.11), and SIMD efficiency by iteration.
+
+usage: scripts/raytypes_tables.py RESULTS_DIR
+  writes tables.md, raytypes_cost.png/.svg, raytypes_iterations.png/.svg
+Uses Debian's python3-pandas and python3-matplotlib only.
+"""
+import sys
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+import matplotlib.ticker
+import pandas as pd
+
+from rtbench_results import commit_text, load, wrong_rays
+
+# Purcell et al. 2002, Table 3: relative instructions / bandwidth of a frame, against ray casting
+# (his shadow caster finds the eye rays' hits by rasterization, so its frame is the shadow rays').
+PURCELL_TABLE3 = {"shadow": (0.85, 1.15), "whitted": (2.62, 3.00), "path": (3.24, 4.06)}
+
+
+def workload(run) -> str:
+    """The batch a run traced: "primary", "shadow (any)", "shadow (closest)", "reflection 2"."""
+    if run.rays_type == "reflection":
+        return f"reflection {int(run.reflection_iteration)}"
+    if run.rays_type == "shadow":
+        return f"shadow ({run.query})"
+    return run.rays_type
+
+
+def fmt(value, digits=3) -> str:
+    return "" if pd.isna(value) else f"{value:,.{digits}f}"
+
+
+def save(fig, folder: Path, name: str):
+    fig.tight_layout()
+    for ext in ("png", "svg"):
+        fig.savefig(folder / f"{name}.{ext}", dpi=110)
+    plt.close(fig)
+
+
+def main() -> int:
+    if len(sys.argv) != 2:
+        print(__doc__)
+        return 2
+    folder = Path(sys.argv[1])
+    runs, failed, context, device = load(folder)
+    runs = runs.copy()
+    runs["method"] = runs.structure_type.map({"uniform_grid": "grid", "bvh": "bvh"}).fillna(runs.structure_type) + \
+        " / " + runs.strategy_type
+    runs["workload"] = [workload(r) for r in runs.itertuples()]
+    runs["wrong"] = wrong_rays(runs)
+    primary = runs[runs.rays_type == "primary"].set_index(["scene", "method"])
+    def relative(r, column):
+        base = primary[column].get((r.scene, r.method))
+        return r[column] / base if base else float("nan")
+    runs["time_vs_primary"] = [relative(r, "kernel_ms_median") for _, r in runs.iterrows()]
+    runs["bytes_vs_primary"] = [relative(r, "bytes_total") for _, r in runs.iterrows()]
+    runs["embree_vs_primary"] = [relative(r, "embree1_ms_median") for _, r in runs.iterrows()]
+    size = f"{int(runs.camera_width.iloc[0])}x{int(runs.camera_height.iloc[0])}" if len(runs) else "-"
+
+    lines = [f"# Ray types — {device}, {context.get('cpu', '?')}", "",
+             f"Command: `{context.get('command', '?')}` at commit {commit_text(context)}, "
+             f"{context.get('date_utc', '?')}; {size} pixels. {len(runs)} runs ok, {len(failed)} failed.",
+             "GPU ms is the kernel's median over the timed repetitions, Embree's rtcIntersect1/rtcOccluded1 on the "
+             "identical rays in the same run. \"× primary\" is the frame's cost (the whole batch, not per ray) "
+             "against the camera rays' on the same scene, structure and strategy. Wrong: rays whose answer the "
+             "exact reference contradicts; parent wrong: rays that left from a hit the exact reference does not "
+             "confirm (counted, each still judged as the ray it is).", ""]
+    lines += ["| scene | method | rays | rays traced | hits | GPU ms | × primary (time) | × primary (bytes) | "
+              "Embree ms | × primary (Embree) | work/ray | SIMD eff. | wrong | parent wrong |",
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    order = {w: i for i, w in enumerate(["primary", "shadow (any)", "shadow (closest)"] +
+                                        [f"reflection {k}" for k in range(1, 65)])}
+    runs["order"] = runs.workload.map(order)
+    for r in runs.sort_values(["scene", "method", "order"]).itertuples():
+        lines.append(f"| {r.scene} | {r.method} | {r.workload} | {int(r.rays):,} | {int(r.hits):,} | "
+                     f"{fmt(r.kernel_ms_median)} | {fmt(r.time_vs_primary, 2)} | {fmt(r.bytes_vs_primary, 2)} | "
+                     f"{fmt(r.embree1_ms_median)} | {fmt(r.embree_vs_primary, 2)} | {fmt(r.work_per_ray_mean, 2)} | "
+                     f"{fmt(100 * r.simd_efficiency, 1)}% | {int(r.wrong)} | "
+                     f"{'' if pd.isna(getattr(r, 'exact_parent_wrong', None)) else int(r.exact_parent_wrong)} |")
+
+    shadow = runs[runs.rays_type == "shadow"]
+    lines += ["", "## Early termination: shadow rays as any-hit against closest-hit queries", "",
+              "The same shadow rays, the same run configuration; the ratio of GPU medians (closest / any).", "",
+              "| scene | method | any ms | closest ms | closest / any | work/ray any | work/ray closest |",
+              "|---|---|---|---|---|---|---|"]
+    for (scene, method), g in shadow.groupby(["scene", "method"]):
+        a, c = g[g["query"] == "any"], g[g["query"] == "closest"]
+        if a.empty or c.empty:
+            continue
+        a, c = a.iloc[0], c.iloc[0]
+        lines.append(f"| {scene} | {method} | {fmt(a.kernel_ms_median)} | {fmt(c.kernel_ms_median)} | "
+                     f"{fmt(c.kernel_ms_median / a.kernel_ms_median, 2)} | {fmt(a.work_per_ray_mean, 2)} | "
+                     f"{fmt(c.work_per_ray_mean, 2)} |")
+    lines += ["", "## Beside Purcell et al. 2002, Table 3", "",
+              f"Purcell's shadow caster costs {PURCELL_TABLE3['shadow'][0]} × ray casting's instructions and "
+              f"{PURCELL_TABLE3['shadow'][1]} × its bandwidth (simulated, his branching kernels); his Whitted "
+              f"ray tracer {PURCELL_TABLE3['whitted'][0]} / {PURCELL_TABLE3['whitted'][1]} and path tracer "
+              f"{PURCELL_TABLE3['path'][0]} / {PURCELL_TABLE3['path'][1]}. Ours, the shadow batch's frame against "
+              "the camera rays' (time; bytes as rtbench counts them): the table above, rows \"shadow (any)\". "
+              "Whitted and path tracing are not yet ray types here (reflection iterations are Whitted's mirror "
+              "half, without refraction or shadow rays per bounce).", ""]
+    if not failed.empty:
+        lines += ["## Failed runs", "", "| run | parameters | why |", "|---|---|---|"]
+        for r in failed.itertuples():
+            lines.append(f"| {int(r.run):03d} | {r.label} | {r.error} |")
+    text = "\n".join(lines) + "\n"
+    (folder / "tables.md").write_text(text)
+
+    # Chart 1: a frame's cost by ray type against the camera rays', per scene (time and bytes).
+    scenes = sorted(runs.scene.unique())
+    kinds = [w for w in order if w in set(runs.workload) and w != "primary"]
+    methods = sorted(runs.method.unique())
+    fig, axes = plt.subplots(2, len(scenes), figsize=(4.6 * len(scenes), 7), squeeze=False)
+    for col, scene in enumerate(scenes):
+        for row_i, (column, title) in enumerate([("time_vs_primary", "GPU time"), ("bytes_vs_primary", "bytes")]):
+            ax = axes[row_i][col]
+            width = 0.8 / max(len(methods), 1)
+            for m_i, method in enumerate(methods):
+                g = runs[(runs.scene == scene) & (runs.method == method)].set_index("workload")
+                values = [g[column].get(k, float("nan")) for k in kinds]
+                ax.bar([x + m_i * width for x in range(len(kinds))], values, width, label=method)
+            if row_i == 0 and "shadow (any)" in kinds:
+                ax.axhline(PURCELL_TABLE3["shadow"][0], color="black", ls=":", lw=1, label="Purcell shadow, instructions")
+            if row_i == 1 and "shadow (any)" in kinds:
+                ax.axhline(PURCELL_TABLE3["shadow"][1], color="black", ls="--", lw=1, label="Purcell shadow, bandwidth")
+            ax.axhline(1.0, color="grey", lw=0.8)
+            ax.set_xticks([x + 0.4 - width / 2 for x in range(len(kinds))])
+            ax.set_xticklabels(kinds, rotation=35, ha="right", fontsize=8)
+            ax.set_title(f"{scene}: frame {title} / camera rays'", fontsize=9)
+            if col == 0:
+                ax.set_ylabel("× primary")
+    axes[0][0].legend(fontsize=7)
+    axes[1][0].legend(fontsize=7)
+    fig.suptitle(f"Cost of a frame by ray type, against ray casting (Purcell Table 3) — {device}, {size}", fontsize=10)
+    save(fig, folder, "raytypes_cost")
+
+    # Chart 2: Christen Fig. 6.11: time of a frame with k reflection iterations (camera rays plus
+    # iterations 1..k), strategies against Embree; and SIMD efficiency by iteration.
+    fig, axes = plt.subplots(2, len(scenes), figsize=(4.6 * len(scenes), 7), squeeze=False)
+    for col, scene in enumerate(scenes):
+        ax, lanes = axes[0][col], axes[1][col]
+        for method in methods:
+            g = runs[(runs.scene == scene) & (runs.method == method) & runs.rays_type.isin(["primary", "reflection"])]
+            g = g.assign(k=g.reflection_iteration.fillna(0).where(g.rays_type == "reflection", 0)).sort_values("k")
+            if g.empty:
+                continue
+            line, = ax.plot(g.k, g.kernel_ms_median.cumsum(), marker="o", label=method)
+            if method.endswith("branching"):  # Embree on the same rays as this structure's
+                ax.plot(g.k, g.embree1_ms_median.cumsum(), marker="x", ls=":", color=line.get_color(),
+                        label=f"Embree rtcIntersect1 (rays of {method.split(' /')[0]})")
+            lanes.plot(g.k, 100 * g.simd_efficiency, marker="o", label=method)
+        for a in (ax, lanes):
+            a.xaxis.set_major_locator(matplotlib.ticker.MaxNLocator(integer=True))
+        ax.set_yscale("log")
+        ax.set_title(f"{scene}: frame time with k reflection iterations", fontsize=9)
+        ax.set_xlabel("reflection iterations k (0: camera rays only)")
+        ax.set_ylabel("ms, cumulative (log)")
+        lanes.set_title(f"{scene}: SIMD efficiency of iteration k's rays\n(branching: lane utilisation; multipass: "
+                        "Purcell's)", fontsize=8)
+        lanes.set_xlabel("iteration k")
+        lanes.set_ylabel("%")
+        lanes.set_ylim(0, 100)
+    axes[0][0].legend(fontsize=6)
+    axes[1][0].legend(fontsize=7)
+    fig.suptitle(f"Reflection iterations (Christen 2005 Fig. 6.11) — {device}, {size}", fontsize=10)
+    save(fig, folder, "raytypes_iterations")
+    print(text)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
