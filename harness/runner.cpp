@@ -28,6 +28,7 @@
 #include "methods/registry.h"
 #include "methods/triangle_store.h"
 #include "noise_guard.h"
+#include "path_check.h"
 #include "statistics.h"
 #include "timing_rounds.h"
 #include "output_folder.h"
@@ -333,43 +334,6 @@ const ExactHits& traceExact(const RunConfig& run, const TriangleMesh& mesh, cons
     return exact;
 }
 
-// Rays after the first hit: of the sampled rays, those with a ray earlier on their path (the
-// camera ray, a reflection before) whose hit is not an exact first hit on the full scene: they
-// left from another surface than the exact scene's (counted, never silently compared against
-// another ray: each sampled ray is still judged as the ray it is).
-std::uint64_t exactParentsWrong(const RunConfig& run, const RunScene& scene, const std::vector<gpu::Ray>& cameraRays,
-                                const Workload& workload, const ExactHits& exact, Caches& caches) {
-    const ExactReference& reference = exactReferenceFor(run, scene.full, caches);
-    // Generation g of the path: 0 the camera rays, g > 0 workload.between[g - 1].
-    const std::size_t generations = workload.between.size() + 1;
-    // path[g][i]: sampled ray i's ancestor in generation g.
-    std::vector<std::vector<std::uint32_t>> path(generations, std::vector<std::uint32_t>(exact.rays.size()));
-    for (std::size_t i = 0; i < exact.rays.size(); ++i) {
-        std::uint32_t ray = workload.parents[exact.rays[i]];
-        for (std::size_t g = generations; g-- > 0;) {
-            path[g][i] = ray;
-            if (g > 0) ray = workload.between[g - 1].parents[ray];
-        }
-    }
-    std::vector<bool> wrong(exact.rays.size(), false);
-    for (std::size_t g = 0; g < generations; ++g) {
-        const std::vector<gpu::Ray>& rays = g == 0 ? cameraRays : workload.between[g - 1].rays;
-        const std::vector<gpu::HitRecord>& hits = g == 0 ? workload.cameraHits : workload.between[g - 1].hits;
-        std::vector<std::uint32_t> ancestors = path[g];
-        std::sort(ancestors.begin(), ancestors.end());
-        ancestors.erase(std::unique(ancestors.begin(), ancestors.end()), ancestors.end());
-        const ExactHits truth = reference.trace(rays, ancestors);
-        std::vector<bool> ancestorWrong(ancestors.size());
-        for (std::size_t a = 0; a < ancestors.size(); ++a)
-            ancestorWrong[a] = truth.judge(a, hits[ancestors[a]].primitive, scene.sameTriangles) != ExactHits::Verdict::Right;
-        for (std::size_t i = 0; i < exact.rays.size(); ++i) {
-            const std::size_t a = std::size_t(std::lower_bound(ancestors.begin(), ancestors.end(), path[g][i]) - ancestors.begin());
-            if (ancestorWrong[a]) wrong[i] = true;
-        }
-    }
-    return std::uint64_t(std::count(wrong.begin(), wrong.end(), true));
-}
-
 void writeExactColumns(const std::string& prefix, const ExactAccuracy& a, Row& row) {
     row[prefix + "false_misses"] = std::to_string(a.falseMisses);
     row[prefix + "false_hits"] = std::to_string(a.falseHits);
@@ -531,7 +495,8 @@ void finishRun(RunInProgress& p, const std::string& folder, Caches& caches, Row&
     if (workload.fromCamera())
         writeImageAccuracy(rays, scene, method.hits, image, exact, row);
     else  // the sampled rays' camera rays, judged too: did they leave from the exact scene's surface?
-        row["exact_parent_wrong"] = std::to_string(exactParentsWrong(run, scene, p.cameraRays, workload, exact, caches));
+        row["exact_parent_wrong"] = std::to_string(pathsLeavingWrongHits(exactReferenceFor(run, scene.full, caches), p.cameraRays,
+                                                                         workload, exact.rays, scene.sameTriangles));
 
     // Metrics: agreement with Embree.
     const Agreement a = compareHits(method.hits, embreeHits, query);

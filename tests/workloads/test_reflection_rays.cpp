@@ -4,6 +4,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "harness/exact_reference.h"
+#include "harness/path_check.h"
 #include "harness/runner.h"
 #include "tests/device/test_device.h"
 #include "tests/error_of.h"
@@ -101,6 +103,42 @@ TEST_F(ReflectionKernels, TwoParallelMirrorsGiveTheHandComputedIterationsOnEvery
         EXPECT_EQ(four.pixels, (std::vector<std::uint32_t>{1}));
         EXPECT_EQ(four.between.size(), 3u);
     }
+}
+
+// The path check on the parallel mirrors' iteration 2 (rays 0 and 1, from camera rays 0 and 1):
+// with the structure's true hits no ray left from a wrong hit; a camera hit claimed on the wrong
+// mirror (ray 0's: the floor, not the ceiling) marks ray 0, and an iteration-1 hit claimed as a
+// miss (ray 1's: it meets the floor) marks ray 1, however right its camera ray was; on a
+// simplified scene (sameTriangles false) a wrong triangle that is still a hit does not count.
+TEST_F(ReflectionKernels, ARayIsCountedWhenAnyEarlierRayOnItsPathLeftFromAWrongHit) {
+    const TriangleMesh mesh = parallelMirrors();
+    const std::vector<gpu::Ray> camera = {ray({0, 2, 0}, {1, -1, 0}), ray({-1, 1, -1}, {0, 1, 0}), ray({0, 2, 0}, {1, 0, 0})};
+    const std::unique_ptr<Structure> s = bruteOf(mesh, vk_->info());
+    RunConfig run;
+    run.values["reflection.iteration"] = std::int64_t(2);
+    const WorkloadInputs inputs{run, mesh, camera, *s, glm::vec3(0, 1, 0), [](glm::vec3 p) { return p; }};
+    Row row;
+    const Workload truth = reflectionRayType().make(inputs, row);
+    ASSERT_EQ(truth.batch.rays.size(), 2u);
+    const ExactReference reference(mesh);
+    const std::vector<std::uint32_t> both = {0, 1};
+    EXPECT_EQ(pathsLeavingWrongHits(reference, camera, truth, both, true), 0u);
+
+    Workload wrongCamera = truth;
+    ASSERT_LE(wrongCamera.cameraHits[0].primitive, 1u);  // the floor: 0 or 1
+    wrongCamera.cameraHits[0].primitive = 1u - wrongCamera.cameraHits[0].primitive;  // the other floor half
+    EXPECT_EQ(pathsLeavingWrongHits(reference, camera, wrongCamera, both, true), 1u);
+    EXPECT_EQ(pathsLeavingWrongHits(reference, camera, wrongCamera, {1}, true), 0u);
+    EXPECT_EQ(pathsLeavingWrongHits(reference, camera, wrongCamera, both, false), 0u);  // still a hit
+
+    Workload wrongIteration = truth;
+    wrongIteration.between[0].hits[1].primitive = kNoHit;
+    EXPECT_EQ(pathsLeavingWrongHits(reference, camera, wrongIteration, both, true), 1u);
+    EXPECT_EQ(pathsLeavingWrongHits(reference, camera, wrongIteration, {0}, true), 0u);
+    EXPECT_EQ(pathsLeavingWrongHits(reference, camera, wrongIteration, both, false), 1u);  // a false miss
+
+    wrongIteration.cameraHits[0].primitive = 1u - wrongIteration.cameraHits[0].primitive;
+    EXPECT_EQ(pathsLeavingWrongHits(reference, camera, wrongIteration, both, true), 2u);
 }
 
 class ReflectionRuns : public ::testing::Test {
