@@ -82,6 +82,16 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("rays", K::Count, "rays", "rays traced: the batch of rays.type the run measures");
         add("query", K::Count, "", "what the rays ask: closest (the nearest hit) or any (whether anything is hit in [tMin, tMax): the walk ends at its first hit; Embree's rtcOccluded)");
         s.back().since = 7;
+        // The shading passes that made the rays after the first hit, run again on the device
+        // (workloads/workload.h checkShadingOnDevice); 0 and empty for camera rays.
+        auto since9 = [&](std::string name, K kind, std::string unit, std::string help) {
+            add(std::move(name), kind, std::move(unit), std::move(help));
+            s.back().since = 9;
+        };
+        since9("shading_passes", K::Count, "passes", "shading passes (kernels/shading.comp) that made the generations after the camera rays: 1 for shadow rays, k for reflection iteration k");
+        since9("shading_rays", K::Count, "rays", "rays those passes made on the device, all generations together");
+        since9("shading_ms", K::Timing, "ms", "GPU time of those passes together (one dispatch each, not in kernel_ms)");
+        since9("shading_device_mismatches", K::Count, "rays", "rays the device's shading passes made that differ from the CPU's in a bit, their parent or their path (a failed run)");
         for (const char* axis : {"x", "y", "z"}) {
             add(std::string("camera_eye_") + axis, K::Count, "scene units", std::string("the camera the rays came from (fitted to the scene, or as given, moved with it): eye position, ") + axis);
             s.back().since = 5;

@@ -144,7 +144,7 @@ const std::vector<KeySpec>& configSchema() {
         rayTypeHelp.pop_back();
         add({"rays.type", ValueType::String, rayTypeHelp, rayTypeNames.front(), false, -1e300, 1e300, rayTypeNames});
         s.back().since = 7;
-        add({"rays.query", ValueType::String, "what the rays ask: own (the ray type's: closest for primary, any for shadow), closest (the nearest hit: what a shadow ray costs without early termination) or any (the walk ends at its first hit)", std::string("own"), false, -1e300, 1e300, {"own", "closest", "any"}});
+        add({"rays.query", ValueType::String, "what the rays ask: own (the ray type's: any for shadow and ao, closest for the others), closest (the nearest hit: what a shadow ray costs without early termination) or any (the walk ends at its first hit)", std::string("own"), false, -1e300, 1e300, {"own", "closest", "any"}});
         s.back().since = 7;
         for (const RayType* t : rayTypes()) addMethodKeys("rays.type", t->name, t->keys);
         add({"intersection.test", ValueType::String, "ray-triangle test of every structure and strategy, on the GPU and in the CPU reference: moller_trumbore (Moller & Trumbore 1997) or watertight (Woop, Benthin & Wald 2013: no ray slips between triangles sharing an edge)", std::string("moller_trumbore"), false, -1e300, 1e300, {"moller_trumbore", "watertight"}});

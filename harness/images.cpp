@@ -117,17 +117,22 @@ HitImage makeBatchImage(std::uint32_t width, std::uint32_t height, const std::ve
     image.height = height;
     image.shade.assign(cameraRays.size(), -1.0f);
     image.diff.assign(cameraRays.size(), static_cast<std::uint8_t>(HitDiff::BothMiss));
-    std::vector<bool> lit(cameraRays.size(), false);
+    // Per pixel: its batch rays, and those that hit nothing (lit, unoccluded).
+    std::vector<std::uint32_t> raysAt(cameraRays.size(), 0), litAt(cameraRays.size(), 0);
     for (std::size_t i = 0; i < pixels.size(); ++i) {
         const bool hit = kernel[i].primitive != gpu::kNoHit, refHit = embree[i].primitive != gpu::kNoHit;
         const HitDiff d = hit == refHit ? (hit ? HitDiff::SameHit : HitDiff::BothMiss)
                                         : (hit ? HitDiff::OnlyKernelHit : HitDiff::OnlyEmbreeHit);
-        image.diff[pixels[i]] = static_cast<std::uint8_t>(d);
-        lit[pixels[i]] = !hit;
+        std::uint8_t& diff = image.diff[pixels[i]];
+        const bool agreed = diff == static_cast<std::uint8_t>(HitDiff::SameHit) || diff == static_cast<std::uint8_t>(HitDiff::BothMiss);
+        if (agreed) diff = static_cast<std::uint8_t>(d);  // a pixel of several rays shows a disagreement of any
+        ++raysAt[pixels[i]];
+        litAt[pixels[i]] += !hit;
     }
     for (std::size_t p = 0; p < cameraRays.size(); ++p) {
         const float shade = shadeHit(mesh, cameraHits[p].primitive, cameraRays[p]);
-        image.shade[p] = shade < 0.0f || lit[p] ? shade : kUnlitShade * shade;
+        const float lit = raysAt[p] ? float(litAt[p]) / float(raysAt[p]) : 0.0f;
+        image.shade[p] = shade < 0.0f ? shade : shade * (kUnlitShade + (1.0f - kUnlitShade) * lit);
     }
     return image;
 }

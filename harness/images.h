@@ -37,11 +37,13 @@ HitImage makeHitImage(std::uint32_t width, std::uint32_t height, const std::vect
                       const TriangleMesh& mesh, const std::vector<gpu::HitRecord>& kernel,
                       const std::vector<gpu::HitRecord>& embree, const std::vector<std::uint32_t>& pixels = {});
 
-// A batch of rays after the first hit (harness/workload.h), in the camera's pixels: each pixel is
-// shaded as its camera ray's hit (cameraHits), times kUnlitShade where its batch ray hit (a
-// shadow ray: occluded) or where it has none (a hit the light does not face); the diff map
-// compares the batch ray's hit or miss with Embree's (BothMiss where a pixel has none).
-// pixels[i] is the camera ray batch ray i continues.
+// A batch of rays after the first hit (workloads/workload.h), in the camera's pixels: each pixel
+// is shaded as its camera ray's hit (cameraHits), times kUnlitShade where its batch ray hit (a
+// shadow ray: occluded) or where it has none (a hit the light does not face); a pixel of several
+// rays (ambient occlusion) gets kUnlitShade + (1 - kUnlitShade) x the fraction of them that hit
+// nothing. The diff map compares the batch rays' hit or miss with Embree's (BothMiss where a
+// pixel has none; a disagreement of any of a pixel's rays shows). pixels[i] is the camera ray
+// batch ray i continues.
 constexpr float kUnlitShade = 0.3f;
 HitImage makeBatchImage(std::uint32_t width, std::uint32_t height, const std::vector<gpu::Ray>& cameraRays,
                         const std::vector<gpu::HitRecord>& cameraHits, const TriangleMesh& mesh,

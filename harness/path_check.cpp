@@ -11,13 +11,8 @@ std::uint64_t pathsLeavingWrongHits(const ExactReference& reference, const std::
     const std::size_t generations = workload.between.size() + 1;
     // path[g][i]: sampled ray i's ancestor in generation g.
     std::vector<std::vector<std::uint32_t>> path(generations, std::vector<std::uint32_t>(sampled.size()));
-    for (std::size_t i = 0; i < sampled.size(); ++i) {
-        std::uint32_t ray = workload.parents.at(sampled[i]);
-        for (std::size_t g = generations; g-- > 0;) {
-            path[g][i] = ray;
-            if (g > 0) ray = workload.between[g - 1].parents.at(ray);
-        }
-    }
+    for (std::size_t i = 0; i < sampled.size(); ++i)
+        for (std::size_t g = 0; g < generations; ++g) path[g][i] = workload.ancestor(sampled[i], g);
     std::vector<bool> wrong(sampled.size(), false);
     for (std::size_t g = 0; g < generations; ++g) {
         const std::vector<gpu::Ray>& rays = g == 0 ? cameraRays : workload.between[g - 1].rays;

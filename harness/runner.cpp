@@ -382,6 +382,7 @@ struct RunInProgress {
     unsigned width = 0, height = 0;
     std::vector<gpu::Ray> cameraRays;
     Workload workload;  // the batch the run measures
+    std::string shadingMismatch;  // how the device's shading passes differ from the CPU's ("" if not)
     std::unique_ptr<Structure> structure;
     StrategyRun method;
     std::vector<gpu::HitRecord> embreeHits, scratch;  // written by the Embree batches
@@ -438,6 +439,8 @@ std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunC
     const RayBatch& batch = p->workload.batch;
     const std::vector<gpu::Ray>& rays = batch.rays;
     validateRays(rays);
+    p->shadingMismatch = checkShadingOnDevice(vk, unsigned(run.getInt("strategy.workgroup_size")), mesh, p->cameraRays,
+                                              p->workload, row);
     row["rays"] = std::to_string(rays.size());
     row["query"] = queryName(batch.query);
     structure.writeColumns(row);
@@ -519,6 +522,7 @@ void finishRun(RunInProgress& p, const std::string& folder, Caches& caches, Row&
     if (vk.validationMessages().size() != p.messagesBefore)
         throw Error("the Vulkan validation layer reported: " + vk.validationMessages()[p.messagesBefore]);
     // The row is complete; a kernel that disagrees with its CPU reference fails it all the same.
+    if (!p.shadingMismatch.empty()) throw Error(p.shadingMismatch);
     if (method.truncatedRays) throw Error(method.truncatedWhy);
     if (method.cpuMismatches)
         throw Error("the kernel's hit records differ from the CPU reference's on " + std::to_string(method.cpuMismatches) +

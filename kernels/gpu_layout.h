@@ -50,6 +50,21 @@ RTBENCH_CONST kQueryClosest = 0;  // the nearest hit in [tMin, tMax)
 RTBENCH_CONST kQueryAny = 1;      // whether anything is hit in [tMin, tMax): the first hit found ends
                                   // the walk (shadow rays); its record is that hit, not the nearest
 
+// ---- shading passes (kernels/shading.comp, kernels/shading.glsl rtShade): the rays a
+// generation's hits make, ShadingParams.pass.y ----
+RTBENCH_CONST kShadeShadow = 0;   // one any-hit ray toward the point light ShadingParams.light.xyz
+RTBENCH_CONST kShadeMirror = 1;   // one mirror reflection (Christen 2005 §5.2.1)
+RTBENCH_CONST kShadeDiffuse = 2;  // cosine-weighted rays (path tracing, ambient occlusion), tMax light.w
+
+// ---- shading-pass binding slots (a descriptor set of its own, all storage buffers) ----
+RTBENCH_CONST kShadingBindingParents = 0;    // Ray[parents]: the generation's rays
+RTBENCH_CONST kShadingBindingHits = 1;       // HitRecord[parents]: their hits
+RTBENCH_CONST kShadingBindingPaths = 2;      // uint[parents]: each ray's path (random-number key)
+RTBENCH_CONST kShadingBindingTriangles = 3;  // Triangle[triangles]: the scene's vertices
+RTBENCH_CONST kShadingBindingRays = 4;       // Ray[parents * fan-out]: slot parent * fan-out + s
+RTBENCH_CONST kShadingBindingMade = 5;       // uint[parents * fan-out]: 1 where the slot made a ray
+RTBENCH_CONST kShadingBindingCount = 6;
+
 // ---- ray-triangle tests (kernels/ray_math.glsl) ----
 RTBENCH_CONST kTriangleTestMollerTrumbore = 0;  // Moller & Trumbore 1997
 RTBENCH_CONST kTriangleTestWatertight = 1;      // Woop, Benthin & Wald 2013
@@ -118,6 +133,13 @@ struct RayHitState {
     float v;         // byte 12
 };
 
+// Push constants of a shading pass: which rays a generation's hits make.
+struct ShadingParams {
+    uvec4 pass;   // byte 0: x = parent rays, y = kShade*, z = rays per parent (fan-out), w = bounce
+    uvec4 seed;   // byte 16: x = the random numbers' seed (kShadeDiffuse), yzw unused (0)
+    vec4 light;   // byte 32: xyz = the point light (kShadeShadow), w = tMax (kShadeDiffuse)
+};
+
 // Per-ray work, kept only by instrumented kernels (not charged as bandwidth).
 struct RayCounters {
     uint cellsVisited;     // byte 0
@@ -140,6 +162,7 @@ static_assert(sizeof(HitRecord) == 32);
 static_assert(sizeof(StreamParams) == 16);
 static_assert(sizeof(RayHitState) == 16);
 static_assert(sizeof(RayCounters) == 16);
+static_assert(sizeof(ShadingParams) == 48);
 static_assert(sizeof(PassCounters) == 64);
 }  // namespace rtbench::gpu
 #else

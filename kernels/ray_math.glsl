@@ -26,6 +26,36 @@ float rtDivide(float a, float b) {
     return float(q);
 }
 
+// The correctly rounded sqrt(x), for x > 0 finite, from a guess within 4 ulps of it: the midpoint
+// m between the guess and a neighbour has at most 25 significant bits, so m * m (at most 50) is
+// exact in double, and comparing x with it says on which side of m the root lies (never on it: a
+// float x is never the square of such a midpoint). Needs shaderFloat64, as rtDivide does.
+float rtSqrtFromGuess(float x, float s) {
+    for (int i = 0; i < 4; ++i) {  // up
+        float next = intBitsToFloat(floatBitsToInt(s) + 1);
+        precise double m = (double(s) + double(next)) * 0.5;
+        precise double square = m * m;
+        if (!(square < double(x))) break;
+        s = next;
+    }
+    for (int i = 0; i < 4; ++i) {  // down
+        float previous = intBitsToFloat(floatBitsToInt(s) - 1);
+        precise double m = (double(s) + double(previous)) * 0.5;
+        precise double square = m * m;
+        if (!(square > double(x))) break;
+        s = previous;
+    }
+    return s;
+}
+
+// sqrt(x) correctly rounded, as IEEE float sqrt on the CPU gives it (0, infinity and NaN give x;
+// x < 0 gives NaN). Vulkan's sqrt is not exact (its precision is inversesqrt's): the root of the
+// double is only the guess rtSqrtFromGuess corrects.
+float rtSqrt(float x) {
+    if (!(x > 0.0f) || x == uintBitsToFloat(0x7f800000u)) return x < 0.0f ? uintBitsToFloat(0x7fc00000u) : x;
+    return rtSqrtFromGuess(x, float(sqrt(double(x))));
+}
+
 float rtDot(vec3 a, vec3 b) {
     precise float r = a.x * b.x + a.y * b.y + a.z * b.z;
     return r;

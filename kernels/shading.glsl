@@ -42,16 +42,23 @@ vec3 rtSurfacePoint(vec3 v0, vec3 v1, vec3 v2, float u, float v) {
     return p;
 }
 
+// The scaled normal (rtScaledNormal) of triangle (v0, v1, v2) turned toward the side a ray with
+// direction `incoming` came from: the side every secondary ray leaves on. Zero for a degenerate
+// triangle.
+vec3 rtFacingNormal(vec3 v0, vec3 v1, vec3 v2, vec3 incoming) {
+    precise vec3 e1 = v1 - v0;
+    precise vec3 e2 = v2 - v0;
+    vec3 n = rtScaledNormal(e1, e2);
+    return rtDot(n, incoming) > 0.0f ? -n : n;
+}
+
 // A shadow ray (any hit) from the hit of a ray with direction `incoming` on triangle
 // (v0, v1, v2) at (u, v) toward the point light `light`: it leaves the surface on the side the
 // ray came from, by rtOffsetRay, and ends at the light (direction light - origin, tMax 1: the
 // light itself at t = 1 is not an occluder). False, and no ray, when the light lies on the other
 // side of the surface (or in its plane): the point is unlit without a test.
 bool rtShadowRay(vec3 v0, vec3 v1, vec3 v2, float u, float v, vec3 incoming, vec3 light, RT_OUT(Ray) shadow) {
-    precise vec3 e1 = v1 - v0;
-    precise vec3 e2 = v2 - v0;
-    vec3 n = rtScaledNormal(e1, e2);
-    if (rtDot(n, incoming) > 0.0f) n = -n;  // toward the side the ray came from
+    vec3 n = rtFacingNormal(v0, v1, v2, incoming);
     vec3 p = rtSurfacePoint(v0, v1, v2, u, v);
     precise vec3 toLight = light - p;
     if (!(rtDot(n, toLight) > 0.0f)) return false;
@@ -67,17 +74,106 @@ bool rtShadowRay(vec3 v0, vec3 v1, vec3 v2, float u, float v, vec3 incoming, vec
 // direction d - 2 (d.n / n.n) n (n the scaled normal, so no square root; the length of d is kept),
 // closest hit, as far as a camera ray. False, and no ray, for a triangle with no normal.
 bool rtReflectRay(vec3 v0, vec3 v1, vec3 v2, float u, float v, vec3 incoming, RT_OUT(Ray) reflected) {
-    precise vec3 e1 = v1 - v0;
-    precise vec3 e2 = v2 - v0;
-    vec3 n = rtScaledNormal(e1, e2);
+    vec3 n = rtFacingNormal(v0, v1, v2, incoming);
     if (n.x == 0.0f && n.y == 0.0f && n.z == 0.0f) return false;
-    if (rtDot(n, incoming) > 0.0f) n = -n;  // toward the side the ray came from
     vec3 origin = rtOffsetRay(rtSurfacePoint(v0, v1, v2, u, v), n);
     precise float scale = rtDivide(2.0f * rtDot(incoming, n), rtDot(n, n));
     precise vec3 direction = incoming - n * scale;
     reflected.originTMin = vec4(origin, 0.0f);
     reflected.directionTMax = vec4(direction, kNoHitT);
     return true;
+}
+
+// ---- random numbers and directions for diffuse rays (path tracing, ambient occlusion) ----
+
+// Jarzynski & Olano 2020, "Hash Functions for GPU Rendering" (JCGT 9(3)): PCG's state step and
+// output permutation as a 32-bit hash. Integer arithmetic: the same bits on every device.
+uint rtPcgHash(uint v) {
+    uint state = v * 747796405u + 2891336453u;
+    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+// A counter-based random number in [0, 1): the chained hash of key = (seed, path, bounce) and
+// draw, its top 24 bits times 2^-24 (exact). No state is carried from ray to ray, so the CPU
+// and every device draw the same number for the same ray.
+float rtRandom(uvec3 key, uint draw) {
+    uint h = rtPcgHash(key.x);
+    h = rtPcgHash(h + key.y);
+    h = rtPcgHash(h + key.z);
+    h = rtPcgHash(h + draw);
+    return float(h >> 8u) * (1.0f / 16777216.0f);
+}
+
+// v / |v|, the length and each quotient correctly rounded (rtSqrt, rtDivide).
+vec3 rtNormalize(vec3 v) {
+    float norm = rtSqrt(rtDot(v, v));
+    return vec3(rtDivide(v.x, norm), rtDivide(v.y, norm), rtDivide(v.z, norm));
+}
+
+// Duff et al. 2017, "Building an Orthonormal Basis, Revisited" (JCGT 6(1)), listing 3: two unit
+// tangents t, b of the unit vector n, with (t, b, n) right-handed. No square root.
+void rtBasis(vec3 n, RT_OUT(vec3) t, RT_OUT(vec3) b) {
+    float side = n.z >= 0.0f ? 1.0f : -1.0f;
+    precise float a = rtDivide(-1.0f, side + n.z);
+    precise float c = n.x * n.y * a;
+    precise vec3 tangent = vec3(1.0f + side * n.x * n.x * a, side * c, -side * n.x);
+    precise vec3 bitangent = vec3(c, side + n.y * n.y * a, -n.y);
+    t = tangent;
+    b = bitangent;
+}
+
+// A cosine-weighted direction about the unit vector n (Malley's method, pbrt-v3 §13.6.3): a point
+// uniform in the unit disk, by rejection from the square (no sine or cosine: Vulkan rounds
+// neither exactly), lifted to the hemisphere, z = sqrt(1 - x^2 - y^2). Up to 16 tries, each two
+// draws of `key`; (0, 0) after them (straight along n; a chance of 2^-35). Unit length up to rounding.
+vec3 rtCosineDirection(vec3 n, uvec3 key) {
+    float x = 0.0f;
+    float y = 0.0f;
+    for (uint attempt = 0u; attempt < 16u; ++attempt) {
+        precise float cx = 2.0f * rtRandom(key, 2u * attempt) - 1.0f;
+        precise float cy = 2.0f * rtRandom(key, 2u * attempt + 1u) - 1.0f;
+        precise float r2 = cx * cx + cy * cy;
+        if (r2 < 1.0f) {
+            x = cx;
+            y = cy;
+            break;
+        }
+    }
+    precise float z2 = 1.0f - (x * x + y * y);
+    float z = rtSqrt(z2);
+    vec3 t;
+    vec3 b;
+    rtBasis(n, t, b);
+    precise vec3 d = t * x + b * y + n * z;
+    return d;
+}
+
+// A diffuse ray: from the hit of a ray with direction `incoming` on triangle (v0, v1, v2) at
+// (u, v), it leaves on the side the ray came from, by rtOffsetRay, in a cosine-weighted direction
+// about the unit normal (random key `key`), up to tMax (kNoHitT: a path-tracing bounce; a radius:
+// an ambient-occlusion ray). False, and no ray, for a triangle with no normal.
+bool rtDiffuseRay(vec3 v0, vec3 v1, vec3 v2, float u, float v, vec3 incoming, uvec3 key, float tMax,
+                  RT_OUT(Ray) diffuse) {
+    vec3 n = rtFacingNormal(v0, v1, v2, incoming);
+    if (n.x == 0.0f && n.y == 0.0f && n.z == 0.0f) return false;
+    vec3 origin = rtOffsetRay(rtSurfacePoint(v0, v1, v2, u, v), n);
+    diffuse.originTMin = vec4(origin, 0.0f);
+    diffuse.directionTMax = vec4(rtCosineDirection(rtNormalize(n), key), tMax);
+    return true;
+}
+
+// ---- the shading pass: one rule for the kernel (kernels/shading.comp) and the CPU ----
+
+// Ray `slot` (of params.pass.z) made by a hit at (u, v) of triangle (v0, v1, v2), of the ray with
+// direction `incoming` on path `path`, by the rule params.pass.y (kShade*). A diffuse ray's random
+// key is (seed, path * fan-out + slot, bounce): the path the new ray starts. False: no ray.
+bool rtShade(ShadingParams params, vec3 v0, vec3 v1, vec3 v2, float u, float v, vec3 incoming, uint path, uint slot,
+             RT_OUT(Ray) made) {
+    if (params.pass.y == kShadeShadow) return rtShadowRay(v0, v1, v2, u, v, incoming, vec3(params.light), made);
+    if (params.pass.y == kShadeMirror) return rtReflectRay(v0, v1, v2, u, v, incoming, made);
+    uvec3 key = uvec3(params.seed.x, path * params.pass.z + slot, params.pass.w);
+    return rtDiffuseRay(v0, v1, v2, u, v, incoming, key, params.light.w, made);
 }
 
 #endif  // RT_SHADING_GLSL

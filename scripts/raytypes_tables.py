@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Tables and charts for a raytypes results folder (configs/raytypes.toml): what rays after the
 first hit cost against camera rays (Purcell et al. 2002 Table 3), time against the number of
-reflection iterations (Christen 2005 Fig. 6.11), and SIMD efficiency by iteration.
+reflection iterations (Christen 2005 Fig. 6.11), and SIMD efficiency by reflection iteration and
+by path-tracing bounce.
 
 usage: scripts/raytypes_tables.py RESULTS_DIR
   writes tables.md, raytypes_cost.png/.svg, raytypes_iterations.png/.svg
@@ -25,11 +26,14 @@ PURCELL_TABLE3 = {"shadow": (0.85, 1.15), "whitted": (2.62, 3.00), "path": (3.24
 
 
 def workload(run) -> str:
-    """The batch a run traced: "primary", "shadow (any)", "shadow (closest)", "reflection 2"."""
+    """The batch a run traced: "primary", "shadow (any)", "shadow (closest)", "reflection 2",
+    "path bounce 1", "ao (any)"."""
     if run.rays_type == "reflection":
         return f"reflection {int(run.reflection_iteration)}"
-    if run.rays_type == "shadow":
-        return f"shadow ({run.query})"
+    if run.rays_type == "path":
+        return f"path bounce {int(run.path_bounce)}"
+    if run.rays_type in ("shadow", "ao"):
+        return f"{run.rays_type} ({run.query})"
     return run.rays_type
 
 
@@ -75,8 +79,9 @@ def main() -> int:
     lines += ["| scene | method | rays | rays traced | hits | GPU ms | × primary (time) | × primary (bytes) | "
               "Embree ms | × primary (Embree) | work/ray | SIMD eff. | wrong | parent wrong |",
               "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
-    order = {w: i for i, w in enumerate(["primary", "shadow (any)", "shadow (closest)"] +
-                                        [f"reflection {k}" for k in range(1, 65)])}
+    order = {w: i for i, w in enumerate(["primary", "shadow (any)", "shadow (closest)", "ao (any)", "ao (closest)"] +
+                                        [f"reflection {k}" for k in range(1, 65)] +
+                                        [f"path bounce {k}" for k in range(1, 65)])}
     runs["order"] = runs.workload.map(order)
     for r in runs.sort_values(["scene", "method", "order"]).itertuples():
         lines.append(f"| {r.scene} | {r.method} | {r.workload} | {int(r.rays):,} | {int(r.hits):,} | "
@@ -104,8 +109,11 @@ def main() -> int:
               f"ray tracer {PURCELL_TABLE3['whitted'][0]} / {PURCELL_TABLE3['whitted'][1]} and path tracer "
               f"{PURCELL_TABLE3['path'][0]} / {PURCELL_TABLE3['path'][1]}. Ours, the shadow batch's frame against "
               "the camera rays' (time; bytes as rtbench counts them): the table above, rows \"shadow (any)\". "
-              "Whitted and path tracing are not yet ray types here (reflection iterations are Whitted's mirror "
-              "half, without refraction or shadow rays per bounce).", ""]
+              "His path tracer follows one diffuse ray a bounce, 2 bounces, 64 samples per pixel at 256 x 256 "
+              "against a ray caster at 1024 x 1024; ours traces one bounce a run (rows \"path bounce k\", "
+              "path.samples paths per pixel), so a frame of his is the camera rays plus bounces 1 and 2. Whitted "
+              "ray tracing is not yet a ray type here (reflection iterations are its mirror half, without "
+              "refraction or shadow rays per bounce).", ""]
     if not failed.empty:
         lines += ["## Failed runs", "", "| run | parameters | why |", "|---|---|---|"]
         for r in failed.itertuples():
@@ -138,7 +146,7 @@ def main() -> int:
                 ax.set_ylabel("× primary")
     axes[0][0].legend(fontsize=7)
     axes[1][0].legend(fontsize=7)
-    fig.suptitle(f"Cost of a frame by ray type, against ray casting (Purcell Table 3) — {device}, {size}", fontsize=10)
+    fig.suptitle(f"Cost of a frame by ray type, against ray casting (Purcell Table 3)\n{device}, {size}", fontsize=10)
     save(fig, folder, "raytypes_cost")
 
     # Chart 2: Christen Fig. 6.11: time of a frame with k reflection iterations (camera rays plus
@@ -146,30 +154,35 @@ def main() -> int:
     fig, axes = plt.subplots(2, len(scenes), figsize=(4.6 * len(scenes), 7), squeeze=False)
     for col, scene in enumerate(scenes):
         ax, lanes = axes[0][col], axes[1][col]
-        for method in methods:
-            g = runs[(runs.scene == scene) & (runs.method == method) & runs.rays_type.isin(["primary", "reflection"])]
+        for m_i, method in enumerate(methods):
+            color = f"C{m_i}"
+            mine = runs[(runs.scene == scene) & (runs.method == method)]
+            g = mine[mine.rays_type.isin(["primary", "reflection"])]
             g = g.assign(k=g.reflection_iteration.fillna(0).where(g.rays_type == "reflection", 0)).sort_values("k")
-            if g.empty:
-                continue
-            line, = ax.plot(g.k, g.kernel_ms_median.cumsum(), marker="o", label=method)
-            if method.endswith("branching"):  # Embree on the same rays as this structure's
-                ax.plot(g.k, g.embree1_ms_median.cumsum(), marker="x", ls=":", color=line.get_color(),
-                        label=f"Embree rtcIntersect1 (rays of {method.split(' /')[0]})")
-            lanes.plot(g.k, 100 * g.simd_efficiency, marker="o", label=method)
+            if (g.rays_type == "reflection").any():
+                ax.plot(g.k, g.kernel_ms_median.cumsum(), marker="o", color=color, label=method)
+                if method.endswith("branching"):  # Embree on the same rays as this structure's
+                    ax.plot(g.k, g.embree1_ms_median.cumsum(), marker="x", ls=":", color=color,
+                            label=f"Embree rtcIntersect1 (rays of {method.split(' /')[0]})")
+                lanes.plot(g.k, 100 * g.simd_efficiency, marker="o", color=color, label=f"{method}, reflection")
+            p = mine[mine.rays_type.isin(["primary", "path"])]
+            if (p.rays_type == "path").any():
+                p = p.assign(k=p.path_bounce.where(p.rays_type == "path", 0)).sort_values("k")
+                lanes.plot(p.k, 100 * p.simd_efficiency, marker="s", ls="--", color=color, label=f"{method}, path bounce")
         for a in (ax, lanes):
             a.xaxis.set_major_locator(matplotlib.ticker.MaxNLocator(integer=True))
         ax.set_yscale("log")
         ax.set_title(f"{scene}: frame time with k reflection iterations", fontsize=9)
         ax.set_xlabel("reflection iterations k (0: camera rays only)")
         ax.set_ylabel("ms, cumulative (log)")
-        lanes.set_title(f"{scene}: SIMD efficiency of iteration k's rays\n(branching: lane utilisation; multipass: "
-                        "Purcell's)", fontsize=8)
-        lanes.set_xlabel("iteration k")
+        lanes.set_title(f"{scene}: SIMD efficiency of reflection\niteration k's and path bounce k's rays\n"
+                        "(branching: lane utilisation; multipass: Purcell's)", fontsize=8)
+        lanes.set_xlabel("iteration or bounce k (0: camera rays)")
         lanes.set_ylabel("%")
         lanes.set_ylim(0, 100)
     axes[0][0].legend(fontsize=6)
-    axes[1][0].legend(fontsize=7)
-    fig.suptitle(f"Reflection iterations (Christen 2005 Fig. 6.11) — {device}, {size}", fontsize=10)
+    axes[1][0].legend(fontsize=6)
+    fig.suptitle(f"Reflection iterations (Christen 2005 Fig. 6.11) and path bounces\n{device}, {size}", fontsize=10)
     save(fig, folder, "raytypes_iterations")
     print(text)
     return 0

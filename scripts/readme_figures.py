@@ -406,6 +406,26 @@ def raytypes() -> list:
                    f"{num(last.kernel_ms_median / base, 2)} | {num(100 * primary.simd_efficiency.iloc[0], 3)}% → "
                    f"{num(100 * last.simd_efficiency, 3)}% |")
     out.append("")
+    diffuse = []
+    for (scene, method), g in ok.groupby(["scene", "method"]):
+        primary = g[g.rays_type == "primary"]
+        path = g[g.rays_type == "path"].sort_values("path_bounce") if "path_bounce" in g else g.iloc[0:0]
+        ao = g[g.rays_type == "ao"]
+        if primary.empty or path.empty or ao.empty:
+            continue
+        base = primary.kernel_ms_median.iloc[0]
+        last = path.iloc[-1]
+        lanes = " → ".join(f"{num(100 * v, 3)}%" for v in [primary.simd_efficiency.iloc[0]] + list(path.simd_efficiency))
+        diffuse.append(f"| {scene} | {method} | {num(path.kernel_ms_median.iloc[0] / base, 2)} | {count(last.path_bounce)} | "
+                       f"{num(last.kernel_ms_median / base, 2)} | {lanes} | {num(ao.kernel_ms_median.iloc[0] / base, 2)} | "
+                       f"{count(ao.rays.iloc[0])} | {count(sum(ok.shading_device_mismatches.fillna(0)))} |")
+    if diffuse:
+        out += ["Diffuse rays, in the same frame of reference: path-tracing bounce 1 and the last bounce against the camera "
+                "rays (one path per pixel), SIMD efficiency from the camera rays through each bounce, ambient occlusion "
+                "(4 any-hit rays per camera hit) against the camera rays; the last column counts the rays, over every run "
+                "of the folder, that the device's shading passes made other than the CPU's.", "",
+                "| scene | method | path bounce 1 × primary | last bounce | its × primary | SIMD eff. primary → bounces | "
+                "ao × primary | ao rays | shading mismatches (all runs) |", "|---|---|---|---|---|---|---|---|---|"] + diffuse + [""]
     out += charts("raytypes", {"raytypes_cost": "a frame's cost by ray type against the camera rays'",
                                "raytypes_iterations": "time against reflection iterations, and SIMD efficiency"})
     return out + [""]

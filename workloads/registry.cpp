@@ -1,14 +1,16 @@
 #include "registry.h"
 
 #include "structures/error.h"
+#include "workloads/ao/ao_rays.h"
 #include "workloads/camera/camera_rays.h"
+#include "workloads/path/path_rays.h"
 #include "workloads/reflection/reflection_rays.h"
 #include "workloads/shadow/shadow_rays.h"
 
 namespace rtbench {
 
 const std::vector<const RayType*>& rayTypes() {
-    static const std::vector<const RayType*> types = {&cameraRayType(), &shadowRayType(), &reflectionRayType()};
+    static const std::vector<const RayType*> types = {&cameraRayType(), &shadowRayType(), &reflectionRayType(), &pathRayType(), &aoRayType()};
     return types;
 }
 

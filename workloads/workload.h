@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "device/vulkan_context.h"
 #include "methods/ray_batch.h"
 #include "methods/structure.h"
 #include "plan/columns.h"
@@ -32,6 +33,7 @@ struct Generation {
     std::vector<gpu::Ray> rays;
     std::vector<gpu::HitRecord> hits;
     std::vector<std::uint32_t> parents;  // into the generation before (the first: the camera rays)
+    std::vector<std::uint32_t> paths;    // each ray's path (workloads/shading.h ShadedRays)
 };
 
 // What the batch's image shows in the camera's pixels (harness/images.h makeBatchImage).
@@ -51,9 +53,34 @@ struct Workload {
     std::vector<gpu::HitRecord> cameraHits;
     std::vector<Generation> between;
     std::vector<std::uint32_t> parents;
+    std::vector<std::uint32_t> paths;  // each batch ray's path (workloads/shading.h ShadedRays)
+    // The shading passes that made the generations after the camera rays: shading[g] made
+    // generation g + 1 (between[g], the batch after the last) from generation g (0: the camera
+    // rays). Run again on the device to check them (checkShadingOnDevice).
+    std::vector<gpu::ShadingParams> shading;
+    std::uint64_t parentRays = 0, parentHits = 0;  // of the generation the batch was made from
     BatchImage image = BatchImage::Shadows;
     bool fromCamera() const { return pixels.empty() && cameraHits.empty(); }
+    // The ray batch ray `ray` descends from in generation g (0: the camera rays; between.size():
+    // the batch itself).
+    std::uint32_t ancestor(std::uint32_t ray, std::size_t g) const;
 };
+
+// Rays of `hits` that hit something.
+std::uint64_t countHits(const std::vector<gpu::HitRecord>& hits);
+
+// Paths from the camera rays through the shading passes `passes`: each pass makes a generation from
+// the one before, every generation but the last traced by the run's structure (closest hit), the
+// last the batch, asked `query`. A pass that makes no ray throws rtbench::Error with
+// noRays(pass, rays of the generation before, of which hit).
+Workload followPaths(const WorkloadInputs& in, const std::vector<gpu::ShadingParams>& passes, std::uint32_t query,
+                     const std::function<std::string(std::size_t, std::uint64_t, std::uint64_t)>& noRays);
+
+// Every shading pass of `workload` run again on the device (kernels/shading.comp) from the same
+// rays and hits, its rays compared bit for bit with the CPU's. Writes shading_* columns to `row`;
+// returns what differs ("" when nothing does), which fails the run.
+std::string checkShadingOnDevice(VulkanContext& vk, unsigned workgroupSize, const TriangleMesh& scene,
+                                 const std::vector<gpu::Ray>& cameraRays, const Workload& workload, Row& row);
 
 struct RayType {
     std::string name;  // the rays.type value
@@ -63,5 +90,12 @@ struct RayType {
     // Makes the batch; writes its own columns. Throws rtbench::Error for what it cannot make.
     Workload (*make)(const WorkloadInputs& inputs, Row& row);
 };
+
+// The seed key of a ray type of diffuse rays (`key`, e.g. "path.seed"): an integer of 32 bits,
+// default 0, hashed with each ray's path and bounce (kernels/shading.glsl rtRandom).
+KeySpec randomSeedKey(const std::string& key, const std::string& who);
+
+// Marks every key and column of `type` as first written by results schema `schema`.
+void setSince(RayType& type, int schema);
 
 }  // namespace rtbench

@@ -12,7 +12,9 @@
 #include "tests/methods/hand_scenes.h"
 #include "tests/methods/test_rays.h"
 #include "tests/temp_dir.h"
+#include "tests/workloads/workload_runs.h"
 #include "workloads/reflection/reflection_rays.h"
+#include "workloads/shading.h"
 
 namespace rtbench {
 namespace {
@@ -43,7 +45,7 @@ TEST(ReflectionRays, MirrorDirectionsAndOriginsAreTheHandComputedFloats) {
     const std::vector<gpu::Ray> rays = {ray({1, 6, 2}, {1, -2, 0.5f}), ray({9, 2.5f, 0.25f}, {-1, 0, 0}),
                                         ray({0, 1, 0}, {0, 1, 0})};
     const std::vector<gpu::HitRecord> hits = {hitOf(0, 11.0f / 16, 11.0f / 16), hitOf(1, 0.5f, 0.25f), hitOf(kNoHit, 0, 0)};
-    const ReflectedRays out = makeReflectedRays(mesh, rays, hits);
+    const ShadedRays out = shadeOnCpu(mesh, rays, hits, {}, mirrorPass());
     ASSERT_EQ(out.rays.size(), 2u);  // the miss makes none
     EXPECT_EQ(out.parents, (std::vector<std::uint32_t>{0, 1}));
     EXPECT_EQ(out.rays[0].originTMin, glm::vec4(3.0f, 1.0f / 65536.0f, 3.0f, 0.0f));
@@ -141,19 +143,7 @@ TEST_F(ReflectionKernels, ARayIsCountedWhenAnyEarlierRayOnItsPathLeftFromAWrongH
     EXPECT_EQ(pathsLeavingWrongHits(reference, camera, wrongIteration, both, true), 2u);
 }
 
-class ReflectionRuns : public ::testing::Test {
-protected:
-    ExperimentResult run(const std::string& body) {
-        const std::string path = dir_.write("reflection.toml", "[experiment]\nname = \"reflection\"\noutput = \"" +
-                                                                   dir_.file("out") +
-                                                                   "\"\nrepetitions = 1\nwarmups = 0\nrounds = 1\n[device]\nname = \"" +
-                                                                   testDeviceName() + "\"\n" + body);
-        RunnerOptions options;
-        options.quiet = true;
-        return runExperiment(loadExperiment(path), options);
-    }
-    TempDir dir_;
-};
+using ReflectionRuns = WorkloadRuns;
 
 // Scene B's first three reflection iterations on every structure and both strategies: every ray
 // agrees with Embree and with the exact reference, and iteration k + 1 has a ray for each hit of

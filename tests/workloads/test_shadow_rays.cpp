@@ -14,7 +14,9 @@
 #include "tests/methods/hand_scenes.h"
 #include "tests/methods/test_rays.h"
 #include "tests/temp_dir.h"
+#include "tests/workloads/workload_runs.h"
 #include "workloads/shading_reference.h"
+#include "workloads/shading.h"
 #include "workloads/shadow/shadow_rays.h"
 
 namespace rtbench {
@@ -78,15 +80,20 @@ TEST_F(ShadowKernels, AHandBuiltSceneCastsTheShadowsComputedByHand) {
     ASSERT_EQ(cameraHits[0].primitive, 1u);
     ASSERT_EQ(cameraHits[1].primitive, 0u);
     ASSERT_EQ(cameraHits[2].primitive, 1u);
-    const ShadowRays shadow = makeShadowRays(mesh, camera, cameraHits, kLight);
-    ASSERT_EQ(shadow.rays.size(), 2u);
-    EXPECT_EQ(shadow.pixels, (std::vector<std::uint32_t>{0, 1}));
-    EXPECT_EQ(shadow.unlit, 1u);
+    const ShadedRays shadow = shadeOnCpu(mesh, camera, cameraHits, {}, shadowPass(kLight));
+    ASSERT_EQ(shadow.rays.size(), 2u);  // hit 2 is unlit
+    EXPECT_EQ(shadow.parents, (std::vector<std::uint32_t>{0, 1}));
+    EXPECT_EQ(shadow.paths, (std::vector<std::uint32_t>{0, 1}));
     const float up = 1.0f / 65536.0f;
     EXPECT_EQ(shadow.rays[0].originTMin, glm::vec4(0.5f, up, 0.5f, 0.0f));
     EXPECT_EQ(shadow.rays[0].directionTMax, glm::vec4(0.0f, 4.0f - up, 0.0f, 1.0f));
     EXPECT_EQ(shadow.rays[1].originTMin, glm::vec4(-1.0f, up, -1.0f, 0.0f));
     EXPECT_EQ(shadow.rays[1].directionTMax, glm::vec4(1.5f, 4.0f - up, 1.5f, 1.0f));
+    // The device's shading pass makes the same floats.
+    double ms = 0.0;
+    const ShadedRays device = shadeOnDevice(*vk_, 64, mesh, camera, cameraHits, {}, shadowPass(kLight), ms);
+    std::string first;
+    EXPECT_EQ(shadedMismatches(device, shadow, first), 0u) << first;
 
     // Every structure and strategy: ray 0 occluded by the blocker, ray 1 lit.
     for (const StructureCase& c : {bruteCase(), gridCase({2, 2, 2}), bvhCase(1)}) {
@@ -123,18 +130,7 @@ TEST(ShadowRays, TheDefaultLightIsOneBoxDiagonalAboveTheCentreAlongUp) {
     EXPECT_THAT(errorOf([&] { defaultLight(box, glm::vec3(0.0f)); }), HasSubstr("camera.up"));
 }
 
-class ShadowRuns : public ::testing::Test {
-protected:
-    ExperimentResult run(const std::string& body) {
-        const std::string path = dir_.write("shadow.toml", "[experiment]\nname = \"shadow\"\noutput = \"" + dir_.file("out") +
-                                                                "\"\nrepetitions = 1\nwarmups = 0\nrounds = 1\n[device]\nname = \"" +
-                                                                testDeviceName() + "\"\n" + body);
-        RunnerOptions options;
-        options.quiet = true;
-        return runExperiment(loadExperiment(path), options);
-    }
-    TempDir dir_;
-};
+using ShadowRuns = WorkloadRuns;
 
 // Christen's scene B (a room of 166 cubes) lit from inside, on every structure and both
 // strategies: each shadow ray's answer equals Embree's rtcOccluded1 and the exact reference's,

@@ -1,6 +1,6 @@
 // Reflection iterations (rays.type = "reflection", Christen 2005 §5.2.1 and Fig. 6.11): every
 // surface a mirror, and iteration k's rays are the mirror reflections of iteration k - 1's hits
-// (iteration 0: the camera rays), closest hit (kernels/shading.glsl: rtReflectRay). Which rays
+// (iteration 0: the camera rays), closest hit (workloads/shading.h mirrorPass; kernels/shading.glsl rtReflectRay). Which rays
 // exist does not depend on the reflection coefficients, which only weight colour, so none is
 // modelled. The earlier iterations are traced by the run's structure (its CPU reference, bit for
 // bit its kernels); a run measures iteration reflection.iteration alone.
@@ -10,14 +10,5 @@
 namespace rtbench {
 
 const RayType& reflectionRayType();
-
-// The mirror reflections of `rays` with hits `hits` on `scene`: parents[i] is the ray reflected
-// ray i continues. Misses make none.
-struct ReflectedRays {
-    std::vector<gpu::Ray> rays;
-    std::vector<std::uint32_t> parents;
-};
-ReflectedRays makeReflectedRays(const TriangleMesh& scene, const std::vector<gpu::Ray>& rays,
-                                const std::vector<gpu::HitRecord>& hits);
 
 }  // namespace rtbench

@@ -1,29 +1,9 @@
 #include "shadow_rays.h"
 
 #include "structures/error.h"
-#include "workloads/shading_reference.h"
+#include "workloads/shading.h"
 
 namespace rtbench {
-
-ShadowRays makeShadowRays(const TriangleMesh& scene, const std::vector<gpu::Ray>& rays,
-                          const std::vector<gpu::HitRecord>& hits, glm::vec3 light) {
-    shadingref::ShadingKernels k{};
-    ShadowRays out;
-    for (std::uint32_t i = 0; i < rays.size(); ++i) {
-        const gpu::HitRecord& h = hits[i];
-        if (h.primitive == gpu::kNoHit) continue;
-        const glm::uvec3 t = scene.triangles.at(h.primitive);
-        gpu::Ray shadow;
-        if (k.rtShadowRay(scene.vertices[t.x], scene.vertices[t.y], scene.vertices[t.z], h.u, h.v,
-                          glm::vec3(rays[i].directionTMax), light, shadow)) {
-            out.rays.push_back(shadow);
-            out.pixels.push_back(i);
-        } else {
-            ++out.unlit;
-        }
-    }
-    return out;
-}
 
 glm::vec3 defaultLight(const Bounds3& box, glm::vec3 up) {
     const float upLength = glm::length(up);
@@ -34,28 +14,20 @@ glm::vec3 defaultLight(const Bounds3& box, glm::vec3 up) {
 namespace {
 
 Workload shadowWorkload(const WorkloadInputs& in, Row& row) {
-    Workload w;
-    w.batch.query = gpu::kQueryAny;
-    w.cameraHits = in.structure.trace(in.cameraRays);
     const glm::vec3 light = [&in] {
         if (!in.run.has("light.position")) return defaultLight(in.scene.bounds(), in.cameraUp);
         const std::array<double, 3> given = in.run.getVec3("light.position");
         return in.toScene(glm::vec3(given[0], given[1], given[2]));
     }();
-    ShadowRays shadow = makeShadowRays(in.scene, in.cameraRays, w.cameraHits, light);
-    w.batch.rays = std::move(shadow.rays);
-    w.pixels = std::move(shadow.pixels);
-    w.parents = w.pixels;
-    std::uint64_t cameraHits = 0;
-    for (const gpu::HitRecord& h : w.cameraHits) cameraHits += h.primitive != gpu::kNoHit;
-    row["camera_rays"] = std::to_string(in.cameraRays.size());
-    row["camera_rays_hit"] = std::to_string(cameraHits);
-    row["shadow_unlit"] = std::to_string(shadow.unlit);
     for (int a = 0; a < 3; ++a) row[std::string("light_") + char('x' + a)] = formatNumber(light[a], 9);
-    if (w.batch.rays.empty())
-        throw Error("rays.type = shadow: no shadow rays to trace (" + std::to_string(cameraHits) + " of " +
-                    std::to_string(in.cameraRays.size()) + " camera rays hit, " + std::to_string(shadow.unlit) +
-                    " of them with the light behind their surface)");
+    row["camera_rays"] = std::to_string(in.cameraRays.size());
+    Workload w = followPaths(in, {shadowPass(light)}, gpu::kQueryAny, [](std::size_t, std::uint64_t rays, std::uint64_t hits) {
+        return "rays.type = shadow: no shadow rays to trace (" +
+               (hits ? std::to_string(hits) + " of " + std::to_string(rays) + " camera rays hit, all with the light behind their surface)"
+                     : "none of the " + std::to_string(rays) + " camera rays hit)");
+    });
+    row["camera_rays_hit"] = std::to_string(w.parentHits);
+    row["shadow_unlit"] = std::to_string(w.parentHits - w.batch.rays.size());
     return w;
 }
 
@@ -80,8 +52,7 @@ const RayType& shadowRayType() {
             {"light_z", K::Count, "", "shadow: the point light (z)"},
         };
         t.make = shadowWorkload;
-        for (ColumnSpec& c : t.columns) c.since = 7;
-        for (KeySpec& k : t.keys) k.since = 7;
+        setSince(t, 7);
         return t;
     }();
     return type;

@@ -1,0 +1,48 @@
+// The shading pass (Purcell et al. 2002 §3's shading kernel): from a generation's rays and their
+// hits, the rays of the next generation, each parent's params.pass.z slots by the rule of
+// kernels/shading.glsl rtShade, the one source the CPU compiles too (workloads/shading.h). Slot
+// parent * fan-out + s is written whether or not it made a ray (made[] says), so the result is
+// the same on every device and in the same order as the CPU's; the host keeps the made ones.
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// gpu_layout.h declares PassCounters with 64-bit counts, though this pass uses none.
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+
+#include "gpu_layout.h"
+
+layout(local_size_x_id = kSpecWorkgroupSize) in;
+// ray_math.glsl's triangle tests read it; the shading pass tests no triangle.
+layout(constant_id = kSpecTriangleTest) const uint triangleTest = kTriangleTestMollerTrumbore;
+
+layout(std430, set = 0, binding = kShadingBindingParents) readonly buffer ParentBuffer { Ray parents[]; };
+layout(std430, set = 0, binding = kShadingBindingHits) readonly buffer HitBuffer { HitRecord hits[]; };
+layout(std430, set = 0, binding = kShadingBindingPaths) readonly buffer PathBuffer { uint paths[]; };
+layout(std430, set = 0, binding = kShadingBindingTriangles) readonly buffer TriangleBuffer { Triangle triangles[]; };
+layout(std430, set = 0, binding = kShadingBindingRays) writeonly buffer RayBuffer { Ray rays[]; };
+layout(std430, set = 0, binding = kShadingBindingMade) writeonly buffer MadeBuffer { uint made[]; };
+layout(push_constant) uniform PushConstants { ShadingParams params; };
+
+#define RT_OUT(T) out T
+#define RT_INOUT(T) inout T
+#include "ray_math.glsl"
+#include "shading.glsl"
+
+void main() {
+    // 2D dispatch: maxComputeWorkGroupCount[0] may be only 65535 groups.
+    uint slot = gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x;
+    uint fanOut = params.pass.z;
+    if (slot >= params.pass.x * fanOut) return;
+    uint parent = slot / fanOut;
+    HitRecord h = hits[parent];
+    Ray r;
+    r.originTMin = vec4(0.0f);
+    r.directionTMax = vec4(0.0f);
+    bool ok = false;
+    if (h.primitive != kNoHit) {
+        Triangle t = triangles[h.primitive];
+        ok = rtShade(params, t.v0.xyz, t.v1.xyz, t.v2.xyz, h.u, h.v, parents[parent].directionTMax.xyz, paths[parent],
+                     slot - parent * fanOut, r);
+    }
+    rays[slot] = r;
+    made[slot] = ok ? 1u : 0u;
+}

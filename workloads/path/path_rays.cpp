@@ -1,0 +1,54 @@
+#include "path_rays.h"
+
+#include "workloads/shading.h"
+
+namespace rtbench {
+
+namespace {
+
+Workload pathWorkload(const WorkloadInputs& in, Row& row) {
+    const auto bounce = std::uint32_t(in.run.getInt("path.bounce"));
+    const auto samples = std::uint32_t(in.run.getInt("path.samples"));
+    const auto seed = std::uint32_t(in.run.getInt("path.seed"));
+    // Bounce 1 starts `samples` paths at each camera hit; later bounces go on with one ray each.
+    std::vector<gpu::ShadingParams> passes;
+    for (std::uint32_t b = 1; b <= bounce; ++b) passes.push_back(diffusePass(b == 1 ? samples : 1, b, seed, gpu::kNoHitT));
+    Workload w = followPaths(in, passes, gpu::kQueryClosest, [](std::size_t pass, std::uint64_t rays, std::uint64_t) {
+        return "rays.type = path: no rays at path.bounce " + std::to_string(pass + 1) + ": none of the " +
+               std::to_string(rays) + " rays of bounce " + std::to_string(pass) + " hit";
+    });
+    w.image = BatchImage::Hits;
+    row["path_parent_rays"] = std::to_string(w.parentRays);
+    row["path_parent_hits"] = std::to_string(w.parentHits);
+    return w;
+}
+
+}  // namespace
+
+const RayType& pathRayType() {
+    static const RayType type = [] {
+        using K = ColumnKind;
+        RayType t;
+        t.name = "path";
+        t.help = "diffuse path tracing: cosine-weighted bounces from the previous bounce's hits, every surface diffuse";
+        t.keys = {
+            {"path.bounce", ValueType::Int,
+             "path rays: the bounce traced (1: rays leaving the camera hits; k: those leaving bounce k - 1's hits, the "
+             "earlier bounces traced by the run's structure)",
+             ConfigValue{std::int64_t(1)}, false, 1, 64},
+            {"path.samples", ValueType::Int, "path rays: paths per pixel (each camera hit starts this many)",
+             ConfigValue{std::int64_t(1)}, false, 1, 1024},
+            randomSeedKey("path.seed", "path rays"),
+        };
+        t.columns = {
+            {"path_parent_rays", K::Count, "rays", "path: rays of the bounce before (1: the camera rays)"},
+            {"path_parent_hits", K::Count, "rays", "path: of those, the rays that hit (bounce 1: each starts path.samples paths)"},
+        };
+        t.make = pathWorkload;
+        setSince(t, 9);
+        return t;
+    }();
+    return type;
+}
+
+}  // namespace rtbench

@@ -1,0 +1,98 @@
+#include "workload.h"
+
+#include "structures/error.h"
+#include "workloads/shading.h"
+
+namespace rtbench {
+
+std::uint32_t Workload::ancestor(std::uint32_t ray, std::size_t g) const {
+    if (g >= between.size() + 1) return ray;
+    ray = parents.at(ray);
+    for (std::size_t k = between.size(); k > g; --k) ray = between[k - 1].parents.at(ray);
+    return ray;
+}
+
+KeySpec randomSeedKey(const std::string& key, const std::string& who) {
+    return {key, ValueType::Int, who + ": the seed of the random numbers (hashed with each ray's path and bounce)",
+            ConfigValue{std::int64_t(0)}, false, 0, 4294967295.0};
+}
+
+void setSince(RayType& type, int schema) {
+    for (KeySpec& k : type.keys) k.since = schema;
+    for (ColumnSpec& c : type.columns) c.since = schema;
+}
+
+std::uint64_t countHits(const std::vector<gpu::HitRecord>& hits) {
+    std::uint64_t n = 0;
+    for (const gpu::HitRecord& h : hits) n += h.primitive != gpu::kNoHit;
+    return n;
+}
+
+Workload followPaths(const WorkloadInputs& in, const std::vector<gpu::ShadingParams>& passes, std::uint32_t query,
+                     const std::function<std::string(std::size_t, std::uint64_t, std::uint64_t)>& noRays) {
+    Workload w;
+    w.batch.query = query;
+    w.shading = passes;
+    w.cameraHits = in.structure.trace(in.cameraRays);
+    const std::vector<std::uint32_t> cameraPaths;  // ray i's path is i
+    const std::vector<gpu::Ray>* rays = &in.cameraRays;
+    const std::vector<gpu::HitRecord>* hits = &w.cameraHits;
+    const std::vector<std::uint32_t>* paths = &cameraPaths;
+    for (std::size_t pass = 0; pass < passes.size(); ++pass) {
+        ShadedRays made = shadeOnCpu(in.scene, *rays, *hits, *paths, passes[pass]);
+        if (made.rays.empty()) throw Error(noRays(pass, rays->size(), countHits(*hits)));
+        if (pass + 1 == passes.size()) {
+            w.parentRays = rays->size();
+            w.parentHits = countHits(*hits);
+            w.batch.rays = std::move(made.rays);
+            w.parents = std::move(made.parents);
+            w.paths = std::move(made.paths);
+            break;
+        }
+        Generation g{std::move(made.rays), {}, std::move(made.parents), std::move(made.paths)};
+        g.hits = in.structure.trace(g.rays);
+        w.between.push_back(std::move(g));
+        rays = &w.between.back().rays;
+        hits = &w.between.back().hits;
+        paths = &w.between.back().paths;
+    }
+    w.pixels.resize(w.batch.rays.size());
+    for (std::uint32_t r = 0; r < w.pixels.size(); ++r) w.pixels[r] = w.ancestor(r, 0);
+    return w;
+}
+
+std::string checkShadingOnDevice(VulkanContext& vk, unsigned workgroupSize, const TriangleMesh& scene,
+                                 const std::vector<gpu::Ray>& cameraRays, const Workload& w, Row& row) {
+    const std::vector<std::uint32_t> cameraPaths;
+    std::uint64_t made = 0, mismatches = 0;
+    double ms = 0.0;
+    bool timed = true;  // every pass has its GPU time (timestamps)
+    std::string first;
+    for (std::size_t g = 0; g < w.shading.size(); ++g) {
+        // Generation g, and what the CPU made of it: generation g + 1.
+        const std::vector<gpu::Ray>& rays = g == 0 ? cameraRays : w.between[g - 1].rays;
+        const std::vector<gpu::HitRecord>& hits = g == 0 ? w.cameraHits : w.between[g - 1].hits;
+        const std::vector<std::uint32_t>& paths = g == 0 ? cameraPaths : w.between[g - 1].paths;
+        const ShadedRays cpu = g < w.between.size() ? ShadedRays{w.between[g].rays, w.between[g].parents, w.between[g].paths}
+                                                    : ShadedRays{w.batch.rays, w.parents, w.paths};
+        double passMs = 0.0;
+        const ShadedRays device = shadeOnDevice(vk, workgroupSize, scene, rays, hits, paths, w.shading[g], passMs);
+        made += device.rays.size();
+        ms += passMs;
+        timed = timed && passMs >= 0.0;
+        std::string where;
+        if (const std::uint64_t n = shadedMismatches(device, cpu, where)) {
+            if (!mismatches) first = "generation " + std::to_string(g + 1) + ", " + where;
+            mismatches += n;
+        }
+    }
+    row["shading_passes"] = std::to_string(w.shading.size());
+    row["shading_rays"] = std::to_string(made);
+    row["shading_ms"] = timed && !w.shading.empty() ? formatNumber(ms, 6) : "";
+    row["shading_device_mismatches"] = std::to_string(mismatches);
+    if (!mismatches) return "";
+    return "the device's shading pass made rays that differ from the CPU's on " + std::to_string(mismatches) +
+           " rays (first: " + first + ")";
+}
+
+}  // namespace rtbench
