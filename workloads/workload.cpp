@@ -1,5 +1,6 @@
 #include "workload.h"
 
+#include "device/gpu_buffers.h"
 #include "structures/error.h"
 #include "workloads/shading.h"
 
@@ -39,6 +40,8 @@ Workload followPaths(const WorkloadInputs& in, const std::vector<gpu::ShadingPar
     const std::vector<gpu::HitRecord>* hits = &w.cameraHits;
     const std::vector<std::uint32_t>* paths = &cameraPaths;
     for (std::size_t pass = 0; pass < passes.size(); ++pass) {
+        // Refused before the rays are made: a fan-out (path.samples, ao.samples) multiplies them.
+        refuseOversizedRayStream(std::uint64_t(rays->size()) * passes[pass].pass.z);
         ShadedRays made = shadeOnCpu(in.scene, *rays, *hits, *paths, passes[pass]);
         if (made.rays.empty()) throw Error(noRays(pass, rays->size(), countHits(*hits)));
         if (pass + 1 == passes.size()) {

@@ -301,6 +301,12 @@ TEST_F(DiffuseRuns, ZeroSamplesANegativeRadiusOrABounceWithNoRaysIsAnErrorNaming
     EXPECT_THAT(errorOf([&] { run(tetrahedron + "[rays]\ntype = \"ao\"\n[ao]\nsamples = 0\n"); }), HasSubstr("ao.samples"));
     EXPECT_THAT(errorOf([&] { run(tetrahedron + "[rays]\ntype = \"ao\"\n[ao]\nradius = -1.0\n"); }), HasSubstr("ao.radius"));
     EXPECT_THAT(errorOf([&] { run(tetrahedron + "[path]\nbounce = 2\n"); }), HasSubstr("path.bounce"));
+    // A fan-out past the host's memory is refused before its rays are made: 1024 x 2048 x 256
+    // rays (155 GB at 289 bytes a ray, over half the memory of any machine under 310 GB).
+    const ExperimentResult tooMany = run(tetrahedron + "[camera]\nwidth = 1024\nheight = 2048\n[rays]\ntype = \"ao\"\n[ao]\nsamples = 256\n");
+    ASSERT_EQ(tooMany.rows.size(), 1u);
+    EXPECT_EQ(tooMany.rows[0].at("status"), "failed");
+    EXPECT_THAT(tooMany.rows[0].at("error"), HasSubstr("536870912 rays need"));
     // From outside a tetrahedron (convex) no diffuse ray meets it again: bounce 2 has no rays.
     const ExperimentResult result = run(tetrahedron + "[camera]\nwidth = 16\nheight = 16\nposition = [0.3, 0.2, -6]\n"
                                                       "look_at = [0, 0, 0]\n[rays]\ntype = \"path\"\n[path]\nbounce = 2\n");
