@@ -55,6 +55,7 @@ RTBENCH_CONST kQueryAny = 1;      // whether anything is hit in [tMin, tMax): th
 RTBENCH_CONST kShadeShadow = 0;   // one any-hit ray toward the point light ShadingParams.light.xyz
 RTBENCH_CONST kShadeMirror = 1;   // one mirror reflection (Christen 2005 §5.2.1)
 RTBENCH_CONST kShadeDiffuse = 2;  // cosine-weighted rays (path tracing, ambient occlusion), tMax light.w
+RTBENCH_CONST kShadeRefract = 3;  // one refracted ray, index of refraction light.w (total internal reflection: mirror)
 
 // ---- shading-pass binding slots (a descriptor set of its own, all storage buffers) ----
 RTBENCH_CONST kShadingBindingParents = 0;    // Ray[parents]: the generation's rays
@@ -137,7 +138,8 @@ struct RayHitState {
 struct ShadingParams {
     uvec4 pass;   // byte 0: x = parent rays, y = kShade*, z = rays per parent (fan-out), w = bounce
     uvec4 seed;   // byte 16: x = the random numbers' seed (kShadeDiffuse), yzw unused (0)
-    vec4 light;   // byte 32: xyz = the point light (kShadeShadow), w = tMax (kShadeDiffuse)
+    vec4 light;   // byte 32: xyz = the point light (kShadeShadow), w = tMax (kShadeDiffuse) or the
+                  // index of refraction (kShadeRefract)
 };
 
 // Per-ray work, kept only by instrumented kernels (not charged as bandwidth).

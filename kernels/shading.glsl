@@ -35,6 +35,12 @@ vec3 rtScaledNormal(vec3 e1, vec3 e2) {
     return vec3(rtDivide(n.x, m), rtDivide(n.y, m), rtDivide(n.z, m));
 }
 
+// v / |v|, the length and each quotient correctly rounded (rtSqrt, rtDivide).
+vec3 rtNormalize(vec3 v) {
+    float norm = rtSqrt(rtDot(v, v));
+    return vec3(rtDivide(v.x, norm), rtDivide(v.y, norm), rtDivide(v.z, norm));
+}
+
 // The point of triangle (v0, v1, v2) at barycentrics (u, v) of v1 and v2, as the triangle tests
 // report them.
 vec3 rtSurfacePoint(vec3 v0, vec3 v1, vec3 v2, float u, float v) {
@@ -84,6 +90,32 @@ bool rtReflectRay(vec3 v0, vec3 v1, vec3 v2, float u, float v, vec3 incoming, RT
     return true;
 }
 
+// Refraction (Whitted 1980; pbrt-v3 §8.2) through a surface of index of refraction `ior` against
+// 1 outside. The triangle's winding says which side is outside (e1 x e2 points out): a ray against
+// it enters (eta = 1 / ior), one along it leaves (eta = ior). Snell's law on unit vectors, n the
+// unit normal toward the incoming side and cos_i = -d.n: t = eta d + (eta cos_i - sqrt(k)) n with
+// k = 1 - eta^2 (1 - cos_i^2); the ray leaves through the surface (rtOffsetRay to the far side),
+// unit length, as far as a camera ray. k < 0 is total internal reflection: rtReflectRay's mirror
+// ray instead. Square roots and quotients correctly rounded. False for a triangle with no normal.
+bool rtRefractRay(vec3 v0, vec3 v1, vec3 v2, float u, float v, vec3 incoming, float ior, RT_OUT(Ray) refracted) {
+    precise vec3 e1 = v1 - v0;
+    precise vec3 e2 = v2 - v0;
+    vec3 outward = rtScaledNormal(e1, e2);
+    if (outward.x == 0.0f && outward.y == 0.0f && outward.z == 0.0f) return false;
+    bool entering = rtDot(outward, incoming) < 0.0f;
+    vec3 facing = entering ? outward : -outward;  // toward the side the ray came from
+    vec3 n = rtNormalize(facing);
+    vec3 d = rtNormalize(incoming);
+    float eta = entering ? rtDivide(1.0f, ior) : ior;
+    precise float cosI = -rtDot(d, n);
+    precise float k = 1.0f - eta * eta * (1.0f - cosI * cosI);
+    if (k < 0.0f) return rtReflectRay(v0, v1, v2, u, v, incoming, refracted);
+    precise vec3 t = d * eta + n * (eta * cosI - rtSqrt(k));
+    refracted.originTMin = vec4(rtOffsetRay(rtSurfacePoint(v0, v1, v2, u, v), -facing), 0.0f);
+    refracted.directionTMax = vec4(t, kNoHitT);
+    return true;
+}
+
 // ---- random numbers and directions for diffuse rays (path tracing, ambient occlusion) ----
 
 // Jarzynski & Olano 2020, "Hash Functions for GPU Rendering" (JCGT 9(3)): PCG's state step and
@@ -103,12 +135,6 @@ float rtRandom(uvec3 key, uint draw) {
     h = rtPcgHash(h + key.z);
     h = rtPcgHash(h + draw);
     return float(h >> 8u) * (1.0f / 16777216.0f);
-}
-
-// v / |v|, the length and each quotient correctly rounded (rtSqrt, rtDivide).
-vec3 rtNormalize(vec3 v) {
-    float norm = rtSqrt(rtDot(v, v));
-    return vec3(rtDivide(v.x, norm), rtDivide(v.y, norm), rtDivide(v.z, norm));
 }
 
 // Duff et al. 2017, "Building an Orthonormal Basis, Revisited" (JCGT 6(1)), listing 3: two unit
@@ -172,6 +198,7 @@ bool rtShade(ShadingParams params, vec3 v0, vec3 v1, vec3 v2, float u, float v, 
              RT_OUT(Ray) made) {
     if (params.pass.y == kShadeShadow) return rtShadowRay(v0, v1, v2, u, v, incoming, vec3(params.light), made);
     if (params.pass.y == kShadeMirror) return rtReflectRay(v0, v1, v2, u, v, incoming, made);
+    if (params.pass.y == kShadeRefract) return rtRefractRay(v0, v1, v2, u, v, incoming, params.light.w, made);
     uvec3 key = uvec3(params.seed.x, path * params.pass.z + slot, params.pass.w);
     return rtDiffuseRay(v0, v1, v2, u, v, incoming, key, params.light.w, made);
 }

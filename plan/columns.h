@@ -50,8 +50,8 @@ struct ColumnSpec {
 //   7  ray types (rays.type: primary, shadow) and the query they ask (the query column: closest or
 //      any hit, Embree's rtcOccluded for any); the ray type's own keys and columns.
 //   8  + reflection rays (reflection.iteration, reflection_*).
-//   9  + the device's shading passes (shading_*), diffuse rays: path tracing (path.*) and
-//        ambient occlusion (ao.*).
+//   9  + the device's shading passes (shading_*), refraction rays (refraction.*), diffuse rays:
+//        path tracing (path.*) and ambient occlusion (ao.*).
 constexpr int kSchemaVersion = 9;
 
 // The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".

@@ -30,6 +30,8 @@ def workload(run) -> str:
     "path bounce 1", "ao (any)"."""
     if run.rays_type == "reflection":
         return f"reflection {int(run.reflection_iteration)}"
+    if run.rays_type == "refraction":
+        return f"refraction {int(run.refraction_iteration)}"
     if run.rays_type == "path":
         return f"path bounce {int(run.path_bounce)}"
     if run.rays_type in ("shadow", "ao"):
@@ -81,6 +83,7 @@ def main() -> int:
               "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     order = {w: i for i, w in enumerate(["primary", "shadow (any)", "shadow (closest)", "ao (any)", "ao (closest)"] +
                                         [f"reflection {k}" for k in range(1, 65)] +
+                                        [f"refraction {k}" for k in range(1, 65)] +
                                         [f"path bounce {k}" for k in range(1, 65)])}
     runs["order"] = runs.workload.map(order)
     for r in runs.sort_values(["scene", "method", "order"]).itertuples():
@@ -112,8 +115,8 @@ def main() -> int:
               "His path tracer follows one diffuse ray a bounce, 2 bounces, 64 samples per pixel at 256 x 256 "
               "against a ray caster at 1024 x 1024; ours traces one bounce a run (rows \"path bounce k\", "
               "path.samples paths per pixel), so a frame of his is the camera rays plus bounces 1 and 2. Whitted "
-              "ray tracing is not yet a ray type here (reflection iterations are its mirror half, without "
-              "refraction or shadow rays per bounce).", ""]
+              "ray tracing is not yet one ray type here: reflection and refraction iterations are its two "
+              "halves, each on its own, without materials or shadow rays per bounce.", ""]
     if not failed.empty:
         lines += ["## Failed runs", "", "| run | parameters | why |", "|---|---|---|"]
         for r in failed.itertuples():

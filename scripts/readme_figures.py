@@ -427,7 +427,7 @@ def raytypes() -> list:
                 "| scene | method | path bounce 1 × primary | last bounce | its × primary | SIMD eff. primary → bounces | "
                 "ao × primary | ao rays | shading mismatches (all runs) |", "|---|---|---|---|---|---|---|---|---|"] + diffuse + [""]
     out += charts("raytypes", {"raytypes_cost": "a frame's cost by ray type against the camera rays'",
-                               "raytypes_iterations": "time against reflection iterations, and SIMD efficiency"})
+                               "raytypes_iterations": "time against reflection iterations, and SIMD efficiency by iteration and bounce"})
     return out + [""]
 
 

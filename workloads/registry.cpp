@@ -5,12 +5,13 @@
 #include "workloads/camera/camera_rays.h"
 #include "workloads/path/path_rays.h"
 #include "workloads/reflection/reflection_rays.h"
+#include "workloads/refraction/refraction_rays.h"
 #include "workloads/shadow/shadow_rays.h"
 
 namespace rtbench {
 
 const std::vector<const RayType*>& rayTypes() {
-    static const std::vector<const RayType*> types = {&cameraRayType(), &shadowRayType(), &reflectionRayType(), &pathRayType(), &aoRayType()};
+    static const std::vector<const RayType*> types = {&cameraRayType(), &shadowRayType(), &reflectionRayType(), &refractionRayType(), &pathRayType(), &aoRayType()};
     return types;
 }
 

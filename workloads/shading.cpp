@@ -22,6 +22,13 @@ gpu::ShadingParams mirrorPass() {
     return p;
 }
 
+gpu::ShadingParams refractPass(float ior) {
+    gpu::ShadingParams p{};
+    p.pass = {0, gpu::kShadeRefract, 1, 0};
+    p.light = glm::vec4(0.0f, 0.0f, 0.0f, ior);
+    return p;
+}
+
 gpu::ShadingParams diffusePass(std::uint32_t fanOut, std::uint32_t bounce, std::uint32_t seed, float tMax) {
     gpu::ShadingParams p{};
     p.pass = {0, gpu::kShadeDiffuse, fanOut, bounce};

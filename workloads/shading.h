@@ -17,6 +17,7 @@ namespace rtbench {
 // random numbers of diffuse rays, the point light of shadow rays, the tMax of diffuse rays.
 gpu::ShadingParams shadowPass(glm::vec3 light);
 gpu::ShadingParams mirrorPass();
+gpu::ShadingParams refractPass(float ior);
 gpu::ShadingParams diffusePass(std::uint32_t fanOut, std::uint32_t bounce, std::uint32_t seed, float tMax);
 
 // The rays a pass made, in the order of their parents and, per parent, of its slots.

@@ -1,0 +1,73 @@
+#include "refraction_rays.h"
+
+#include "workloads/shading.h"
+
+namespace rtbench {
+
+std::uint64_t countTotalInternalReflections(const TriangleMesh& scene, const std::vector<gpu::Ray>& cameraRays,
+                                            const Workload& w) {
+    // The generation the batch was made from: its rays and their hits.
+    const std::vector<gpu::Ray>& rays = w.between.empty() ? cameraRays : w.between.back().rays;
+    const std::vector<gpu::HitRecord>& hits = w.between.empty() ? w.cameraHits : w.between.back().hits;
+    std::uint64_t reflected = 0;
+    for (std::size_t r = 0; r < w.batch.rays.size(); ++r) {
+        const std::uint32_t parent = w.parents[r];
+        const glm::uvec3 t = scene.triangles.at(hits.at(parent).primitive);
+        const glm::dvec3 v0(scene.vertices[t.x]), n = glm::cross(glm::dvec3(scene.vertices[t.y]) - v0,
+                                                                 glm::dvec3(scene.vertices[t.z]) - v0);
+        const double before = glm::dot(n, glm::dvec3(rays[parent].directionTMax));
+        const double after = glm::dot(n, glm::dvec3(w.batch.rays[r].directionTMax));
+        reflected += (before < 0.0) != (after < 0.0);
+    }
+    return reflected;
+}
+
+namespace {
+
+Workload refractionWorkload(const WorkloadInputs& in, Row& row) {
+    const std::int64_t iteration = in.run.getInt("refraction.iteration");
+    const auto ior = float(in.run.getFloat("refraction.ior"));
+    Workload w = followPaths(in, std::vector<gpu::ShadingParams>(std::size_t(iteration), refractPass(ior)), gpu::kQueryClosest,
+                             [](std::size_t pass, std::uint64_t rays, std::uint64_t) {
+                                 return "rays.type = refraction: no rays at refraction.iteration " + std::to_string(pass + 1) +
+                                        ": none of the " + std::to_string(rays) + " rays of iteration " +
+                                        std::to_string(pass) + " hit";
+                             });
+    w.image = BatchImage::Hits;
+    row["refraction_parent_rays"] = std::to_string(w.parentRays);
+    row["refraction_parent_hits"] = std::to_string(w.parentHits);
+    row["refraction_total_internal"] = std::to_string(countTotalInternalReflections(in.scene, in.cameraRays, w));
+    return w;
+}
+
+}  // namespace
+
+const RayType& refractionRayType() {
+    static const RayType type = [] {
+        using K = ColumnKind;
+        RayType t;
+        t.name = "refraction";
+        t.help = "the refractions of the previous iteration's hits, every surface glass (total internal reflection: the mirror ray)";
+        t.keys = {
+            {"refraction.iteration", ValueType::Int,
+             "refraction rays: the iteration traced (1: the camera hits' refractions; k: those of iteration k - 1's hits, "
+             "the earlier iterations traced by the run's structure)",
+             ConfigValue{std::int64_t(1)}, false, 1, 64},
+            {"refraction.ior", ValueType::Float,
+             "refraction rays: the index of refraction of every surface against 1 outside (glass: 1.5)", ConfigValue{1.5},
+             false, 0.01, 100},
+        };
+        t.columns = {
+            {"refraction_parent_rays", K::Count, "rays", "refraction: rays of the iteration before (1: the camera rays)"},
+            {"refraction_parent_hits", K::Count, "rays", "refraction: of those, the rays that hit: each makes one ray"},
+            {"refraction_total_internal", K::Count, "rays",
+             "refraction: rays reflected past the critical angle (total internal reflection) instead of transmitted"},
+        };
+        t.make = refractionWorkload;
+        setSince(t, 9);
+        return t;
+    }();
+    return type;
+}
+
+}  // namespace rtbench
