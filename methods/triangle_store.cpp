@@ -61,6 +61,15 @@ TriangleMesh snapToLattice(const TriangleMesh& mesh, unsigned bits) {
     return snapped;
 }
 
+std::vector<gpu::Triangle> floatTriangles(const TriangleMesh& mesh) {
+    std::vector<gpu::Triangle> triangles;
+    triangles.reserve(mesh.triangles.size());
+    for (const glm::uvec3& t : mesh.triangles)
+        triangles.push_back({glm::vec4(mesh.vertices[t.x], 0.0f), glm::vec4(mesh.vertices[t.y], 0.0f),
+                             glm::vec4(mesh.vertices[t.z], 0.0f)});
+    return triangles;
+}
+
 std::uint64_t triangleVertexBytes(const VertexLattice& lattice) {
     return lattice.bits ? gpu::kPackedTriangleWords * 4 : sizeof(gpu::Triangle);
 }

@@ -28,6 +28,9 @@ glm::vec3 latticePoint(const VertexLattice& lattice, glm::uvec3 q);
 // triangles may become degenerate.
 TriangleMesh snapToLattice(const TriangleMesh& mesh, unsigned bits);
 
+// The mesh's triangles as float vertices (gpu::Triangle, w = 0), in mesh order.
+std::vector<gpu::Triangle> floatTriangles(const TriangleMesh& mesh);
+
 // Bytes the device stores (and a kernel reads) per triangle's vertices.
 std::uint64_t triangleVertexBytes(const VertexLattice& lattice);
 

@@ -83,7 +83,7 @@ ShadedRays shadeOnCpu(const TriangleMesh& scene, const std::vector<gpu::Ray>& ra
     return keepMade(slots, made, paths, fanOut);
 }
 
-ShadedRays shadeOnDevice(VulkanContext& vk, unsigned workgroupSize, const TriangleMesh& scene,
+ShadedRays shadeOnDevice(VulkanContext& vk, unsigned workgroupSize, const std::vector<gpu::Triangle>& triangles,
                          const std::vector<gpu::Ray>& rays, const std::vector<gpu::HitRecord>& hits,
                          const std::vector<std::uint32_t>& paths, const gpu::ShadingParams& pass, double& ms) {
     gpu::ShadingParams p = pass;
@@ -92,12 +92,6 @@ ShadedRays shadeOnDevice(VulkanContext& vk, unsigned workgroupSize, const Triang
     std::vector<std::uint32_t> pathOf = paths;
     if (pathOf.empty())
         for (std::uint32_t i = 0; i < rays.size(); ++i) pathOf.push_back(i);
-    std::vector<gpu::Triangle> triangles(scene.triangles.size());
-    for (std::size_t i = 0; i < triangles.size(); ++i) {
-        const glm::uvec3 t = scene.triangles[i];
-        triangles[i] = {glm::vec4(scene.vertices[t.x], 0.0f), glm::vec4(scene.vertices[t.y], 0.0f),
-                        glm::vec4(scene.vertices[t.z], 0.0f)};
-    }
     // Binding slots kShadingBinding*: what each holds and its bytes (at least 4: a buffer is never empty).
     const std::vector<std::pair<std::string, std::uint64_t>> sizes = {
         {"shading: parent rays", rays.size() * sizeof(gpu::Ray)},

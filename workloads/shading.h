@@ -33,9 +33,10 @@ struct ShadedRays {
 ShadedRays shadeOnCpu(const TriangleMesh& scene, const std::vector<gpu::Ray>& rays, const std::vector<gpu::HitRecord>& hits,
                       const std::vector<std::uint32_t>& paths, const gpu::ShadingParams& pass);
 
-// The same on the device (kernels/shading.comp); `ms` gets the dispatch's GPU time (-1 without
-// timestamps). The scene's triangles are uploaded for the call.
-ShadedRays shadeOnDevice(VulkanContext& vk, unsigned workgroupSize, const TriangleMesh& scene,
+// The same on the device (kernels/shading.comp), the scene as its float triangles
+// (methods/triangle_store.h floatTriangles), uploaded for the call; `ms` gets the dispatch's GPU
+// time (-1 without timestamps).
+ShadedRays shadeOnDevice(VulkanContext& vk, unsigned workgroupSize, const std::vector<gpu::Triangle>& triangles,
                          const std::vector<gpu::Ray>& rays, const std::vector<gpu::HitRecord>& hits,
                          const std::vector<std::uint32_t>& paths, const gpu::ShadingParams& pass, double& ms);
 

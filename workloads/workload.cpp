@@ -1,6 +1,7 @@
 #include "workload.h"
 
 #include "device/gpu_buffers.h"
+#include "methods/triangle_store.h"
 #include "structures/error.h"
 #include "workloads/shading.h"
 
@@ -64,9 +65,22 @@ Workload followPaths(const WorkloadInputs& in, const std::vector<gpu::ShadingPar
     return w;
 }
 
+Workload followGenerations(const WorkloadInputs& in, Row& row, const std::vector<gpu::ShadingParams>& passes,
+                           const std::string& type, const std::string& key, const std::string& noun) {
+    Workload w = followPaths(in, passes, gpu::kQueryClosest, [&](std::size_t pass, std::uint64_t rays, std::uint64_t) {
+        return "rays.type = " + type + ": no rays at " + key + " " + std::to_string(pass + 1) + ": none of the " +
+               std::to_string(rays) + " rays of " + noun + " " + std::to_string(pass) + " hit";
+    });
+    w.image = BatchImage::Hits;
+    row[type + "_parent_rays"] = std::to_string(w.parentRays);
+    row[type + "_parent_hits"] = std::to_string(w.parentHits);
+    return w;
+}
+
 std::string checkShadingOnDevice(VulkanContext& vk, unsigned workgroupSize, const TriangleMesh& scene,
                                  const std::vector<gpu::Ray>& cameraRays, const Workload& w, Row& row) {
     const std::vector<std::uint32_t> cameraPaths;
+    const std::vector<gpu::Triangle> triangles = floatTriangles(scene);  // once for every pass
     std::uint64_t made = 0, mismatches = 0;
     double ms = 0.0;
     bool timed = true;  // every pass has its GPU time (timestamps)
@@ -79,7 +93,7 @@ std::string checkShadingOnDevice(VulkanContext& vk, unsigned workgroupSize, cons
         const ShadedRays cpu = g < w.between.size() ? ShadedRays{w.between[g].rays, w.between[g].parents, w.between[g].paths}
                                                     : ShadedRays{w.batch.rays, w.parents, w.paths};
         double passMs = 0.0;
-        const ShadedRays device = shadeOnDevice(vk, workgroupSize, scene, rays, hits, paths, w.shading[g], passMs);
+        const ShadedRays device = shadeOnDevice(vk, workgroupSize, triangles, rays, hits, paths, w.shading[g], passMs);
         made += device.rays.size();
         ms += passMs;
         timed = timed && passMs >= 0.0;

@@ -76,6 +76,13 @@ std::uint64_t countHits(const std::vector<gpu::HitRecord>& hits);
 Workload followPaths(const WorkloadInputs& in, const std::vector<gpu::ShadingParams>& passes, std::uint32_t query,
                      const std::function<std::string(std::size_t, std::uint64_t, std::uint64_t)>& noRays);
 
+// followPaths for a ray type of generations (reflection and refraction iterations, path bounces):
+// closest hit; a pass that makes no ray is "rays.type = TYPE: no rays at KEY k: none of the N
+// rays of NOUN k - 1 hit"; the image shows each ray's own hit; writes TYPE_parent_rays and
+// TYPE_parent_hits (the generation the batch was made from).
+Workload followGenerations(const WorkloadInputs& in, Row& row, const std::vector<gpu::ShadingParams>& passes,
+                           const std::string& type, const std::string& key, const std::string& noun);
+
 // Every shading pass of `workload` run again on the device (kernels/shading.comp) from the same
 // rays and hits, its rays compared bit for bit with the CPU's. Writes shading_* columns to `row`;
 // returns what differs ("" when nothing does), which fails the run.

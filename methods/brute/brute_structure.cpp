@@ -13,15 +13,6 @@ namespace rtbench {
 
 namespace {
 
-std::vector<gpu::Triangle> floatTriangles(const TriangleMesh& mesh) {
-    std::vector<gpu::Triangle> triangles;
-    triangles.reserve(mesh.triangles.size());
-    for (const glm::uvec3& t : mesh.triangles)
-        triangles.push_back({glm::vec4(mesh.vertices[t.x], 0.0f), glm::vec4(mesh.vertices[t.y], 0.0f),
-                             glm::vec4(mesh.vertices[t.z], 0.0f)});
-    return triangles;
-}
-
 class BruteStructure final : public SharedSourceStructure<bruteref::BruteKernels> {
 public:
     // The build time counts from `start`, taken before the members copy and pack the vertices.

@@ -11,6 +11,7 @@
 #include "tests/methods/hand_scenes.h"
 #include "tests/workloads/workload_runs.h"
 #include "workloads/refraction/refraction_rays.h"
+#include "methods/triangle_store.h"
 #include "workloads/shading.h"
 
 namespace rtbench {
@@ -65,7 +66,7 @@ TEST_F(RefractionKernels, SnellsLawAndTotalInternalReflectionAreTheHandComputedR
     // The device's shading pass makes the same floats.
     double ms = 0.0;
     std::string first;
-    EXPECT_EQ(shadedMismatches(shadeOnDevice(*vk_, 64, mesh, rays, hits, {}, refractPass(1.5f), ms), out, first), 0u) << first;
+    EXPECT_EQ(shadedMismatches(shadeOnDevice(*vk_, 64, floatTriangles(mesh), rays, hits, {}, refractPass(1.5f), ms), out, first), 0u) << first;
     // The workload's count of reflected rays finds ray 2 alone.
     Workload w;
     w.cameraHits = hits;

@@ -16,6 +16,7 @@
 #include "tests/temp_dir.h"
 #include "tests/workloads/workload_runs.h"
 #include "workloads/shading_reference.h"
+#include "methods/triangle_store.h"
 #include "workloads/shading.h"
 #include "workloads/shadow/shadow_rays.h"
 
@@ -91,7 +92,7 @@ TEST_F(ShadowKernels, AHandBuiltSceneCastsTheShadowsComputedByHand) {
     EXPECT_EQ(shadow.rays[1].directionTMax, glm::vec4(1.5f, 4.0f - up, 1.5f, 1.0f));
     // The device's shading pass makes the same floats.
     double ms = 0.0;
-    const ShadedRays device = shadeOnDevice(*vk_, 64, mesh, camera, cameraHits, {}, shadowPass(kLight), ms);
+    const ShadedRays device = shadeOnDevice(*vk_, 64, floatTriangles(mesh), camera, cameraHits, {}, shadowPass(kLight), ms);
     std::string first;
     EXPECT_EQ(shadedMismatches(device, shadow, first), 0u) << first;
 

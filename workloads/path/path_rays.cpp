@@ -13,14 +13,7 @@ Workload pathWorkload(const WorkloadInputs& in, Row& row) {
     // Bounce 1 starts `samples` paths at each camera hit; later bounces go on with one ray each.
     std::vector<gpu::ShadingParams> passes;
     for (std::uint32_t b = 1; b <= bounce; ++b) passes.push_back(diffusePass(b == 1 ? samples : 1, b, seed, gpu::kNoHitT));
-    Workload w = followPaths(in, passes, gpu::kQueryClosest, [](std::size_t pass, std::uint64_t rays, std::uint64_t) {
-        return "rays.type = path: no rays at path.bounce " + std::to_string(pass + 1) + ": none of the " +
-               std::to_string(rays) + " rays of bounce " + std::to_string(pass) + " hit";
-    });
-    w.image = BatchImage::Hits;
-    row["path_parent_rays"] = std::to_string(w.parentRays);
-    row["path_parent_hits"] = std::to_string(w.parentHits);
-    return w;
+    return followGenerations(in, row, passes, "path", "path.bounce", "bounce");
 }
 
 }  // namespace

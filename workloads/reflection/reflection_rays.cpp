@@ -7,17 +7,9 @@ namespace rtbench {
 namespace {
 
 Workload reflectionWorkload(const WorkloadInputs& in, Row& row) {
-    const std::int64_t iteration = in.run.getInt("reflection.iteration");
-    Workload w = followPaths(in, std::vector<gpu::ShadingParams>(std::size_t(iteration), mirrorPass()), gpu::kQueryClosest,
-                             [](std::size_t pass, std::uint64_t rays, std::uint64_t) {
-                                 return "rays.type = reflection: no rays at reflection.iteration " + std::to_string(pass + 1) +
-                                        ": none of the " + std::to_string(rays) + " rays of iteration " +
-                                        std::to_string(pass) + " hit";
-                             });
-    w.image = BatchImage::Hits;
-    row["reflection_parent_rays"] = std::to_string(w.parentRays);
-    row["reflection_parent_hits"] = std::to_string(w.parentHits);
-    return w;
+    const auto iteration = std::size_t(in.run.getInt("reflection.iteration"));
+    return followGenerations(in, row, std::vector<gpu::ShadingParams>(iteration, mirrorPass()), "reflection",
+                             "reflection.iteration", "iteration");
 }
 
 }  // namespace

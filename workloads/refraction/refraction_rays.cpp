@@ -25,17 +25,10 @@ std::uint64_t countTotalInternalReflections(const TriangleMesh& scene, const std
 namespace {
 
 Workload refractionWorkload(const WorkloadInputs& in, Row& row) {
-    const std::int64_t iteration = in.run.getInt("refraction.iteration");
+    const auto iteration = std::size_t(in.run.getInt("refraction.iteration"));
     const auto ior = float(in.run.getFloat("refraction.ior"));
-    Workload w = followPaths(in, std::vector<gpu::ShadingParams>(std::size_t(iteration), refractPass(ior)), gpu::kQueryClosest,
-                             [](std::size_t pass, std::uint64_t rays, std::uint64_t) {
-                                 return "rays.type = refraction: no rays at refraction.iteration " + std::to_string(pass + 1) +
-                                        ": none of the " + std::to_string(rays) + " rays of iteration " +
-                                        std::to_string(pass) + " hit";
-                             });
-    w.image = BatchImage::Hits;
-    row["refraction_parent_rays"] = std::to_string(w.parentRays);
-    row["refraction_parent_hits"] = std::to_string(w.parentHits);
+    Workload w = followGenerations(in, row, std::vector<gpu::ShadingParams>(iteration, refractPass(ior)), "refraction",
+                                   "refraction.iteration", "iteration");
     row["refraction_total_internal"] = std::to_string(countTotalInternalReflections(in.scene, in.cameraRays, w));
     return w;
 }
