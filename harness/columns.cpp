@@ -282,7 +282,7 @@ const char* columnValueType(const ColumnSpec& column) {
     if (text.count(column.name)) return "text";
     if (column.name == "cpu_counts_match") return "integer";  // 1 or 0
     static const std::set<std::string> countedUnits = {"rays", "triangles", "bytes", "passes", "cells", "references", "nodes",
-                                                       "leaves", "levels", "voxels", "tests", "steps", "pixels", "threads",
+                                                       "leaves", "levels", "voxels", "tests", "steps", "pixels", "threads", "lights", "materials",
                                                        "repetitions", "rounds"};
     const std::string& n = column.name;
     const bool averaged = n.find("_mean") != std::string::npos || (n.find("_per_") != std::string::npos && !n.ends_with("_max"));

@@ -147,6 +147,12 @@ const std::vector<KeySpec>& configSchema() {
         add({"rays.query", ValueType::String, "what the rays ask: own (the ray type's: any for shadow and ao, closest for the others), closest (the nearest hit: what a shadow ray costs without early termination) or any (the walk ends at its first hit)", std::string("own"), false, -1e300, 1e300, {"own", "closest", "any"}});
         s.back().since = 7;
         for (const RayType* t : rayTypes()) addMethodKeys("rays.type", t->name, t->keys);
+        {
+            KeySpec light{"light.position", ValueType::Float3, "shadow and whitted rays: the point light, in the scene's own coordinates (moves with scene.scale and scene.translate; default: above the scene box's centre along camera.up, one box diagonal away; whitted: a scene description's [[light]]s instead, when it has them)", {}};
+            light.appliesWhen = {"rays.type=shadow|whitted"};
+            light.since = 7;
+            add(std::move(light));
+        }
         add({"intersection.test", ValueType::String, "ray-triangle test of every structure and strategy, on the GPU and in the CPU reference: moller_trumbore (Moller & Trumbore 1997) or watertight (Woop, Benthin & Wald 2013: no ray slips between triangles sharing an edge)", std::string("moller_trumbore"), false, -1e300, 1e300, {"moller_trumbore", "watertight"}});
         add({"intersection.vertex_bits", ValueType::Int, "32: float vertices; 1..16: every vertex snapped to a lattice of 2^bits points per axis over the scene's box and stored packed (20 bytes a triangle instead of 48); every method traces the snapped scene, the exact reference the original", std::int64_t(32), false, 1, 32, vertexBitsChoices()});
         add({"baseline.embree_config", ValueType::String, "Embree device config string, e.g. \"isa=avx2\" (keys isa, max_isa, threads, start_threads, set_affinity, verbose)", std::string(""), false, -1e300, 1e300, {}, {}, checkEmbreeConfig});

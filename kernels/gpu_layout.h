@@ -52,10 +52,16 @@ RTBENCH_CONST kQueryAny = 1;      // whether anything is hit in [tMin, tMax): th
 
 // ---- shading passes (kernels/shading.comp, kernels/shading.glsl rtShade): the rays a
 // generation's hits make, ShadingParams.pass.y ----
-RTBENCH_CONST kShadeShadow = 0;   // one any-hit ray toward the point light ShadingParams.light.xyz
-RTBENCH_CONST kShadeMirror = 1;   // one mirror reflection (Christen 2005 §5.2.1)
-RTBENCH_CONST kShadeDiffuse = 2;  // cosine-weighted rays (path tracing, ambient occlusion), tMax light.w
-RTBENCH_CONST kShadeRefract = 3;  // one refracted ray, index of refraction light.w (total internal reflection: mirror)
+RTBENCH_CONST kShadeShadow = 0;    // an any-hit ray toward each point light (slot l: light l), from surfaces with a diffuse part
+RTBENCH_CONST kShadeMirror = 1;    // one mirror reflection, every surface a mirror (Christen 2005 §5.2.1)
+RTBENCH_CONST kShadeDiffuse = 2;   // cosine-weighted rays (path tracing, ambient occlusion), tMax values.x
+RTBENCH_CONST kShadeRefract = 3;   // one refracted ray, every surface glass of index values.x (total internal reflection: mirror)
+RTBENCH_CONST kShadeSpecular = 4;  // Whitted: by the surface's material, slot 0 its reflection, slot 1 its refraction
+
+// ---- materials (Material.kind.x): what a surface does with light (Whitted ray tracing) ----
+RTBENCH_CONST kMaterialDiffuse = 0;  // lit through shadow rays only
+RTBENCH_CONST kMaterialMirror = 1;   // reflects a fraction optics.x, the rest diffuse (Christen 2005 eq. 5.1)
+RTBENCH_CONST kMaterialGlass = 2;    // reflects and transmits by Fresnel's equations, index of refraction optics.y
 
 // ---- shading-pass binding slots (a descriptor set of its own, all storage buffers) ----
 RTBENCH_CONST kShadingBindingParents = 0;    // Ray[parents]: the generation's rays
@@ -64,7 +70,12 @@ RTBENCH_CONST kShadingBindingPaths = 2;      // uint[parents]: each ray's path (
 RTBENCH_CONST kShadingBindingTriangles = 3;  // Triangle[triangles]: the scene's vertices
 RTBENCH_CONST kShadingBindingRays = 4;       // Ray[parents * fan-out]: slot parent * fan-out + s
 RTBENCH_CONST kShadingBindingMade = 5;       // uint[parents * fan-out]: 1 where the slot made a ray
-RTBENCH_CONST kShadingBindingCount = 6;
+RTBENCH_CONST kShadingBindingMaterialOf = 6; // uint[triangles]: each triangle's material
+RTBENCH_CONST kShadingBindingMaterials = 7;  // Material[materials]
+RTBENCH_CONST kShadingBindingLights = 8;     // vec4[lights] (at least one): the point lights, xyz
+RTBENCH_CONST kShadingBindingWeights = 9;    // float[parents]: each parent ray's weight
+RTBENCH_CONST kShadingBindingMadeWeights = 10;  // float[parents * fan-out]: each ray made's weight
+RTBENCH_CONST kShadingBindingCount = 11;
 
 // ---- ray-triangle tests (kernels/ray_math.glsl) ----
 RTBENCH_CONST kTriangleTestMollerTrumbore = 0;  // Moller & Trumbore 1997
@@ -138,8 +149,14 @@ struct RayHitState {
 struct ShadingParams {
     uvec4 pass;   // byte 0: x = parent rays, y = kShade*, z = rays per parent (fan-out), w = bounce
     uvec4 seed;   // byte 16: x = the random numbers' seed (kShadeDiffuse), yzw unused (0)
-    vec4 light;   // byte 32: xyz = the point light (kShadeShadow), w = tMax (kShadeDiffuse) or the
-                  // index of refraction (kShadeRefract)
+    vec4 values;  // byte 32: x = tMax (kShadeDiffuse) or the index of refraction (kShadeRefract), yzw unused
+};
+
+// A surface's material (kernels/shading.glsl, Whitted ray tracing).
+struct Material {
+    uvec4 kind;   // byte 0: x = kMaterial*, yzw unused
+    vec4 colour;  // byte 16: rgb = the diffuse colour (images only), a unused
+    vec4 optics;  // byte 32: x = reflectance (kMaterialMirror), y = index of refraction (kMaterialGlass), zw unused
 };
 
 // Per-ray work, kept only by instrumented kernels (not charged as bandwidth).
@@ -165,6 +182,7 @@ static_assert(sizeof(StreamParams) == 16);
 static_assert(sizeof(RayHitState) == 16);
 static_assert(sizeof(RayCounters) == 16);
 static_assert(sizeof(ShadingParams) == 48);
+static_assert(sizeof(Material) == 48);
 static_assert(sizeof(PassCounters) == 64);
 }  // namespace rtbench::gpu
 #else

@@ -20,6 +20,11 @@ layout(std430, set = 0, binding = kShadingBindingPaths) readonly buffer PathBuff
 layout(std430, set = 0, binding = kShadingBindingTriangles) readonly buffer TriangleBuffer { Triangle triangles[]; };
 layout(std430, set = 0, binding = kShadingBindingRays) writeonly buffer RayBuffer { Ray rays[]; };
 layout(std430, set = 0, binding = kShadingBindingMade) writeonly buffer MadeBuffer { uint made[]; };
+layout(std430, set = 0, binding = kShadingBindingMaterialOf) readonly buffer MaterialOfBuffer { uint materialOf[]; };
+layout(std430, set = 0, binding = kShadingBindingMaterials) readonly buffer MaterialBuffer { Material materials[]; };
+layout(std430, set = 0, binding = kShadingBindingLights) readonly buffer LightBuffer { vec4 lights[]; };
+layout(std430, set = 0, binding = kShadingBindingWeights) readonly buffer WeightBuffer { float weights[]; };
+layout(std430, set = 0, binding = kShadingBindingMadeWeights) writeonly buffer MadeWeightBuffer { float madeWeights[]; };
 layout(push_constant) uniform PushConstants { ShadingParams params; };
 
 #define RT_OUT(T) out T
@@ -38,11 +43,16 @@ void main() {
     r.originTMin = vec4(0.0f);
     r.directionTMax = vec4(0.0f);
     bool ok = false;
+    float w = 0.0f;
     if (h.primitive != kNoHit) {
         Triangle t = triangles[h.primitive];
-        ok = rtShade(params, t.v0.xyz, t.v1.xyz, t.v2.xyz, h.u, h.v, parents[parent].directionTMax.xyz, paths[parent],
-                     slot - parent * fanOut, r);
+        uint s = slot - parent * fanOut;
+        // Only a shadow pass reads its slot's light (a pass of no lights binds one unused).
+        vec3 light = params.pass.y == kShadeShadow ? lights[s].xyz : vec3(0.0f);
+        ok = rtShade(params, materials[materialOf[h.primitive]], light, t.v0.xyz, t.v1.xyz, t.v2.xyz, h.u, h.v,
+                     parents[parent].directionTMax.xyz, paths[parent], s, weights[parent], r, w);
     }
     rays[slot] = r;
     made[slot] = ok ? 1u : 0u;
+    madeWeights[slot] = w;
 }

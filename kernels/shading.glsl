@@ -95,13 +95,22 @@ bool rtReflectRay(vec3 v0, vec3 v1, vec3 v2, float u, float v, vec3 incoming, RT
 // it enters (eta = 1 / ior), one along it leaves (eta = ior). Snell's law on unit vectors, n the
 // unit normal toward the incoming side and cos_i = -d.n: t = eta d + (eta cos_i - sqrt(k)) n with
 // k = 1 - eta^2 (1 - cos_i^2); the ray leaves through the surface (rtOffsetRay to the far side),
-// unit length, as far as a camera ray. k < 0 is total internal reflection: rtReflectRay's mirror
-// ray instead. Square roots and quotients correctly rounded. False for a triangle with no normal.
-bool rtRefractRay(vec3 v0, vec3 v1, vec3 v2, float u, float v, vec3 incoming, float ior, RT_OUT(Ray) refracted) {
+// unit length, as far as a camera ray. `fresnel` gets the fraction reflected, Fresnel's equations
+// for unpolarized light (pbrt-v3 §8.2.1 FrDielectric): the mean of r_par^2 and r_perp^2, with
+// r_par = (cos_i - eta cos_t) / (cos_i + eta cos_t), r_perp = (eta cos_i - cos_t) / (eta cos_i + cos_t).
+// Returns RT_TRANSMIT_NONE for a triangle with no normal, RT_TRANSMIT_TOTAL for total internal
+// reflection (k < 0: no ray, fresnel 1), RT_TRANSMIT_RAY when `refracted` is made. Roots and
+// quotients correctly rounded.
+#define RT_TRANSMIT_NONE 0u
+#define RT_TRANSMIT_TOTAL 1u
+#define RT_TRANSMIT_RAY 2u
+uint rtTransmit(vec3 v0, vec3 v1, vec3 v2, float u, float v, vec3 incoming, float ior, RT_OUT(Ray) refracted,
+                RT_OUT(float) fresnel) {
     precise vec3 e1 = v1 - v0;
     precise vec3 e2 = v2 - v0;
+    fresnel = 1.0f;
     vec3 outward = rtScaledNormal(e1, e2);
-    if (outward.x == 0.0f && outward.y == 0.0f && outward.z == 0.0f) return false;
+    if (outward.x == 0.0f && outward.y == 0.0f && outward.z == 0.0f) return RT_TRANSMIT_NONE;
     bool entering = rtDot(outward, incoming) < 0.0f;
     vec3 facing = entering ? outward : -outward;  // toward the side the ray came from
     vec3 n = rtNormalize(facing);
@@ -109,11 +118,70 @@ bool rtRefractRay(vec3 v0, vec3 v1, vec3 v2, float u, float v, vec3 incoming, fl
     float eta = entering ? rtDivide(1.0f, ior) : ior;
     precise float cosI = -rtDot(d, n);
     precise float k = 1.0f - eta * eta * (1.0f - cosI * cosI);
-    if (k < 0.0f) return rtReflectRay(v0, v1, v2, u, v, incoming, refracted);
-    precise vec3 t = d * eta + n * (eta * cosI - rtSqrt(k));
+    if (k < 0.0f) return RT_TRANSMIT_TOTAL;
+    float cosT = rtSqrt(k);
+    precise vec3 t = d * eta + n * (eta * cosI - cosT);
     refracted.originTMin = vec4(rtOffsetRay(rtSurfacePoint(v0, v1, v2, u, v), -facing), 0.0f);
     refracted.directionTMax = vec4(t, kNoHitT);
-    return true;
+    precise float parallel = rtDivide(cosI - eta * cosT, cosI + eta * cosT);
+    precise float perpendicular = rtDivide(eta * cosI - cosT, eta * cosI + cosT);
+    precise float reflected = 0.5f * (parallel * parallel + perpendicular * perpendicular);
+    fresnel = reflected;
+    return RT_TRANSMIT_RAY;
+}
+
+// Every surface glass (rays.type = refraction): the refracted ray, or past the critical angle
+// rtReflectRay's mirror ray. False for a triangle with no normal.
+bool rtRefractRay(vec3 v0, vec3 v1, vec3 v2, float u, float v, vec3 incoming, float ior, RT_OUT(Ray) refracted) {
+    float fresnel;
+    uint transmitted = rtTransmit(v0, v1, v2, u, v, incoming, ior, refracted, fresnel);
+    if (transmitted == RT_TRANSMIT_TOTAL) return rtReflectRay(v0, v1, v2, u, v, incoming, refracted);
+    return transmitted == RT_TRANSMIT_RAY;
+}
+
+// ---- Whitted ray tracing (Whitted 1980; Purcell et al. 2002 Fig. 3c): by the surface's material,
+// each hit makes a shadow ray per light (rtShadowRay) and its reflection and refraction, each ray
+// carrying the weight its radiance adds to the pixel with, instead of a recursion (Christen 2005
+// §5.2.1's iteration buffer R) ----
+
+// Of a ray's weight, the part its hit's direct light adds with (what its shadow rays carry): all of it on a
+// diffuse surface, 1 - r on a mirror of reflectance r (Christen 2005 eq. 5.1's M_j (1 - r_j)),
+// none on glass.
+float rtDiffusePart(Material m) {
+    if (m.kind.x == kMaterialDiffuse) return 1.0f;
+    if (m.kind.x == kMaterialMirror) {
+        precise float rest = 1.0f - m.optics.x;
+        return rest;
+    }
+    return 0.0f;
+}
+
+// Slot 0: the reflection (a mirror: weight times its reflectance; glass: times Fresnel's fraction,
+// all of it past the critical angle); slot 1: glass's refraction (weight times 1 - Fresnel's).
+// A diffuse surface makes neither. False: no ray.
+bool rtSpecularRay(Material m, vec3 v0, vec3 v1, vec3 v2, float u, float v, vec3 incoming, uint slot, float weight,
+                   RT_OUT(Ray) made, RT_OUT(float) madeWeight) {
+    madeWeight = 0.0f;
+    if (m.kind.x == kMaterialMirror) {
+        precise float w = weight * m.optics.x;
+        madeWeight = w;
+        return slot == 0u && rtReflectRay(v0, v1, v2, u, v, incoming, made);
+    }
+    if (m.kind.x != kMaterialGlass) return false;
+    Ray refracted;
+    float fresnel;
+    uint transmitted = rtTransmit(v0, v1, v2, u, v, incoming, m.optics.y, refracted, fresnel);
+    if (transmitted == RT_TRANSMIT_NONE) return false;
+    if (slot == 1u) {
+        precise float w = weight * (1.0f - fresnel);
+        madeWeight = w;
+        if (transmitted != RT_TRANSMIT_RAY) return false;
+        made = refracted;
+        return true;
+    }
+    precise float w = weight * fresnel;
+    madeWeight = w;
+    return rtReflectRay(v0, v1, v2, u, v, incoming, made);
 }
 
 // ---- random numbers and directions for diffuse rays (path tracing, ambient occlusion) ----
@@ -191,16 +259,32 @@ bool rtDiffuseRay(vec3 v0, vec3 v1, vec3 v2, float u, float v, vec3 incoming, uv
 
 // ---- the shading pass: one rule for the kernel (kernels/shading.comp) and the CPU ----
 
-// Ray `slot` (of params.pass.z) made by a hit at (u, v) of triangle (v0, v1, v2), of the ray with
-// direction `incoming` on path `path`, by the rule params.pass.y (kShade*). A diffuse ray's random
-// key is (seed, path * fan-out + slot, bounce): the path the new ray starts. False: no ray.
-bool rtShade(ShadingParams params, vec3 v0, vec3 v1, vec3 v2, float u, float v, vec3 incoming, uint path, uint slot,
-             RT_OUT(Ray) made) {
-    if (params.pass.y == kShadeShadow) return rtShadowRay(v0, v1, v2, u, v, incoming, vec3(params.light), made);
-    if (params.pass.y == kShadeMirror) return rtReflectRay(v0, v1, v2, u, v, incoming, made);
-    if (params.pass.y == kShadeRefract) return rtRefractRay(v0, v1, v2, u, v, incoming, params.light.w, made);
-    uvec3 key = uvec3(params.seed.x, path * params.pass.z + slot, params.pass.w);
-    return rtDiffuseRay(v0, v1, v2, u, v, incoming, key, params.light.w, made);
+// Ray `slot` (of params.pass.z) made by a hit at (u, v) of triangle (v0, v1, v2) of material `m`,
+// of the ray with direction `incoming` and weight `weight` on path `path`, by the rule
+// params.pass.y (kShade*); `light` is the slot's light (kShadeShadow). A diffuse ray's random key
+// is (seed, path * fan-out + slot, bounce): the path the new ray starts. `madeWeight` gets the new
+// ray's weight: the parent's, times what the rule passes on (shadow and specular rays). False: no
+// ray (also for a weight of 0: it would add nothing).
+bool rtShade(ShadingParams params, Material m, vec3 light, vec3 v0, vec3 v1, vec3 v2, float u, float v, vec3 incoming,
+             uint path, uint slot, float weight, RT_OUT(Ray) made, RT_OUT(float) madeWeight) {
+    uint rule = params.pass.y;
+    bool ok;
+    madeWeight = weight;
+    if (rule == kShadeShadow) {
+        precise float w = weight * rtDiffusePart(m);
+        madeWeight = w;
+        ok = rtShadowRay(v0, v1, v2, u, v, incoming, light, made);
+    } else if (rule == kShadeMirror) {
+        ok = rtReflectRay(v0, v1, v2, u, v, incoming, made);
+    } else if (rule == kShadeRefract) {
+        ok = rtRefractRay(v0, v1, v2, u, v, incoming, params.values.x, made);
+    } else if (rule == kShadeSpecular) {
+        ok = rtSpecularRay(m, v0, v1, v2, u, v, incoming, slot, weight, made, madeWeight);
+    } else {
+        uvec3 key = uvec3(params.seed.x, path * params.pass.z + slot, params.pass.w);
+        ok = rtDiffuseRay(v0, v1, v2, u, v, incoming, key, params.values.x, made);
+    }
+    return ok && madeWeight > 0.0f;
 }
 
 #endif  // RT_SHADING_GLSL

@@ -52,7 +52,8 @@ struct ColumnSpec {
 //   8  + reflection rays (reflection.iteration, reflection_*).
 //   9  + the device's shading passes (shading_*), refraction rays (refraction.*), diffuse rays:
 //        path tracing (path.*) and ambient occlusion (ao.*).
-constexpr int kSchemaVersion = 9;
+//  10  + Whitted ray tracing (whitted.*, whitted_*): materials and lights.
+constexpr int kSchemaVersion = 10;
 
 // The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".
 std::string paramColumn(const std::string& key);

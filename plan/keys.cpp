@@ -49,7 +49,16 @@ bool conditionsHold(const std::vector<std::string>& conditions,
     for (const std::string& condition : conditions) {
         const std::size_t eq = condition.find('=');
         const std::optional<std::string> value = valueOf(condition.substr(0, eq));
-        if (!value || *value != condition.substr(eq + 1)) return false;
+        if (!value) return false;
+        // "key=a|b": either value.
+        bool any = false;
+        for (std::size_t from = eq + 1; !any;) {
+            const std::size_t bar = condition.find('|', from);
+            any = *value == condition.substr(from, bar == std::string::npos ? std::string::npos : bar - from);
+            if (bar == std::string::npos) break;
+            from = bar + 1;
+        }
+        if (!any) return false;
     }
     return true;
 }

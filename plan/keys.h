@@ -29,7 +29,8 @@ struct KeySpec {
     bool required = false;
     double min = -1e300, max = 1e300;   // numeric range (each component for Int3/Float3)
     std::vector<std::string> choices;   // allowed strings, when a closed set
-    // "section.key=value" conditions under which the key is read (all must hold); a run where
+    // "section.key=value" conditions under which the key is read (all must hold; "key=a|b": either
+    // value); a run where
     // one fails drops the key, and a key given but read by no run is an error.
     std::vector<std::string> appliesWhen = {};
     // Strings: a further check that throws rtbench::Error saying what is wrong (the loader adds
@@ -81,7 +82,7 @@ std::string formatValue(const ConfigValue& value);
 std::vector<std::string> keyColumns(const KeySpec& key);
 std::vector<std::pair<std::string, std::string>> keyCells(const KeySpec& key, const ConfigValue& value);
 
-// Whether every "section.key=value" condition (KeySpec::appliesWhen, ColumnSpec::appliesWhen)
+// Whether every "section.key=value" (or "section.key=a|b") condition (KeySpec::appliesWhen, ColumnSpec::appliesWhen)
 // holds, `valueOf(key)` giving the key's value as formatValue writes it, or nothing when unset.
 bool conditionsHold(const std::vector<std::string>& conditions,
                     const std::function<std::optional<std::string>(const std::string& key)>& valueOf);

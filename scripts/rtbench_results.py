@@ -6,7 +6,7 @@ import pandas as pd
 
 SCENES = {"cgal:bunny00": "bunny", "procedural:christen_a": "scene A", "procedural:christen_b": "scene B",
           "christen_c": "scene C", "teapot_in_stadium": "teapot in stadium", "million": "1M triangles",
-          "procedural:closed_box": "closed box", "procedural:icosphere": "icosphere"}
+          "procedural:closed_box": "closed box", "procedural:icosphere": "icosphere", "whitted_room": "Whitted room"}
 
 
 def scene_name(source: str) -> str:

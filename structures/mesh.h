@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "appearance.h"
 #include "input_file.h"
 
 namespace rtbench {
@@ -36,6 +37,7 @@ struct TriangleMesh {
     std::string elementsSkippedWhat;    // what they were, e.g. "2 line elements ('l')"; "" if none
     VertexLattice lattice;              // bits != 0: every vertex lies on it, and structures store them packed
     std::vector<InputFile> inputs;      // the files read to make it, in reading order (none: procedural)
+    Appearance appearance;              // materials and lights a scene description gives (else none)
 
     Bounds3 bounds() const;
     // Zero-area triangles (repeated vertices or collinear): kept, counted, never hit by any method.

@@ -160,6 +160,12 @@ struct Placement {
     int randomRotation = -1;  // -1 none, 0/1/2 about x/y/z, 3 any orientation
 };
 
+struct MaterialEntry {
+    DescribedMaterial material;
+    std::string meshKey;  // as Placement::meshKey
+    std::string meshAt;   // file:line of its mesh key
+};
+
 class Reader {
   public:
     Reader(std::string file, std::string baseDir)
@@ -175,6 +181,7 @@ class Reader {
         }
         SceneDescription result;
         std::vector<Placement> placements;
+        std::vector<MaterialEntry> materials;
         for (auto&& [key, node] : root) {
             const std::string name(key.str());
             if (name == "name") {
@@ -187,9 +194,21 @@ class Reader {
                                 "]])");
                 for (const toml::node& element : *list)
                     placements.push_back(readPlacement(*element.as_table(), name == "scatter"));
+            } else if (name == "material" || name == "light") {
+                const toml::array* list = node.as_array();
+                if (!list || !(list->is_array_of_tables() || list->empty()))
+                    throw Error(at(key) + ": '" + name + "' must be an array of tables ([[" + name + "]])");
+                if (list->empty())
+                    throw Error(at(key) + ": '" + name + "' is an empty list: give at least one [[" + name +
+                                "]] table, or leave the key out" +
+                                (name == "light" ? " (the run's light.position then lights the scene)" : ""));
+                for (const toml::node& element : *list) {
+                    if (name == "material") materials.push_back(readMaterial(*element.as_table()));
+                    else result.mesh.appearance.lights.push_back(readLight(*element.as_table()));
+                }
             } else {
                 throw Error(at(key) + ": unknown key '" + name +
-                            "' (allowed at the top level: name, object, scatter)");
+                            "' (allowed at the top level: name, object, scatter, material, light)");
             }
         }
         if (placements.empty())
@@ -199,6 +218,7 @@ class Reader {
         std::stable_sort(placements.begin(), placements.end(),
                          [](const Placement& a, const Placement& b) { return a.line < b.line; });
         place(placements, result);
+        assignMaterials(materials, placements, result);
         return result;
     }
 
@@ -268,9 +288,7 @@ class Reader {
                                 "' is a scene description; descriptions do not nest (name a mesh "
                                 "file, cgal:NAME or "
                                 "procedural:NAME)");
-                p.meshKey = p.mesh.rfind("cgal:", 0) == 0 || p.mesh.rfind("procedural:", 0) == 0
-                                ? p.mesh
-                                : resolvePath(p.mesh, baseDir_);
+                p.meshKey = meshKeyOf(p.mesh);
                 hasMesh = true;
             } else if (name == "anchor") {
                 const std::optional<std::string> v = node.value<std::string>();
@@ -350,6 +368,108 @@ class Reader {
                                 " = " + formatFloat(p.boxMin[a]));
         }
         return p;
+    }
+
+    // A mesh as written, as placements key it: cgal: and procedural: sources as they are, files
+    // by their resolved path.
+    std::string meshKeyOf(const std::string& mesh) const {
+        return mesh.rfind("cgal:", 0) == 0 || mesh.rfind("procedural:", 0) == 0 ? mesh : resolvePath(mesh, baseDir_);
+    }
+
+    // [[material]]: mesh, type, and only the keys its type reads (colour; reflectance; ior).
+    MaterialEntry readMaterial(const toml::table& table) {
+        MaterialEntry e;
+        const toml::node* type = table.get("type");
+        if (!type) throw Error(where(file_, table.source()) + ": [[material]] needs 'type' (\"diffuse\", \"mirror\" or \"glass\")");
+        const std::optional<std::string> kind = type->value<std::string>();
+        if (!type->is_string() || (*kind != "diffuse" && *kind != "mirror" && *kind != "glass"))
+            throw Error(at(*type) + ": key 'material.type': expected \"diffuse\", \"mirror\" or \"glass\"");
+        e.material.kind = *kind == "diffuse" ? MaterialKind::Diffuse : *kind == "mirror" ? MaterialKind::Mirror : MaterialKind::Glass;
+        if (e.material.kind == MaterialKind::Glass) e.material.colour = glm::dvec3(0.0);
+        const std::vector<std::string> allowed =
+            *kind == "diffuse" ? std::vector<std::string>{"mesh", "type", "colour"}
+            : *kind == "mirror" ? std::vector<std::string>{"mesh", "type", "colour", "reflectance"}
+                                : std::vector<std::string>{"mesh", "type", "ior"};
+        bool hasMesh = false;
+        for (auto&& [key, node] : table) {
+            const std::string name(key.str());
+            const std::string full = "material." + name;
+            if (std::find(allowed.begin(), allowed.end(), name) == allowed.end())
+                throw Error(at(key) + ": key '" + full + "' does not apply to a " + *kind + " material (its keys: " +
+                            join(allowed) + ")");
+            if (name == "mesh") {
+                if (!node.is_string() || node.as_string()->get().empty())
+                    throw Error(at(node) + ": key '" + full + "': expected a mesh as an [[object]] or [[scatter]] names it");
+                e.material.mesh = node.as_string()->get();
+                e.meshKey = meshKeyOf(e.material.mesh);
+                e.meshAt = at(node);
+                hasMesh = true;
+            } else if (name == "colour") {
+                e.material.colour = vec3(node, full);
+                for (int a = 0; a < 3; ++a)
+                    if (e.material.colour[a] < 0.0 || e.material.colour[a] > 1.0)
+                        throw Error(at(node) + ": key '" + full + "': each component must lie in [0, 1]");
+            } else if (name == "reflectance") {
+                e.material.reflectance = number(node, full);
+                if (!(e.material.reflectance > 0.0 && e.material.reflectance <= 1.0))
+                    throw Error(at(node) + ": key '" + full + "': value " + formatFloat(e.material.reflectance) +
+                                " must lie in (0, 1] (a mirror reflecting nothing is a diffuse material)");
+            } else if (name == "ior") {
+                e.material.ior = number(node, full);
+                if (!(e.material.ior >= 0.01 && e.material.ior <= 100.0))
+                    throw Error(at(node) + ": key '" + full + "': value " + formatFloat(e.material.ior) +
+                                " must lie in [0.01, 100] (an index of refraction against 1 outside)");
+            }
+        }
+        if (!hasMesh) throw Error(where(file_, table.source()) + ": [[material]] needs 'mesh'");
+        return e;
+    }
+
+    glm::dvec3 readLight(const toml::table& table) {
+        const toml::node* position = nullptr;
+        for (auto&& [key, node] : table) {
+            if (key.str() != "position")
+                throw Error(at(key) + ": unknown key 'light." + std::string(key.str()) + "' (allowed in [[light]]: position)");
+            position = &node;
+        }
+        if (!position) throw Error(where(file_, table.source()) + ": [[light]] needs 'position'");
+        const glm::dvec3 p = vec3(*position, "light.position");
+        for (int a = 0; a < 3; ++a)
+            if (!(std::fabs(p[a]) <= double(kMaxVertexCoordinate)))
+                throw Error(at(*position) + ": key 'light.position': out of range: " + sceneRangeText());
+        return p;
+    }
+
+    // Each material covers every copy of its mesh; a mesh no placement places, or one given two
+    // materials, is an error.
+    void assignMaterials(const std::vector<MaterialEntry>& materials, const std::vector<Placement>& placements,
+                         SceneDescription& result) {
+        if (materials.empty()) return;
+        Appearance& look = result.mesh.appearance;
+        std::map<std::string, std::uint32_t> byMesh;
+        for (const MaterialEntry& e : materials) {
+            const bool placed = std::any_of(placements.begin(), placements.end(),
+                                            [&](const Placement& p) { return p.meshKey == e.meshKey; });
+            if (!placed) {
+                std::vector<std::string> names;
+                for (const Placement& p : placements)
+                    if (std::find(names.begin(), names.end(), p.mesh) == names.end()) names.push_back(p.mesh);
+                throw Error(e.meshAt + ": key 'material.mesh': '" + e.material.mesh +
+                            "' is placed by no [[object]] or [[scatter]] (placed: " + join(names) + ")");
+            }
+            if (byMesh.count(e.meshKey))
+                throw Error(e.meshAt + ": key 'material.mesh': '" + e.material.mesh + "' already has a material (" +
+                            materials[byMesh[e.meshKey]].meshAt + ")");
+            byMesh[e.meshKey] = std::uint32_t(look.materials.size());
+            look.materials.push_back(e.material);
+        }
+        look.materialOf.assign(result.mesh.triangles.size(), kUndescribedMaterial);
+        for (std::size_t c = 0; c < result.copies.size(); ++c) {
+            const auto m = byMesh.find(copyKeys_[c]);
+            if (m == byMesh.end()) continue;
+            const PlacedCopy& copy = result.copies[c];
+            std::fill_n(look.materialOf.begin() + std::ptrdiff_t(copy.firstTriangle), copy.triangleCount, m->second);
+        }
     }
 
     // Reads each distinct mesh once, checks the totals, then writes every copy.
@@ -473,9 +593,11 @@ class Reader {
         out.polygonsRead += mesh.polygonsRead;
         out.elementsSkipped += mesh.elementsSkipped;
         result.copies.push_back(copy);
+        copyKeys_.push_back(p.meshKey);
     }
 
     std::string file_, baseDir_;
+    std::vector<std::string> copyKeys_;  // each copy's Placement::meshKey
 };
 
 }  // namespace

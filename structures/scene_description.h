@@ -30,6 +30,18 @@
 //                                  # quaternion); "x", "y" or "z": a random turn about that axis
 //                                  # only ("y" keeps objects upright); false (the default): none
 //
+//   [[material]]                   # what Whitted ray tracing (rays.type = whitted) sees of a mesh
+//   mesh = "cgal:sphere"           # every copy of a mesh an [[object]] or [[scatter]] places
+//                                  # (written as there); one material per mesh
+//   type = "glass"                 # "diffuse", "mirror" or "glass"; and only its own keys:
+//   colour = [0.8, 0.8, 0.8]       # diffuse and mirror: the diffuse colour, each in [0, 1]
+//   reflectance = 0.8              # mirror: the fraction reflected, in (0, 1]; default 1
+//   ior = 1.5                      # glass: index of refraction, in [0.01, 100]; default 1.5
+//                                  # (meshes no [[material]] covers take the run's whitted.surface)
+//
+//   [[light]]                      # a point light (Whitted's shadow rays; none: the run's
+//   position = [0, 5, 0]           # light.position); in the description's coordinates
+//
 // Vertex v of a placement becomes  translate + Rz Ry Rx (scale * sizeFactor * (v - anchor)),
 // computed in double with IEEE basic operations only (sin and cos by a fixed polynomial, no libm;
 // std::mt19937 with explicit arithmetic, no std::*_distribution; the build forbids FMA
@@ -41,6 +53,7 @@
 //
 // Errors (rtbench::Error) name the description and the line: TOML syntax, unknown keys, wrong
 // types, non-finite numbers, non-positive scales or sizes, box_min > box_max, counts out of range,
+// a material on a mesh nothing places or a key its type does not read, an empty list of lights,
 // more than kMaxDescriptionTriangles triangles in all, a mesh that cannot be read, a vertex
 // placed beyond the range every method handles (scene_limits.h). Each mesh is read once per
 // description however often it is placed.

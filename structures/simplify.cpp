@@ -158,10 +158,13 @@ bool hasBorder(const Surface& surface) {
 
 // The surface back as a TriangleMesh: vertices rounded to float once, in the surface's order
 // (isolated ones left out), triangles in its face order, both after collect_garbage().
-TriangleMesh toMesh(Surface& surface, const std::string& name) {
+TriangleMesh toMesh(Surface& surface, const TriangleMesh& source) {
     surface.collect_garbage();
     TriangleMesh mesh;
-    mesh.name = name;  // the other fields describe how the source was read
+    mesh.name = source.name;  // the other fields describe how the source was read
+    // The lights stay where they were; which new triangle has which material is not kept.
+    mesh.appearance.lights = source.appearance.lights;
+    mesh.appearance.materialsLost = !source.appearance.materialOf.empty();
     std::vector<unsigned> index(surface.number_of_vertices(), ~0u);
     for (Surface::Vertex_index v : surface.vertices()) {
         if (surface.is_isolated(v)) continue;
@@ -212,7 +215,7 @@ SimplifiedMesh simplifyMesh(const TriangleMesh& mesh, std::size_t target, bool e
                            ": ";
     if (initial <= target) {  // the dropped triangles were enough: no collapse
         if (exact && initial < target) throw Error(at + "only " + n(initial) + " triangles are left");
-        result.mesh = toMesh(surface, mesh.name);
+        result.mesh = toMesh(surface, mesh);
         return finish();
     }
     CollapseRecord record;
@@ -252,7 +255,7 @@ SimplifiedMesh simplifyMesh(const TriangleMesh& mesh, std::size_t target, bool e
                         n(target) + " = " + n(initial - target) + " is odd" + askForNeighbours);
         throw Error(at + "ended at " + n(faces) + " triangles after " + n(record.collapses) + " collapses");
     }
-    result.mesh = toMesh(surface, mesh.name);
+    result.mesh = toMesh(surface, mesh);
     return finish();
 }
 

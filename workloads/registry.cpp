@@ -7,11 +7,12 @@
 #include "workloads/reflection/reflection_rays.h"
 #include "workloads/refraction/refraction_rays.h"
 #include "workloads/shadow/shadow_rays.h"
+#include "workloads/whitted/whitted_rays.h"
 
 namespace rtbench {
 
 const std::vector<const RayType*>& rayTypes() {
-    static const std::vector<const RayType*> types = {&cameraRayType(), &shadowRayType(), &reflectionRayType(), &refractionRayType(), &pathRayType(), &aoRayType()};
+    static const std::vector<const RayType*> types = {&cameraRayType(), &shadowRayType(), &reflectionRayType(), &refractionRayType(), &pathRayType(), &aoRayType(), &whittedRayType()};
     return types;
 }
 

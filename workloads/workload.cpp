@@ -7,6 +7,14 @@
 
 namespace rtbench {
 
+ShadingInput Workload::generation(std::size_t g, const std::vector<gpu::Ray>& cameraRays) const {
+    static const std::vector<std::uint32_t> noPaths;  // the camera rays: ray i's path is i
+    static const std::vector<float> noWeights;        // and its weight 1
+    if (g == 0) return {cameraRays, cameraHits, noPaths, noWeights};
+    const Generation& before = between.at(g - 1);
+    return {before.rays, before.hits, before.paths, before.weights};
+}
+
 std::uint32_t Workload::ancestor(std::uint32_t ray, std::size_t g) const {
     if (g >= between.size() + 1) return ray;
     ray = parents.at(ray);
@@ -30,35 +38,32 @@ std::uint64_t countHits(const std::vector<gpu::HitRecord>& hits) {
     return n;
 }
 
-Workload followPaths(const WorkloadInputs& in, const std::vector<gpu::ShadingParams>& passes, std::uint32_t query,
+Workload followPaths(const WorkloadInputs& in, std::shared_ptr<const Surfaces> surfaces,
+                     const std::vector<gpu::ShadingParams>& passes, std::uint32_t query,
                      const std::function<std::string(std::size_t, std::uint64_t, std::uint64_t)>& noRays) {
     Workload w;
     w.batch.query = query;
     w.shading = passes;
+    w.surfaces = std::move(surfaces);
     w.cameraHits = in.structure.trace(in.cameraRays);
-    const std::vector<std::uint32_t> cameraPaths;  // ray i's path is i
-    const std::vector<gpu::Ray>* rays = &in.cameraRays;
-    const std::vector<gpu::HitRecord>* hits = &w.cameraHits;
-    const std::vector<std::uint32_t>* paths = &cameraPaths;
     for (std::size_t pass = 0; pass < passes.size(); ++pass) {
+        const ShadingInput parents = w.generation(pass, in.cameraRays);
         // Refused before the rays are made: a fan-out (path.samples, ao.samples) multiplies them.
-        refuseOversizedRayStream(std::uint64_t(rays->size()) * passes[pass].pass.z);
-        ShadedRays made = shadeOnCpu(in.scene, *rays, *hits, *paths, passes[pass]);
-        if (made.rays.empty()) throw Error(noRays(pass, rays->size(), countHits(*hits)));
+        refuseOversizedRayStream(std::uint64_t(parents.rays.size()) * passes[pass].pass.z);
+        ShadedRays made = shadeOnCpu(in.scene, *w.surfaces, parents, passes[pass]);
+        if (made.rays.empty()) throw Error(noRays(pass, parents.rays.size(), countHits(parents.hits)));
         if (pass + 1 == passes.size()) {
-            w.parentRays = rays->size();
-            w.parentHits = countHits(*hits);
+            w.parentRays = parents.rays.size();
+            w.parentHits = countHits(parents.hits);
             w.batch.rays = std::move(made.rays);
             w.parents = std::move(made.parents);
             w.paths = std::move(made.paths);
+            w.weights = std::move(made.weights);
             break;
         }
-        Generation g{std::move(made.rays), {}, std::move(made.parents), std::move(made.paths)};
+        Generation g{std::move(made.rays), {}, std::move(made.parents), std::move(made.paths), std::move(made.weights)};
         g.hits = in.structure.trace(g.rays);
         w.between.push_back(std::move(g));
-        rays = &w.between.back().rays;
-        hits = &w.between.back().hits;
-        paths = &w.between.back().paths;
     }
     w.pixels.resize(w.batch.rays.size());
     for (std::uint32_t r = 0; r < w.pixels.size(); ++r) w.pixels[r] = w.ancestor(r, 0);
@@ -67,7 +72,7 @@ Workload followPaths(const WorkloadInputs& in, const std::vector<gpu::ShadingPar
 
 Workload followGenerations(const WorkloadInputs& in, Row& row, const std::vector<gpu::ShadingParams>& passes,
                            const std::string& type, const std::string& key, const std::string& noun) {
-    Workload w = followPaths(in, passes, gpu::kQueryClosest, [&](std::size_t pass, std::uint64_t rays, std::uint64_t) {
+    Workload w = followPaths(in, std::make_shared<const Surfaces>(), passes, gpu::kQueryClosest, [&](std::size_t pass, std::uint64_t rays, std::uint64_t) {
         return "rays.type = " + type + ": no rays at " + key + " " + std::to_string(pass + 1) + ": none of the " +
                std::to_string(rays) + " rays of " + noun + " " + std::to_string(pass) + " hit";
     });
@@ -79,7 +84,6 @@ Workload followGenerations(const WorkloadInputs& in, Row& row, const std::vector
 
 std::string checkShadingOnDevice(VulkanContext& vk, unsigned workgroupSize, const TriangleMesh& scene,
                                  const std::vector<gpu::Ray>& cameraRays, const Workload& w, Row& row) {
-    const std::vector<std::uint32_t> cameraPaths;
     const std::vector<gpu::Triangle> triangles = floatTriangles(scene);  // once for every pass
     std::uint64_t made = 0, mismatches = 0;
     double ms = 0.0;
@@ -87,13 +91,12 @@ std::string checkShadingOnDevice(VulkanContext& vk, unsigned workgroupSize, cons
     std::string first;
     for (std::size_t g = 0; g < w.shading.size(); ++g) {
         // Generation g, and what the CPU made of it: generation g + 1.
-        const std::vector<gpu::Ray>& rays = g == 0 ? cameraRays : w.between[g - 1].rays;
-        const std::vector<gpu::HitRecord>& hits = g == 0 ? w.cameraHits : w.between[g - 1].hits;
-        const std::vector<std::uint32_t>& paths = g == 0 ? cameraPaths : w.between[g - 1].paths;
-        const ShadedRays cpu = g < w.between.size() ? ShadedRays{w.between[g].rays, w.between[g].parents, w.between[g].paths}
-                                                    : ShadedRays{w.batch.rays, w.parents, w.paths};
+        const ShadedRays cpu = g < w.between.size()
+                                   ? ShadedRays{w.between[g].rays, w.between[g].parents, w.between[g].paths, w.between[g].weights}
+                                   : ShadedRays{w.batch.rays, w.parents, w.paths, w.weights};
         double passMs = 0.0;
-        const ShadedRays device = shadeOnDevice(vk, workgroupSize, triangles, rays, hits, paths, w.shading[g], passMs);
+        const ShadedRays device =
+            shadeOnDevice(vk, workgroupSize, triangles, *w.surfaces, w.generation(g, cameraRays), w.shading[g], passMs);
         made += device.rays.size();
         ms += passMs;
         timed = timed && passMs >= 0.0;

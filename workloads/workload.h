@@ -5,6 +5,7 @@
 // columns; the runner knows none by name: workloads/registry.cpp lists them.
 #pragma once
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "plan/columns.h"
 #include "plan/keys.h"
 #include "structures/mesh.h"
+#include "workloads/shading.h"
 
 namespace rtbench {
 
@@ -34,6 +36,7 @@ struct Generation {
     std::vector<gpu::HitRecord> hits;
     std::vector<std::uint32_t> parents;  // into the generation before (the first: the camera rays)
     std::vector<std::uint32_t> paths;    // each ray's path (workloads/shading.h ShadedRays)
+    std::vector<float> weights;          // each ray's weight (workloads/shading.h ShadedRays)
 };
 
 // What the batch's image shows in the camera's pixels (harness/images.h makeBatchImage).
@@ -54,13 +57,17 @@ struct Workload {
     std::vector<Generation> between;
     std::vector<std::uint32_t> parents;
     std::vector<std::uint32_t> paths;  // each batch ray's path (workloads/shading.h ShadedRays)
+    std::vector<float> weights;        // each batch ray's weight (workloads/shading.h ShadedRays)
     // The shading passes that made the generations after the camera rays: shading[g] made
     // generation g + 1 (between[g], the batch after the last) from generation g (0: the camera
     // rays). Run again on the device to check them (checkShadingOnDevice).
     std::vector<gpu::ShadingParams> shading;
+    std::shared_ptr<const Surfaces> surfaces = std::make_shared<const Surfaces>();  // what the passes read
     std::uint64_t parentRays = 0, parentHits = 0;  // of the generation the batch was made from
     BatchImage image = BatchImage::Shadows;
     bool fromCamera() const { return pixels.empty() && cameraHits.empty(); }
+    // Generation g as a shading pass reads it (0: the camera rays, `cameraRays`, and their hits).
+    ShadingInput generation(std::size_t g, const std::vector<gpu::Ray>& cameraRays) const;
     // The ray batch ray `ray` descends from in generation g (0: the camera rays; between.size():
     // the batch itself).
     std::uint32_t ancestor(std::uint32_t ray, std::size_t g) const;
@@ -69,11 +76,12 @@ struct Workload {
 // Rays of `hits` that hit something.
 std::uint64_t countHits(const std::vector<gpu::HitRecord>& hits);
 
-// Paths from the camera rays through the shading passes `passes`: each pass makes a generation from
-// the one before, every generation but the last traced by the run's structure (closest hit), the
-// last the batch, asked `query`. A pass that makes no ray throws rtbench::Error with
-// noRays(pass, rays of the generation before, of which hit).
-Workload followPaths(const WorkloadInputs& in, const std::vector<gpu::ShadingParams>& passes, std::uint32_t query,
+// Paths from the camera rays through the shading passes `passes` over `surfaces`: each pass makes a
+// generation from the one before, every generation but the last traced by the run's structure
+// (closest hit), the last the batch, asked `query`. A pass that makes no ray throws rtbench::Error
+// with noRays(pass, rays of the generation before, of which hit).
+Workload followPaths(const WorkloadInputs& in, std::shared_ptr<const Surfaces> surfaces,
+                     const std::vector<gpu::ShadingParams>& passes, std::uint32_t query,
                      const std::function<std::string(std::size_t, std::uint64_t, std::uint64_t)>& noRays);
 
 // followPaths for a ray type of generations (reflection and refraction iterations, path bounces):

@@ -4,6 +4,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -196,7 +197,7 @@ TEST_F(SceneDescriptionTest, ErrorsNameTheFileAndLine) {
     };
     const std::vector<Case> cases = {
         {"name = \"x\"\nobjects = []\n",
-         f + ":2: unknown key 'objects' (allowed at the top level: name, object, scatter)"},
+         f + ":2: unknown key 'objects' (allowed at the top level: name, object, scatter, material, light)"},
         {"[[object]]\nmesh = \"tri.off\"\nscal = 2\n",
          f + ":3: unknown key 'object.scal' (allowed in [[object]]: mesh, anchor"},
         {"[[scatter]]\nmesh = \"tri.off\"\ncount = 2\nseed = 1\nbox_min = [0,0,0]\nbox_max = "
@@ -268,6 +269,60 @@ std::string sceneFile(const std::string& name) {
     return std::string(RTBENCH_SOURCE_DIR) + "/scenes/" + name;
 }
 
+// Materials cover every copy of their mesh and nothing else, in triangle order; lights keep the
+// description's coordinates.
+TEST_F(SceneDescriptionTest, MaterialsCoverTheirMeshsCopiesAndLightsKeepTheirPositions) {
+    const SceneDescription d = read(
+        "[[object]]\nmesh = \"tri.off\"\n[[object]]\nmesh = \"cube.off\"\n[[object]]\nmesh = \"tri.off\"\n"
+        "translate = [5, 0, 0]\n[[material]]\nmesh = \"tri.off\"\ntype = \"glass\"\nior = 1.25\n"
+        "[[material]]\nmesh = \"./cube.off\"\ntype = \"mirror\"\nreflectance = 0.75\ncolour = [0.5, 0.25, 1]\n"
+        "[[light]]\nposition = [1, 2, 3]\n[[light]]\nposition = [-4, 5, -6]\n");
+    const Appearance& a = d.mesh.appearance;
+    ASSERT_EQ(a.materials.size(), 2u);
+    EXPECT_EQ(a.materials[0].kind, MaterialKind::Glass);
+    EXPECT_EQ(a.materials[0].ior, 1.25);
+    EXPECT_EQ(a.materials[1].kind, MaterialKind::Mirror);
+    EXPECT_EQ(a.materials[1].reflectance, 0.75);
+    EXPECT_EQ(a.materials[1].colour, glm::dvec3(0.5, 0.25, 1));
+    // Triangle 0: the first tri.off; 1..12 the cube; 13 the second tri.off.
+    ASSERT_EQ(a.materialOf.size(), 14u);
+    EXPECT_EQ(a.materialOf[0], 0u);
+    for (std::size_t t = 1; t <= 12; ++t) EXPECT_EQ(a.materialOf[t], 1u) << t;
+    EXPECT_EQ(a.materialOf[13], 0u);
+    EXPECT_EQ(a.lights, (std::vector<glm::dvec3>{{1, 2, 3}, {-4, 5, -6}}));
+    // A mesh no material names keeps none: the run's whitted.surface.
+    const SceneDescription partial = read("[[object]]\nmesh = \"tri.off\"\n[[object]]\nmesh = \"cube.off\"\n"
+                                          "[[material]]\nmesh = \"cube.off\"\ntype = \"diffuse\"\n");
+    EXPECT_EQ(partial.mesh.appearance.materialOf[0], kUndescribedMaterial);
+    EXPECT_EQ(partial.mesh.appearance.materialOf[1], 0u);
+    EXPECT_TRUE(partial.mesh.appearance.lights.empty());
+    // No [[material]]: no per-triangle list at all.
+    EXPECT_TRUE(read("[[object]]\nmesh = \"tri.off\"\n").mesh.appearance.materialOf.empty());
+}
+
+TEST_F(SceneDescriptionTest, MaterialAndLightErrorsNameTheFileLineAndKey) {
+    const std::string placed = "[[object]]\nmesh = \"tri.off\"\n";
+    EXPECT_THAT(errorFor(placed + "[[material]]\nmesh = \"cube.off\"\ntype = \"glass\"\n"),
+                HasSubstr(file() + ":4: key 'material.mesh': 'cube.off' is placed by no [[object]] or [[scatter]] (placed: tri.off)"));
+    EXPECT_THAT(errorFor(placed + "[[material]]\nmesh = \"tri.off\"\ntype = \"glass\"\nior = -1.5\n"),
+                HasSubstr(file() + ":6: key 'material.ior': value -1.5 must lie in [0.01, 100]"));
+    EXPECT_THAT(errorFor(placed + "[[material]]\nmesh = \"tri.off\"\ntype = \"glass\"\nreflectance = 0.5\n"),
+                HasSubstr(file() + ":6: key 'material.reflectance' does not apply to a glass material (its keys: mesh, type, ior)"));
+    EXPECT_THAT(errorFor(placed + "[[material]]\nmesh = \"tri.off\"\ntype = \"mirror\"\nreflectance = 0\n"),
+                HasSubstr(file() + ":6: key 'material.reflectance': value 0 must lie in (0, 1]"));
+    EXPECT_THAT(errorFor(placed + "[[material]]\nmesh = \"tri.off\"\ntype = \"metal\"\n"),
+                HasSubstr(file() + ":5: key 'material.type': expected \"diffuse\", \"mirror\" or \"glass\""));
+    EXPECT_THAT(errorFor(placed + "[[material]]\nmesh = \"tri.off\"\ntype = \"diffuse\"\n[[material]]\nmesh = \"tri.off\"\n"
+                                  "type = \"glass\"\n"),
+                HasSubstr(file() + ":7: key 'material.mesh': 'tri.off' already has a material (" + file() + ":4)"));
+    EXPECT_THAT(errorFor(placed + "[[material]]\ntype = \"glass\"\n"), HasSubstr(file() + ":3: [[material]] needs 'mesh'"));
+    EXPECT_THAT(errorFor("light = []\n" + placed), HasSubstr(file() + ":1: 'light' is an empty list"));
+    EXPECT_THAT(errorFor(placed + "[[light]]\nposition = [1, 2]\n"),
+                HasSubstr(file() + ":4: key 'light.position': expected an array of 3 numbers"));
+    EXPECT_THAT(errorFor(placed + "[[light]]\nintensity = 2\n"), HasSubstr(file() + ":4: unknown key 'light.intensity'"));
+    EXPECT_THAT(errorFor(placed + "[[light]]\n"), HasSubstr(file() + ":3: [[light]] needs 'position'"));
+}
+
 TEST(CommittedScenes, LoadWithTheirTriangleCounts) {
     struct Expected {
         const char* file;
@@ -275,7 +330,7 @@ TEST(CommittedScenes, LoadWithTheirTriangleCounts) {
     };
     for (const Expected& e :
          {Expected{"christen_c.toml", 61562, 7}, Expected{"teapot_in_stadium.toml", 75612, 2},
-          Expected{"million.toml", 1007892, 7}}) {
+          Expected{"million.toml", 1007892, 7}, Expected{"whitted_room.toml", 8768, 3}}) {
         const SceneDescription d = readSceneDescription(sceneFile(e.file));
         EXPECT_EQ(d.mesh.triangles.size(), e.triangles) << e.file;
         EXPECT_EQ(d.meshesRead, e.meshes) << e.file;
@@ -285,6 +340,14 @@ TEST(CommittedScenes, LoadWithTheirTriangleCounts) {
             EXPECT_EQ(d.mesh.degenerateCount(), 0u) << e.file;
         }
     }
+    // The Whitted room's materials: the room a mirror, the spheres glass, the cow diffuse; two lights.
+    const Appearance look = readSceneDescription(sceneFile("whitted_room.toml")).mesh.appearance;
+    ASSERT_EQ(look.materials.size(), 3u);
+    EXPECT_EQ(look.materials[0].kind, MaterialKind::Mirror);
+    EXPECT_EQ(look.materials[1].kind, MaterialKind::Glass);
+    EXPECT_EQ(look.materials[2].kind, MaterialKind::Diffuse);
+    EXPECT_EQ(look.lights.size(), 2u);
+    EXPECT_EQ(std::count(look.materialOf.begin(), look.materialOf.end(), kUndescribedMaterial), 0);
     // Through scene.source's own entry point, relative to a config folder.
     EXPECT_EQ(
         loadSceneSource("../scenes/christen_c.toml", std::string(RTBENCH_SOURCE_DIR) + "/configs")

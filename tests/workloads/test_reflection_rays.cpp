@@ -45,7 +45,7 @@ TEST(ReflectionRays, MirrorDirectionsAndOriginsAreTheHandComputedFloats) {
     const std::vector<gpu::Ray> rays = {ray({1, 6, 2}, {1, -2, 0.5f}), ray({9, 2.5f, 0.25f}, {-1, 0, 0}),
                                         ray({0, 1, 0}, {0, 1, 0})};
     const std::vector<gpu::HitRecord> hits = {hitOf(0, 11.0f / 16, 11.0f / 16), hitOf(1, 0.5f, 0.25f), hitOf(kNoHit, 0, 0)};
-    const ShadedRays out = shadeOnCpu(mesh, rays, hits, {}, mirrorPass());
+    const ShadedRays out = shadeOnCpu(mesh, Surfaces{}, {rays, hits, {}, {}}, mirrorPass());
     ASSERT_EQ(out.rays.size(), 2u);  // the miss makes none
     EXPECT_EQ(out.parents, (std::vector<std::uint32_t>{0, 1}));
     EXPECT_EQ(out.rays[0].originTMin, glm::vec4(3.0f, 1.0f / 65536.0f, 3.0f, 0.0f));

@@ -50,7 +50,7 @@ TEST_F(RefractionKernels, SnellsLawAndTotalInternalReflectionAreTheHandComputedR
     const std::vector<gpu::Ray> rays = {ray({2, 1, 3}, {1, -1, 0}), ray({3, -1, 3}, {0.5f, std::sqrt(3.0f) / 2, 0}),
                                         ray({2, -1, 3}, {1, 1, 0}), ray({3, 1, 3}, {0, -1, 0})};
     const std::vector<gpu::HitRecord> hits(4, hitAt(u, u));
-    const ShadedRays out = shadeOnCpu(mesh, rays, hits, {}, refractPass(1.5f));
+    const ShadedRays out = shadeOnCpu(mesh, Surfaces{}, {rays, hits, {}, {}}, refractPass(1.5f));
     ASSERT_EQ(out.rays.size(), 4u);
     expectDirection(out.rays[0], {std::sqrt(2.0) / 3, -std::sqrt(7.0) / 3, 0});
     EXPECT_EQ(out.rays[0].originTMin, glm::vec4(3, -up, 3, 0));
@@ -61,12 +61,12 @@ TEST_F(RefractionKernels, SnellsLawAndTotalInternalReflectionAreTheHandComputedR
     expectDirection(out.rays[3], {0, -1, 0});
     EXPECT_EQ(out.rays[3].originTMin, glm::vec4(3, -up, 3, 0));
     // Index 1: no bending, the direction only normalised.
-    const ShadedRays same = shadeOnCpu(mesh, {rays[0]}, {hits[0]}, {}, refractPass(1.0f));
+    const ShadedRays same = shadeOnCpu(mesh, Surfaces{}, {std::vector<gpu::Ray>{rays[0]}, std::vector<gpu::HitRecord>{hits[0]}, {}, {}}, refractPass(1.0f));
     expectDirection(same.rays[0], {std::sqrt(0.5), -std::sqrt(0.5), 0});
     // The device's shading pass makes the same floats.
     double ms = 0.0;
     std::string first;
-    EXPECT_EQ(shadedMismatches(shadeOnDevice(*vk_, 64, floatTriangles(mesh), rays, hits, {}, refractPass(1.5f), ms), out, first), 0u) << first;
+    EXPECT_EQ(shadedMismatches(shadeOnDevice(*vk_, 64, floatTriangles(mesh), Surfaces{}, {rays, hits, {}, {}}, refractPass(1.5f), ms), out, first), 0u) << first;
     // The workload's count of reflected rays finds ray 2 alone.
     Workload w;
     w.cameraHits = hits;

@@ -81,7 +81,9 @@ TEST_F(ShadowKernels, AHandBuiltSceneCastsTheShadowsComputedByHand) {
     ASSERT_EQ(cameraHits[0].primitive, 1u);
     ASSERT_EQ(cameraHits[1].primitive, 0u);
     ASSERT_EQ(cameraHits[2].primitive, 1u);
-    const ShadedRays shadow = shadeOnCpu(mesh, camera, cameraHits, {}, shadowPass(kLight));
+    Surfaces lit;
+    lit.lights = {kLight};
+    const ShadedRays shadow = shadeOnCpu(mesh, lit, {camera, cameraHits, {}, {}}, shadowPass(1));
     ASSERT_EQ(shadow.rays.size(), 2u);  // hit 2 is unlit
     EXPECT_EQ(shadow.parents, (std::vector<std::uint32_t>{0, 1}));
     EXPECT_EQ(shadow.paths, (std::vector<std::uint32_t>{0, 1}));
@@ -92,7 +94,7 @@ TEST_F(ShadowKernels, AHandBuiltSceneCastsTheShadowsComputedByHand) {
     EXPECT_EQ(shadow.rays[1].directionTMax, glm::vec4(1.5f, 4.0f - up, 1.5f, 1.0f));
     // The device's shading pass makes the same floats.
     double ms = 0.0;
-    const ShadedRays device = shadeOnDevice(*vk_, 64, floatTriangles(mesh), camera, cameraHits, {}, shadowPass(kLight), ms);
+    const ShadedRays device = shadeOnDevice(*vk_, 64, floatTriangles(mesh), lit, {camera, cameraHits, {}, {}}, shadowPass(1), ms);
     std::string first;
     EXPECT_EQ(shadedMismatches(device, shadow, first), 0u) << first;
 

@@ -13,7 +13,7 @@ Workload aoWorkload(const WorkloadInputs& in, Row& row) {
     const float radius = in.run.has("ao.radius") ? float(in.run.getFloat("ao.radius") * in.run.getFloat("scene.scale"))
                                                  : 0.1f * glm::length(in.scene.bounds().extent());
     row["ao_radius_traced"] = formatNumber(radius, 9);
-    Workload w = followPaths(in, {diffusePass(samples, 1, seed, radius)}, gpu::kQueryAny,
+    Workload w = followPaths(in, std::make_shared<const Surfaces>(), {diffusePass(samples, 1, seed, radius)}, gpu::kQueryAny,
                              [](std::size_t, std::uint64_t rays, std::uint64_t) {
                                  return "rays.type = ao: no rays to trace: none of the " + std::to_string(rays) +
                                         " camera rays hit";

@@ -21,7 +21,9 @@ Workload shadowWorkload(const WorkloadInputs& in, Row& row) {
     }();
     for (int a = 0; a < 3; ++a) row[std::string("light_") + char('x' + a)] = formatNumber(light[a], 9);
     row["camera_rays"] = std::to_string(in.cameraRays.size());
-    Workload w = followPaths(in, {shadowPass(light)}, gpu::kQueryAny, [](std::size_t, std::uint64_t rays, std::uint64_t hits) {
+    auto surfaces = std::make_shared<Surfaces>();
+    surfaces->lights = {light};
+    Workload w = followPaths(in, std::move(surfaces), {shadowPass(1)}, gpu::kQueryAny, [](std::size_t, std::uint64_t rays, std::uint64_t hits) {
         return "rays.type = shadow: no shadow rays to trace (" +
                (hits ? std::to_string(hits) + " of " + std::to_string(rays) + " camera rays hit, all with the light behind their surface)"
                      : "none of the " + std::to_string(rays) + " camera rays hit)");
@@ -39,10 +41,7 @@ const RayType& shadowRayType() {
         RayType t;
         t.name = "shadow";
         t.help = "one any-hit ray from each camera ray's hit toward the point light (shadow casting)";
-        t.keys = {{"light.position", ValueType::Float3,
-                   "shadow rays: the point light, in the scene's own coordinates (moves with scene.scale and scene.translate; "
-                   "default: above the scene box's centre along camera.up, one box diagonal away)",
-                   {}}};
+        // Its light is light.position (harness/config.cpp: whitted reads it too).
         t.columns = {
             {"camera_rays", K::Count, "rays", "shadow: camera rays (one per pixel) whose hits the shadow rays leave from"},
             {"camera_rays_hit", K::Count, "rays", "shadow: camera rays that hit (by the run's structure)"},
