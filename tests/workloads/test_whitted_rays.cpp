@@ -133,9 +133,9 @@ protected:
                           "[[material]]\nmesh = \"cgal:sphere\"\ntype = \"glass\"\nior = 1.5\n"
                           "[[light]]\nposition = [2, 5.5, 2]\n[[light]]\nposition = [-6, 4, 6]\n");
     }
-    std::string header() {
-        return "[scene]\nsource = \"" + room() +
-               "\"\n[camera]\nwidth = 32\nheight = 24\nposition = [0, 3, 9.5]\nlook_at = [0, 2.5, 0]\n[rays]\ntype = \"whitted\"\n";
+    std::string header(const std::string& sceneKeys = "") {
+        return "[scene]\nsource = \"" + room() + "\"\n" + sceneKeys +
+               "[camera]\nwidth = 32\nheight = 24\nposition = [0, 3, 9.5]\nlook_at = [0, 2.5, 0]\n[rays]\ntype = \"whitted\"\n";
     }
 };
 
@@ -178,6 +178,11 @@ TEST_F(WhittedRuns, WeightsAreConservedByGlassAndSplitByMirrors) {
     const ExperimentResult glass = run(base + "[whitted]\nsurface = \"glass\"\n");
     ASSERT_EQ(glass.rows.at(0).at("status"), "ok") << glass.rows.at(0).at("error");
     EXPECT_NEAR(std::stod(glass.rows[0].at("whitted_weight")), std::stod(glass.rows[0].at("whitted_parent_hits")), 1e-3);
+    // Every hit on glass reflects (past the critical angle, only reflects); the rest are refractions.
+    EXPECT_EQ(glass.rows[0].at("whitted_reflected"), glass.rows[0].at("whitted_parent_hits"));
+    EXPECT_EQ(std::stoul(glass.rows[0].at("whitted_reflected")) + std::stoul(glass.rows[0].at("whitted_refracted")),
+              std::stoul(glass.rows[0].at("rays")));
+    EXPECT_GT(std::stoul(glass.rows[0].at("whitted_refracted")), 0u);
     const ExperimentResult mirror = run(base + "[whitted]\nsurface = \"mirror\"\nreflectance = 0.25\ndepth = [0, 1]\n"
                                                "rays = [\"secondary\", \"shadow\"]\n");
     for (const Row& row : mirror.rows) {
@@ -190,6 +195,7 @@ TEST_F(WhittedRuns, WeightsAreConservedByGlassAndSplitByMirrors) {
         const double rays = std::stod(row.at("rays")), weight = std::stod(row.at("whitted_weight"));
         if (row.at("whitted_rays") == "secondary") {
             EXPECT_EQ(row.at("rays"), row.at("whitted_parent_hits"));  // a mirror ray per hit
+            EXPECT_EQ(row.at("whitted_refracted"), "0");
             EXPECT_NEAR(weight, 0.25 * rays, 1e-6 * rays);
         } else {
             // From generation k's hits: (1 - r) r^k.
@@ -197,6 +203,18 @@ TEST_F(WhittedRuns, WeightsAreConservedByGlassAndSplitByMirrors) {
             EXPECT_NEAR(weight, carried * rays, 1e-6 * rays);
         }
     }
+}
+
+// The description's lights move with the scene (scene.scale), as the camera does: scaled by 2,
+// exactly in float, the room casts the same shadows.
+TEST_F(WhittedRuns, TheDescriptionsLightsMoveWithTheScene) {
+    const ExperimentResult result = run(header("scale = [1, 2]\n") + "[whitted]\ndepth = 0\nrays = \"shadow\"\n"
+                                                   "[structure]\ntype = \"bvh\"\n");
+    ASSERT_EQ(result.rows.size(), 2u);
+    for (const Row& row : result.rows) ASSERT_EQ(row.at("status"), "ok") << row.at("error");
+    EXPECT_EQ(result.rows[0].at("rays"), result.rows[1].at("rays"));
+    EXPECT_EQ(result.rows[0].at("hits"), result.rows[1].at("hits"));
+    EXPECT_GT(std::stoul(result.rows[0].at("hits")), 0u);
 }
 
 TEST_F(WhittedRuns, ErrorsNameTheKey) {
