@@ -188,7 +188,7 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
             add(p + "distance_error_max", kind, "", "|t - t_exact| / t_exact, max", 1e-6);
         }
         // Image-level accuracy, as OpenImageIO's idiff measures it, on the pixels of the exact_rays.
-        add("image_psnr_db", K::Count, "dB", "shaded pixels (8-bit grey, as the PNG) of the kernel's hits against those of the exact hits on the full scene: PSNR, 20 log10(1 / RMS error) on [0, 1]; inf when equal");
+        add("image_psnr_db", K::Count, "dB", "shaded pixels (8-bit grey, as the PNG) of the run's image against the same image made with the exact hits on the full scene (rays after the first hit: the batch's image, of its rays' own hits or of the camera hits they change; since results schema 10): PSNR, 20 log10(1 / RMS error) on [0, 1]; inf when equal");
         add("image_error_mean", K::Count, "", "shaded pixels against the exact render: mean |difference|");
         add("image_error_max", K::Count, "", "shaded pixels against the exact render: largest |difference|");
         add("image_pixels_differ", K::Count, "pixels", "shaded pixels whose 8-bit grey differs from the exact render's");

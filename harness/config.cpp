@@ -160,6 +160,12 @@ const std::vector<KeySpec>& configSchema() {
         add({"device.name", ValueType::String, "\"auto\" (discrete GPU, else lavapipe) or a substring of the device name", std::string("auto")});
         add({"device.validation", ValueType::Bool, "enable the Vulkan validation layer (a run fails on any message)", false});
         add({"output.images", ValueType::Bool, "write PNGs (needs OpenImageIO; else hit records are kept)", true});
+        {
+            KeySpec exr{"output.exr", ValueType::Bool, "also write each run's shaded image as <run>-shaded.exr: the shades in float (a hit's |cos| between normal and ray, or the batch image's value; a miss 0), one channel Y, through OpenImageIO's OpenEXR writer", false};
+            exr.appliesWhen = {"output.images=true"};
+            exr.since = 10;
+            add(std::move(exr));
+        }
         add({"output.hit_records", ValueType::Bool, "keep per-ray hit records (<run>.hits) for `rtbench images`", false});
         return s;
     }();

@@ -300,7 +300,32 @@ std::string encodePng(std::uint32_t width, std::uint32_t height, const std::vect
 #endif
 }
 
-void writeImages(const std::string& prefix, const HitImage& image) {
+std::string encodeExr(std::uint32_t width, std::uint32_t height, const std::vector<float>& grey,
+                      const std::string& nameForErrors) {
+#ifdef RTBENCH_WITH_OIIO
+    const std::string at = printable(nameForErrors) + ": ";
+    if (grey.size() != std::size_t(width) * height)
+        throw Error(at + "an EXR of " + std::to_string(width) + " x " + std::to_string(height) + " needs " +
+                    std::to_string(std::size_t(width) * height) + " values, given " + std::to_string(grey.size()));
+    // Into memory, as encodePng: the file is written by writeFileAtomically.
+    std::vector<unsigned char> bytes;
+    OIIO::Filesystem::IOVecOutput memory(bytes);
+    auto out = OIIO::ImageOutput::create("openexr", &memory);
+    if (!out) throw Error(at + "OpenImageIO cannot create an OpenEXR writer: " + OIIO::geterror());
+    if (!out->supports("ioproxy")) throw Error(at + "OpenImageIO's OpenEXR writer cannot write into memory");
+    OIIO::ImageSpec spec(int(width), int(height), 1, OIIO::TypeDesc::FLOAT);
+    spec.channelnames = {"Y"};  // one luminance channel: the grey shade
+    if (!out->open(nameForErrors, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, grey.data()) || !out->close())
+        throw Error(at + "OpenImageIO's OpenEXR encoding failed: " + out->geterror());
+    if (bytes.empty()) throw Error(at + "OpenImageIO's OpenEXR encoding wrote nothing");
+    return std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+#else
+    (void)width, (void)height, (void)grey;
+    throw Error(printable(nameForErrors) + ": built without OpenImageIO (RTBENCH_WITH_OIIO=OFF): cannot encode EXRs");
+#endif
+}
+
+void writeImages(const std::string& prefix, const HitImage& image, bool exr) {
 #ifdef RTBENCH_WITH_OIIO
     const std::size_t n = std::size_t(image.width) * image.height;
     if (image.shade.size() != n || image.diff.size() != n)
@@ -324,14 +349,21 @@ void writeImages(const std::string& prefix, const HitImage& image) {
         }
         std::memcpy(&diff[i * 3], rgb, 3);
     }
-    // Both encoded before either is written: a failed encoding leaves neither half-made.
-    const std::string shadedPath = prefix + "-shaded.png", diffPath = prefix + "-diff.png";
+    // Every file encoded before any is written: a failed encoding leaves none half-made.
+    const std::string shadedPath = prefix + "-shaded.png", diffPath = prefix + "-diff.png", exrPath = prefix + "-shaded.exr";
     const std::string shadedPng = encodePng(image.width, image.height, shaded, shadedPath);
     const std::string diffPng = encodePng(image.width, image.height, diff, diffPath);
+    std::string shadedExr;
+    if (exr) {
+        std::vector<float> grey(n);
+        for (std::size_t i = 0; i < n; ++i) grey[i] = std::max(image.shade[i], 0.0f);  // a miss: 0
+        shadedExr = encodeExr(image.width, image.height, grey, exrPath);
+    }
     writeFileAtomically(shadedPath, shadedPng);
     writeFileAtomically(diffPath, diffPng);
+    if (exr) writeFileAtomically(exrPath, shadedExr);
 #else
-    (void)image;
+    (void)image, (void)exr;
     throw Error(prefix + ": built without OpenImageIO (RTBENCH_WITH_OIIO=OFF): keep hit records and run `rtbench images`");
 #endif
 }

@@ -73,9 +73,14 @@ bool imagesSupported();  // built with OpenImageIO
 // Encodes a PNG of width x height RGB8 pixels in memory (throws when built without OpenImageIO).
 std::string encodePng(std::uint32_t width, std::uint32_t height, const std::vector<std::uint8_t>& rgb,
                       const std::string& nameForErrors);
-// Writes <prefix>-shaded.png and <prefix>-diff.png, each encoded in memory and written through
-// writeFileAtomically; throws when built without OpenImageIO.
-void writeImages(const std::string& prefix, const HitImage& image);
+// Encodes an OpenEXR image of width x height float values, one channel "Y", in memory (throws
+// when built without OpenImageIO).
+std::string encodeExr(std::uint32_t width, std::uint32_t height, const std::vector<float>& grey,
+                      const std::string& nameForErrors);
+// Writes <prefix>-shaded.png and <prefix>-diff.png, and with `exr` <prefix>-shaded.exr (the
+// shades in float, a miss 0), each encoded in memory and written through writeFileAtomically;
+// throws when built without OpenImageIO.
+void writeImages(const std::string& prefix, const HitImage& image, bool exr = false);
 
 // For `rtbench images`: converts every run-NNN.hits file of a folder, in name order. Each file is
 // checked against the row of run NNN in the folder's runs.csv (camera_width, camera_height,

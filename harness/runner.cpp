@@ -347,22 +347,34 @@ void writeExactColumns(const std::string& prefix, const ExactAccuracy& a, Row& r
 // A shaded pixel differs from the exact render's when its 8-bit grey differs (by a level or more).
 constexpr double kPixelDifferThreshold = 0.5 / 255.0;
 
-// Image-level accuracy (harness/image_compare.h, idiff's measures): the 8-bit grey of the shaded
-// pixels of the sampled rays, the kernel's image (its hits on the traced scene) against the exact
-// hits on the full scene (the whole image when every ray is sampled, else the sample as one row of
-// pixels).
-void writeImageAccuracy(const std::vector<gpu::Ray>& rays, const RunScene& scene, const std::vector<gpu::HitRecord>& hits,
-                        const HitImage& image, const ExactHits& exact, Row& row) {
-    std::vector<float> test(exact.rays.size()), reference(exact.rays.size());
+// The batch's hits with the exact ones in place of the sampled rays': what the exact render is
+// made from. In a tie the kernel's triangle is as right as the lowest-numbered one, and shades as it.
+std::vector<gpu::HitRecord> exactInPlace(const std::vector<gpu::HitRecord>& hits, const ExactHits& exact, bool sameTriangles) {
+    std::vector<gpu::HitRecord> out = hits;
     for (std::size_t i = 0; i < exact.rays.size(); ++i) {
-        const std::uint32_t ray = exact.rays[i], primitive = hits[ray].primitive;
-        std::uint32_t exactPrimitive = exact.hits[i].primitive;
-        // In a tie the kernel's triangle is as right as the lowest-numbered one, and shades as it.
-        if (scene.sameTriangles && primitive != gpu::kNoHit && exact.isFirstHit(i, primitive)) exactPrimitive = primitive;
-        test[i] = float(pixelGrey(image.shade[ray])) / 255.0f;
-        reference[i] = float(pixelGrey(shadeHit(scene.full, exactPrimitive, rays[ray]))) / 255.0f;
+        gpu::HitRecord& h = out[exact.rays[i]];
+        const bool tie = sameTriangles && h.primitive != gpu::kNoHit && exact.isFirstHit(i, h.primitive);
+        if (!tie) h.primitive = exact.hits[i].primitive;
     }
-    const bool whole = exact.rays.size() == rays.size();
+    return out;
+}
+
+// Image-level accuracy (harness/image_compare.h, idiff's measures): the 8-bit grey of the run's
+// image (its hits) against the same image made with the exact hits of the sampled rays (the whole
+// image when every ray is sampled, else the sampled rays' pixels as one row). `pixels`: the
+// pixel of each batch ray (empty: ray i is pixel i).
+void writeImageAccuracy(const HitImage& image, const HitImage& exactImage, const ExactHits& exact, std::size_t rays,
+                        const std::vector<std::uint32_t>& pixels, Row& row) {
+    const bool whole = exact.rays.size() == rays;
+    std::vector<float> test, reference;
+    auto addPixel = [&](std::size_t p) {
+        test.push_back(float(pixelGrey(image.shade[p])) / 255.0f);
+        reference.push_back(float(pixelGrey(exactImage.shade[p])) / 255.0f);
+    };
+    if (whole)
+        for (std::size_t p = 0; p < image.shade.size(); ++p) addPixel(p);
+    else
+        for (std::uint32_t ray : exact.rays) addPixel(pixels.empty() ? ray : pixels[ray]);
     const ImageComparison c = compareImages(test, reference, whole ? image.width : unsigned(test.size()),
                                             whole ? image.height : 1u, kPixelDifferThreshold);
     row["image_psnr_db"] = num(c.psnr, 5);
@@ -482,11 +494,16 @@ void finishRun(RunInProgress& p, const std::string& folder, Caches& caches, Row&
     writeTimingResults(run, vk, rays.size(), p.rounds->result(), p.started, row);
     method.timer->checkHits();
 
-    // The kernel's image: its shading, and where its hits differ from Embree's.
-    const HitImage image = workload.fromCamera() || workload.image == BatchImage::Hits
-                               ? makeHitImage(width, height, rays, mesh, method.hits, embreeHits, workload.pixels)
-                               : makeBatchImage(width, height, p.cameraRays, workload.cameraHits, mesh, workload.pixels,
-                                                method.hits, embreeHits);
+    // The run's image from the batch's hits `hits`: the rays' own hits shaded on `shadedOn` (camera
+    // rays, reflections, ...), or the camera hits changed by the batch's (shadow rays, ...); where
+    // the hits differ from Embree's.
+    const bool ownHits = workload.fromCamera() || workload.image == BatchImage::Hits;
+    auto imageOf = [&](const std::vector<gpu::HitRecord>& hits, const TriangleMesh& shadedOn) {
+        return ownHits ? makeHitImage(width, height, rays, shadedOn, hits, embreeHits, workload.pixels)
+                       : makeBatchImage(width, height, p.cameraRays, workload.cameraHits, mesh, workload.pixels, hits,
+                                        embreeHits);
+    };
+    const HitImage image = imageOf(method.hits, mesh);
 
     // Ground truth: the exact first hits of a sample of the rays on the full scene, for the kernel
     // and for Embree; the shaded pixels of those rays against the exact render.
@@ -495,9 +512,11 @@ void finishRun(RunInProgress& p, const std::string& folder, Caches& caches, Row&
     row["exact_ties"] = std::to_string(kernelAccuracy.ties);
     writeExactColumns("exact_", kernelAccuracy, row);
     writeExactColumns("embree_exact_", compareExact(embreeHits, exact, scene.sameTriangles, query), row);
-    if (workload.fromCamera())
-        writeImageAccuracy(rays, scene, method.hits, image, exact, row);
-    else  // the sampled rays' camera rays, judged too: did they leave from the exact scene's surface?
+    // The exact render: the exact hits' own triangles of the full scene, or the camera hits (the
+    // traced scene's, as the kernel's image) changed by the exact hits.
+    writeImageAccuracy(image, imageOf(exactInPlace(method.hits, exact, scene.sameTriangles), scene.full), exact, rays.size(),
+                       workload.pixels, row);
+    if (!workload.fromCamera())  // the sampled rays' camera rays, judged too: did they leave from the exact scene's surface?
         row["exact_parent_wrong"] = std::to_string(pathsLeavingWrongHits(exactReferenceFor(run, scene.full, caches), p.cameraRays,
                                                                          workload, exact.rays, scene.sameTriangles));
 
@@ -517,7 +536,7 @@ void finishRun(RunInProgress& p, const std::string& folder, Caches& caches, Row&
     const std::string prefix = (fs::path(folder) / ("run-" + row["run"])).string();
     const bool wantImages = run.getBool("output.images");
     if (run.getBool("output.hit_records") || (wantImages && !imagesSupported())) writeHitRecords(prefix + ".hits", image, row["run"], row["config_hash"]);
-    if (wantImages && imagesSupported()) writeImages(prefix, image);
+    if (wantImages && imagesSupported()) writeImages(prefix, image, run.getBool("output.exr"));
 
     if (vk.validationMessages().size() != p.messagesBefore)
         throw Error("the Vulkan validation layer reported: " + vk.validationMessages()[p.messagesBefore]);

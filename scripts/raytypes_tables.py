@@ -18,7 +18,7 @@ import matplotlib.pyplot as plt
 import matplotlib.ticker
 import pandas as pd
 
-from rtbench_results import commit_text, load, wrong_rays
+from rtbench_results import commit_text, load, whitted_frames, wrong_rays
 
 # Purcell et al. 2002, Table 3: relative instructions / bandwidth of a frame, against ray casting
 # (his shadow caster finds the eye rays' hits by rasterization, so its frame is the shadow rays').
@@ -109,35 +109,17 @@ def main() -> int:
         lines.append(f"| {scene} | {method} | {fmt(a.kernel_ms_median)} | {fmt(c.kernel_ms_median)} | "
                      f"{fmt(c.kernel_ms_median / a.kernel_ms_median, 2)} | {fmt(a.work_per_ray_mean, 2)} | "
                      f"{fmt(c.work_per_ray_mean, 2)} |")
-    # Whitted frames: the camera rays plus every batch of depth <= D (generations 1..D and the shadow
-    # rays of generations 0..D), against the camera rays alone, as Purcell's Table 3 counts a frame.
-    whitted = runs[runs.rays_type == "whitted"]
-    frames = []
-    for (scene, method), g in whitted.groupby(["scene", "method"]):
-        base = primary.loc[(scene, method)] if (scene, method) in primary.index else None
-        if base is None:
-            continue
-        for depth in sorted(g.whitted_depth.unique()):
-            upto = g[g.whitted_depth <= depth]
-            # Complete only if every batch up to the depth is there: shadow 0..D, secondary 1..D.
-            if len(upto) != 2 * int(depth) + 1:
-                continue
-            rays = upto.rays.sum() + base.rays
-            frames.append((scene, method, int(depth), int(rays), rays / base.rays,
-                           (upto.kernel_ms_median.sum() + base.kernel_ms_median) / base.kernel_ms_median,
-                           (upto.bytes_total.sum() + base.bytes_total) / base.bytes_total,
-                           (upto.embree1_ms_median.sum() + base.embree1_ms_median) / base.embree1_ms_median,
-                           upto[upto.whitted_rays == "secondary"].simd_efficiency.mean(), int(upto.wrong.sum())))
-    if frames:
+    frames = whitted_frames(runs)
+    if not frames.empty:
         lines += ["", "## Whitted ray tracing: a frame to depth D against ray casting", "",
                   "A frame to depth D: the camera rays, generations 1..D of reflections and refractions and the shadow "
                   "rays of generations 0..D (every light), each batch a run of its own; its cost is the sum of the "
                   "batches' against the camera rays' alone (same scene, structure and strategy).", "",
                   "| scene | method | depth | rays | × rays | × time | × bytes | × Embree time | SIMD eff. (secondary) | wrong |",
                   "|---|---|---|---|---|---|---|---|---|---|"]
-        for f in frames:
-            lines.append(f"| {f[0]} | {f[1]} | {f[2]} | {f[3]:,} | {fmt(f[4], 2)} | {fmt(f[5], 2)} | {fmt(f[6], 2)} | "
-                         f"{fmt(f[7], 2)} | {fmt(100 * f[8], 1)}% | {f[9]} |")
+        for f in frames.itertuples():
+            lines.append(f"| {f.scene} | {f.method} | {f.depth} | {f.rays:,} | {fmt(f.rays_x, 2)} | {fmt(f.time_x, 2)} | "
+                         f"{fmt(f.bytes_x, 2)} | {fmt(f.embree_x, 2)} | {fmt(100 * f.secondary_simd, 1)}% | {f.wrong} |")
     lines += ["", "## Beside Purcell et al. 2002, Table 3", "",
               f"Purcell's shadow caster costs {PURCELL_TABLE3['shadow'][0]} × ray casting's instructions and "
               f"{PURCELL_TABLE3['shadow'][1]} × its bandwidth (simulated, his branching kernels); his Whitted "

@@ -110,3 +110,32 @@ def load(folder: Path):
             runs[column] = None
     device = context["devices"][0]["name"] if context.get("devices") else "?"
     return runs, failed, context, device
+
+
+def whitted_frames(runs: pd.DataFrame) -> pd.DataFrame:
+    """Whitted frames to depth D (rays.type = whitted, Purcell Table 3's Whitted ray tracer): the
+    camera rays plus generations 1..D of reflections and refractions and the shadow rays of
+    generations 0..D, each batch a run of its own, summed and set against the camera rays' run of
+    the same scene and method ("method" column). A depth is kept only when every batch up to it is
+    there. Columns: scene, method, depth, rays, and × primary for rays, time, bytes and Embree's
+    time; secondary_simd: the secondary batches' mean SIMD efficiency; wrong: their rays wrong."""
+    rows = []
+    primary = runs[runs.rays_type == "primary"].set_index(["scene", "method"])
+    whitted = runs[runs.rays_type == "whitted"]
+    for (scene, method), g in whitted.groupby(["scene", "method"]):
+        if (scene, method) not in primary.index:
+            continue
+        base = primary.loc[(scene, method)]
+        for depth in sorted(g.whitted_depth.unique()):
+            upto = g[g.whitted_depth <= depth]
+            if len(upto) != 2 * int(depth) + 1:  # shadow 0..D, secondary 1..D
+                continue
+            total = lambda column: upto[column].sum() + base[column]
+            rows.append({"scene": scene, "method": method, "depth": int(depth), "rays": int(total("rays")),
+                         "rays_x": total("rays") / base.rays,
+                         "time_x": total("kernel_ms_median") / base.kernel_ms_median,
+                         "bytes_x": total("bytes_total") / base.bytes_total,
+                         "embree_x": total("embree1_ms_median") / base.embree1_ms_median,
+                         "secondary_simd": upto[upto.whitted_rays == "secondary"].simd_efficiency.mean(),
+                         "wrong": int(wrong_rays(upto).sum())})
+    return pd.DataFrame(rows)

@@ -472,6 +472,35 @@ TEST_F(EndToEnd, PackedVerticesKeepAClosedMeshClosed) {
     }
 }
 
+// Rays after the first hit are judged as an image too: the run's image (shadow rays: the camera
+// hits darkened where the batch's rays are occluded; reflections: their own hits) against the same
+// image made with the exact hits. On the full bunny they agree; simplified to 1% of its triangles,
+// the shadow rays the exact (full) bunny answers otherwise change their pixels, and no others.
+TEST_F(EndToEnd, RaysAfterTheFirstHitAreJudgedAsAnImageAgainstTheExactRender) {
+    const ExperimentResult result = run(
+        "[scene]\nsource = \"cgal:bunny00\"\n[camera]\nwidth = 64\nheight = 64\n[structure]\ntype = \"bvh\"\n"
+        "[rays]\ntype = [\"shadow\", \"reflection\"]\n[output]\nimages = false\n"
+        "[[sweep]]\nname = \"ratio\"\nscene.simplify_ratio = [1.0, 0.01]\n");
+    ASSERT_EQ(result.rows.size(), 4u);
+    bool changed = false;
+    for (const Row& row : result.rows) {
+        SCOPED_TRACE(row.at("label"));
+        ASSERT_EQ(row.at("status"), "ok") << row.at("error");
+        const std::uint64_t wrong = std::stoul(row.at("exact_false_misses")) + std::stoul(row.at("exact_false_hits")),
+                            differ = std::stoul(row.at("image_pixels_differ"));
+        if (row.at("scene_simplify_ratio") == "1") {
+            EXPECT_EQ(row.at("image_psnr_db"), "inf");
+            EXPECT_EQ(differ, 0u);
+        } else if (row.at("rays_type") == "shadow") {
+            EXPECT_GT(wrong, 0u);
+            EXPECT_GT(differ, 0u);
+            EXPECT_LE(differ, wrong);  // a ray's answer changes its own pixel alone
+            changed = true;
+        }
+    }
+    EXPECT_TRUE(changed);
+}
+
 // A simplified scene (scene.simplify_*): every method and Embree trace the simplified triangles,
 // the exact reference the full scene, from the same camera. The triangles differ, so no ray counts
 // as a wrong primitive; misses and hits against the full surface do.

@@ -346,5 +346,49 @@ TEST(Png, EncodedInMemoryWithoutTouchingTheNamedPath) {
     EXPECT_EQ(errorOf([] { encodePng(2, 2, {1, 2, 3}, "x.png"); }), "x.png: a PNG of 2 x 2 needs 12 bytes of RGB, given 3");
 }
 
+TEST(Exr, EncodedInMemoryAndReadBackFloatForFloat) {
+    if (!imagesSupported()) {
+        EXPECT_THAT(errorOf([] { encodeExr(1, 1, {0.5f}, "x.exr"); }), HasSubstr("built without OpenImageIO"));
+        return;
+    }
+    TempDir dir;
+    const std::vector<float> grey = {0.0f, 0.25f, 1.0f / 3.0f, 0.999f, 1.0f, 0.125f};
+    const std::string bytes = encodeExr(3, 2, grey, dir.file("only-a-name.exr"));
+    EXPECT_EQ(bytes.substr(0, 4), "\x76\x2f\x31\x01");  // OpenEXR's magic number
+    EXPECT_FALSE(fs::exists(dir.file("only-a-name.exr")));
+    EXPECT_EQ(errorOf([] { encodeExr(2, 2, {1.0f}, "x.exr"); }), "x.exr: an EXR of 2 x 2 needs 4 values, given 1");
+#ifdef RTBENCH_WITH_OIIO
+    const std::string path = dir.write("back.exr", bytes);
+    auto in = OIIO::ImageInput::open(path);
+    ASSERT_TRUE(in) << OIIO::geterror();
+    EXPECT_EQ(in->spec().width, 3);
+    EXPECT_EQ(in->spec().height, 2);
+    ASSERT_EQ(in->spec().nchannels, 1);
+    EXPECT_EQ(in->spec().channelnames[0], "Y");
+    std::vector<float> back(6);
+    ASSERT_TRUE(in->read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, back.data()));
+    EXPECT_EQ(back, grey);  // float stored as float: bit for bit
+#endif
+}
+
+// writeImages with an EXR: the shades in float, a miss 0, beside the PNGs.
+TEST(Exr, WrittenBesideThePngsWithTheShades) {
+    if (!imagesSupported()) GTEST_SKIP() << "built without OpenImageIO";
+    TempDir dir;
+    const HitImage image = pattern(4, 3);
+    writeImages(dir.file("run-000"), image, true);
+    EXPECT_TRUE(fs::exists(dir.file("run-000-shaded.png")));
+    EXPECT_TRUE(fs::exists(dir.file("run-000-diff.png")));
+#ifdef RTBENCH_WITH_OIIO
+    auto in = OIIO::ImageInput::open(dir.file("run-000-shaded.exr"));
+    ASSERT_TRUE(in) << OIIO::geterror();
+    std::vector<float> back(12);
+    ASSERT_TRUE(in->read_image(0, 0, 0, 1, OIIO::TypeDesc::FLOAT, back.data()));
+    for (std::size_t i = 0; i < 12; ++i) EXPECT_EQ(back[i], image.shade[i] < 0.0f ? 0.0f : image.shade[i]) << i;
+#endif
+    writeImages(dir.file("run-001"), image);
+    EXPECT_FALSE(fs::exists(dir.file("run-001-shaded.exr")));
+}
+
 }  // namespace
 }  // namespace rtbench
