@@ -45,6 +45,14 @@ def fmt(value, digits=3) -> str:
     return "" if pd.isna(value) else f"{value:,.{digits}f}"
 
 
+def legend_first(axes_row, fontsize):
+    """A legend on the first chart of a row that has labelled lines or bars."""
+    for ax in axes_row:
+        if ax.get_legend_handles_labels()[0]:
+            ax.legend(fontsize=fontsize)
+            return
+
+
 def save(fig, folder: Path, name: str):
     fig.tight_layout()
     for ext in ("png", "svg"):
@@ -163,8 +171,8 @@ def main() -> int:
             ax.set_title(f"{scene}: frame {title} / camera rays'", fontsize=9)
             if col == 0:
                 ax.set_ylabel("× primary")
-    axes[0][0].legend(fontsize=7)
-    axes[1][0].legend(fontsize=7)
+    legend_first(axes[0], 7)
+    legend_first(axes[1], 7)
     fig.suptitle(f"Cost of a frame by ray type, against ray casting (Purcell Table 3)\n{device}, {size}", fontsize=10)
     save(fig, folder, "raytypes_cost")
 
@@ -184,6 +192,17 @@ def main() -> int:
                     ax.plot(g.k, g.embree1_ms_median.cumsum(), marker="x", ls=":", color=color,
                             label=f"Embree rtcIntersect1 (rays of {method.split(' /')[0]})")
                 lanes.plot(g.k, 100 * g.simd_efficiency, marker="o", color=color, label=f"{method}, reflection")
+            # Whitted: a frame to depth D (every batch up to it), and generation k's SIMD efficiency.
+            wf = frames[(frames.scene == scene) & (frames.method == method)] if not frames.empty else frames
+            if not wf.empty:
+                base = mine[mine.rays_type == "primary"]
+                ax.plot(wf.depth, wf.time_x * base.kernel_ms_median.iloc[0], marker="D", color=color, label=f"{method}, Whitted")
+                if method.endswith("branching"):
+                    ax.plot(wf.depth, wf.embree_x * base.embree1_ms_median.iloc[0], marker="x", ls=":", color=color,
+                            label=f"Embree rtcIntersect1 (rays of {method.split(' /')[0]})")
+                w = mine[(mine.rays_type == "primary") | ((mine.rays_type == "whitted") & (mine.whitted_rays == "secondary"))]
+                w = w.assign(k=w.whitted_depth.where(w.rays_type == "whitted", 0)).sort_values("k")
+                lanes.plot(w.k, 100 * w.simd_efficiency, marker="D", ls="-.", color=color, label=f"{method}, Whitted generation")
             p = mine[mine.rays_type.isin(["primary", "path"])]
             if (p.rays_type == "path").any():
                 p = p.assign(k=p.path_bounce.where(p.rays_type == "path", 0)).sort_values("k")
@@ -191,17 +210,24 @@ def main() -> int:
         for a in (ax, lanes):
             a.xaxis.set_major_locator(matplotlib.ticker.MaxNLocator(integer=True))
         ax.set_yscale("log")
-        ax.set_title(f"{scene}: frame time with k reflection iterations", fontsize=9)
-        ax.set_xlabel("reflection iterations k (0: camera rays only)")
+        whitted_scene = not frames.empty and scene in set(frames.scene)
+        ax.set_title(f"{scene}: frame time " + ("to Whitted depth k" if whitted_scene else "with k reflection iterations"),
+                     fontsize=9)
+        ax.set_xlabel("Whitted depth k (0: camera rays and their shadow rays)" if whitted_scene
+                      else "reflection iterations k (0: camera rays only)")
         ax.set_ylabel("ms, cumulative (log)")
-        lanes.set_title(f"{scene}: SIMD efficiency of reflection\niteration k's and path bounce k's rays\n"
-                        "(branching: lane utilisation; multipass: Purcell's)", fontsize=8)
+        lanes.set_title(f"{scene}: SIMD efficiency of " + ("Whitted generation k's reflections\nand refractions"
+                        if whitted_scene else "reflection\niteration k's and path bounce k's rays") +
+                        "\n(branching: lane utilisation; multipass: Purcell's)", fontsize=8)
         lanes.set_xlabel("iteration or bounce k (0: camera rays)")
         lanes.set_ylabel("%")
         lanes.set_ylim(0, 100)
-    axes[0][0].legend(fontsize=6)
-    axes[1][0].legend(fontsize=6)
-    fig.suptitle(f"Reflection iterations (Christen 2005 Fig. 6.11) and path bounces\n{device}, {size}", fontsize=10)
+    legend_first(axes[0], 6)
+    for a in axes[1]:  # each scene's own kinds of lines
+        if a.get_legend_handles_labels()[0]:
+            a.legend(fontsize=5)
+    fig.suptitle(f"Reflection iterations (Christen 2005 Fig. 6.11), path bounces and Whitted depth\n{device}, {size}",
+                 fontsize=10)
     save(fig, folder, "raytypes_iterations")
     print(text)
     return 0

@@ -436,7 +436,8 @@ def raytypes() -> list:
                 "| method | depth | rays | × rays | × time | × bytes | × Embree time | SIMD eff. of the reflections and "
                 "refractions | rays wrong |", "|---|---|---|---|---|---|---|---|---|"]
         out += [f"| {f.method} | {f.depth} | {count(f.rays)} | {num(f.rays_x, 2)} | {num(f.time_x, 2)} | "
-                f"{num(f.bytes_x, 2)} | {num(f.embree_x, 2)} | {num(100 * f.secondary_simd, 3)}% | {count(f.wrong)} |"
+                f"{num(f.bytes_x, 2)} | {num(f.embree_x, 2)} | "
+                f"{'—' if pd.isna(f.secondary_simd) else num(100 * f.secondary_simd, 3) + '%'} | {count(f.wrong)} |"
                 for f in frames.itertuples()] + [""]
     out += charts("raytypes", {"raytypes_cost": "a frame's cost by ray type against the camera rays'",
                                "raytypes_iterations": "time against reflection iterations, and SIMD efficiency by iteration and bounce"})
