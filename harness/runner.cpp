@@ -1,3 +1,10 @@
+// The sweep: for each run of the plan, its stages in order, each passing typed values to the next:
+// the inputs (harness/run_inputs.h: device, scene, camera, Embree, exact reference, cached across
+// the sweep) -> the ray batch (workloads/: the ray type) -> the method (methods/: the structure and
+// the strategy, and their CPU model) -> the timing rounds (harness/timing_rounds.h) -> the
+// measurements into the row (harness/run_metrics.h) -> the writers (runs.csv, samples.csv,
+// context.json, images). Resumption, the failure policy (a failed run is a row with its reason)
+// and the summary live here; `rtbench merge` in harness/shard_merge.cpp.
 #include "runner.h"
 
 #include <tbb/parallel_for.h>
@@ -12,7 +19,6 @@
 #include <map>
 #include <memory>
 #include <optional>
-#include <regex>
 #include <set>
 #include <fstream>
 #include <sstream>
@@ -23,22 +29,19 @@
 #include "device/vulkan_context.h"
 #include "embree_reference.h"
 #include "exact_reference.h"
-#include "image_compare.h"
 #include "images.h"
 #include "methods/registry.h"
 #include "methods/triangle_store.h"
 #include "noise_guard.h"
 #include "path_check.h"
+#include "run_inputs.h"
+#include "run_metrics.h"
 #include "statistics.h"
 #include "timing_rounds.h"
 #include "output_folder.h"
 #include "structures/camera.h"
 #include "structures/error.h"
-#include "structures/mesh_io.h"
-#include "structures/procedural.h"
 #include "structures/scene_description.h"
-#include "structures/scene_limits.h"
-#include "structures/simplify.h"
 #include "version.h"
 #include "workloads/registry.h"
 
@@ -46,205 +49,6 @@ namespace rtbench {
 namespace fs = std::filesystem;
 
 namespace {
-
-// procedural:NAME, cgal:NAME, a scene description (*.toml) or a mesh file (structures/scene_description.h).
-TriangleMesh loadScene(const std::string& source, const std::string& configDir) {
-    return loadSceneSource(source, configDir);
-}
-
-glm::vec3 toVec3(const std::array<double, 3>& a) { return glm::vec3(float(a[0]), float(a[1]), float(a[2])); }
-
-std::string num(double v, int significant = 6) { return formatNumber(v, significant); }
-
-void writeArchitectureColumns(const ArchitectureMetrics& m, const Structure& structure, std::uint64_t rays, Row& row) {
-    const WorkStats& w = m.work;
-    structure.writeWorkColumns(w.cellsPerRayMean, w.cellsPerRayMax, m.bytes.cells, row);
-    row["work_per_ray_mean"] = num(double(w.cellsTotal + w.trianglesTotal) / double(rays));
-    row["triangles_per_ray_mean"] = num(w.trianglesPerRayMean);
-    row["triangles_per_ray_max"] = std::to_string(w.trianglesPerRayMax);
-    row["traversal_steps_per_ray_mean"] = num(double(w.stepsTotal) / double(rays));
-    row["traversal_steps_per_ray_max"] = std::to_string(w.stepsPerRayMax);
-    row["passes_total"] = std::to_string(m.passes);
-    row["simd_efficiency"] = num(m.simdEfficiency);
-    row["bytes_stencil"] = std::to_string(m.bytes.stencil);
-    row["bytes_state"] = std::to_string(m.bytes.state);
-    if (m.bytes.stack) row["bytes_stack"] = std::to_string(m.bytes.stack);
-    row["bytes_triangle_list"] = std::to_string(m.bytes.triangleList);
-    row["bytes_vertices"] = std::to_string(m.bytes.vertices);
-    row["bytes_output"] = std::to_string(m.bytes.output);
-    row["bytes_total"] = std::to_string(m.bytes.total());
-    row["bytes_per_ray"] = num(double(m.bytes.total()) / double(rays));
-}
-
-// A scene simplified (scene.simplify_*).
-struct SimplifiedScene {
-    std::shared_ptr<TriangleMesh> mesh;
-    double ms = 0.0;
-    bool unchanged = false;  // the target was not below the count: the scene as it is
-};
-
-// What is cached across the runs of one plan (a sweep reuses scenes, devices, Embree scenes).
-struct Caches {
-    std::map<std::string, std::shared_ptr<TriangleMesh>> meshes;   // by sceneKey
-    std::map<std::string, SimplifiedScene> simplified;             // by RunScene::tracedKey
-    std::map<std::string, std::shared_ptr<TriangleMesh>> snapped;  // by RunScene::tracedKey
-    std::map<std::string, std::shared_ptr<VulkanContext>> devices;
-    std::map<std::string, std::shared_ptr<EmbreeReference>> embree;
-    std::map<std::string, std::shared_ptr<ExactReference>> exact;  // by scene
-    std::map<std::string, std::shared_ptr<ExactHits>> exactHits;   // by scene, rays and sample
-    std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();  // samples' t_s origin
-};
-
-// The run's device (device.name, device.validation: the command line's -d and --validation are
-// applied to the plan), opened once per sweep.
-VulkanContext& deviceFor(const RunConfig& run, Caches& caches) {
-    const std::string deviceName = run.getString("device.name");
-    const bool validation = run.getBool("device.validation");
-    const std::string deviceKey = deviceName + (validation ? "+validation" : "");
-    if (!caches.devices.count(deviceKey)) caches.devices[deviceKey] = std::make_shared<VulkanContext>(deviceName, validation);
-    return *caches.devices[deviceKey];
-}
-
-// The scene as a run sees it: its source moved by scene.scale and scene.translate, in float.
-glm::vec3 sceneTransform(const RunConfig& run, glm::vec3 p) {
-    const float scale = float(run.getFloat("scene.scale"));
-    const glm::vec3 translate = toVec3(run.getVec3("scene.translate"));
-    return p * scale + translate;
-}
-
-// The cache key of a run's scene: its source and transform.
-std::string sceneKey(const RunConfig& run) {
-    return run.getString("scene.source") + "|" + formatValue(run.values.at("scene.scale")) + "|" +
-           formatValue(run.values.at("scene.translate"));
-}
-
-// A run's scene twice: as its source describes it (what the exact reference traces) and as the
-// methods trace it, simplified (scene.simplify_*) and snapped to a vertex lattice
-// (intersection.vertex_bits); the same mesh when neither is asked for.
-struct RunScene {
-    const TriangleMesh& full;
-    const TriangleMesh& traced;
-    bool sameTriangles;     // traced triangle i is full triangle i (perhaps with moved vertices)
-    std::string tracedKey;  // the traced mesh's cache key (Embree's scenes are cached by it too)
-};
-
-// The scene as its source describes it, moved; loaded once per sweep. Its `inputs` are the
-// files read, as they were when read.
-const std::shared_ptr<TriangleMesh>& fullScene(const ExperimentPlan& plan, const RunConfig& run, Caches& caches) {
-    const std::string key = sceneKey(run);
-    if (!caches.meshes.count(key)) {
-        TriangleMesh mesh = loadScene(run.getString("scene.source"), plan.configDir);
-        for (glm::vec3& v : mesh.vertices) v = sceneTransform(run, v);
-        caches.meshes[key] = std::make_shared<TriangleMesh>(std::move(mesh));
-    }
-    return caches.meshes[key];
-}
-
-// What a row records of the files its scene was made from: part of the run's identity.
-void writeInputColumns(const TriangleMesh& scene, Row& row) {
-    row["inputs_hash"] = inputsHash(scene.inputs);
-    std::string files;
-    for (const InputFile& f : scene.inputs)
-        files += (files.empty() ? "" : "; ") + f.path + " (" + std::to_string(f.bytes) + " bytes, fnv1a64 " + f.hash + ")";
-    row["input_files"] = files;
-}
-
-RunScene sceneFor(const ExperimentPlan& plan, const RunConfig& run, Caches& caches, Row& row) {
-    const std::string key = sceneKey(run);
-    const std::shared_ptr<TriangleMesh>& full = fullScene(plan, run, caches);
-    writeInputColumns(*full, row);
-    row["scene_full_triangles"] = row["scene_triangles"] = std::to_string(full->triangles.size());
-    validateSceneRange(*full);  // before the structure, the camera fit or Embree see it
-
-    // Simplified: cached by scene and target, whatever the vertex bits.
-    std::shared_ptr<TriangleMesh> simplified = full;
-    bool sameTriangles = true;
-    std::string tracedKey = key;
-    if (run.has("scene.simplify_ratio") || run.has("scene.simplify_triangles")) {
-        const bool exact = run.has("scene.simplify_triangles");
-        const std::size_t target = std::max<std::size_t>(
-            1, exact ? std::size_t(run.getInt("scene.simplify_triangles"))
-                     : std::size_t(std::llround(run.getFloat("scene.simplify_ratio") * double(full->triangles.size()))));
-        tracedKey += "|simplified to " + std::to_string(target) + (exact ? " exactly" : "");
-        if (!caches.simplified.count(tracedKey)) {
-            SimplifiedMesh result = simplifyMesh(*full, target, exact);
-            caches.simplified[tracedKey] = {std::make_shared<TriangleMesh>(std::move(result.mesh)), result.ms, result.unchanged};
-        }
-        const SimplifiedScene& s = caches.simplified[tracedKey];
-        row["scene_simplify_ms"] = num(s.ms, 4);
-        if (!s.unchanged) simplified = s.mesh;  // else the same triangles, ids and all
-        sameTriangles = s.unchanged;
-    }
-    // Snapped to the vertex lattice: cached by the above and the bits.
-    std::shared_ptr<TriangleMesh> traced = simplified;
-    const unsigned vertexBits = unsigned(run.getInt("intersection.vertex_bits"));
-    if (vertexBits != 32) {
-        tracedKey += "|" + std::to_string(vertexBits) + "-bit vertices";
-        if (!caches.snapped.count(tracedKey))
-            caches.snapped[tracedKey] = std::make_shared<TriangleMesh>(snapToLattice(*simplified, vertexBits));
-        traced = caches.snapped[tracedKey];
-        double snapError = 0.0;  // over the vertices of triangles
-        for (const glm::uvec3& t : traced->triangles)
-            for (int k = 0; k < 3; ++k)
-                snapError = std::max(snapError, glm::length(glm::dvec3(traced->vertices[t[k]]) - glm::dvec3(simplified->vertices[t[k]])));
-        row["vertex_lattice_step"] = num(traced->lattice.step);
-        row["vertex_snap_error_max"] = num(snapError, 4);
-    }
-    const TriangleMesh& mesh = *traced;
-    row["scene_triangles"] = std::to_string(mesh.triangles.size());
-    validateSceneRange(mesh);
-    const std::size_t degenerate = mesh.degenerateCount();
-    row["scene_degenerate"] = std::to_string(degenerate);
-    // What makes the scene differ from what its file describes, in the row and on the console.
-    std::vector<std::string> warnings;
-    if (degenerate)  // never hit by any method
-        warnings.push_back(std::to_string(degenerate) + " of " + std::to_string(mesh.triangles.size()) +
-                           " triangles are degenerate (zero area in float) and are never hit");
-    if (mesh.elementsSkipped) warnings.push_back("skipped " + mesh.elementsSkippedWhat + " (not surfaces)");
-    for (const std::string& w : warnings) row["warnings"] += (row["warnings"].empty() ? "" : "; ") + w;
-    return {*full, mesh, sameTriangles, tracedKey};
-}
-
-PinholeCamera cameraFor(const RunConfig& run, const TriangleMesh& mesh) {
-    const std::string source = run.getString("scene.source");
-    PinholeCamera camera = fitCamera(mesh.bounds(), float(run.getFloat("camera.fov_deg")));
-    if (source.rfind("procedural:", 0) == 0 && !run.has("camera.position") && !run.has("camera.look_at"))
-        if (auto own = proceduralCamera(source.substr(11), camera.verticalFovDegrees)) {
-            camera = *own;  // in the scene's own coordinates
-            camera.position = sceneTransform(run, camera.position);
-            camera.lookAt = sceneTransform(run, camera.lookAt);
-        }
-    if (run.has("camera.look_at")) camera.lookAt = sceneTransform(run, toVec3(run.getVec3("camera.look_at")));
-    if (run.has("camera.position")) camera.position = sceneTransform(run, toVec3(run.getVec3("camera.position")));
-    camera.up = toVec3(run.getVec3("camera.up"));
-    return camera;
-}
-
-// Embree on the traced scene, built once per sweep for each scene and device config.
-EmbreeReference& embreeFor(const RunConfig& run, const RunScene& scene, Caches& caches, Row& row) {
-    const std::string embreeConfig = run.getString("baseline.embree_config");
-    const std::string embreeKey = scene.tracedKey + "|" + embreeConfig;
-    if (!caches.embree.count(embreeKey)) caches.embree[embreeKey] = std::make_shared<EmbreeReference>(scene.traced, embreeConfig);
-    EmbreeReference& embree = *caches.embree[embreeKey];
-    row["embree_threads"] = std::to_string(embree.threads());
-    row["embree_isa"] = embree.isa();
-    row["embree_build_ms"] = num(embree.buildMs(), 4);
-    return embree;
-}
-
-// A timed series' statistics into <prefix>_ms_median, _min, _max, _mean, _std, _cv, _ci_low, _ci_high.
-SampleStats writeTimingColumns(const std::string& prefix, const std::vector<double>& ms, Row& row) {
-    const SampleStats s = summarize(ms);
-    row[prefix + "_ms_median"] = num(s.median);
-    row[prefix + "_ms_min"] = num(s.min);
-    row[prefix + "_ms_max"] = num(s.max);
-    row[prefix + "_ms_mean"] = num(s.mean);
-    row[prefix + "_ms_std"] = num(s.stddev, 4);
-    row[prefix + "_ms_cv"] = num(s.cv, 4);
-    row[prefix + "_ms_ci_low"] = num(s.ciLow);
-    row[prefix + "_ms_ci_high"] = num(s.ciHigh);
-    return s;
-}
 
 // The methods a run's rounds time: the kernel (its KernelTimer) and Embree rtcIntersect1 and
 // rtcIntersect16 (any hit: rtcOccluded1 and 16) on the same rays; the single rays' hits go to
@@ -264,123 +68,6 @@ std::vector<TimedMethod> timedMethods(KernelTimer& kernel, EmbreeReference& embr
                                return timed;
                            }});
     return methods;
-}
-
-// A run's timing (harness/timing_rounds.h) into `row`: each method's statistics, the strategy's
-// own series, the speed ratio with its interval, and the noise guard's reading of the window
-// from `before` to now (harness/noise_guard.h).
-void writeTimingResults(const RunConfig& run, const VulkanContext& vk, std::size_t rays, const RoundsResult& timed,
-                        const CpuTimes& before, Row& row) {
-    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-    const CpuTimes after = sampleCpuTimes();
-    const SampleStats k = writeTimingColumns("kernel", timed.of("kernel"), row);
-    row["kernel_mrays_s"] = num(k.median > 0 ? double(rays) / (k.median * 1e3) : 0.0);
-    std::vector<std::string> noisy;
-    const double noiseCv = run.getFloat("experiment.noise_cv");
-    if (k.cv > noiseCv) noisy.push_back("kernel CV " + num(k.cv, 3));
-    for (const char* m : {"embree1", "embree16"}) {
-        const SampleStats e = writeTimingColumns(m, timed.of(m), row);
-        row[std::string(m) + "_mrays_s"] = num(double(rays) / (e.median * 1e3));
-        if (e.cv > noiseCv) noisy.push_back(std::string(m) + " CV " + num(e.cv, 3));
-    }
-    // The strategy's own series: the parts of a repetition, its host-controlled loops.
-    for (const auto& [name, ms] : timed.series) {
-        if (name.rfind("kernel_", 0) == 0) row["kernel_ms_" + name.substr(7)] = num(median(ms));
-        else if (name != "kernel" && name != "embree1" && name != "embree16") row[name + "_ms_median"] = num(median(ms));
-    }
-    const double embreeMedian = median(timed.of("embree1"));
-    row["speed_ratio_vs_embree1"] = num(k.median > 0 ? embreeMedian / k.median : 0.0, 4);
-    const Interval ratio = bootstrapRatioOfMedians(timed.of("embree1"), timed.of("kernel"));
-    row["speed_ratio_ci_low"] = num(ratio.low, 4);
-    row["speed_ratio_ci_high"] = num(ratio.high, 4);
-    row["timing_repetitions"] = std::to_string(timed.repetitions);
-    row["timing_rounds"] = std::to_string(timed.rounds);
-    row["timing_stop"] = timed.stop;
-    row["timing_s"] = num(timed.seconds, 4);
-
-    // The noise guard.
-    const double other = otherCpuFraction(before, after, cores, double(::sysconf(_SC_CLK_TCK)));
-    row["other_cpu_fraction"] = other < 0 ? "" : num(other, 3);
-    const double load = loadAverage();
-    row["load_average"] = load < 0 ? "" : num(load, 3);
-    row["device_host_threads"] = std::to_string(deviceHostThreads(vk.info().type == "cpu", cores));
-    if (!noisy.empty()) noisy.back() += " > experiment.noise_cv " + num(noiseCv, 3);
-    if (other > run.getFloat("experiment.noise_other_cpu"))
-        noisy.push_back("other processes took " + num(100 * other, 3) + "% of the machine's CPU time (> experiment.noise_other_cpu " +
-                        num(run.getFloat("experiment.noise_other_cpu"), 3) + ")");
-    for (const std::string& n : noisy) row["timing_warning"] += (row["timing_warning"].empty() ? "" : "; ") + n;
-}
-
-// The exact reference of a scene, built once per scene.
-const ExactReference& exactReferenceFor(const RunConfig& run, const TriangleMesh& full, Caches& caches) {
-    const std::string key = sceneKey(run);
-    if (!caches.exact.count(key)) caches.exact[key] = std::make_shared<ExactReference>(full);
-    return *caches.exact[key];
-}
-
-// The exact first hits of the sampled rays, computed once per scene, rays and sample size.
-const ExactHits& traceExact(const RunConfig& run, const TriangleMesh& mesh, const std::vector<gpu::Ray>& rays,
-                            Caches& caches, Row& row) {
-    const std::string scene = sceneKey(run);
-    const std::uint64_t sampleSize = std::uint64_t(run.getInt("accuracy.exact_rays"));
-    const std::string key = scene + "|" + std::to_string(fnv1a64({reinterpret_cast<const char*>(rays.data()),
-                                                                    rays.size() * sizeof(gpu::Ray)})) +
-                            "|" + std::to_string(sampleSize);
-    if (!caches.exactHits.count(key))
-        caches.exactHits[key] = std::make_shared<ExactHits>(exactReferenceFor(run, mesh, caches).trace(rays, sampleRays(rays.size(), sampleSize)));
-    const ExactHits& exact = *caches.exactHits[key];
-    row["exact_rays"] = std::to_string(exact.rays.size());
-    row["exact_ms"] = num(exact.ms, 4);
-    return exact;
-}
-
-void writeExactColumns(const std::string& prefix, const ExactAccuracy& a, Row& row) {
-    row[prefix + "false_misses"] = std::to_string(a.falseMisses);
-    row[prefix + "false_hits"] = std::to_string(a.falseHits);
-    if (a.primitivesCompared) row[prefix + "wrong_primitive"] = std::to_string(a.wrongPrimitive);
-    row[prefix + "wrong_ppm"] = num(a.wrongPerMillion(), 6);
-    if (!a.distancesCompared) return;
-    row[prefix + "distance_error_mean"] = num(a.distanceErrorMean, 4);
-    row[prefix + "distance_error_max"] = num(a.distanceErrorMax, 4);
-}
-
-// A shaded pixel differs from the exact render's when its 8-bit grey differs (by a level or more).
-constexpr double kPixelDifferThreshold = 0.5 / 255.0;
-
-// The batch's hits with the exact ones in place of the sampled rays': what the exact render is
-// made from. In a tie the kernel's triangle is as right as the lowest-numbered one, and shades as it.
-std::vector<gpu::HitRecord> exactInPlace(const std::vector<gpu::HitRecord>& hits, const ExactHits& exact, bool sameTriangles) {
-    std::vector<gpu::HitRecord> out = hits;
-    for (std::size_t i = 0; i < exact.rays.size(); ++i) {
-        gpu::HitRecord& h = out[exact.rays[i]];
-        const bool tie = sameTriangles && h.primitive != gpu::kNoHit && exact.isFirstHit(i, h.primitive);
-        if (!tie) h.primitive = exact.hits[i].primitive;
-    }
-    return out;
-}
-
-// Image-level accuracy (harness/image_compare.h, idiff's measures): the 8-bit grey of the run's
-// image (its hits) against the same image made with the exact hits of the sampled rays (the whole
-// image when every ray is sampled, else the sampled rays' pixels as one row). `pixels`: the
-// pixel of each batch ray (empty: ray i is pixel i).
-void writeImageAccuracy(const HitImage& image, const HitImage& exactImage, const ExactHits& exact, std::size_t rays,
-                        const std::vector<std::uint32_t>& pixels, Row& row) {
-    const bool whole = exact.rays.size() == rays;
-    std::vector<float> test, reference;
-    auto addPixel = [&](std::size_t p) {
-        test.push_back(float(pixelGrey(image.shade[p])) / 255.0f);
-        reference.push_back(float(pixelGrey(exactImage.shade[p])) / 255.0f);
-    };
-    if (whole)
-        for (std::size_t p = 0; p < image.shade.size(); ++p) addPixel(p);
-    else
-        for (std::uint32_t ray : exact.rays) addPixel(pixels.empty() ? ray : pixels[ray]);
-    const ImageComparison c = compareImages(test, reference, whole ? image.width : unsigned(test.size()),
-                                            whole ? image.height : 1u, kPixelDifferThreshold);
-    row["image_psnr_db"] = num(c.psnr, 5);
-    row["image_error_mean"] = num(c.meanError, 4);
-    row["image_error_max"] = num(c.maxError, 4);
-    row["image_pixels_differ"] = std::to_string(c.differing);
 }
 
 // A run from its scene to its timing: what its rounds and the rest of it need. It holds the
@@ -457,9 +144,9 @@ std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunC
     row["query"] = queryName(batch.query);
     structure.writeColumns(row);
     row["structure_bytes"] = std::to_string(structure.memoryBytes);
-    row["structure_bytes_per_triangle"] = num(double(structure.memoryBytes) / double(std::max<std::size_t>(mesh.triangles.size(), 1)));
-    row["structure_build_ms"] = num(structure.buildMs, 4);
-    row["predicted_work_per_ray"] = num(structure.predictedWork(rays) / double(rays.size()));
+    row["structure_bytes_per_triangle"] = formatNumber(double(structure.memoryBytes) / double(std::max<std::size_t>(mesh.triangles.size(), 1)));
+    row["structure_build_ms"] = formatNumber(structure.buildMs, 4);
+    row["predicted_work_per_ray"] = formatNumber(structure.predictedWork(rays) / double(rays.size()));
 
     // Method: the strategy runs the structure's kernels once, instrumented, and checks them
     // against its CPU reference.
@@ -523,12 +210,12 @@ void finishRun(RunInProgress& p, const std::string& folder, Caches& caches, Row&
     // Metrics: agreement with Embree.
     const Agreement a = compareHits(method.hits, embreeHits, query);
     row["hits"] = std::to_string(method.metrics.work.hits);
-    row["hit_miss_agreement"] = num(a.hitMissAgreement, 8);
+    row["hit_miss_agreement"] = formatNumber(a.hitMissAgreement, 8);
     row["hit_miss_mismatches"] = std::to_string(a.hitMissMismatches);
     if (a.primitivesCompared) {
-        row["same_primitive_agreement"] = num(a.samePrimitiveAgreement, 8);
-        row["rel_distance_error_mean"] = num(a.relDistanceErrorMean, 4);
-        row["rel_distance_error_max"] = num(a.relDistanceErrorMax, 4);
+        row["same_primitive_agreement"] = formatNumber(a.samePrimitiveAgreement, 8);
+        row["rel_distance_error_mean"] = formatNumber(a.relDistanceErrorMean, 4);
+        row["rel_distance_error_max"] = formatNumber(a.relDistanceErrorMax, 4);
         row["primitive_mismatches"] = std::to_string(a.primitiveMismatches);
     }
 
@@ -1032,165 +719,6 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
     writeCsv(csvPath, columns, result.rows);  // in plan order
     writeJson(contextPath, contextJson(plan, options, caches, started, true));
     return result;
-}
-
-namespace {
-
-// One shard's files as merge reads them.
-struct ShardFiles {
-    fs::path csv, context;
-    Json json;
-};
-
-std::string contextField(const Json& context, const fs::path& path, const char* key) {
-    const auto it = context.find(key);
-    if (it == context.end()) throw Error(path.string() + ": no \"" + key + "\" field");
-    return it->is_string() ? it->get<std::string>() : it->dump();
-}
-
-}  // namespace
-
-std::vector<Row> mergeShards(const std::string& folder) {
-    std::error_code ec;
-    if (!fs::is_directory(folder, ec)) throw Error(folder + ": not a results folder");
-    refuseSymlinks(folder);  // before the lock file is made
-    const OutputFolderLock lock(folder);  // no shard is running
-    // runs.shard-<i>-of-<n>.csv with its context.shard-<i>-of-<n>.json.
-    std::map<std::string, ShardFiles> shards;
-    const std::regex csvName(R"(runs\.(shard-[0-9]+-of-[0-9]+)\.csv)"), contextName(R"(context\.(shard-[0-9]+-of-[0-9]+)\.json)");
-    for (const auto& entry : fs::directory_iterator(folder)) {
-        const std::string name = entry.path().filename().string();
-        std::smatch m;
-        if (std::regex_match(name, m, csvName)) shards[m[1]].csv = entry.path();
-        if (std::regex_match(name, m, contextName)) shards[m[1]].context = entry.path();
-    }
-    if (shards.empty()) throw Error(folder + ": no runs.shard-*.csv files to merge");
-    std::set<std::string> counts;
-    for (auto& [shard, files] : shards) {
-        if (files.csv.empty()) throw Error(folder + ": " + files.context.filename().string() + " has no runs." + shard + ".csv");
-        if (files.context.empty()) throw Error(folder + ": " + files.csv.filename().string() + " has no context." + shard + ".json");
-        files.json = readJson(files.context.string());
-        counts.insert(shard.substr(shard.rfind("-of-") + 4));
-    }
-    if (counts.size() > 1) throw Error(folder + ": shards of different splits (of-" + *counts.begin() + " and of-" + *counts.rbegin() + ")");
-    // The shards must be parts of one experiment: the same config text, overrides, plan and commit.
-    const ShardFiles& reference = shards.begin()->second;
-    for (const auto& [shard, files] : shards)
-        for (const char* key : {"config_text", "overrides", "plan", "git_commit"}) {
-            const std::string a = contextField(reference.json, reference.context, key),
-                              b = contextField(files.json, files.context, key);
-            if (a != b) {
-                const std::string what = std::string(key) == "git_commit" ? "were run at other commits (" + a + " and " + b + ")"
-                                         : std::string(key) == "plan" ? "have other plans"
-                                         : std::string(key) == "overrides" ? "were run with other command-line overrides (" + a + " and " + b + ")"
-                                                                           : "were run from other config texts: the plans differ";
-                throw Error(folder + ": " + reference.context.filename().string() + " and " +
-                            files.context.filename().string() + " " + what + "; they cannot be merged");
-            }
-        }
-    std::map<std::string, std::string> planned;  // run -> config_hash
-    try {
-        for (const Json& run : reference.json.at("plan"))
-            planned[run.at("run").get<std::string>()] = run.at("config_hash").get<std::string>();
-    } catch (const Json::exception& e) {
-        throw Error(reference.context.string() + ": no valid \"plan\" list: " + e.what());
-    }
-    if (planned.empty()) throw Error(reference.context.string() + ": its plan lists no runs");
-    const std::string commit = contextField(reference.json, reference.context, "git_commit");
-    std::map<std::string, Row> byRun;
-    bool complete = true;
-    for (const auto& [shard, files] : shards) {
-        const auto it = files.json.find("complete");
-        if (it == files.json.end() || !it->is_boolean()) throw Error(files.context.string() + ": no boolean \"complete\" field");
-        complete = complete && it->get<bool>();
-        for (const Row& row : readRunsCsv(files.csv.string())) {
-            const std::string& run = row.at("run");
-            const std::string name = files.csv.filename().string() + ": run " + run + " (" + row.at("label") + ")";
-            if (!planned.count(run) || planned[run] != row.at("config_hash")) throw Error(folder + ": " + name + " is not in the plan");
-            if (row.at("git_commit") != commit) throw Error(folder + ": " + name + " was run at commit " + row.at("git_commit") + ", the shards at " + commit);
-            if (!byRun.emplace(run, row).second) throw Error(folder + ": " + name + " appears in more than one shard");
-        }
-    }
-    for (const auto& [run, hash] : planned)
-        if (!byRun.count(run)) throw Error(folder + ": run " + run + " is missing from the shards");
-    // One device, and one content of each scene's files, across the shards.
-    std::map<std::string, const Row*> byScene;
-    const Row* firstRow = &byRun.begin()->second;
-    for (const auto& [run, row] : byRun) {
-        const auto machine = [](const Row& r) { return r.at("device") + " (" + r.at("driver") + ") with " + r.at("cpu"); };
-        if (machine(row) != machine(*firstRow))
-            throw Error(folder + ": run " + firstRow->at("run") + " ran on " + machine(*firstRow) + " and run " + run + " on " +
-                        machine(row) + "; a merged runs.csv holds one device and CPU (Embree's speed depends on it)");
-        if (row.at("inputs_hash").empty()) continue;  // the scene did not load: the row says why
-        const std::string scene = row.at("scene_source");
-        const auto [it, inserted] = byScene.emplace(scene, &row);
-        if (!inserted && it->second->at("inputs_hash") != row.at("inputs_hash"))
-            throw Error(folder + ": runs " + it->second->at("run") + " and " + run + " read other contents of scene.source '" + scene +
-                        "' (" + it->second->at("input_files") + " against " + row.at("input_files") + ")");
-    }
-    std::vector<Row> merged;
-    for (const auto& [run, row] : byRun) merged.push_back(row);
-    // Merging again is fine; replacing other results is not.
-    auto refuseToReplace = [&](const std::string& path, auto read, const std::vector<Row>& merge) {
-        checkWritableFile(path);
-        if (!fs::exists(fs::symlink_status(path, ec))) return;
-        std::vector<Row> existing;
-        try {
-            existing = read(path);
-        } catch (const Error& e) {
-            throw Error(path + ": exists and is not the merge of these shards (" + e.what() + "); move it away first");
-        }
-        if (existing != merge)
-            throw Error(path + ": exists and differs from the merge of these shards (" + std::to_string(existing.size()) +
-                        " rows against " + std::to_string(merge.size()) + "); move it away first");
-    };
-    const std::string csvPath = (fs::path(folder) / "runs.csv").string();
-    refuseToReplace(csvPath, [](const std::string& path) { return readRunsCsv(path); }, merged);
-    // The shards' timing samples, of the merged rows only, in run order.
-    std::vector<Row> samples;
-    std::size_t withSamples = 0;
-    for (const auto& [shard, files] : shards) {
-        const fs::path path = fs::path(folder) / ("samples." + shard + ".csv");
-        if (!fs::exists(fs::symlink_status(path, ec))) continue;
-        ++withSamples;
-        for (Row& sample : readSamplesCsv(path.string())) {
-            const auto row = byRun.find(sample.at("run"));
-            if (row == byRun.end() || row->second.at("config_hash") != sample.at("config_hash"))
-                throw Error(path.string() + ": a sample of run " + sample.at("run") + " (config_hash " + sample.at("config_hash") +
-                            ") that no shard's row has");
-            samples.push_back(std::move(sample));
-        }
-    }
-    if (withSamples && withSamples != shards.size())
-        throw Error(folder + ": " + std::to_string(withSamples) + " of " + std::to_string(shards.size()) +
-                    " shards have a samples file; a shard's samples.shard-*.csv is missing");
-    // Every ok row's repetitions are there: as many kernel, Embree 1 and Embree 16 samples as it
-    // says it took.
-    if (withSamples) {
-        std::map<std::string, std::size_t> count;  // run|method
-        for (const Row& sample : samples) ++count[sample.at("run") + "|" + sample.at("method")];
-        for (const auto& [run, row] : byRun) {
-            const auto reps = row.find("timing_repetitions");
-            if (row.at("status") != "ok" || reps == row.end() || reps->second.empty()) continue;
-            for (const char* method : {"kernel", "embree1", "embree16"})
-                if (std::to_string(count[run + "|" + method]) != reps->second)
-                    throw Error(folder + ": run " + run + " took " + reps->second + " repetitions of each method, the shards' samples hold " +
-                                std::to_string(count[run + "|" + method]) + " of " + method);
-        }
-    }
-    std::stable_sort(samples.begin(), samples.end(), [](const Row& a, const Row& b) { return a.at("run") < b.at("run"); });
-    const std::string samplesPath = (fs::path(folder) / "samples.csv").string();
-    if (withSamples)
-        refuseToReplace(samplesPath, readSamplesCsv, samples);
-    else
-        checkWritableFile(samplesPath);
-    writeCsv(csvPath, runColumns(), merged);
-    if (withSamples) writeCsv(samplesPath, sampleColumns(), samples);
-    Json context = reference.json;
-    context["complete"] = complete;
-    context["shard"] = "";
-    writeJson((fs::path(folder) / "context.json").string(), context);
-    return merged;
 }
 
 }  // namespace rtbench

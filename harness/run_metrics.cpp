@@ -1,0 +1,134 @@
+#include "run_metrics.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <thread>
+
+#include "image_compare.h"
+
+namespace rtbench {
+
+namespace {
+
+// A shaded pixel differs from the exact render's when its 8-bit grey differs (by a level or more).
+constexpr double kPixelDifferThreshold = 0.5 / 255.0;
+
+}  // namespace
+
+void writeArchitectureColumns(const ArchitectureMetrics& m, const Structure& structure, std::uint64_t rays, Row& row) {
+    const WorkStats& w = m.work;
+    structure.writeWorkColumns(w.cellsPerRayMean, w.cellsPerRayMax, m.bytes.cells, row);
+    row["work_per_ray_mean"] = formatNumber(double(w.cellsTotal + w.trianglesTotal) / double(rays));
+    row["triangles_per_ray_mean"] = formatNumber(w.trianglesPerRayMean);
+    row["triangles_per_ray_max"] = std::to_string(w.trianglesPerRayMax);
+    row["traversal_steps_per_ray_mean"] = formatNumber(double(w.stepsTotal) / double(rays));
+    row["traversal_steps_per_ray_max"] = std::to_string(w.stepsPerRayMax);
+    row["passes_total"] = std::to_string(m.passes);
+    row["simd_efficiency"] = formatNumber(m.simdEfficiency);
+    row["bytes_stencil"] = std::to_string(m.bytes.stencil);
+    row["bytes_state"] = std::to_string(m.bytes.state);
+    if (m.bytes.stack) row["bytes_stack"] = std::to_string(m.bytes.stack);
+    row["bytes_triangle_list"] = std::to_string(m.bytes.triangleList);
+    row["bytes_vertices"] = std::to_string(m.bytes.vertices);
+    row["bytes_output"] = std::to_string(m.bytes.output);
+    row["bytes_total"] = std::to_string(m.bytes.total());
+    row["bytes_per_ray"] = formatNumber(double(m.bytes.total()) / double(rays));
+}
+
+SampleStats writeTimingColumns(const std::string& prefix, const std::vector<double>& ms, Row& row) {
+    const SampleStats s = summarize(ms);
+    row[prefix + "_ms_median"] = formatNumber(s.median);
+    row[prefix + "_ms_min"] = formatNumber(s.min);
+    row[prefix + "_ms_max"] = formatNumber(s.max);
+    row[prefix + "_ms_mean"] = formatNumber(s.mean);
+    row[prefix + "_ms_std"] = formatNumber(s.stddev, 4);
+    row[prefix + "_ms_cv"] = formatNumber(s.cv, 4);
+    row[prefix + "_ms_ci_low"] = formatNumber(s.ciLow);
+    row[prefix + "_ms_ci_high"] = formatNumber(s.ciHigh);
+    return s;
+}
+
+void writeTimingResults(const RunConfig& run, const VulkanContext& vk, std::size_t rays, const RoundsResult& timed,
+                        const CpuTimes& before, Row& row) {
+    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+    const CpuTimes after = sampleCpuTimes();
+    const SampleStats k = writeTimingColumns("kernel", timed.of("kernel"), row);
+    row["kernel_mrays_s"] = formatNumber(k.median > 0 ? double(rays) / (k.median * 1e3) : 0.0);
+    std::vector<std::string> noisy;
+    const double noiseCv = run.getFloat("experiment.noise_cv");
+    if (k.cv > noiseCv) noisy.push_back("kernel CV " + formatNumber(k.cv, 3));
+    for (const char* m : {"embree1", "embree16"}) {
+        const SampleStats e = writeTimingColumns(m, timed.of(m), row);
+        row[std::string(m) + "_mrays_s"] = formatNumber(double(rays) / (e.median * 1e3));
+        if (e.cv > noiseCv) noisy.push_back(std::string(m) + " CV " + formatNumber(e.cv, 3));
+    }
+    // The strategy's own series: the parts of a repetition, its host-controlled loops.
+    for (const auto& [name, ms] : timed.series) {
+        if (name.rfind("kernel_", 0) == 0) row["kernel_ms_" + name.substr(7)] = formatNumber(median(ms));
+        else if (name != "kernel" && name != "embree1" && name != "embree16") row[name + "_ms_median"] = formatNumber(median(ms));
+    }
+    const double embreeMedian = median(timed.of("embree1"));
+    row["speed_ratio_vs_embree1"] = formatNumber(k.median > 0 ? embreeMedian / k.median : 0.0, 4);
+    const Interval ratio = bootstrapRatioOfMedians(timed.of("embree1"), timed.of("kernel"));
+    row["speed_ratio_ci_low"] = formatNumber(ratio.low, 4);
+    row["speed_ratio_ci_high"] = formatNumber(ratio.high, 4);
+    row["timing_repetitions"] = std::to_string(timed.repetitions);
+    row["timing_rounds"] = std::to_string(timed.rounds);
+    row["timing_stop"] = timed.stop;
+    row["timing_s"] = formatNumber(timed.seconds, 4);
+
+    // The noise guard.
+    const double other = otherCpuFraction(before, after, cores, double(::sysconf(_SC_CLK_TCK)));
+    row["other_cpu_fraction"] = other < 0 ? "" : formatNumber(other, 3);
+    const double load = loadAverage();
+    row["load_average"] = load < 0 ? "" : formatNumber(load, 3);
+    row["device_host_threads"] = std::to_string(deviceHostThreads(vk.info().type == "cpu", cores));
+    if (!noisy.empty()) noisy.back() += " > experiment.noise_cv " + formatNumber(noiseCv, 3);
+    if (other > run.getFloat("experiment.noise_other_cpu"))
+        noisy.push_back("other processes took " + formatNumber(100 * other, 3) + "% of the machine's CPU time (> experiment.noise_other_cpu " +
+                        formatNumber(run.getFloat("experiment.noise_other_cpu"), 3) + ")");
+    for (const std::string& n : noisy) row["timing_warning"] += (row["timing_warning"].empty() ? "" : "; ") + n;
+}
+
+void writeExactColumns(const std::string& prefix, const ExactAccuracy& a, Row& row) {
+    row[prefix + "false_misses"] = std::to_string(a.falseMisses);
+    row[prefix + "false_hits"] = std::to_string(a.falseHits);
+    if (a.primitivesCompared) row[prefix + "wrong_primitive"] = std::to_string(a.wrongPrimitive);
+    row[prefix + "wrong_ppm"] = formatNumber(a.wrongPerMillion(), 6);
+    if (!a.distancesCompared) return;
+    row[prefix + "distance_error_mean"] = formatNumber(a.distanceErrorMean, 4);
+    row[prefix + "distance_error_max"] = formatNumber(a.distanceErrorMax, 4);
+}
+
+std::vector<gpu::HitRecord> exactInPlace(const std::vector<gpu::HitRecord>& hits, const ExactHits& exact, bool sameTriangles) {
+    std::vector<gpu::HitRecord> out = hits;
+    for (std::size_t i = 0; i < exact.rays.size(); ++i) {
+        gpu::HitRecord& h = out[exact.rays[i]];
+        const bool tie = sameTriangles && h.primitive != gpu::kNoHit && exact.isFirstHit(i, h.primitive);
+        if (!tie) h.primitive = exact.hits[i].primitive;
+    }
+    return out;
+}
+
+void writeImageAccuracy(const HitImage& image, const HitImage& exactImage, const ExactHits& exact, std::size_t rays,
+                        const std::vector<std::uint32_t>& pixels, Row& row) {
+    const bool whole = exact.rays.size() == rays;
+    std::vector<float> test, reference;
+    auto addPixel = [&](std::size_t p) {
+        test.push_back(float(pixelGrey(image.shade[p])) / 255.0f);
+        reference.push_back(float(pixelGrey(exactImage.shade[p])) / 255.0f);
+    };
+    if (whole)
+        for (std::size_t p = 0; p < image.shade.size(); ++p) addPixel(p);
+    else
+        for (std::uint32_t ray : exact.rays) addPixel(pixels.empty() ? ray : pixels[ray]);
+    const ImageComparison c = compareImages(test, reference, whole ? image.width : unsigned(test.size()),
+                                            whole ? image.height : 1u, kPixelDifferThreshold);
+    row["image_psnr_db"] = formatNumber(c.psnr, 5);
+    row["image_error_mean"] = formatNumber(c.meanError, 4);
+    row["image_error_max"] = formatNumber(c.maxError, 4);
+    row["image_pixels_differ"] = std::to_string(c.differing);
+}
+
+}  // namespace rtbench
