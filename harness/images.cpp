@@ -276,24 +276,38 @@ bool imagesSupported() {
 #endif
 }
 
+#ifdef RTBENCH_WITH_OIIO
+namespace {
+
+// `pixels` (spec's size, channels and type) encoded by OpenImageIO's `format` writer into memory
+// (an IOVecOutput proxy): the file is written by writeFileAtomically, never here. `kind` names
+// the format in messages ("PNG", "OpenEXR").
+std::string encodeInMemory(const char* format, const char* kind, const OIIO::ImageSpec& spec, const void* pixels,
+                           const std::string& nameForErrors) {
+    const std::string at = printable(nameForErrors) + ": ";
+    std::vector<unsigned char> bytes;
+    OIIO::Filesystem::IOVecOutput memory(bytes);
+    auto out = OIIO::ImageOutput::create(format, &memory);
+    if (!out) throw Error(at + "OpenImageIO cannot create a " + kind + " writer: " + OIIO::geterror());
+    if (!out->supports("ioproxy")) throw Error(at + "OpenImageIO's " + kind + " writer cannot write into memory");
+    if (!out->open(nameForErrors, spec) || !out->write_image(spec.format, pixels) || !out->close())
+        throw Error(at + "OpenImageIO's " + kind + " encoding failed: " + out->geterror());
+    if (bytes.empty()) throw Error(at + "OpenImageIO's " + kind + " encoding wrote nothing");
+    return std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+}
+
+}  // namespace
+#endif
+
 std::string encodePng(std::uint32_t width, std::uint32_t height, const std::vector<std::uint8_t>& rgb,
                       const std::string& nameForErrors) {
 #ifdef RTBENCH_WITH_OIIO
-    const std::string at = printable(nameForErrors) + ": ";
     if (rgb.size() != std::size_t(width) * height * 3)
-        throw Error(at + "a PNG of " + std::to_string(width) + " x " + std::to_string(height) + " needs " +
-                    std::to_string(std::size_t(width) * height * 3) + " bytes of RGB, given " + std::to_string(rgb.size()));
-    // Into memory (an IOVecOutput proxy): the file is written by writeFileAtomically, never here.
-    std::vector<unsigned char> bytes;
-    OIIO::Filesystem::IOVecOutput memory(bytes);
-    auto out = OIIO::ImageOutput::create("png", &memory);
-    if (!out) throw Error(at + "OpenImageIO cannot create a PNG writer: " + OIIO::geterror());
-    if (!out->supports("ioproxy")) throw Error(at + "OpenImageIO's PNG writer cannot write into memory");
-    const OIIO::ImageSpec spec(int(width), int(height), 3, OIIO::TypeDesc::UINT8);
-    if (!out->open(nameForErrors, spec) || !out->write_image(OIIO::TypeDesc::UINT8, rgb.data()) || !out->close())
-        throw Error(at + "OpenImageIO's PNG encoding failed: " + out->geterror());
-    if (bytes.empty()) throw Error(at + "OpenImageIO's PNG encoding wrote nothing");
-    return std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+        throw Error(printable(nameForErrors) + ": a PNG of " + std::to_string(width) + " x " + std::to_string(height) +
+                    " needs " + std::to_string(std::size_t(width) * height * 3) + " bytes of RGB, given " +
+                    std::to_string(rgb.size()));
+    return encodeInMemory("png", "PNG", OIIO::ImageSpec(int(width), int(height), 3, OIIO::TypeDesc::UINT8), rgb.data(),
+                          nameForErrors);
 #else
     (void)width, (void)height, (void)rgb;
     throw Error(printable(nameForErrors) + ": built without OpenImageIO (RTBENCH_WITH_OIIO=OFF): cannot encode PNGs");
@@ -303,22 +317,12 @@ std::string encodePng(std::uint32_t width, std::uint32_t height, const std::vect
 std::string encodeExr(std::uint32_t width, std::uint32_t height, const std::vector<float>& grey,
                       const std::string& nameForErrors) {
 #ifdef RTBENCH_WITH_OIIO
-    const std::string at = printable(nameForErrors) + ": ";
     if (grey.size() != std::size_t(width) * height)
-        throw Error(at + "an EXR of " + std::to_string(width) + " x " + std::to_string(height) + " needs " +
-                    std::to_string(std::size_t(width) * height) + " values, given " + std::to_string(grey.size()));
-    // Into memory, as encodePng: the file is written by writeFileAtomically.
-    std::vector<unsigned char> bytes;
-    OIIO::Filesystem::IOVecOutput memory(bytes);
-    auto out = OIIO::ImageOutput::create("openexr", &memory);
-    if (!out) throw Error(at + "OpenImageIO cannot create an OpenEXR writer: " + OIIO::geterror());
-    if (!out->supports("ioproxy")) throw Error(at + "OpenImageIO's OpenEXR writer cannot write into memory");
+        throw Error(printable(nameForErrors) + ": an EXR of " + std::to_string(width) + " x " + std::to_string(height) +
+                    " needs " + std::to_string(std::size_t(width) * height) + " values, given " + std::to_string(grey.size()));
     OIIO::ImageSpec spec(int(width), int(height), 1, OIIO::TypeDesc::FLOAT);
     spec.channelnames = {"Y"};  // one luminance channel: the grey shade
-    if (!out->open(nameForErrors, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, grey.data()) || !out->close())
-        throw Error(at + "OpenImageIO's OpenEXR encoding failed: " + out->geterror());
-    if (bytes.empty()) throw Error(at + "OpenImageIO's OpenEXR encoding wrote nothing");
-    return std::string(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    return encodeInMemory("openexr", "OpenEXR", spec, grey.data(), nameForErrors);
 #else
     (void)width, (void)height, (void)grey;
     throw Error(printable(nameForErrors) + ": built without OpenImageIO (RTBENCH_WITH_OIIO=OFF): cannot encode EXRs");

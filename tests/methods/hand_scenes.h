@@ -42,6 +42,15 @@ inline gpu::Ray ray(glm::vec3 o, glm::vec3 d, float tMin = 0.0f, float tMax = gp
     return {glm::vec4(o, tMin), glm::vec4(d, tMax)};
 }
 
+// A hit record on triangle `primitive` at barycentrics (u, v) (t 0): what a shading pass reads.
+inline gpu::HitRecord hitOn(std::uint32_t primitive, float u, float v) {
+    gpu::HitRecord h{};
+    h.primitive = primitive;
+    h.u = u;
+    h.v = v;
+    return h;
+}
+
 inline const char* testName(std::uint32_t test) {
     return test == gpu::kTriangleTestWatertight ? "watertight" : "moller_trumbore";
 }

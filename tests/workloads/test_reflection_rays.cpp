@@ -22,14 +22,6 @@ using namespace hand;
 using gpu::kNoHit;
 using ::testing::HasSubstr;
 
-gpu::HitRecord hitOf(std::uint32_t primitive, float u, float v) {
-    gpu::HitRecord h{};
-    h.primitive = primitive;
-    h.u = u;
-    h.v = v;
-    return h;
-}
-
 // A floor y = 0 (triangle 0: v0 = (-8,0,-8), e1 = (16,0,0), e2 = (0,0,16); e1 x e2 = (0,-256,0)
 // scales to (0,-1,0) and flips toward a ray from above: n = (0,1,0)). At u = v = 11/16 the point
 // is (3, 0, 3) exactly. d = (1, -2, 0.5): 2 d.n / n.n = -4, so the mirror direction is
@@ -44,7 +36,7 @@ TEST(ReflectionRays, MirrorDirectionsAndOriginsAreTheHandComputedFloats) {
                                       {glm::vec3(2, 2, 0), glm::vec3(3, 3, 0), glm::vec3(2, 2, 1)}});
     const std::vector<gpu::Ray> rays = {ray({1, 6, 2}, {1, -2, 0.5f}), ray({9, 2.5f, 0.25f}, {-1, 0, 0}),
                                         ray({0, 1, 0}, {0, 1, 0})};
-    const std::vector<gpu::HitRecord> hits = {hitOf(0, 11.0f / 16, 11.0f / 16), hitOf(1, 0.5f, 0.25f), hitOf(kNoHit, 0, 0)};
+    const std::vector<gpu::HitRecord> hits = {hitOn(0, 11.0f / 16, 11.0f / 16), hitOn(1, 0.5f, 0.25f), hitOn(kNoHit, 0, 0)};
     const ShadedRays out = shadeOnCpu(mesh, Surfaces{}, {rays, hits, {}, {}}, mirrorPass());
     ASSERT_EQ(out.rays.size(), 2u);  // the miss makes none
     EXPECT_EQ(out.parents, (std::vector<std::uint32_t>{0, 1}));

@@ -19,14 +19,6 @@ namespace {
 using namespace hand;
 using ::testing::HasSubstr;
 
-gpu::HitRecord hitAt(float u, float v) {
-    gpu::HitRecord h{};
-    h.primitive = 0;
-    h.u = u;
-    h.v = v;
-    return h;
-}
-
 void expectDirection(const gpu::Ray& r, glm::dvec3 want) {
     EXPECT_NEAR(r.directionTMax.x, want.x, 2e-7);
     EXPECT_NEAR(r.directionTMax.y, want.y, 2e-7);
@@ -49,7 +41,7 @@ TEST_F(RefractionKernels, SnellsLawAndTotalInternalReflectionAreTheHandComputedR
     const float u = 11.0f / 16, up = 1.0f / 65536;
     const std::vector<gpu::Ray> rays = {ray({2, 1, 3}, {1, -1, 0}), ray({3, -1, 3}, {0.5f, std::sqrt(3.0f) / 2, 0}),
                                         ray({2, -1, 3}, {1, 1, 0}), ray({3, 1, 3}, {0, -1, 0})};
-    const std::vector<gpu::HitRecord> hits(4, hitAt(u, u));
+    const std::vector<gpu::HitRecord> hits(4, hitOn(0, u, u));
     const ShadedRays out = shadeOnCpu(mesh, Surfaces{}, {rays, hits, {}, {}}, refractPass(1.5f));
     ASSERT_EQ(out.rays.size(), 4u);
     expectDirection(out.rays[0], {std::sqrt(2.0) / 3, -std::sqrt(7.0) / 3, 0});

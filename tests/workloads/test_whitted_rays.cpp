@@ -22,14 +22,6 @@ namespace {
 using namespace hand;
 using ::testing::HasSubstr;
 
-gpu::HitRecord hitOn(std::uint32_t primitive, float u, float v) {
-    gpu::HitRecord h{};
-    h.primitive = primitive;
-    h.u = u;
-    h.v = v;
-    return h;
-}
-
 // Fresnel's reflectance for unpolarized light from the angles of incidence and transmission
 // (Born & Wolf): r_s = sin(i - t) / sin(i + t), r_p = tan(i - t) / tan(i + t), F = (r_s^2 + r_p^2) / 2.
 double fresnelFromAngles(double incidence, double transmission) {
