@@ -131,11 +131,12 @@ HitImage makeBatchImage(std::uint32_t width, std::uint32_t height, const std::ve
     }
     for (std::size_t p = 0; p < cameraRays.size(); ++p) {
         const float shade = shadeHit(mesh, cameraHits[p].primitive, cameraRays[p]);
-        const float lit = raysAt[p] ? float(litAt[p]) / float(raysAt[p]) : 0.0f;
-        image.shade[p] = shade < 0.0f ? shade : shade * (kUnlitShade + (1.0f - kUnlitShade) * lit);
+        image.shade[p] = litShade(shade, raysAt[p] ? float(litAt[p]) / float(raysAt[p]) : 0.0f);
     }
     return image;
 }
+
+float litShade(float shade, float lit) { return shade < 0.0f ? shade : shade * (kUnlitShade + (1.0f - kUnlitShade) * lit); }
 
 float shadeHit(const TriangleMesh& mesh, std::uint32_t primitive, const gpu::Ray& ray) {
     if (primitive == gpu::kNoHit) return -1.0f;

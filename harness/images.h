@@ -45,6 +45,9 @@ HitImage makeHitImage(std::uint32_t width, std::uint32_t height, const std::vect
 // pixel has none; a disagreement of any of a pixel's rays shows). pixels[i] is the camera ray
 // batch ray i continues.
 constexpr float kUnlitShade = 0.3f;
+// A camera hit's shade (-1: a miss, kept) with a fraction `lit` of its batch rays unoccluded, as
+// makeBatchImage shades it.
+float litShade(float shade, float lit);
 HitImage makeBatchImage(std::uint32_t width, std::uint32_t height, const std::vector<gpu::Ray>& cameraRays,
                         const std::vector<gpu::HitRecord>& cameraHits, const TriangleMesh& mesh,
                         const std::vector<std::uint32_t>& pixels, const std::vector<gpu::HitRecord>& kernel,

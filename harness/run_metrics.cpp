@@ -101,30 +101,25 @@ void writeExactColumns(const std::string& prefix, const ExactAccuracy& a, Row& r
     row[prefix + "distance_error_max"] = formatNumber(a.distanceErrorMax, 4);
 }
 
-std::vector<gpu::HitRecord> exactInPlace(const std::vector<gpu::HitRecord>& hits, const ExactHits& exact, bool sameTriangles) {
+std::vector<gpu::HitRecord> exactInPlace(const std::vector<gpu::HitRecord>& hits, const ExactHits& exact, bool sameTriangles,
+                                         std::uint32_t query) {
     std::vector<gpu::HitRecord> out = hits;
     for (std::size_t i = 0; i < exact.rays.size(); ++i) {
         gpu::HitRecord& h = out[exact.rays[i]];
-        const bool tie = sameTriangles && h.primitive != gpu::kNoHit && exact.isFirstHit(i, h.primitive);
-        if (!tie) h.primitive = exact.hits[i].primitive;
+        const bool hit = h.primitive != gpu::kNoHit;
+        const bool tie = sameTriangles && hit && exact.isFirstHit(i, h.primitive);
+        const bool anyHitRight = sameTriangles && hit && query == gpu::kQueryAny && exact.hits[i].primitive != gpu::kNoHit;
+        if (!tie && !anyHitRight) h.primitive = exact.hits[i].primitive;
     }
     return out;
 }
 
-void writeImageAccuracy(const HitImage& image, const HitImage& exactImage, const ExactHits& exact, std::size_t rays,
-                        const std::vector<std::uint32_t>& pixels, Row& row) {
-    const bool whole = exact.rays.size() == rays;
+void writeImageAccuracy(const std::vector<float>& shades, const std::vector<float>& exactShades, unsigned width,
+                        unsigned height, Row& row) {
     std::vector<float> test, reference;
-    auto addPixel = [&](std::size_t p) {
-        test.push_back(float(pixelGrey(image.shade[p])) / 255.0f);
-        reference.push_back(float(pixelGrey(exactImage.shade[p])) / 255.0f);
-    };
-    if (whole)
-        for (std::size_t p = 0; p < image.shade.size(); ++p) addPixel(p);
-    else
-        for (std::uint32_t ray : exact.rays) addPixel(pixels.empty() ? ray : pixels[ray]);
-    const ImageComparison c = compareImages(test, reference, whole ? image.width : unsigned(test.size()),
-                                            whole ? image.height : 1u, kPixelDifferThreshold);
+    for (float s : shades) test.push_back(float(pixelGrey(s)) / 255.0f);
+    for (float s : exactShades) reference.push_back(float(pixelGrey(s)) / 255.0f);
+    const ImageComparison c = compareImages(test, reference, width, height, kPixelDifferThreshold);
     row["image_psnr_db"] = formatNumber(c.psnr, 5);
     row["image_error_mean"] = formatNumber(c.meanError, 4);
     row["image_error_max"] = formatNumber(c.maxError, 4);

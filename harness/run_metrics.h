@@ -37,14 +37,16 @@ void writeTimingResults(const RunConfig& run, const VulkanContext& vk, std::size
 void writeExactColumns(const std::string& prefix, const ExactAccuracy& a, Row& row);
 
 // The batch's hits with the exact ones in place of the sampled rays': what the exact render is
-// made from. In a tie the kernel's triangle is as right as the lowest-numbered one, and shades as it.
-std::vector<gpu::HitRecord> exactInPlace(const std::vector<gpu::HitRecord>& hits, const ExactHits& exact, bool sameTriangles);
+// made from. A kernel's answer the exact reference confirms keeps its triangle, and shades as it:
+// one of a tie's triangles, or for an any-hit query any triangle when the exact ray hits too (on
+// the same triangles: not a simplified scene).
+std::vector<gpu::HitRecord> exactInPlace(const std::vector<gpu::HitRecord>& hits, const ExactHits& exact, bool sameTriangles,
+                                         std::uint32_t query);
 
-// Image-level accuracy (harness/image_compare.h, idiff's measures): the 8-bit grey of the run's
-// image (its hits) against the same image made with the exact hits of the sampled rays (the whole
-// image when every ray is sampled, else the sampled rays' pixels as one row). `pixels`: the
-// pixel of each batch ray (empty: ray i is pixel i).
-void writeImageAccuracy(const HitImage& image, const HitImage& exactImage, const ExactHits& exact, std::size_t rays,
-                        const std::vector<std::uint32_t>& pixels, Row& row);
+// Image-level accuracy (harness/image_compare.h, idiff's measures): the 8-bit grey of `shades`
+// (harness/images.h: a hit's shade, -1 a miss) against `exactShades`, width x height values:
+// a run's image and the same image made with the exact hits, or one value per sampled ray.
+void writeImageAccuracy(const std::vector<float>& shades, const std::vector<float>& exactShades, unsigned width,
+                        unsigned height, Row& row);
 
 }  // namespace rtbench

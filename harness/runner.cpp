@@ -200,9 +200,25 @@ void finishRun(RunInProgress& p, const std::string& folder, Caches& caches, Row&
     writeExactColumns("exact_", kernelAccuracy, row);
     writeExactColumns("embree_exact_", compareExact(embreeHits, exact, scene.sameTriangles, query), row);
     // The exact render: the exact hits' own triangles of the full scene, or the camera hits (the
-    // traced scene's, as the kernel's image) changed by the exact hits.
-    writeImageAccuracy(image, imageOf(exactInPlace(method.hits, exact, scene.sameTriangles), scene.full), exact, rays.size(),
-                       workload.pixels, row);
+    // traced scene's, as the kernel's image) changed by the exact hits. When only some rays are
+    // sampled, each sampled ray's own value (as if it alone made its pixel), one row of them.
+    const std::vector<gpu::HitRecord> exactHits = exactInPlace(method.hits, exact, scene.sameTriangles, query);
+    if (exact.rays.size() == rays.size()) {
+        writeImageAccuracy(image.shade, imageOf(exactHits, scene.full).shade, width, height, row);
+    } else {
+        auto rayShade = [&](std::uint32_t r, const gpu::HitRecord& hit, const TriangleMesh& shadedOn) {
+            if (ownHits) return shadeHit(shadedOn, hit.primitive, rays[r]);
+            const std::uint32_t pixel = workload.pixels[r];
+            return litShade(shadeHit(mesh, workload.cameraHits[pixel].primitive, p.cameraRays[pixel]),
+                            hit.primitive == gpu::kNoHit ? 1.0f : 0.0f);
+        };
+        std::vector<float> shades, exactShades;
+        for (std::uint32_t r : exact.rays) {
+            shades.push_back(rayShade(r, method.hits[r], mesh));
+            exactShades.push_back(rayShade(r, exactHits[r], scene.full));
+        }
+        writeImageAccuracy(shades, exactShades, unsigned(shades.size()), 1u, row);
+    }
     if (!workload.fromCamera())  // the sampled rays' camera rays, judged too: did they leave from the exact scene's surface?
         row["exact_parent_wrong"] = std::to_string(pathsLeavingWrongHits(exactReferenceFor(run, scene.full, caches), p.cameraRays,
                                                                          workload, exact.rays, scene.sameTriangles));
@@ -224,6 +240,9 @@ void finishRun(RunInProgress& p, const std::string& folder, Caches& caches, Row&
     const bool wantImages = run.getBool("output.images");
     if (run.getBool("output.hit_records") || (wantImages && !imagesSupported())) writeHitRecords(prefix + ".hits", image, row["run"], row["config_hash"]);
     if (wantImages && imagesSupported()) writeImages(prefix, image, run.getBool("output.exr"));
+    if (wantImages && !imagesSupported() && run.getBool("output.exr"))
+        row["warnings"] += std::string(row["warnings"].empty() ? "" : "; ") +
+                           "output.exr: built without OpenImageIO, no EXR written (rtbench images makes PNGs only)";
 
     if (vk.validationMessages().size() != p.messagesBefore)
         throw Error("the Vulkan validation layer reported: " + vk.validationMessages()[p.messagesBefore]);

@@ -52,7 +52,8 @@ void main() {
         ok = rtShade(params, materials[materialOf[h.primitive]], light, t.v0.xyz, t.v1.xyz, t.v2.xyz, h.u, h.v,
                      parents[parent].directionTMax.xyz, paths[parent], s, weights[parent], r, w);
     }
-    rays[slot] = r;
+    // A slot that made no ray is written as zeros (rtShade's `out` ray is undefined then).
+    rays[slot] = ok ? r : Ray(vec4(0.0f), vec4(0.0f));
     made[slot] = ok ? 1u : 0u;
-    madeWeights[slot] = w;
+    madeWeights[slot] = ok ? w : 0.0f;
 }

@@ -264,7 +264,8 @@ bool rtDiffuseRay(vec3 v0, vec3 v1, vec3 v2, float u, float v, vec3 incoming, uv
 // params.pass.y (kShade*); `light` is the slot's light (kShadeShadow). A diffuse ray's random key
 // is (seed, path * fan-out + slot, bounce): the path the new ray starts. `madeWeight` gets the new
 // ray's weight: the parent's, times what the rule passes on (shadow and specular rays). False: no
-// ray (also for a weight of 0: it would add nothing).
+// ray, also for a weight below the smallest normal float (2^-126): it would add nothing, and a
+// device may flush such a product to 0 where the CPU keeps it, so the cut is the same everywhere.
 bool rtShade(ShadingParams params, Material m, vec3 light, vec3 v0, vec3 v1, vec3 v2, float u, float v, vec3 incoming,
              uint path, uint slot, float weight, RT_OUT(Ray) made, RT_OUT(float) madeWeight) {
     uint rule = params.pass.y;
@@ -284,7 +285,7 @@ bool rtShade(ShadingParams params, Material m, vec3 light, vec3 v0, vec3 v1, vec
         uvec3 key = uvec3(params.seed.x, path * params.pass.z + slot, params.pass.w);
         ok = rtDiffuseRay(v0, v1, v2, u, v, incoming, key, params.values.x, made);
     }
-    return ok && madeWeight > 0.0f;
+    return ok && madeWeight >= 1.17549435e-38f;
 }
 
 #endif  // RT_SHADING_GLSL

@@ -32,7 +32,7 @@
 //
 //   [[material]]                   # what Whitted ray tracing (rays.type = whitted) sees of a mesh
 //   mesh = "cgal:sphere"           # every copy of a mesh an [[object]] or [[scatter]] places
-//                                  # (written as there); one material per mesh
+//                                  # (files by their resolved path); one material per mesh
 //   type = "glass"                 # "diffuse", "mirror" or "glass"; and only its own keys:
 //   colour = [0.8, 0.8, 0.8]       # diffuse and mirror: the diffuse colour, each in [0, 1]
 //   reflectance = 0.8              # mirror: the fraction reflected, in (0, 1]; default 1
@@ -53,7 +53,8 @@
 //
 // Errors (rtbench::Error) name the description and the line: TOML syntax, unknown keys, wrong
 // types, non-finite numbers, non-positive scales or sizes, box_min > box_max, counts out of range,
-// a material on a mesh nothing places or a key its type does not read, an empty list of lights,
+// a material on a mesh nothing places or a key its type does not read, an empty list of
+// materials or lights,
 // more than kMaxDescriptionTriangles triangles in all, a mesh that cannot be read, a vertex
 // placed beyond the range every method handles (scene_limits.h). Each mesh is read once per
 // description however often it is placed.

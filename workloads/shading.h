@@ -1,5 +1,6 @@
 // The shading pass (Purcell et al. 2002 §3's shading kernel): the rays a generation's hits make,
-// by one rule of kernels/shading.glsl (rtShade: a shadow ray, a mirror reflection, diffuse rays).
+// by one rule of kernels/shading.glsl (rtShade: shadow rays toward each light, a mirror reflection,
+// a refraction, Whitted's reflection and refraction by material, diffuse rays).
 // The CPU runs it to make what a run traces (the workload), the device runs kernels/shading.comp,
 // and the two must agree bit for bit, generation by generation (checkShadingOnDevice).
 #pragma once

@@ -499,6 +499,26 @@ TEST_F(EndToEnd, RaysAfterTheFirstHitAreJudgedAsAnImageAgainstTheExactRender) {
         }
     }
     EXPECT_TRUE(changed);
+
+    // A sample of the rays (accuracy.exact_rays): each sampled ray's own value against its exact
+    // one; and an any-hit answer the exact reference confirms is right whatever triangle it names
+    // (camera rays asked any hit: their images agree though the triangles are not the nearest).
+    const ExperimentResult more = run(
+        "[scene]\nsource = \"cgal:bunny00\"\nsimplify_ratio = 0.01\n[camera]\nwidth = 64\nheight = 64\n"
+        "[structure]\ntype = \"bvh\"\n[rays]\ntype = \"shadow\"\n[accuracy]\nexact_rays = 200\n[output]\nimages = false\n"
+        "[[sweep]]\nname = \"sampled\"\n[[sweep]]\nname = \"any\"\nscene.simplify_ratio = 1.0\nrays.type = \"primary\"\nrays.query = \"any\"\n"
+        "accuracy.exact_rays = 0\n");
+    ASSERT_EQ(more.rows.size(), 2u);
+    for (const Row& row : more.rows) ASSERT_EQ(row.at("status"), "ok") << row.at("error");
+    const Row &sampled = more.rows[0], &anyHit = more.rows[1];
+    EXPECT_LT(std::stoul(sampled.at("exact_rays")), std::stoul(sampled.at("rays")));  // a sample, not every ray
+    const std::uint64_t sampledWrong = std::stoul(sampled.at("exact_false_misses")) + std::stoul(sampled.at("exact_false_hits"));
+    EXPECT_GT(sampledWrong, 0u);
+    EXPECT_GT(std::stoul(sampled.at("image_pixels_differ")), 0u);
+    EXPECT_LE(std::stoul(sampled.at("image_pixels_differ")), sampledWrong);
+    EXPECT_EQ(anyHit.at("query"), "any");
+    EXPECT_EQ(anyHit.at("exact_false_misses"), "0");
+    EXPECT_EQ(anyHit.at("image_pixels_differ"), "0");
 }
 
 // A simplified scene (scene.simplify_*): every method and Embree trace the simplified triangles,

@@ -114,6 +114,29 @@ TEST_F(WhittedKernels, MirrorsAndDiffuseSurfacesMakeTheHandComputedRaysAndWeight
                 HasSubstr("has 3 lights"));
 }
 
+// A weight below the smallest normal float makes no ray, on the CPU and on a device that flushes
+// such products to 0 alike: a mirror of reflectance 1/1024 hit by rays of weight 2^-116 and 2^-117
+// reflects the first (2^-126, normal) and not the second (2^-127).
+TEST_F(WhittedKernels, AWeightBelowTheSmallestNormalFloatMakesNoRay) {
+    const TriangleMesh mesh = meshOf({{glm::vec3(-8, 0, -8), glm::vec3(-8, 0, 8), glm::vec3(8, 0, -8)}});
+    Surfaces s;
+    s.materials = {mirrorMaterial(1.0f / 1024)};
+    const float u = 11.0f / 16;
+    const std::vector<gpu::Ray> rays(2, ray({3, 1, 3}, {0, -1, 0}));
+    const std::vector<gpu::HitRecord> hits(2, hitOn(0, u, u));
+    const std::vector<float> weights = {std::ldexp(1.0f, -116), std::ldexp(1.0f, -117)};
+    const ShadedRays out = shadeOnCpu(mesh, s, {rays, hits, {}, weights}, specularPass());
+    ASSERT_EQ(out.rays.size(), 1u);
+    EXPECT_EQ(out.parents[0], 0u);
+    EXPECT_EQ(out.weights[0], std::ldexp(1.0f, -126));
+    double ms = 0.0;
+    std::string first;
+    EXPECT_EQ(shadedMismatches(shadeOnDevice(*vk_, 64, floatTriangles(mesh), s, {rays, hits, {}, weights}, specularPass(), ms), out,
+                               first),
+              0u)
+        << first;
+}
+
 class WhittedRuns : public WorkloadRuns {
 protected:
     // Scene B's room as a mirror of reflectance 1/2 holding two glass spheres, lit by two lights.

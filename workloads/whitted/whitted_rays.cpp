@@ -65,6 +65,10 @@ Workload whittedWorkload(const WorkloadInputs& in, Row& row) {
                              });
     w.image = shadow ? BatchImage::Shadows : BatchImage::Hits;
     row["whitted_lights"] = std::to_string(lights);
+    std::string positions;  // in the traced scene
+    for (const glm::vec3& l : surfaces->lights)
+        positions += (positions.empty() ? "" : "; ") + formatNumber(l.x, 9) + " " + formatNumber(l.y, 9) + " " + formatNumber(l.z, 9);
+    row["whitted_light_positions"] = positions;
     row["whitted_materials"] = std::to_string(surfaces->materials.size());
     row["whitted_parent_rays"] = std::to_string(w.parentRays);
     row["whitted_parent_hits"] = std::to_string(w.parentHits);
@@ -118,6 +122,8 @@ const RayType& whittedRayType() {
         };
         t.columns = {
             {"whitted_lights", K::Count, "lights", "whitted: point lights (each diffuse hit makes a shadow ray toward each)"},
+            {"whitted_light_positions", K::Count, "scene units",
+             "whitted: the point lights in the traced scene, \"x y z\" each, separated by \"; \""},
             {"whitted_materials", K::Count, "materials", "whitted: materials (whitted.surface and the description's)"},
             {"whitted_parent_rays", K::Count, "rays", "whitted: rays of the generation the batch was made from"},
             {"whitted_parent_hits", K::Count, "rays", "whitted: of those, the rays that hit"},
