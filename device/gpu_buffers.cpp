@@ -58,18 +58,22 @@ GpuBuffers::GpuBuffers(VulkanContext& vk, const std::vector<gpu::Ray>& rays, std
     try {
         for (std::uint32_t b = gpu::kBindingRays; b <= gpu::kBindingRayCounters; ++b)
             buffers_[b] = vk.createStorageBuffer(sizes[b].bytes, sizes[b].what);
-        buffers_[gpu::kBindingPassCounters] = vk.createHostStorageBuffer(sizeof(gpu::PassCounters));
+        buffers_[gpu::kBindingPassCounters] = vk.createStorageBuffer(sizeof(gpu::PassCounters), "the pass counters");
+        countersOnHost_ = vk.createHostReadbackBuffer(sizeof(gpu::PassCounters));
         vk.upload(buffers_[gpu::kBindingRays], rays.data(), n * sizeof(gpu::Ray));
         for (std::size_t i = 0; i < structureBuffers.size(); ++i) {
             const BufferData& b = structureBuffers[i];
             buffers_[gpu::kBindingStructure + i] = vk.createStorageBuffer(b.bytes, b.what);
             vk.upload(buffers_[gpu::kBindingStructure + i], b.data, b.bytes);
         }
+        const gpu::PassCounters zero{};  // what a dispatch without a read-back adds to
+        vk.upload(buffers_[gpu::kBindingPassCounters], &zero, sizeof zero);
     } catch (...) {
         for (Buffer& b : buffers_) vk.destroy(b);
+        vk.destroy(countersOnHost_);
         throw;
     }
-    resetPassCounters();
+    counters_ = {&buffers_[gpu::kBindingPassCounters], &countersOnHost_};
     gpu::StreamParams stream{};
     stream.stream.x = static_cast<std::uint32_t>(n);
     pushConstants_.resize(sizeof stream);
@@ -106,6 +110,7 @@ ComputePipeline GpuBuffers::createKernel(const std::string& name, const KernelSp
 GpuBuffers::~GpuBuffers() {
     if (set_) vk_.destroy(set_);
     for (Buffer& b : buffers_) vk_.destroy(b);
+    vk_.destroy(countersOnHost_);
 }
 
 VkDescriptorSet GpuBuffers::descriptorSet(const ComputePipeline& pipeline) {
@@ -119,12 +124,8 @@ VkDescriptorSet GpuBuffers::descriptorSet(const ComputePipeline& pipeline) {
 
 gpu::PassCounters GpuBuffers::readPassCounters() const {
     gpu::PassCounters c;
-    std::memcpy(&c, buffers_[gpu::kBindingPassCounters].mapped, sizeof c);
+    std::memcpy(&c, countersOnHost_.mapped, sizeof c);
     return c;
-}
-
-void GpuBuffers::resetPassCounters() {
-    std::memset(buffers_[gpu::kBindingPassCounters].mapped, 0, sizeof(gpu::PassCounters));
 }
 
 std::vector<gpu::HitRecord> GpuBuffers::downloadHits() {

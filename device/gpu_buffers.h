@@ -72,8 +72,11 @@ public:
     const void* pushConstants() const { return pushConstants_.data(); }
     std::uint64_t rayCount() const { return rayCount_; }
 
+    // The pass counters (kBindingPassCounters) live in device-local memory; a dispatch given
+    // passCounters() zeroes them before and copies them to the host after, and readPassCounters()
+    // reads that copy.
+    const VulkanContext::CounterReadback* passCounters() const { return &counters_; }
     gpu::PassCounters readPassCounters() const;
-    void resetPassCounters();
     std::vector<gpu::HitRecord> downloadHits();
     // Multipass: the per-ray traversal state saved by the last pass, as bytes (tests compare it
     // with the CPU's).
@@ -83,6 +86,8 @@ public:
 private:
     VulkanContext& vk_;
     std::vector<Buffer> buffers_;  // by binding slot
+    Buffer countersOnHost_;        // the pass counters' copy the host reads
+    VulkanContext::CounterReadback counters_{};
     VkDescriptorSet set_ = VK_NULL_HANDLE;
     std::vector<std::uint8_t> pushConstants_;
     std::uint64_t rayCount_ = 0;

@@ -324,8 +324,8 @@ Buffer VulkanContext::createStorageBuffer(VkDeviceSize size, const std::string& 
                         VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0);
 }
 
-Buffer VulkanContext::createHostStorageBuffer(VkDeviceSize size) {
-    return createBuffer(size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
+Buffer VulkanContext::createHostReadbackBuffer(VkDeviceSize size) {
+    return createBuffer(size, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                         VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT, 0);
 }
 
@@ -500,8 +500,8 @@ double VulkanContext::dispatch(const ComputePipeline& p, const std::vector<const
 }
 
 double VulkanContext::dispatch(const ComputePipeline& p, VkDescriptorSet set, const void* pushConstants,
-                               std::uint64_t invocations) {
-    return dispatchAll({{&p, set, pushConstants, invocations}}).front();
+                               std::uint64_t invocations, const CounterReadback* counters) {
+    return dispatchAll({{&p, set, pushConstants, invocations, counters}}).front();
 }
 
 std::vector<double> VulkanContext::dispatchAll(const std::vector<DispatchCall>& calls) {
@@ -517,7 +517,16 @@ std::vector<double> VulkanContext::dispatchAll(const std::vector<DispatchCall>& 
             const std::uint64_t groups = (call.invocations + p.workgroupSize - 1) / p.workgroupSize;
             const std::uint64_t groupsX = std::max<std::uint64_t>(std::min<std::uint64_t>(groups, info_.maxWorkGroupCountX), 1);
             const std::uint64_t groupsY = (groups + groupsX - 1) / groupsX;
-            // Orders earlier buffer writes (uploads, the previous pass) before this kernel's reads and writes.
+            if (call.counters) {
+                // Orders the previous pass's counter atomics and read-back copy before the zeroing.
+                VkMemoryBarrier before{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+                before.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT;
+                before.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+                vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                                     VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &before, 0, nullptr, 0, nullptr);
+                vkCmdFillBuffer(cmd, call.counters->device->buffer, 0, VK_WHOLE_SIZE, 0);
+            }
+            // Orders earlier buffer writes (uploads, the zeroing, the previous pass) before this kernel's reads and writes.
             VkMemoryBarrier previous{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
             previous.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
             previous.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
@@ -532,12 +541,23 @@ std::vector<double> VulkanContext::dispatchAll(const std::vector<DispatchCall>& 
                 vkCmdPushConstants(cmd, p.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, p.pushConstantBytes, call.pushConstants);
             if (groups) vkCmdDispatch(cmd, static_cast<std::uint32_t>(groupsX), static_cast<std::uint32_t>(groupsY), 1);
             if (queryPool_) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queryPool_, 2 * i + 1);
+            if (call.counters) {
+                // Orders this kernel's counter atomics before the copy to the host's buffer.
+                VkMemoryBarrier counted{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+                counted.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+                counted.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+                vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1,
+                                     &counted, 0, nullptr, 0, nullptr);
+                const VkBufferCopy region{0, 0, call.counters->device->size};
+                vkCmdCopyBuffer(cmd, call.counters->device->buffer, call.counters->host->buffer, 1, &region);
+            }
         }
-        // Orders the kernels' buffer writes before a read-back copy or a host read of mapped memory.
+        // Orders the kernels' buffer writes and the counter copies before a read-back copy or a
+        // host read of mapped memory.
         VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-        barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
+        barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
         barrier.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_HOST_READ_BIT;
-        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                              VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0,
                              nullptr, 0, nullptr);
         submitAndWait(cmd);

@@ -76,8 +76,9 @@ public:
     // A storage buffer in DEVICE_LOCAL memory (uploaded through a staging buffer when that
     // memory is not host-visible). Throws when size exceeds maxStorageBufferRange.
     Buffer createStorageBuffer(VkDeviceSize size, const std::string& what);
-    // A small buffer in HOST_VISIBLE | HOST_COHERENT memory (per-pass counters the host reads).
-    Buffer createHostStorageBuffer(VkDeviceSize size);
+    // A small buffer in HOST_VISIBLE | HOST_COHERENT memory that copies land in (the host reads
+    // counters the kernels summed in a device-local buffer: CounterReadback).
+    Buffer createHostReadbackBuffer(VkDeviceSize size);
     void upload(Buffer& buffer, const void* data, VkDeviceSize size);
     void download(const Buffer& buffer, void* data, VkDeviceSize size);
     void destroy(Buffer& buffer);
@@ -92,10 +93,17 @@ public:
     VkDescriptorSet createDescriptorSet(const ComputePipeline& pipeline, const std::vector<const Buffer*>& buffers);
     void destroy(VkDescriptorSet set);
 
+    // Counters the kernels sum with atomics in device-local memory (not in host memory, where on a
+    // discrete GPU every atomic would cross the bus): zeroed before the dispatch and copied to
+    // `host` (createHostReadbackBuffer) after it, in the same command buffer, outside its timestamps.
+    struct CounterReadback {
+        const Buffer* device;
+        const Buffer* host;
+    };
     // Pushes the constants, dispatches enough workgroups for `invocations` (2D when needed),
     // waits, and returns the GPU time in ms from timestamps (or -1 where unsupported).
     double dispatch(const ComputePipeline& pipeline, VkDescriptorSet set, const void* pushConstants,
-                    std::uint64_t invocations);
+                    std::uint64_t invocations, const CounterReadback* counters = nullptr);
     // Many dispatches recorded into one command buffer, each ordered after the one before by a
     // barrier and timed by its own pair of timestamps, submitted once (in chunks of
     // kDispatchesPerSubmit); returns each one's GPU time in ms (-1 where unsupported).
@@ -104,6 +112,7 @@ public:
         VkDescriptorSet set;
         const void* pushConstants;
         std::uint64_t invocations;
+        const CounterReadback* counters = nullptr;  // read back after this dispatch (the last call's stays)
     };
     static constexpr std::uint32_t kDispatchesPerSubmit = 1024;
     std::vector<double> dispatchAll(const std::vector<DispatchCall>& calls);

@@ -74,7 +74,7 @@ BranchingRun runBranching(VulkanContext& vk, const Structure& structure, const s
     spec.query = query;
     {
         ComputePipeline counted = buffers->createKernel(kernel, spec);
-        vk.dispatch(counted, buffers->descriptorSet(counted), buffers->pushConstants(), rays.size());
+        vk.dispatch(counted, buffers->descriptorSet(counted), buffers->pushConstants(), rays.size(), buffers->passCounters());
         vk.destroy(counted);
         run.hits = buffers->downloadHits();
         const gpu::PassCounters c = buffers->readPassCounters();

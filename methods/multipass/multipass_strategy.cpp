@@ -27,9 +27,8 @@ struct Pipelines {
 MultipassCounts runPasses(VulkanContext& vk, GpuBuffers& buffers, Pipelines& pipelines, const MultipassOptions& options,
                           std::uint64_t cap) {
     return runPassLoop(options, cap, [&](PassKind kind) {
-        buffers.resetPassCounters();
         const ComputePipeline& p = pipelines.byKind[static_cast<int>(kind)];
-        vk.dispatch(p, buffers.descriptorSet(p), buffers.pushConstants(), buffers.rayCount());
+        vk.dispatch(p, buffers.descriptorSet(p), buffers.pushConstants(), buffers.rayCount(), buffers.passCounters());
         const gpu::PassCounters c = buffers.readPassCounters();
         PassSums sums;
         sums.traversing = c.counts[gpu::kCountTraversing];
