@@ -37,21 +37,21 @@ std::string contextString(const Json& context, const std::string& path, const ch
 // A folder of an older results schema hashed its runs without the keys added since (`newerKeys`).
 void checkRowsAgainstPlan(const Json& context, const std::string& contextPath, const ExperimentPlan& plan,
                           const std::vector<Row>& rows, const std::string& csvPath, const std::set<std::string>& newerKeys) {
-    std::map<std::string, std::string> derived, recordedPlan;
+    std::map<std::string, std::string> derived, planned;
     for (const RunConfig& run : plan.runs) derived[runNumber(run)] = newerKeys.empty() ? run.hash() : run.hashWithout(newerKeys);
     try {
         for (const Json& run : context.at("plan"))
-            recordedPlan[run.at("run").get<std::string>()] = run.at("config_hash").get<std::string>();
+            planned[run.at("run").get<std::string>()] = run.at("config_hash").get<std::string>();
     } catch (const Json::exception& e) {
         throw Error(contextPath + ": no valid \"plan\" list: " + e.what());
     }
     for (const auto& [run, hash] : derived)
-        if (!recordedPlan.count(run) || recordedPlan[run] != hash)
+        if (!planned.count(run) || planned[run] != hash)
             throw Error(contextPath + ": its plan lacks run " + run + " (config_hash " + hash + ") that its config text gives (" +
-                        std::to_string(recordedPlan.size()) + " runs recorded, " + std::to_string(derived.size()) +
+                        std::to_string(planned.size()) + " runs recorded, " + std::to_string(derived.size()) +
                         " in the config): the plan was cut down or edited");
-    if (recordedPlan.size() != derived.size())
-        throw Error(contextPath + ": its plan lists " + std::to_string(recordedPlan.size()) + " runs, its config text gives " +
+    if (planned.size() != derived.size())
+        throw Error(contextPath + ": its plan lists " + std::to_string(planned.size()) + " runs, its config text gives " +
                     std::to_string(derived.size()) + ": the plan was edited");
     std::set<std::string> present;
     for (const Row& row : rows) {
@@ -76,18 +76,7 @@ void checkRowsAgainstPlan(const Json& context, const std::string& contextPath, c
 
 }  // namespace
 
-CheckResult checkResults(const std::string& folder, const CheckOptions& options,
-                         std::ostream& out) {
-    if (!(options.timingTolerance >= 0.0) || !std::isfinite(options.timingTolerance))
-        throw Error("--tolerance " + formatNumber(options.timingTolerance) + ": expected a finite number >= 0 (0.5 = 50%)");
-    if (!options.embreeConfigOverride.empty()) {
-        ExperimentPlan none;
-        overrideEmbreeConfig(none, options.embreeConfigOverride);  // refused before any work
-    }
-    const std::string contextPath = (fs::path(folder) / "context.json").string();
-    if (!fs::exists(contextPath))
-        throw Error(contextPath + ": not found (is this a results folder?)");
-    const Json context = readJson(contextPath);
+ExperimentPlan recordedPlan(const Json& context, const std::string& contextPath) {
     const std::string configPath = contextString(context, contextPath, "config_path");
     // Relative scene paths resolve against the recorded config's folder: where it was when run if
     // that still exists, else where the path points from here.
@@ -104,6 +93,22 @@ CheckResult checkResults(const std::string& folder, const CheckOptions& options,
             if (value.is_string()) overrides[key] = value.get<std::string>();
         applyRecordedOverrides(plan, overrides);
     }
+    return plan;
+}
+
+CheckResult checkResults(const std::string& folder, const CheckOptions& options,
+                         std::ostream& out) {
+    if (!(options.timingTolerance >= 0.0) || !std::isfinite(options.timingTolerance))
+        throw Error("--tolerance " + formatNumber(options.timingTolerance) + ": expected a finite number >= 0 (0.5 = 50%)");
+    if (!options.embreeConfigOverride.empty()) {
+        ExperimentPlan none;
+        overrideEmbreeConfig(none, options.embreeConfigOverride);  // refused before any work
+    }
+    const std::string contextPath = (fs::path(folder) / "context.json").string();
+    if (!fs::exists(contextPath))
+        throw Error(contextPath + ": not found (is this a results folder?)");
+    const Json context = readJson(contextPath);
+    ExperimentPlan plan = recordedPlan(context, contextPath);
     const std::string csvPath = (fs::path(folder) / "runs.csv").string();
     int schema = kSchemaVersion;
     const std::vector<Row> recorded = readRunsCsv(csvPath, &schema);

@@ -6,6 +6,9 @@
 #include <ostream>
 #include <string>
 
+#include "config.h"
+#include "writers.h"
+
 namespace rtbench {
 
 struct CheckOptions {
@@ -23,6 +26,11 @@ struct CheckResult {
     int contextDifferences = 0;        // reported, not failures
     bool failed() const { return deterministicDifferences > 0; }
 };
+
+// The plan a results folder's context (context.json, or a shard's) records: its config text,
+// scenes resolved against the recorded config's folder (where it was when run if that still
+// exists, else where the path points from here), with the command line's overrides.
+ExperimentPlan recordedPlan(const Json& context, const std::string& contextPath);
 
 // Re-runs <folder>/context.json's config text (scenes resolve against the recorded config's
 // folder) into a temporary folder, for the runs recorded in <folder>/runs.csv (an interrupted

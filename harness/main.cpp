@@ -92,6 +92,11 @@ int main(int argc, char** argv) {
     std::string mergeFolder;
     CLI::App* merge = app.add_subcommand("merge", "Join the runs.shard-*.csv of a results folder into runs.csv, checking none is missing or doubled");
     merge->add_option("results_dir", mergeFolder, "results folder of a sharded run")->required();
+    std::string missingAsFailed;
+    merge->add_option("--missing-as-failed", missingAsFailed,
+                      "write a failed row, its error \"no row from its shard: REASON\", for each run no shard finished "
+                      "(a shard killed by a time limit or never started) instead of refusing; context.json then says "
+                      "complete: false");
 
     CLI::App* devices = app.add_subcommand("devices", "List the Vulkan devices rtbench can use");
 
@@ -206,7 +211,7 @@ int main(int argc, char** argv) {
             return 0;
         }
         if (*merge) {
-            const std::vector<rtbench::Row> rows = rtbench::mergeShards(mergeFolder);
+            const std::vector<rtbench::Row> rows = rtbench::mergeShards(mergeFolder, missingAsFailed);
             std::cout << "merged " << rows.size() << " runs into " << mergeFolder << "/runs.csv\n";
             return 0;
         }

@@ -519,18 +519,8 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
     std::map<std::string, std::string> inputsNow;  // run -> inputs_hash, of runs with an earlier ok row
     for (std::size_t k = 0; k < mine.size(); ++k) {
         const RunConfig& run = *mine[k];
-        Row& row = rows[k];
-        for (const auto& [key, value] : run.values)
-            for (const auto& [column, cell] : keyCells(keySpec(key), value)) row[column] = cell;
-        row["run"] = runNumber(run);
-        row["label"] = run.label();
-        row["sweep"] = run.sweep;
-        row["config_hash"] = run.hash();
-        row["git_commit"] = gitCommit();
         const VulkanContext& vk = deviceFor(run, caches);
-        row["device"] = vk.info().name;
-        row["driver"] = vk.info().driver;
-        row["cpu"] = cpuModel();
+        Row& row = rows[k] = identityRow(run, gitCommit(), vk.info().name, vk.info().driver, cpuModel());
         if (!earlierRuns.count(row["run"] + "|" + row["config_hash"])) continue;
         Row withInputs = row;
         try {
@@ -738,6 +728,22 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
     writeCsv(csvPath, columns, result.rows);  // in plan order
     writeJson(contextPath, contextJson(plan, options, caches, started, true));
     return result;
+}
+
+Row identityRow(const RunConfig& run, const std::string& commit, const std::string& device, const std::string& driver,
+                const std::string& cpu) {
+    Row row;
+    for (const auto& [key, value] : run.values)
+        for (const auto& [column, cell] : keyCells(keySpec(key), value)) row[column] = cell;
+    row["run"] = runNumber(run);
+    row["label"] = run.label();
+    row["sweep"] = run.sweep;
+    row["config_hash"] = run.hash();
+    row["git_commit"] = commit;
+    row["device"] = device;
+    row["driver"] = driver;
+    row["cpu"] = cpu;
+    return row;
 }
 
 }  // namespace rtbench

@@ -49,9 +49,17 @@ std::string samplesFileName(const RunnerOptions& options);
 // A run's number as it appears in the CSV and file names: "000", "001", ...
 std::string runNumber(const RunConfig& run);
 
+// A run's row before it runs: its parameters and identity (run, label, sweep, config_hash, the
+// binary's commit, the device and CPU it runs on).
+Row identityRow(const RunConfig& run, const std::string& commit, const std::string& device, const std::string& driver,
+                const std::string& cpu);
+
 // Joins the shards' CSVs of a results folder into runs.csv; checks that every run of the plan
-// (from the shards' context files) is there exactly once. Returns the merged rows.
-std::vector<Row> mergeShards(const std::string& folder);
+// (from the shards' context files) is there exactly once. With `missingReason`, a run no shard
+// finished (a shard killed by a time limit, or never started) is a failed row instead, its error
+// "no row from its shard: " + missingReason, its identity from the recorded plan and the other
+// rows' device. Returns the merged rows.
+std::vector<Row> mergeShards(const std::string& folder, const std::string& missingReason = "");
 
 // The short table printed after a run (Mrays/s kernel vs Embree, agreement).
 std::string summaryTable(const std::vector<Row>& rows);

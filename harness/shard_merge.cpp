@@ -1,11 +1,13 @@
 // `rtbench merge`: the shards of a sharded sweep (runs.shard-<i>-of-<n>.csv) joined into runs.csv
 // (harness/runner.h mergeShards).
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <regex>
 #include <set>
 
+#include "check.h"
 #include "output_folder.h"
 #include "columns.h"
 #include "runner.h"
@@ -31,7 +33,7 @@ std::string contextField(const Json& context, const fs::path& path, const char* 
 
 }  // namespace
 
-std::vector<Row> mergeShards(const std::string& folder) {
+std::vector<Row> mergeShards(const std::string& folder, const std::string& missingReason) {
     std::error_code ec;
     if (!fs::is_directory(folder, ec)) throw Error(folder + ": not a results folder");
     refuseSymlinks(folder);  // before the lock file is made
@@ -92,8 +94,32 @@ std::vector<Row> mergeShards(const std::string& folder) {
             if (!byRun.emplace(run, row).second) throw Error(folder + ": " + name + " appears in more than one shard");
         }
     }
+    std::vector<std::string> missing;
     for (const auto& [run, hash] : planned)
-        if (!byRun.count(run)) throw Error(folder + ": run " + run + " is missing from the shards");
+        if (!byRun.count(run)) missing.push_back(run);
+    if (!missing.empty() && missingReason.empty()) throw Error(folder + ": run " + missing.front() + " is missing from the shards");
+    if (!missing.empty()) {
+        // Failed rows for the runs no shard finished, as the runner would have begun them.
+        const ExperimentPlan plan = recordedPlan(reference.json, reference.context.string());
+        std::string device, driver, cpu = contextField(reference.json, reference.context, "cpu");
+        if (!byRun.empty()) {
+            const Row& any = byRun.begin()->second;
+            device = any.at("device"), driver = any.at("driver"), cpu = any.at("cpu");
+        } else if (const auto d = reference.json.find("devices"); d != reference.json.end() && d->is_array() && d->size() == 1) {
+            device = d->at(0).value("name", ""), driver = d->at(0).value("driver", "");
+        }
+        for (const std::string& run : missing) {
+            const auto it = std::find_if(plan.runs.begin(), plan.runs.end(), [&](const RunConfig& r) { return runNumber(r) == run; });
+            if (it == plan.runs.end() || it->hash() != planned[run])
+                throw Error(reference.context.string() + ": run " + run + " of its plan is not the run its config text gives");
+            Row row = identityRow(*it, commit, device, driver, cpu);
+            for (const std::string& column : runColumns()) row.emplace(column, "");  // every cell, as a read row has
+            row["status"] = "failed";
+            row["error"] = "no row from its shard: " + missingReason;
+            byRun.emplace(run, std::move(row));
+        }
+        complete = false;
+    }
     // One device, and one content of each scene's files, across the shards.
     std::map<std::string, const Row*> byScene;
     const Row* firstRow = &byRun.begin()->second;

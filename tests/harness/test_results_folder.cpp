@@ -215,6 +215,35 @@ TEST_F(ResultsFolder, MergeRefusesShardsOfAnotherCommitOrConfig) {
                 HasSubstr("runs.csv: exists and differs from the merge of these shards (1 rows against 2)"));
 }
 
+// A shard killed mid-run (its CSV holds the header alone) and a shard never started: merge
+// refuses, unless asked to write each missing run as a failed row with the reason given; those
+// rows carry the run's identity as the runner would have written it.
+TEST_F(ResultsFolder, MergeWritesRunsNoShardFinishedAsFailedRowsWhenAsked) {
+    dir_.write("flat.off", kTwoTriangles);
+    const std::string sweep = "[scene]\nsource = \"flat.off\"\n[structure]\nmin_dim = [2, 3, 4]\n";
+    const ExperimentResult whole = run(sweep);
+    ASSERT_EQ(whole.failed, 0);
+    fs::remove_all(folder());
+    run(sweep, shard(0, 3));
+    run(sweep, shard(1, 3));
+    const std::string killed = (folder() / "runs.shard-1-of-3.csv").string();
+    writeCsv(killed, runColumns(), {});  // as a process killed during its run leaves it
+    EXPECT_THAT(errorOf([&] { mergeShards(folder().string()); }), HasSubstr("run 001 is missing from the shards"));
+    EXPECT_FALSE(fs::exists(folder() / "runs.csv"));
+    const std::vector<Row> merged = mergeShards(folder().string(), "killed after 60 s (the campaign's cap)");
+    ASSERT_EQ(merged.size(), 3u);
+    EXPECT_EQ(merged[0].at("status"), "ok");
+    for (std::size_t k : {1u, 2u}) {
+        const Row& failed = merged[k];
+        EXPECT_EQ(failed.at("status"), "failed");
+        EXPECT_EQ(failed.at("error"), "no row from its shard: killed after 60 s (the campaign's cap)");
+        for (const char* column : {"run", "label", "sweep", "config_hash", "git_commit", "device", "driver", "cpu", "structure_min_dim"})
+            EXPECT_EQ(failed.at(column), whole.rows[k].at(column)) << column;
+    }
+    EXPECT_EQ(readRunsCsv((folder() / "runs.csv").string()), merged);
+    EXPECT_FALSE(readJson((folder() / "context.json").string()).at("complete").get<bool>());
+}
+
 // Shards run side by side (each holds its own lock); the same shard twice, or a whole-folder run
 // or merge during a shard, is refused at once.
 TEST_F(ResultsFolder, ShardsLockTheirOwnFilesAndMergeTheFolder) {
