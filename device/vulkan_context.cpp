@@ -137,7 +137,10 @@ DeviceInfo describe(VkPhysicalDevice device) {
         default: info.type = "other";
     }
     info.subgroupSize = subgroup.subgroupSize;
-    if (driver.driverID == VK_DRIVER_ID_MESA_LLVMPIPE) info.loopIterationLimit = 65535;
+    if (driver.driverID == VK_DRIVER_ID_MESA_LLVMPIPE) {
+        info.loopIterationLimit = 65535;
+        info.lockStepSubgroups = true;
+    }
     info.maxStorageBufferRange = limits.maxStorageBufferRange;
     info.maxWorkGroupCountX = limits.maxComputeWorkGroupCount[0];
     info.maxPushConstantsSize = limits.maxPushConstantsSize;

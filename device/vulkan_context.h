@@ -21,6 +21,12 @@ struct DeviceInfo {
     // together), 0 when none is known: llvmpipe's is 65,535 (Mesa's LP_MAX_TGSI_LOOP_ITERATIONS,
     // per subgroup: lanes run in lockstep, so the count is the subgroup's).
     std::uint64_t loopIterationLimit = 0;
+    // Whether a subgroup's lanes run a loop in lock step, every lane of the subgroup at the same
+    // iteration and reconverged after it: llvmpipe's subgroups are SIMD vectors, so its ballots
+    // count what branching's CPU lane model (methods/branching/lane_counts.h) counts. Elsewhere
+    // (NVIDIA's independent thread scheduling) the lanes of a loop may run apart, and the model
+    // is not the device's measure.
+    bool lockStepSubgroups = false;
     std::uint64_t maxStorageBufferRange = 0;
     std::uint32_t maxWorkGroupCountX = 0;
     std::uint32_t maxPushConstantsSize = 0;

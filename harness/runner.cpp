@@ -294,7 +294,8 @@ Json contextJson(const ExperimentPlan& plan, const RunnerOptions& options, const
     for (const auto& [key, vk] : caches.devices) {
         const DeviceInfo& d = vk->info();
         j["devices"].push_back({{"name", d.name}, {"driver", d.driver}, {"api", d.apiVersion}, {"type", d.type},
-                                {"subgroup_size", d.subgroupSize}, {"max_storage_buffer_range", d.maxStorageBufferRange},
+                                {"subgroup_size", d.subgroupSize}, {"lock_step_subgroups", d.lockStepSubgroups},
+                                {"max_storage_buffer_range", d.maxStorageBufferRange},
                                 {"timestamp_period_ns", d.timestampPeriodNs}});
     }
     j["plan"] = Json::array();

@@ -53,7 +53,8 @@ struct ColumnSpec {
 //   9  + the device's shading passes (shading_*), refraction rays (refraction.*), diffuse rays:
 //        path tracing (path.*) and ambient occlusion (ao.*).
 //  10  + Whitted ray tracing (whitted.*, whitted_*): materials and lights.
-constexpr int kSchemaVersion = 10;
+//  11  + branching's CPU lane model beside the device's ballots (lanes_model_*).
+constexpr int kSchemaVersion = 11;
 
 // The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".
 std::string paramColumn(const std::string& key);

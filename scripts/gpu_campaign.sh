@@ -80,7 +80,7 @@ campaign() {
   {
     echo "== $(date -u +%FT%TZ) commit $(git rev-parse --short=12 HEAD 2>/dev/null || echo unknown), device '$DEVICE'," \
          "Embree '$EMBREE_CONFIG', run cap ${RUN_CAP_S} s, budget ${BUDGET_S} s, max runs ${MAX_RUNS:-0}"
-    "$bin" devices
+    "$bin" devices || echo "== rtbench devices failed (exit $?): nothing can run"
   } >> "$log" 2>&1
   for config in $CONFIGS; do
     n=$("$bin" plan -o "$results" "configs/$config.toml" | sed -n 's/^\([0-9][0-9]*\) run(s).*/\1/p')

@@ -89,6 +89,16 @@ BranchingRun runBranching(VulkanContext& vk, const Structure& structure, const s
     return run;
 }
 
+LaneVerdict judgeLaneCounts(const DeviceInfo& device, std::uint64_t deviceActive, std::uint64_t deviceSlots,
+                            std::uint64_t modelActive, std::uint64_t modelSlots) {
+    if (deviceActive == modelActive && deviceSlots == modelSlots) return {};
+    const std::string counts = std::to_string(deviceActive) + "/" + std::to_string(deviceSlots) + " on the device, " +
+                               std::to_string(modelActive) + "/" + std::to_string(modelSlots) + " in the CPU model";
+    if (device.lockStepSubgroups) return {"subgroup lane counts differ (" + counts + ")", ""};
+    return {"", "subgroup lane counts differ from the lock-step model (" + counts + "): " + device.name +
+                    " need not run a subgroup's loops in lock step; the SIMD-efficiency columns are its own ballots'"};
+}
+
 namespace {
 
 StrategyRun runBranchingStrategy(VulkanContext& vk, const Structure& structure, const RayBatch& batch,
@@ -104,10 +114,12 @@ StrategyRun runBranchingStrategy(VulkanContext& vk, const Structure& structure, 
     const std::uint64_t limit = vk.info().loopIterationLimit, margin = 64;
     const LaneCounts lanes =
         branchingLaneCounts(structure, rays, vk.info().subgroupSize, limit ? limit - margin : 0, batch.query);
-    if (lanes.activeLanes != kernel.activeLanes || lanes.laneSlots != kernel.laneSlots)
-        run.countsMismatch = "subgroup lane counts differ (" + std::to_string(kernel.activeLanes) + "/" +
-                             std::to_string(kernel.laneSlots) + " on the device, " + std::to_string(lanes.activeLanes) +
-                             "/" + std::to_string(lanes.laneSlots) + " in the CPU model)";
+    row["lanes_model_active"] = std::to_string(lanes.activeLanes);
+    row["lanes_model_slots"] = std::to_string(lanes.laneSlots);
+    const LaneVerdict verdict =
+        judgeLaneCounts(vk.info(), kernel.activeLanes, kernel.laneSlots, lanes.activeLanes, lanes.laneSlots);
+    run.countsMismatch = verdict.mismatch;
+    if (!verdict.warning.empty()) row["warnings"] += (row["warnings"].empty() ? "" : "; ") + verdict.warning;
     run.truncatedRays = lanes.raysInLongSubgroups;
     row["rays_cut_short"] = std::to_string(run.truncatedRays);
     if (run.truncatedRays)
@@ -129,7 +141,14 @@ const StrategyType& branchingStrategyType() {
         t.name = "branching";
         t.help = "one kernel per ray stream (Purcell's branching architecture)";
         t.columns = {{"rays_cut_short", ColumnKind::Count, "rays",
-                      "branching: rays in subgroups needing more loop iterations than the device runs (a failed run; llvmpipe: 65,535)"}};
+                      "branching: rays in subgroups needing more loop iterations than the device runs (a failed run; llvmpipe: 65,535)"},
+                     {"lanes_model_active", ColumnKind::Count, "lanes",
+                      "branching: active lanes summed over the subgroup ballots as the CPU lane model counts them (lock-step "
+                      "loops; equal to the device's on llvmpipe, where a difference fails the run; elsewhere a warning)"},
+                     {"lanes_model_slots", ColumnKind::Count, "lanes",
+                      "branching: subgroup size summed over the same ballots, as the CPU lane model counts them"}};
+        for (ColumnSpec& c : t.columns)
+            if (c.name.rfind("lanes_model_", 0) == 0) c.since = 11;
         t.run = runBranchingStrategy;
         return t;
     }();

@@ -18,6 +18,17 @@ struct BranchingRun {
 // Uploads structure and rays, runs one instrumented dispatch for hits and counters, then the
 // warm-ups and timed repetitions `timing` asks for (none: the timer does them later) with
 // instrumentation off; checks the timed runs' hits equal the counted ones. `query`: gpu::kQuery*.
+// The device's subgroup lane counts (active lanes / lane slots of its ballots) against the CPU
+// lane model's, which assumes lock-step loops. Where the device runs subgroups in lock step
+// (DeviceInfo::lockStepSubgroups) a difference is a wrong count: `mismatch` says what differs and
+// fails the run. Elsewhere the model is not the device's measure: `warning` says so (the
+// SIMD-efficiency columns are the device's) and the run stands.
+struct LaneVerdict {
+    std::string mismatch, warning;
+};
+LaneVerdict judgeLaneCounts(const DeviceInfo& device, std::uint64_t deviceActive, std::uint64_t deviceSlots,
+                            std::uint64_t modelActive, std::uint64_t modelSlots);
+
 BranchingRun runBranching(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
                           const TimingOptions& timing, std::uint32_t query = gpu::kQueryClosest);
 

@@ -102,3 +102,42 @@ TEST_F(BranchingKernel, BufferOverTheBindingLimitIsAClearError) {
 
 }  // namespace
 }  // namespace rtbench
+
+namespace rtbench {
+namespace {
+
+// The lane model is the judge only where subgroups run in lock step (llvmpipe); on another
+// device a difference is a warning naming both counts, and the run stands.
+TEST(LaneVerdict, ADifferenceFailsOnALockStepDeviceAndWarnsElsewhere) {
+    DeviceInfo lavapipe;
+    lavapipe.name = "llvmpipe (LLVM 15.0.6, 256 bits)";
+    lavapipe.lockStepSubgroups = true;
+    DeviceInfo nvidia;
+    nvidia.name = "NVIDIA H200";
+    for (const DeviceInfo* d : {&lavapipe, &nvidia}) {
+        const LaneVerdict same = judgeLaneCounts(*d, 700, 800, 700, 800);
+        EXPECT_EQ(same.mismatch, "");
+        EXPECT_EQ(same.warning, "");
+    }
+    const LaneVerdict wrong = judgeLaneCounts(lavapipe, 690, 800, 700, 800);
+    EXPECT_EQ(wrong.mismatch, "subgroup lane counts differ (690/800 on the device, 700/800 in the CPU model)");
+    EXPECT_EQ(wrong.warning, "");
+    const LaneVerdict apart = judgeLaneCounts(nvidia, 700, 832, 700, 800);
+    EXPECT_EQ(apart.mismatch, "");
+    EXPECT_NE(apart.warning.find("(700/832 on the device, 700/800 in the CPU model): NVIDIA H200 need not run"), std::string::npos)
+        << apart.warning;
+}
+
+// lavapipe says it runs subgroups in lock step (the suite's device), so its lane counts are judged.
+TEST(LaneVerdict, TheTestDeviceIsLockStep) {
+    const std::vector<DeviceInfo> devices = VulkanContext::listDevices();
+    ASSERT_FALSE(devices.empty());
+    for (const DeviceInfo& d : devices) {
+        if (d.driver.find("llvmpipe") != std::string::npos) {
+            EXPECT_TRUE(d.lockStepSubgroups) << d.name;
+        }
+    }
+}
+
+}  // namespace
+}  // namespace rtbench
