@@ -507,6 +507,12 @@ double VulkanContext::dispatch(const ComputePipeline& p, VkDescriptorSet set, co
     return dispatchAll({{&p, set, pushConstants, invocations, counters}}).front();
 }
 
+std::pair<std::uint64_t, std::uint64_t> workgroupGrid(std::uint64_t groups, std::uint64_t maxGroupsX) {
+    const std::uint64_t maxX = std::max<std::uint64_t>(maxGroupsX, 1);
+    const std::uint64_t y = std::max<std::uint64_t>((groups + maxX - 1) / maxX, 1);
+    return {(groups + y - 1) / y, y};
+}
+
 std::vector<double> VulkanContext::dispatchAll(const std::vector<DispatchCall>& calls) {
     std::vector<double> ms;
     for (std::size_t chunk = 0; chunk < calls.size(); chunk += kDispatchesPerSubmit) {
@@ -516,10 +522,8 @@ std::vector<double> VulkanContext::dispatchAll(const std::vector<DispatchCall>& 
         for (std::uint32_t i = 0; i < n; ++i) {
             const DispatchCall& call = calls[chunk + i];
             const ComputePipeline& p = *call.pipeline;
-            // Workgroups: a 2D grid of groups when x alone would exceed maxComputeWorkGroupCount[0].
             const std::uint64_t groups = (call.invocations + p.workgroupSize - 1) / p.workgroupSize;
-            const std::uint64_t groupsX = std::max<std::uint64_t>(std::min<std::uint64_t>(groups, info_.maxWorkGroupCountX), 1);
-            const std::uint64_t groupsY = (groups + groupsX - 1) / groupsX;
+            const auto [groupsX, groupsY] = workgroupGrid(groups, info_.maxWorkGroupCountX);
             if (call.counters) {
                 // Orders the previous pass's counter atomics and read-back copy before the zeroing.
                 VkMemoryBarrier before{VK_STRUCTURE_TYPE_MEMORY_BARRIER};

@@ -49,6 +49,24 @@ protected:
     TempDir dir_;
 };
 
+// The grid covers every group, the fewest rows, and leaves fewer than a row's worth (y - 1) empty.
+TEST(WorkgroupGrid, CoversEveryGroupWithTheFewestRowsAndFewerThanOneEmptyGroupPerRow) {
+    using Grid = std::pair<std::uint64_t, std::uint64_t>;
+    EXPECT_EQ(workgroupGrid(0, 65535), Grid(0, 1));
+    EXPECT_EQ(workgroupGrid(1, 65535), Grid(1, 1));
+    EXPECT_EQ(workgroupGrid(65535, 65535), Grid(65535, 1));
+    EXPECT_EQ(workgroupGrid(65536, 65535), Grid(32768, 2));  // 2048 x 2048 rays of 64: 65,536 groups
+    EXPECT_EQ(workgroupGrid(131071, 65535), Grid(43691, 3)); // 131,073 slots, 2 empty
+    for (std::uint64_t groups : {1ull, 7ull, 65535ull, 65536ull, 100000ull, 262144ull, 4294967295ull})
+        for (std::uint64_t limit : {1ull, 2ull, 1000ull, 65535ull, 2147483647ull}) {
+            const auto [x, y] = workgroupGrid(groups, limit);
+            EXPECT_LE(x, limit);
+            EXPECT_EQ(y, (groups + limit - 1) / limit) << groups << " groups, limit " << limit;
+            EXPECT_GE(x * y, groups);
+            EXPECT_LT(x * y - groups, y) << groups << " groups, limit " << limit;
+        }
+}
+
 TEST_F(RunLimits, ASceneScaledBy1e18FailsWithTheRangeInsteadOfAbortingInEmbree) {
     const Row row = runOne(tetrahedronOff(1e18), "[camera]\nwidth = 8\nheight = 8\n");
     EXPECT_EQ(row.at("status"), "failed");

@@ -45,6 +45,22 @@ TEST_F(BranchingKernel, PerRayHitsAndCountersEqualTheCpuReferenceOnRandomRays) {
     }
 }
 
+// More workgroups than maxComputeWorkGroupCount[0] (lavapipe: 65,535): the dispatch is a grid of
+// two rows (device/vulkan_context.h workgroupGrid), and every ray, the last ones of row 2 too,
+// gets its own record.
+TEST_F(BranchingKernel, ADispatchOfMoreGroupsThanOneRowHoldsTracesEveryRay) {
+    const std::uint32_t workgroup = vk_->info().subgroupSize;
+    const std::uint64_t groups = vk_->info().maxWorkGroupCountX + 2;
+    if (groups * workgroup > 8'000'000) GTEST_SKIP() << "maxComputeWorkGroupCount[0] " << vk_->info().maxWorkGroupCountX;
+    const TriangleMesh mesh = christenSceneA();
+    GridResolutionRule rule;
+    rule.minDim = 8;
+    const UniformGrid grid = buildUniformGrid(mesh, rule);
+    const std::vector<gpu::Ray> rays = randomRays(mesh.bounds(), groups * workgroup - 3, 8);
+    const BranchingRun run = runBranching(*vk_, *gridStructure(grid), rays, {workgroup, 0, 0});
+    expectIdentical(run.hits, traceGridReference(grid, rays));
+}
+
 TEST_F(BranchingKernel, PrimaryRaysOnSceneBAgreeWithEmbree) {
     const TriangleMesh mesh = christenSceneB();
     GridResolutionRule rule;
