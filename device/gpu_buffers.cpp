@@ -91,20 +91,24 @@ std::uint32_t floatBits(float f) {
 }  // namespace
 
 ComputePipeline GpuBuffers::createKernel(const std::string& name, const KernelSpec& spec) {
+    std::vector<SpecializationConstant> constants = {
+        {gpu::kSpecWorkgroupSize, spec.workgroupSize},
+        {gpu::kSpecInstrument, spec.instrument ? 1u : 0u},
+        {gpu::kSpecTriangleTest, spec.triangleTest},
+        {gpu::kSpecVertexBits, spec.vertexLattice.bits},
+        {gpu::kSpecLatticeOriginX, floatBits(spec.vertexLattice.origin.x)},
+        {gpu::kSpecLatticeOriginY, floatBits(spec.vertexLattice.origin.y)},
+        {gpu::kSpecLatticeOriginZ, floatBits(spec.vertexLattice.origin.z)},
+        {gpu::kSpecLatticeStep, floatBits(spec.vertexLattice.step)},
+        {gpu::kSpecQuery, spec.query}};
+    for (const SpecializationConstant& c : spec.strategyConstants) {
+        for (const SpecializationConstant& earlier : constants)
+            if (earlier.id == c.id)  // Vulkan requires each constant ID once per pipeline
+                throw Error(name + ": specialization constant " + std::to_string(c.id) + " given twice");
+        constants.push_back(c);
+    }
     return vk_.createComputePipeline(embeddedKernel(name), std::uint32_t(buffers_.size()),
-                                     std::uint32_t(pushConstants_.size()), spec.workgroupSize,
-                                     {{gpu::kSpecWorkgroupSize, spec.workgroupSize},
-                                      {gpu::kSpecInstrument, spec.instrument ? 1u : 0u},
-                                      {gpu::kSpecTraverseSteps, spec.traverseStepsPerPass},
-                                      {gpu::kSpecIntersections, spec.intersectionsPerPass},
-                                      {gpu::kSpecSuppress, spec.suppressFinishedReads ? 1u : 0u},
-                                      {gpu::kSpecTriangleTest, spec.triangleTest},
-                                      {gpu::kSpecVertexBits, spec.vertexLattice.bits},
-                                      {gpu::kSpecLatticeOriginX, floatBits(spec.vertexLattice.origin.x)},
-                                      {gpu::kSpecLatticeOriginY, floatBits(spec.vertexLattice.origin.y)},
-                                      {gpu::kSpecLatticeOriginZ, floatBits(spec.vertexLattice.origin.z)},
-                                      {gpu::kSpecLatticeStep, floatBits(spec.vertexLattice.step)},
-                                      {gpu::kSpecQuery, spec.query}});
+                                     std::uint32_t(pushConstants_.size()), spec.workgroupSize, constants);
 }
 
 GpuBuffers::~GpuBuffers() {

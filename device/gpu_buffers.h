@@ -12,15 +12,16 @@
 
 namespace rtbench {
 
+// The specialization constants of a kernel: those every kernel reads (kernels/gpu_layout.h), set
+// from the run's structure and query, and the strategy's own (multipass: K, M and suppression),
+// which the strategy lists; a constant a kernel does not declare is ignored by Vulkan.
 struct KernelSpec {
     std::uint32_t workgroupSize = 64;
     bool instrument = true;
-    std::uint32_t traverseStepsPerPass = 1;
-    std::uint32_t intersectionsPerPass = 1;
-    bool suppressFinishedReads = false;
     std::uint32_t triangleTest = gpu::kTriangleTestMollerTrumbore;
     std::uint32_t query = gpu::kQueryClosest;  // gpu::kQuery*: closest hit or any hit
     VertexLattice vertexLattice;  // bits != 0: the structure's vertices are packed to it
+    std::vector<SpecializationConstant> strategyConstants;
 };
 
 // One device buffer of a run and its size, known from the run's parameters before allocation.

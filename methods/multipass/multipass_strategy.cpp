@@ -153,9 +153,9 @@ MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const s
     spec.workgroupSize = timing.workgroupSize;
     spec.triangleTest = structure.triangleTest();
     spec.vertexLattice = structure.vertexLattice();
-    spec.traverseStepsPerPass = options.traverseStepsPerPass;
-    spec.intersectionsPerPass = options.intersectionsPerPass;
-    spec.suppressFinishedReads = options.suppressFinishedReads;
+    spec.strategyConstants = {{gpu::kSpecTraverseSteps, options.traverseStepsPerPass},
+                              {gpu::kSpecIntersections, options.intersectionsPerPass},
+                              {gpu::kSpecSuppress, options.suppressFinishedReads ? 1u : 0u}};
     spec.query = query;
     auto counted = std::make_unique<Pipelines>(vk, *buffers, structure.kernelPrefix(), spec);
     run.counts = runPasses(vk, *buffers, *counted, options, cap);

@@ -12,6 +12,10 @@
 #include "tests/device/test_device.h"
 #include "structures/error.h"
 #include "tests/temp_dir.h"
+#include "tests/error_of.h"
+#include "methods/grid/grid_structure.h"
+#include "methods/grid/uniform_grid.h"
+#include "structures/procedural.h"
 
 namespace rtbench {
 namespace {
@@ -151,6 +155,32 @@ TEST(HitChecks, ANanDistanceIsNamedAsAnOutOfRangeInputNotNondeterminism) {
     } catch (const Error& e) {
         EXPECT_THAT(e.what(), HasSubstr("differ from the instrumented run's on 2 of 3 rays (first: ray 0"));
     }
+}
+
+}  // namespace
+}  // namespace rtbench
+
+namespace rtbench {
+namespace {
+
+using KernelSpecs = VulkanTest;
+
+// A strategy's constants go beside the common ones; one that repeats a common ID is refused by
+// name before Vulkan sees it.
+TEST_F(KernelSpecs, AStrategyConstantThatRepeatsACommonIdIsRefused) {
+    const std::vector<gpu::Ray> rays(8, gpu::Ray{glm::vec4(0.0f), glm::vec4(0, 0, 1, gpu::kNoHitT)});
+    const TriangleMesh mesh = christenSceneA();
+    GridResolutionRule rule;
+    rule.minDim = 4;
+    const std::unique_ptr<Structure> structure = gridStructure(buildUniformGrid(mesh, rule));
+    GpuBuffers buffers(*vk_, rays, sizeof(gpu::GridTraversalState), structure->buffers(), structure->params());
+    KernelSpec spec;
+    spec.strategyConstants = {{gpu::kSpecQuery, gpu::kQueryAny}};
+    EXPECT_THAT(errorOf([&] { buffers.createKernel("grid_multipass_setup", spec); }),
+                HasSubstr("grid_multipass_setup: specialization constant " + std::to_string(gpu::kSpecQuery) + " given twice"));
+    spec.strategyConstants = {{gpu::kSpecTraverseSteps, 3}};
+    ComputePipeline pipeline = buffers.createKernel("grid_multipass_setup", spec);
+    vk_->destroy(pipeline);
 }
 
 }  // namespace

@@ -126,7 +126,7 @@ TEST_F(KernelNumerics, SavedDdaStateEqualsTheCpusAfterSetupAndTraversal) {
         const std::unique_ptr<Structure> structure = gridStructure(grid);
         GpuBuffers buffers(*vk_, rays, sizeof(gpu::GridTraversalState), structure->buffers(), structure->params());
         KernelSpec spec;
-        spec.traverseStepsPerPass = 8;
+        spec.strategyConstants = {{gpu::kSpecTraverseSteps, 8}};
         for (const char* kernel : {"grid_multipass_setup", "grid_multipass_traverse"}) {
             ComputePipeline pipeline = buffers.createKernel(kernel, spec);
             vk_->dispatch(pipeline, buffers.descriptorSet(pipeline), buffers.pushConstants(), rays.size());
