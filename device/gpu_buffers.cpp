@@ -60,6 +60,7 @@ GpuBuffers::GpuBuffers(VulkanContext& vk, const std::vector<gpu::Ray>& rays, std
             buffers_[b] = vk.createStorageBuffer(sizes[b].bytes, sizes[b].what);
         buffers_[gpu::kBindingPassCounters] = vk.createStorageBuffer(sizeof(gpu::PassCounters), "the pass counters");
         countersOnHost_ = vk.createHostReadbackBuffer(sizeof(gpu::PassCounters));
+        std::memset(countersOnHost_.mapped, 0, sizeof(gpu::PassCounters));  // zeros until a read-back
         vk.upload(buffers_[gpu::kBindingRays], rays.data(), n * sizeof(gpu::Ray));
         for (std::size_t i = 0; i < structureBuffers.size(); ++i) {
             const BufferData& b = structureBuffers[i];

@@ -527,7 +527,7 @@ std::vector<double> VulkanContext::dispatchAll(const std::vector<DispatchCall>& 
             if (call.counters) {
                 // Orders the previous pass's counter atomics and read-back copy before the zeroing.
                 VkMemoryBarrier before{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-                before.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT;
+                before.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
                 before.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
                 vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                                      VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &before, 0, nullptr, 0, nullptr);

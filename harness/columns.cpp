@@ -215,7 +215,8 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("cpu_reference_mismatches", K::Count, "rays",
             "rays whose GPU hit record differs from the CPU reference's");
         add("cpu_counts_match", K::Count, "",
-            "1 when pass and lane counts equal the CPU reference's");
+            "1 when pass and lane counts equal the CPU reference's (lane counts only on a device whose subgroups run "
+            "in lock step; empty for branching elsewhere, where they are not compared)");
         add("wall_s", K::Timing, "s", "wall time of the whole run");
         for (ColumnSpec& c : s) c.since = std::max(c.since, addedInSchema(c.name));
         std::set<std::string> names;

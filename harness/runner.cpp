@@ -155,7 +155,7 @@ std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunC
     timing.warmups = timing.repetitions = 0;  // timed in rounds with Embree
     p->method = strategy.run(vk, structure, batch, run, timing, row);
     row["cpu_reference_mismatches"] = std::to_string(p->method.cpuMismatches);
-    row["cpu_counts_match"] = p->method.countsMismatch.empty() ? "1" : "0";
+    row["cpu_counts_match"] = !p->method.countsCompared ? "" : p->method.countsMismatch.empty() ? "1" : "0";
     writeArchitectureColumns(p->method.metrics, structure, rays.size(), row);
 
     // Time: the kernel, uninstrumented, and Embree on the same rays, in rounds.

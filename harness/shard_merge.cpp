@@ -94,7 +94,7 @@ std::vector<Row> mergeShards(const std::string& folder, const std::string& missi
             if (!byRun.emplace(run, row).second) throw Error(folder + ": " + name + " appears in more than one shard");
         }
     }
-    std::vector<std::string> missing;
+    std::vector<std::string> missing;  // runs no shard finished: failed rows, and none of their samples
     for (const auto& [run, hash] : planned)
         if (!byRun.count(run)) missing.push_back(run);
     if (!missing.empty() && missingReason.empty()) throw Error(folder + ": run " + missing.front() + " is missing from the shards");
@@ -162,6 +162,8 @@ std::vector<Row> mergeShards(const std::string& folder, const std::string& missi
         ++withSamples;
         for (Row& sample : readSamplesCsv(path.string())) {
             const auto row = byRun.find(sample.at("run"));
+            // A run killed between its samples and its row left samples alone: its row is a stand-in.
+            if (std::find(missing.begin(), missing.end(), sample.at("run")) != missing.end()) continue;
             if (row == byRun.end() || row->second.at("config_hash") != sample.at("config_hash"))
                 throw Error(path.string() + ": a sample of run " + sample.at("run") + " (config_hash " + sample.at("config_hash") +
                             ") that no shard's row has");

@@ -56,6 +56,7 @@ struct StrategyRun {
     ArchitectureMetrics metrics;
     std::uint64_t cpuMismatches = 0;     // rays whose record differs from the CPU reference's
     std::string countsMismatch;          // what of the pass or lane counts differs ("" if none)
+    bool countsCompared = true;          // false: the device's counts are not the model's to judge (branching's lanes off lock step)
     std::uint64_t branchingMismatches = 0;  // multipass: rays whose record differs from rtTrace's
     // Rays in subgroups that need more loop iterations than the device runs (the CPU lane model's
     // count against DeviceInfo::loopIterationLimit), and why; fails the run first.

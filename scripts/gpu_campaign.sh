@@ -23,18 +23,24 @@
 # Environment (defaults in brackets):
 #   CONFIGS        configs/<name>.toml to run [bunny structures purcell2002 stability accuracy raytypes]
 #   RUN_CAP_S      seconds one run may take before its process is killed [120]
-#   BUDGET_S       seconds after which no run starts; the rest are failed rows saying so [500]
+#   BUDGET_S       seconds from the start by which every run has ended: a run is capped at what is
+#                  left, none starts with under 20 s left; the rest are failed rows saying so. Merging
+#                  and packing come after it: keep it under the 600 s a remote command may take [420]
 #   MAX_RUNS       runs of each config to run, the rest failed rows saying so (0: all) [0; dry-run 1]
 #   DEVICE         Vulkan device, a name substring [NVIDIA; dry-run llvmpipe]
 #   EMBREE_CONFIG  Embree's device config (its default ISA crashes on the GPU machine's AVX-512) [isa=avx2]
 #   HITS           1: keep the per-ray hit records (*.hits, for `rtbench images`) in the tarball [0]
 #   BIN            the binary to bundle [build-device/rtbench; dry-run build/rtbench]
+# A config none of whose runs started (the budget spent before it) has no results folder: there is
+# no recorded plan to write failed rows from; campaign.log names it.
 set -euo pipefail
+script_start=$(date +%s)
+called_from=$PWD
 cd "$(dirname "$0")/.."
 
 CONFIGS=${CONFIGS:-bunny structures purcell2002 stability accuracy raytypes}
 RUN_CAP_S=${RUN_CAP_S:-120}
-BUDGET_S=${BUDGET_S:-500}
+BUDGET_S=${BUDGET_S:-420}
 EMBREE_CONFIG=${EMBREE_CONFIG:-isa=avx2}
 HITS=${HITS:-0}
 bundle_limit=$((60 * 1024 * 1024))  # carry allows 64 MiB with the loader packages
@@ -72,56 +78,67 @@ bundle() {
 
 # campaign BUNDLE_DIR OUT: every run of CONFIGS, one process each, results packed into OUT.
 campaign() {
-  local b=$1 out=$2 results="$1/results" log="$2/campaign.log" start config n count i rc reason
-  local bin="$b/rtbench"
+  local b=$1 out=$2 results="$1/results" log="$2/campaign.log" config n count i rc reason left cap
+  local bin="$b/rtbench" start=$script_start
   mkdir -p "$results" "$out"
   export RTBENCH_CACHE="$b/cache"
-  start=$(date +%s)
+  local exclude=()
+  [ "$HITS" = 1 ] || exclude=(--exclude='*.hits')
   {
     echo "== $(date -u +%FT%TZ) commit $(git rev-parse --short=12 HEAD 2>/dev/null || echo unknown), device '$DEVICE'," \
          "Embree '$EMBREE_CONFIG', run cap ${RUN_CAP_S} s, budget ${BUDGET_S} s, max runs ${MAX_RUNS:-0}"
     "$bin" devices || echo "== rtbench devices failed (exit $?): nothing can run"
   } >> "$log" 2>&1
   for config in $CONFIGS; do
-    n=$("$bin" plan -o "$results" "configs/$config.toml" | sed -n 's/^\([0-9][0-9]*\) run(s).*/\1/p')
-    [ -n "$n" ] || { echo "== $config: rtbench plan gave no run count" >> "$log"; continue; }
+    n=$("$bin" plan -o "$results" "configs/$config.toml" 2>> "$log" | sed -n 's/^\([0-9][0-9]*\) run(s).*/\1/p') || n=
+    [ -n "$n" ] || { echo "== $config: rtbench plan gave no run count (see above)" >> "$log"; continue; }
     # One run per shard: run i is shard i of max(n, 2) (a plan of one run needs two shards to shard).
     count=$(( n > 1 ? n : 2 ))
     echo "== $config: $n runs" >> "$log"
     for ((i = 0; i < n; i++)); do
       if [ "${MAX_RUNS:-0}" -gt 0 ] && [ "$i" -ge "$MAX_RUNS" ]; then break; fi
-      if [ $(( $(date +%s) - start )) -ge "$BUDGET_S" ]; then
+      left=$(( BUDGET_S - ($(date +%s) - start) - 10 ))  # 10 s for the kill after the cap
+      if [ "$left" -lt 20 ]; then
         echo "== $config: budget of ${BUDGET_S} s spent before run $i" >> "$log"
         break
       fi
+      cap=$(( left < RUN_CAP_S ? left : RUN_CAP_S ))
       rc=0
-      timeout -k 10 "$RUN_CAP_S" "$bin" run -q -o "$results" -d "$DEVICE" --embree-config "$EMBREE_CONFIG" \
+      timeout -k 10 "$cap" "$bin" run -q -o "$results" -d "$DEVICE" --embree-config "$EMBREE_CONFIG" \
         --shard "$i/$count" "configs/$config.toml" >> "$log" 2>&1 || rc=$?
       # rtbench exits 1 when a run failed: its row says why. 124 or 137: killed at the cap.
       case $rc in
         0|1) ;;
-        124|137) echo "== $config: run $i killed after ${RUN_CAP_S} s" >> "$log" ;;
+        124|137) echo "== $config: run $i killed after ${cap} s" >> "$log" ;;
         *) echo "== $config: run $i: rtbench exited $rc" >> "$log" ;;
       esac
     done
-    reason="killed at scripts/gpu_campaign.sh's cap of ${RUN_CAP_S} s a run, or not started (its budget of ${BUDGET_S} s spent, or MAX_RUNS=${MAX_RUNS:-0}); campaign.log says which"
-    if "$bin" merge --missing-as-failed "$reason" "$results/$config" >> "$log" 2>&1; then
+    reason="killed at scripts/gpu_campaign.sh's cap of ${RUN_CAP_S} s a run (less when its budget of ${BUDGET_S} s ran short), or not started (the budget spent, or MAX_RUNS=${MAX_RUNS:-0}); campaign.log says which"
+    if ! compgen -G "$results/$config/context.shard-*" > /dev/null; then
+      # No run of it wrote anything: there is no recorded plan to make failed rows from.
+      echo "== $config: no run started or wrote its files: no results folder" >> "$log"
+    elif "$bin" merge --missing-as-failed "$reason" "$results/$config" >> "$log" 2>&1; then
       rm -f "$results/$config"/runs.shard-* "$results/$config"/samples.shard-* "$results/$config"/context.shard-* \
             "$results/$config"/.rtbench.*lock
     else
-      echo "== $config: merge failed; its shards are in the tarball as they are" >> "$log"
+      echo "== $config: merge failed; its shard files are in the tarball as they are" >> "$log"
     fi
     echo "== $config: $(( $(date +%s) - start )) s into the campaign" >> "$log"
+    # Packed after every config, so a command cut off later still brings back what is done.
+    XZ_OPT=-T0 tar cJf "$out/campaign.tar.xz.tmp" "${exclude[@]}" -C "$results" . && mv "$out/campaign.tar.xz.tmp" "$out/campaign.tar.xz"
   done
-  local exclude=()
-  [ "$HITS" = 1 ] || exclude=(--exclude='*.hits')
-  XZ_OPT=-T0 tar cJf "$out/campaign.tar.xz" "${exclude[@]}" -C "$results" .
-  echo "== done: $(( $(date +%s) - start )) s; $(du -h "$out/campaign.tar.xz" | cut -f1) in campaign.tar.xz" >> "$log"
+  local bytes
+  bytes=$(stat -c %s "$out/campaign.tar.xz" 2>/dev/null || echo 0)
+  echo "== done: $(( $(date +%s) - start )) s; $bytes bytes in campaign.tar.xz" >> "$log"
+  if [ "$bytes" -gt $((16 * 1024 * 1024)) ]; then
+    echo "== campaign.tar.xz is over the 16 MiB a file of \$OUT may have to come back: run fewer CONFIGS (or HITS=0)" >> "$log"
+  fi
 }
 
 case "${1:-}" in
   bundle)
-    bin=${BIN:-build-device/rtbench}
+    bin=build-device/rtbench
+    [ -z "${BIN:-}" ] || bin=$(cd "$called_from" && realpath -m "$BIN")
     if [ -z "${BIN:-}" ]; then
       cmake -S . -B build-device -DCMAKE_BUILD_TYPE=Release -DRTBENCH_WITH_OIIO=OFF -DRTBENCH_TESTS=OFF > /dev/null
       cmake --build build-device -j"$(nproc)" --target rtbench
@@ -138,6 +155,7 @@ case "${1:-}" in
     ;;
   run)
     : "${OUT:?gpu_campaign.sh run: \$OUT (the folder that comes back) is not set}"
+    OUT=$(cd "$called_from" && realpath -m "$OUT")
     DEVICE=${DEVICE:-NVIDIA}
     [ -f .gl/bundle.tar.xz ] || { echo "gpu_campaign.sh run: no .gl/bundle.tar.xz (scripts/gpu_campaign.sh bundle, then carry [\".gl\"])" >&2; exit 2; }
     for f in .gl/*.deb; do [ -e "$f" ] && dpkg -x "$f" /; done
@@ -151,8 +169,8 @@ case "${1:-}" in
     tail -3 "$OUT/campaign.log"
     ;;
   unpack)
-    tarball=${2:?usage: gpu_campaign.sh unpack TARBALL DIR}
-    dir=${3:?usage: gpu_campaign.sh unpack TARBALL DIR}
+    tarball=$(cd "$called_from" && realpath -m "${2:?usage: gpu_campaign.sh unpack TARBALL DIR}")
+    dir=$(cd "$called_from" && realpath -m "${3:?usage: gpu_campaign.sh unpack TARBALL DIR}")
     mkdir -p "$dir"
     tar xJf "$tarball" -C "$dir" --no-same-owner
     ls "$dir"
@@ -162,12 +180,14 @@ case "${1:-}" in
     # here), its unpacking, MAX_RUNS runs of every config, the merge and the tarball.
     DEVICE=${DEVICE:-llvmpipe}
     MAX_RUNS=${MAX_RUNS:-1}
-    bin=${BIN:-build/rtbench}
+    bin=build/rtbench
+    [ -z "${BIN:-}" ] || bin=$(cd "$called_from" && realpath -m "$BIN")
     gl=$(mktemp -d)  # not .gl/, which may hold the device's bundle
     bundle "$bin" 0 "$gl"
     b=$(mktemp -d)
-    OUT=${OUT:-$(mktemp -d)}
+    OUT=$(cd "$called_from" && realpath -m "${OUT:-$(mktemp -d)}")
     tar xJf "$gl/bundle.tar.xz" -C "$b"
+    script_start=$(date +%s)  # the budget counts from here: the bundling is done before a device run
     campaign "$b" "$OUT"
     rm -rf "$b" "$gl"
     echo "gpu_campaign.sh dry-run: $OUT/campaign.tar.xz and $OUT/campaign.log"

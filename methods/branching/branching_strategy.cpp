@@ -119,6 +119,7 @@ StrategyRun runBranchingStrategy(VulkanContext& vk, const Structure& structure, 
     const LaneVerdict verdict =
         judgeLaneCounts(vk.info(), kernel.activeLanes, kernel.laneSlots, lanes.activeLanes, lanes.laneSlots);
     run.countsMismatch = verdict.mismatch;
+    run.countsCompared = vk.info().lockStepSubgroups;
     if (!verdict.warning.empty()) row["warnings"] += (row["warnings"].empty() ? "" : "; ") + verdict.warning;
     run.truncatedRays = lanes.raysInLongSubgroups;
     row["rays_cut_short"] = std::to_string(run.truncatedRays);

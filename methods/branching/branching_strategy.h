@@ -15,9 +15,6 @@ struct BranchingRun {
     std::unique_ptr<KernelTimer> timer;            // more timed repetitions, on the same buffers
 };
 
-// Uploads structure and rays, runs one instrumented dispatch for hits and counters, then the
-// warm-ups and timed repetitions `timing` asks for (none: the timer does them later) with
-// instrumentation off; checks the timed runs' hits equal the counted ones. `query`: gpu::kQuery*.
 // The device's subgroup lane counts (active lanes / lane slots of its ballots) against the CPU
 // lane model's, which assumes lock-step loops. Where the device runs subgroups in lock step
 // (DeviceInfo::lockStepSubgroups) a difference is a wrong count: `mismatch` says what differs and
@@ -28,6 +25,10 @@ struct LaneVerdict {
 };
 LaneVerdict judgeLaneCounts(const DeviceInfo& device, std::uint64_t deviceActive, std::uint64_t deviceSlots,
                             std::uint64_t modelActive, std::uint64_t modelSlots);
+
+// Uploads structure and rays, runs one instrumented dispatch for hits and counters, then the
+// warm-ups and timed repetitions `timing` asks for (none: the timer does them later) with
+// instrumentation off; checks the timed runs' hits equal the counted ones. `query`: gpu::kQuery*.
 
 BranchingRun runBranching(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
                           const TimingOptions& timing, std::uint32_t query = gpu::kQueryClosest);

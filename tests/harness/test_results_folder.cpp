@@ -16,6 +16,7 @@
 #include "harness/config.h"
 #include "harness/output_folder.h"
 #include "harness/runner.h"
+#include "harness/timing_rounds.h"
 #include "structures/mesh_io.h"
 #include "tests/device/test_device.h"
 #include "tests/error_of.h"
@@ -242,6 +243,10 @@ TEST_F(ResultsFolder, MergeWritesRunsNoShardFinishedAsFailedRowsWhenAsked) {
     }
     EXPECT_EQ(readRunsCsv((folder() / "runs.csv").string()), merged);
     EXPECT_FALSE(readJson((folder() / "context.json").string()).at("complete").get<bool>());
+    // Run 001 finished its samples before the "kill" emptied its CSV: they go with its row.
+    const std::vector<Row> samples = readSamplesCsv((folder() / "samples.csv").string());
+    EXPECT_FALSE(samples.empty());
+    for (const Row& sample : samples) EXPECT_EQ(sample.at("run"), "000");
 }
 
 // Shards run side by side (each holds its own lock); the same shard twice, or a whole-folder run
