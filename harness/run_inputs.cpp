@@ -6,6 +6,7 @@
 #include "structures/scene_limits.h"
 #include "structures/simplify.h"
 #include "methods/triangle_store.h"
+#include "plan/warnings.h"
 
 namespace rtbench {
 
@@ -100,7 +101,7 @@ RunScene sceneFor(const ExperimentPlan& plan, const RunConfig& run, Caches& cach
         warnings.push_back(std::to_string(degenerate) + " of " + std::to_string(mesh.triangles.size()) +
                            " triangles are degenerate (zero area in float) and are never hit");
     if (mesh.elementsSkipped) warnings.push_back("skipped " + mesh.elementsSkippedWhat + " (not surfaces)");
-    for (const std::string& w : warnings) row["warnings"] += (row["warnings"].empty() ? "" : "; ") + w;
+    for (const std::string& w : warnings) addWarning(row, w);
     return {*full, mesh, sameTriangles, tracedKey};
 }
 

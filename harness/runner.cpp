@@ -44,6 +44,7 @@
 #include "structures/scene_description.h"
 #include "version.h"
 #include "workloads/registry.h"
+#include "plan/warnings.h"
 
 namespace rtbench {
 namespace fs = std::filesystem;
@@ -241,8 +242,7 @@ void finishRun(RunInProgress& p, const std::string& folder, Caches& caches, Row&
     if (run.getBool("output.hit_records") || (wantImages && !imagesSupported())) writeHitRecords(prefix + ".hits", image, row["run"], row["config_hash"]);
     if (wantImages && imagesSupported()) writeImages(prefix, image, run.getBool("output.exr"));
     if (wantImages && !imagesSupported() && run.getBool("output.exr"))
-        row["warnings"] += std::string(row["warnings"].empty() ? "" : "; ") +
-                           "output.exr: built without OpenImageIO, no EXR written (rtbench images makes PNGs only)";
+        addWarning(row, "output.exr: built without OpenImageIO, no EXR written (rtbench images makes PNGs only)");
 
     if (vk.validationMessages().size() != p.messagesBefore)
         throw Error("the Vulkan validation layer reported: " + vk.validationMessages()[p.messagesBefore]);

@@ -5,6 +5,7 @@
 #include "lane_counts.h"
 #include "structures/error.h"
 #include "structures/scene_limits.h"
+#include "plan/warnings.h"
 
 namespace rtbench {
 
@@ -120,7 +121,7 @@ StrategyRun runBranchingStrategy(VulkanContext& vk, const Structure& structure, 
         judgeLaneCounts(vk.info(), kernel.activeLanes, kernel.laneSlots, lanes.activeLanes, lanes.laneSlots);
     run.countsMismatch = verdict.mismatch;
     run.countsCompared = vk.info().lockStepSubgroups;
-    if (!verdict.warning.empty()) row["warnings"] += (row["warnings"].empty() ? "" : "; ") + verdict.warning;
+    if (!verdict.warning.empty()) addWarning(row, verdict.warning);
     run.truncatedRays = lanes.raysInLongSubgroups;
     row["rays_cut_short"] = std::to_string(run.truncatedRays);
     if (run.truncatedRays)

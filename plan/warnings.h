@@ -1,0 +1,14 @@
+// A run's warnings: one text cell of its row, each warning after the last, "; " between them.
+#pragma once
+#include <string>
+
+#include "plan/columns.h"
+
+namespace rtbench {
+
+inline void addWarning(Row& row, const std::string& warning) {
+    std::string& cell = row["warnings"];
+    cell += (cell.empty() ? "" : "; ") + warning;
+}
+
+}  // namespace rtbench
