@@ -109,6 +109,15 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         auto addMethodColumns = [&](const std::string& typeKey, const std::string& name,
                                     const std::vector<ColumnSpec>& columns) {
             for (ColumnSpec c : columns) {
+                // A column several methods write (branching's lane model, which persistent threads
+                // share) is declared by each, alike: its condition names them all.
+                auto same = std::find_if(s.begin(), s.end(), [&](const ColumnSpec& d) { return d.name == c.name; });
+                if (same != s.end() && !same->appliesWhen.empty() &&
+                    same->appliesWhen.front().rfind(typeKey + "=", 0) == 0 && same->help == c.help &&
+                    same->kind == c.kind && same->unit == c.unit && same->since == c.since) {
+                    same->appliesWhen.front() += "|" + name;
+                    continue;
+                }
                 c.appliesWhen.insert(c.appliesWhen.begin(), typeKey + "=" + name);
                 s.push_back(std::move(c));
             }

@@ -89,6 +89,15 @@ struct RunInProgress {
     std::unique_ptr<Rounds> rounds;
 };
 
+// A record naming a triangle the scene lacks (a kernel gone wrong) is no hit to judge, shade or
+// shoot rays from: the run fails here, before anything reads the scene at that index.
+void refuseForeignTriangles(const std::vector<gpu::HitRecord>& hits, std::size_t triangles) {
+    for (std::size_t i = 0; i < hits.size(); ++i)
+        if (hits[i].primitive != gpu::kNoHit && hits[i].primitive >= triangles)
+            throw Error("the kernel's record of ray " + std::to_string(i) + " names triangle " +
+                        std::to_string(hits[i].primitive) + ", but the scene has " + std::to_string(triangles));
+}
+
 // One run, as the data flows: scene -> rays -> structure -> method (strategy on the device, checked
 // against the structure's CPU reference) -> timing in rounds with Embree on the same rays -> the
 // exact reference on a sample of them -> metrics -> images. Every value goes to `row`; a
@@ -156,6 +165,7 @@ std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunC
     timing.warmups = timing.repetitions = 0;  // timed in rounds with Embree
     p->method = strategy.run(vk, structure, batch, run, timing, row);
     row["cpu_reference_mismatches"] = std::to_string(p->method.cpuMismatches);
+    refuseForeignTriangles(p->method.hits, mesh.triangles.size());
     row["cpu_counts_match"] = !p->method.countsCompared ? "" : p->method.countsMismatch.empty() ? "1" : "0";
     writeArchitectureColumns(p->method.metrics, structure, rays.size(), row);
 

@@ -44,6 +44,8 @@ RTBENCH_CONST kSpecLatticeOriginY = 8;
 RTBENCH_CONST kSpecLatticeOriginZ = 9;
 RTBENCH_CONST kSpecLatticeStep = 10;     // ... and its spacing, a power of two (float bits)
 RTBENCH_CONST kSpecQuery = 11;           // kQuery*: what a ray asks of the scene
+RTBENCH_CONST kSpecRaysPerFetch = 12;    // persistent threads: rays a subgroup fetches at a time (a multiple of its size)
+
 
 // ---- queries (pbrt's Intersect and IntersectP; Embree's rtcIntersect and rtcOccluded) ----
 RTBENCH_CONST kQueryClosest = 0;  // the nearest hit in [tMin, tMax)
@@ -95,9 +97,11 @@ RTBENCH_CONST kCountUsefulRays = 2;     // rays whose state the kernel serves (d
 RTBENCH_CONST kCountStencilWrites = 3;  // ray-state bytes written (state changed)
 RTBENCH_CONST kCountStructureReads = 4; // structure records read (grid: cell offsets; BVH: nodes)
 RTBENCH_CONST kCountTriangleReads = 5;  // triangle-list entries read, each with its vertices
-RTBENCH_CONST kCountActiveLanes = 6;    // branching: sum of active lanes over subgroup ballots
-RTBENCH_CONST kCountLaneSlots = 7;      // branching: sum of subgroup size over subgroup ballots
-RTBENCH_CONST kCountSlots = 8;
+RTBENCH_CONST kCountActiveLanes = 6;    // branching, persistent: sum of active lanes over subgroup ballots
+RTBENCH_CONST kCountLaneSlots = 7;      // the same: sum of subgroup size over subgroup ballots
+RTBENCH_CONST kCountRaysFetched = 8;   // persistent threads: the ray-fetch counter (rays handed out, overshoot included)
+RTBENCH_CONST kCountRaysTraced = 9;    // persistent threads: rays whose record a lane wrote
+RTBENCH_CONST kCountSlots = 10;
 
 // A ray as generated once on the host and traced by every method (Embree included).
 struct Ray {
@@ -183,7 +187,7 @@ static_assert(sizeof(RayHitState) == 16);
 static_assert(sizeof(RayCounters) == 16);
 static_assert(sizeof(ShadingParams) == 48);
 static_assert(sizeof(Material) == 48);
-static_assert(sizeof(PassCounters) == 64);
+static_assert(sizeof(PassCounters) == 80);
 }  // namespace rtbench::gpu
 #else
 const float kNoHitT = 3.402823466e38;

@@ -33,9 +33,10 @@ ArchitectureMetrics multipassMetrics(const std::vector<gpu::HitRecord>& hits, co
     const std::uint64_t k = options.traverseStepsPerPass, mm = options.intersectionsPerPass;
     m.passesLowerBound = (m.work.stepsPerRayMax + k - 1) / k + (m.work.trianglesPerRayMax + mm - 1) / mm;
     const std::uint64_t loopPasses = m.passesTraverse + m.passesIntersect;
-    m.simdEfficiency = loopPasses ? double(counts.usefulTraverse + counts.usefulIntersect) / double(loopPasses * rays) : 1.0;
-    // Every traverse and intersect pass reads every ray's stencil byte; changes are written.
-    m.bytes.stencil = loopPasses * rays * bytes::kStencil + counts.stencilWrites * bytes::kStencil;
+    m.simdEfficiency = loopPasses ? double(counts.usefulTraverse + counts.usefulIntersect) / double(counts.streamSlots) : 1.0;
+    // Every traverse and intersect pass reads the stencil byte of every ray of its stream (of its
+    // batch); changes are written.
+    m.bytes.stencil = counts.streamSlots * bytes::kStencil + counts.stencilWrites * bytes::kStencil;
     m.bytes.cells = counts.structureReads * costs.bytesPerStructureRead;
     m.bytes.triangleList = counts.triangleReads * costs.bytesPerListEntry;
     m.bytes.vertices = counts.triangleReads * costs.bytesPerTriangle;

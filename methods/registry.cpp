@@ -6,6 +6,7 @@
 #include "methods/bvh/bvh_structure.h"
 #include "methods/grid/grid_structure.h"
 #include "methods/multipass/multipass_strategy.h"
+#include "methods/persistent/persistent_strategy.h"
 #include "structures/error.h"
 
 namespace rtbench {
@@ -17,7 +18,8 @@ const std::vector<const StructureType*>& structureTypes() {
 }
 
 const std::vector<const StrategyType*>& strategyTypes() {
-    static const std::vector<const StrategyType*> types = {&branchingStrategyType(), &multipassStrategyType()};
+    static const std::vector<const StrategyType*> types = {&branchingStrategyType(), &multipassStrategyType(),
+                                                                 &persistentStrategyType()};
     return types;
 }
 

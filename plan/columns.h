@@ -54,7 +54,11 @@ struct ColumnSpec {
 //        path tracing (path.*) and ambient occlusion (ao.*).
 //  10  + Whitted ray tracing (whitted.*, whitted_*): materials and lights.
 //  11  + branching's CPU lane model beside the device's ballots (lanes_model_*).
-constexpr int kSchemaVersion = 11;
+//  12  + persistent threads (strategy.persistent_workgroups, strategy.rays_per_fetch, rays_fetched,
+//        rays_traced, persistent_rays_per_fetch); multipass in batches (strategy.batch_rays,
+//        multipass_batch_rays); simd_efficiency and bytes_stencil of multipass count each
+//        batch's rays.
+constexpr int kSchemaVersion = 12;
 
 // The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".
 std::string paramColumn(const std::string& key);

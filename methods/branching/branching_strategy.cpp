@@ -29,12 +29,13 @@ void expectSameHits(const std::vector<gpu::HitRecord>& timed, const std::vector<
 
 namespace {
 
-// The uninstrumented kernel on the instrumented run's buffers.
+// The uninstrumented kernel on the instrumented run's buffers. The counters are zeroed before each
+// dispatch (persistent threads fetch rays through one) and read back after it, outside its timestamps.
 class BranchingTimer : public KernelTimer {
 public:
     BranchingTimer(VulkanContext& vk, std::unique_ptr<GpuBuffers> buffers, const std::string& kernel, KernelSpec spec,
-                   std::vector<gpu::HitRecord> counted)
-        : vk_(vk), buffers_(std::move(buffers)), counted_(std::move(counted)) {
+                   std::uint64_t invocations, std::vector<gpu::HitRecord> counted)
+        : vk_(vk), buffers_(std::move(buffers)), invocations_(invocations), counted_(std::move(counted)) {
         spec.instrument = false;
         timed_ = buffers_->createKernel(kernel, spec);
     }
@@ -42,7 +43,8 @@ public:
     TimedBatch time(int warmups, int repetitions) override {
         // Warm-ups and timed repetitions recorded into one submission, each timed on its own.
         const std::vector<VulkanContext::DispatchCall> calls(
-            std::size_t(warmups + repetitions), {&timed_, buffers_->descriptorSet(timed_), buffers_->pushConstants(), buffers_->rayCount()});
+            std::size_t(warmups + repetitions),
+            {&timed_, buffers_->descriptorSet(timed_), buffers_->pushConstants(), invocations_, buffers_->passCounters()});
         const std::vector<double> ms = vk_.dispatchAll(calls);
         TimedBatch batch;
         for (int i = 0; i < warmups; ++i) batch.warmupMs += ms[std::size_t(i)];
@@ -54,6 +56,7 @@ public:
 private:
     VulkanContext& vk_;
     std::unique_ptr<GpuBuffers> buffers_;
+    std::uint64_t invocations_;
     std::vector<gpu::HitRecord> counted_;
     ComputePipeline timed_{};
 };
@@ -61,28 +64,30 @@ private:
 }  // namespace
 
 BranchingRun runBranching(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
-                          const TimingOptions& timing, std::uint32_t query) {
+                          const TimingOptions& timing, std::uint32_t query, const TraceLaunch& launch) {
     if (timing.workgroupSize % vk.info().subgroupSize)
         throw Error("strategy.workgroup_size " + std::to_string(timing.workgroupSize) +
                     " is not a multiple of the subgroup size " + std::to_string(vk.info().subgroupSize));
     BranchingRun run;
     auto buffers = std::make_unique<GpuBuffers>(vk, rays, /*traversalStateBytes=*/0, structure.buffers(), structure.params());
-    const std::string kernel = structure.kernelPrefix() + "_branching";
+    const std::string kernel = structure.kernelPrefix() + "_" + launch.kernel;
+    const std::uint64_t invocations = launch.invocations ? launch.invocations : rays.size();
     KernelSpec spec;
     spec.workgroupSize = timing.workgroupSize;
     spec.triangleTest = structure.triangleTest();
     spec.vertexLattice = structure.vertexLattice();
     spec.query = query;
+    spec.strategyConstants = launch.constants;
     {
         ComputePipeline counted = buffers->createKernel(kernel, spec);
-        vk.dispatch(counted, buffers->descriptorSet(counted), buffers->pushConstants(), rays.size(), buffers->passCounters());
+        vk.dispatch(counted, buffers->descriptorSet(counted), buffers->pushConstants(), invocations, buffers->passCounters());
         vk.destroy(counted);
         run.hits = buffers->downloadHits();
-        const gpu::PassCounters c = buffers->readPassCounters();
-        run.activeLanes = c.counts[gpu::kCountActiveLanes];
-        run.laneSlots = c.counts[gpu::kCountLaneSlots];
+        run.counters = buffers->readPassCounters();
+        run.activeLanes = run.counters.counts[gpu::kCountActiveLanes];
+        run.laneSlots = run.counters.counts[gpu::kCountLaneSlots];
     }
-    run.timer = std::make_unique<BranchingTimer>(vk, std::move(buffers), kernel, spec, run.hits);
+    run.timer = std::make_unique<BranchingTimer>(vk, std::move(buffers), kernel, spec, invocations, run.hits);
     if (timing.warmups + timing.repetitions > 0) {
         run.gpuMs = run.timer->time(timing.warmups, timing.repetitions).ms;
         run.timer->checkHits();
@@ -100,12 +105,9 @@ LaneVerdict judgeLaneCounts(const DeviceInfo& device, std::uint64_t deviceActive
                     " need not run a subgroup's loops in lock step; the SIMD-efficiency columns are its own ballots'"};
 }
 
-namespace {
-
-StrategyRun runBranchingStrategy(VulkanContext& vk, const Structure& structure, const RayBatch& batch,
-                                 const RunConfig&, const TimingOptions& timing, Row& row) {
+StrategyRun judgeWholeTraversal(VulkanContext& vk, const Structure& structure, const RayBatch& batch,
+                                BranchingRun&& kernel, Row& row) {
     const std::vector<gpu::Ray>& rays = batch.rays;
-    BranchingRun kernel = runBranching(vk, structure, rays, timing, batch.query);
     StrategyRun run;
     run.metrics = branchingMetrics(kernel.hits, kernel.activeLanes, kernel.laneSlots, structure.costs());
     run.cpuMismatches = recordMismatches(kernel.hits, structure.trace(rays, batch.query));
@@ -135,6 +137,30 @@ StrategyRun runBranchingStrategy(VulkanContext& vk, const Structure& structure, 
     return run;
 }
 
+const std::vector<ColumnSpec>& wholeTraversalColumns() {
+    static const std::vector<ColumnSpec> columns = [] {
+        std::vector<ColumnSpec> c = {
+            {"rays_cut_short", ColumnKind::Count, "rays",
+             "branching, persistent: rays in subgroups needing more loop iterations than the device runs (a failed run; llvmpipe: 65,535)"},
+            {"lanes_model_active", ColumnKind::Count, "lanes",
+             "branching, persistent: active lanes summed over the subgroup ballots as the CPU lane model counts them (lock-step "
+             "loops; equal to the device's on llvmpipe, where a difference fails the run; elsewhere a warning)"},
+            {"lanes_model_slots", ColumnKind::Count, "lanes",
+             "branching, persistent: subgroup size summed over the same ballots, as the CPU lane model counts them"}};
+        for (ColumnSpec& col : c)
+            if (col.name.rfind("lanes_model_", 0) == 0) col.since = 11;
+        return c;
+    }();
+    return columns;
+}
+
+namespace {
+
+StrategyRun runBranchingStrategy(VulkanContext& vk, const Structure& structure, const RayBatch& batch,
+                                 const RunConfig&, const TimingOptions& timing, Row& row) {
+    return judgeWholeTraversal(vk, structure, batch, runBranching(vk, structure, batch.rays, timing, batch.query), row);
+}
+
 }  // namespace
 
 const StrategyType& branchingStrategyType() {
@@ -142,15 +168,7 @@ const StrategyType& branchingStrategyType() {
         StrategyType t;
         t.name = "branching";
         t.help = "one kernel per ray stream (Purcell's branching architecture)";
-        t.columns = {{"rays_cut_short", ColumnKind::Count, "rays",
-                      "branching: rays in subgroups needing more loop iterations than the device runs (a failed run; llvmpipe: 65,535)"},
-                     {"lanes_model_active", ColumnKind::Count, "lanes",
-                      "branching: active lanes summed over the subgroup ballots as the CPU lane model counts them (lock-step "
-                      "loops; equal to the device's on llvmpipe, where a difference fails the run; elsewhere a warning)"},
-                     {"lanes_model_slots", ColumnKind::Count, "lanes",
-                      "branching: subgroup size summed over the same ballots, as the CPU lane model counts them"}};
-        for (ColumnSpec& c : t.columns)
-            if (c.name.rfind("lanes_model_", 0) == 0) c.since = 11;
+        t.columns = wholeTraversalColumns();
         t.run = runBranchingStrategy;
         return t;
     }();

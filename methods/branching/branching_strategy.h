@@ -1,5 +1,5 @@
 // The branching strategy (Purcell et al. 2002 §5's branching architecture): one dispatch of
-// kernels/branching.comp over the whole ray stream, each invocation running the structure's
+// methods/branching/branching.comp over the whole ray stream, each invocation running the structure's
 // whole traversal.
 #pragma once
 #include "methods/strategy.h"
@@ -12,7 +12,17 @@ struct BranchingRun {
     std::vector<gpu::HitRecord> hits;  // from the instrumented run (counters filled)
     std::vector<double> gpuMs;         // total GPU time of each timed repetition `timing` asked for
     std::uint64_t activeLanes = 0, laneSlots = 0;  // subgroup ballots of the instrumented run
+    gpu::PassCounters counters{};                  // every counter of the instrumented run
     std::unique_ptr<KernelTimer> timer;            // more timed repetitions, on the same buffers
+};
+
+// A kernel that runs each ray's whole traversal in one invocation (kernels/trace_whole.glsl), as
+// one dispatch: the branching kernel by default; persistent threads launch fewer invocations, each
+// fetching rays, with constants of their own.
+struct TraceLaunch {
+    std::string kernel = "branching";  // the kernel file's name; the structure's prefix is added
+    std::uint64_t invocations = 0;     // 0: one per ray
+    std::vector<SpecializationConstant> constants;  // the strategy's own (KernelSpec::strategyConstants)
 };
 
 // The device's subgroup lane counts (active lanes / lane slots of its ballots) against the CPU
@@ -31,6 +41,16 @@ LaneVerdict judgeLaneCounts(const DeviceInfo& device, std::uint64_t deviceActive
 // instrumentation off; checks the timed runs' hits equal the counted ones. `query`: gpu::kQuery*.
 
 BranchingRun runBranching(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
-                          const TimingOptions& timing, std::uint32_t query = gpu::kQueryClosest);
+                          const TimingOptions& timing, std::uint32_t query = gpu::kQueryClosest,
+                          const TraceLaunch& launch = {});
+
+// Judges a whole-traversal kernel's instrumented run (branching, persistent threads): its records
+// against the structure's rtTrace on the same rays, its subgroup ballots against the lock-step lane
+// model (judgeLaneCounts), its subgroups' loop iterations against the device's limit; writes the
+// columns of wholeTraversalColumns() to `row`.
+StrategyRun judgeWholeTraversal(VulkanContext& vk, const Structure& structure, const RayBatch& batch,
+                                BranchingRun&& kernel, Row& row);
+// rays_cut_short and the lane model's lanes_model_*: what judgeWholeTraversal writes.
+const std::vector<ColumnSpec>& wholeTraversalColumns();
 
 }  // namespace rtbench

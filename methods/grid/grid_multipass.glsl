@@ -1,5 +1,5 @@
 // The uniform grid's multipass per-ray work, Purcell et al. 2002 §3.2 and Christen 2005
-// §5.4-5.6: ONE source for kernels/multipass_*.comp (through structure.glsl) and the CPU simulator
+// §5.4-5.6: ONE source for methods/multipass/multipass_*.comp (through structure.glsl) and the CPU simulator
 // (methods/grid/grid_reference.h). Each function is one kernel's work for one ray: it restores
 // the ray's saved state, works, and returns the new state (the stencil byte); the caller saves
 // it. MpEvents (kernels/traversal_common.glsl) reports what the accounting needs.

@@ -25,12 +25,22 @@ PassKind PassScheduler::next(std::uint64_t traversing, std::uint64_t waiting) {
     return waitingFraction >= options_.oracleThreshold ? PassKind::Intersect : PassKind::Traverse;
 }
 
-MultipassCounts runPassLoop(const MultipassOptions& options, std::uint64_t cap,
+MultipassCounts& MultipassCounts::operator+=(const MultipassCounts& batch) {
+    for (int k = 0; k < kPassKinds; ++k) passes[std::size_t(k)] += batch.passes[std::size_t(k)];
+    usefulTraverse += batch.usefulTraverse, usefulIntersect += batch.usefulIntersect;
+    stencilWrites += batch.stencilWrites, structureReads += batch.structureReads, triangleReads += batch.triangleReads;
+    sequence.insert(sequence.end(), batch.sequence.begin(), batch.sequence.end());
+    streamSlots += batch.streamSlots;
+    return *this;
+}
+
+MultipassCounts runPassLoop(const MultipassOptions& options, std::uint64_t cap, std::uint64_t rays,
                             const std::function<PassSums(PassKind)>& pass) {
     MultipassCounts counts;
     auto run = [&](PassKind kind) {
         const PassSums sums = pass(kind);
         ++counts.passes[static_cast<int>(kind)];
+        if (kind == PassKind::Traverse || kind == PassKind::Intersect) counts.streamSlots += rays;
         counts.sequence.push_back(kind);
         if (kind == PassKind::Traverse) counts.usefulTraverse += sums.useful;
         if (kind == PassKind::Intersect) counts.usefulIntersect += sums.useful;

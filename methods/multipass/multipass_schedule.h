@@ -24,6 +24,7 @@ struct MultipassOptions {
     std::string scheduling = "oracle";
     double oracleThreshold = 0.2;
     std::uint64_t maxPasses = 0;  // 0: automatic cap from the structure (Structure::walkBounds)
+    std::uint64_t batchRays = 0;  // rays per batch, each its own pass loop (0: what one binding holds)
 };
 
 class PassScheduler {
@@ -58,15 +59,22 @@ struct MultipassCounts {
     std::uint64_t structureReads = 0;  // grid: cell offsets; BVH: nodes
     std::uint64_t triangleReads = 0;
     std::vector<PassKind> sequence;   // every pass in order (setup first, write last)
+    // The ray slots the traverse and intersect passes walk: each such pass times the rays of its
+    // stream (its batch's, when the stream runs in batches). Purcell's SIMD efficiency divides the
+    // rays served by it; every slot reads its ray's stencil byte.
+    std::uint64_t streamSlots = 0;
 
     std::uint64_t totalPasses() const { return passes[0] + passes[1] + passes[2] + passes[3]; }
     bool operator==(const MultipassCounts&) const = default;
+    // The counts of a stream run in batches, one batch after another: passes and events add up,
+    // the sequences follow each other.
+    MultipassCounts& operator+=(const MultipassCounts& batch);
 };
 
-// The pass loop of both the GPU strategy and the simulator: setup, then the scheduler's passes
-// until no ray is active, then write. `pass` runs one pass. Throws rtbench::Error when `cap`
-// passes have run and rays are still active.
-MultipassCounts runPassLoop(const MultipassOptions& options, std::uint64_t cap,
+// The pass loop of both the GPU strategy and the simulator over a stream of `rays` rays: setup,
+// then the scheduler's passes until no ray is active, then write. `pass` runs one pass. Throws
+// rtbench::Error when `cap` passes have run and rays are still active.
+MultipassCounts runPassLoop(const MultipassOptions& options, std::uint64_t cap, std::uint64_t rays,
                             const std::function<PassSums(PassKind)>& pass);
 
 // A cap on passes: 4 x (ceil(Vmax / K) + ceil(Vmax * Lmax / M)) + 16, where Vmax bounds the

@@ -77,7 +77,7 @@ MultipassResult simulateMultipassOver(Kernels base, const std::vector<gpu::Ray>&
             [](PassSums a, const PassSums& b) { return a += b; });
     };
     MultipassResult result;
-    result.counts = runPassLoop(options, cap, [&](PassKind kind) {
+    result.counts = runPassLoop(options, cap, n, [&](PassKind kind) {
         return kind == PassKind::Write ? PassSums{} : runPass(kind);  // the write pass is below
     });
     result.hits.resize(n);
@@ -87,13 +87,25 @@ MultipassResult simulateMultipassOver(Kernels base, const std::vector<gpu::Ray>&
 }
 
 // The multipass passes on the CPU for a structure and a query (gpu::kQuery*), capped as the
-// device's run is.
+// device's run is; in batches of `batchRays` consecutive rays (0: one stream), each its own pass
+// loop, as the device runs them (runMultipass).
 inline MultipassResult simulateMultipass(const Structure& structure, const std::vector<gpu::Ray>& rays,
-                                         const MultipassOptions& options, std::uint32_t query = gpu::kQueryClosest) {
+                                         const MultipassOptions& options, std::uint32_t query = gpu::kQueryClosest,
+                                         std::uint64_t batchRays = 0) {
     return std::visit(
         [&](auto kernels) {
             kernels.query = query;
-            return simulateMultipassOver(kernels, rays, options, multipassPassCap(structure, options));
+            const std::uint64_t cap = multipassPassCap(structure, options);
+            if (batchRays == 0 || batchRays >= rays.size()) return simulateMultipassOver(kernels, rays, options, cap);
+            MultipassResult all;
+            for (std::size_t first = 0; first < rays.size(); first += batchRays) {
+                const std::vector<gpu::Ray> batch(rays.begin() + std::ptrdiff_t(first),
+                                                  rays.begin() + std::ptrdiff_t(std::min<std::size_t>(first + batchRays, rays.size())));
+                MultipassResult part = simulateMultipassOver(kernels, batch, options, cap);
+                all.hits.insert(all.hits.end(), part.hits.begin(), part.hits.end());
+                all.counts += part.counts;
+            }
+            return all;
         },
         structure.cpuKernels());
 }

@@ -26,7 +26,7 @@ struct Pipelines {
 // oracle's occlusion query) and the event counts.
 MultipassCounts runPasses(VulkanContext& vk, GpuBuffers& buffers, Pipelines& pipelines, const MultipassOptions& options,
                           std::uint64_t cap) {
-    return runPassLoop(options, cap, [&](PassKind kind) {
+    return runPassLoop(options, cap, buffers.rayCount(), [&](PassKind kind) {
         const ComputePipeline& p = pipelines.byKind[static_cast<int>(kind)];
         vk.dispatch(p, buffers.descriptorSet(p), buffers.pushConstants(), buffers.rayCount(), buffers.passCounters());
         const gpu::PassCounters c = buffers.readPassCounters();
@@ -48,7 +48,8 @@ StrategyRun runMultipassStrategy(VulkanContext& vk, const Structure& structure, 
     MultipassRun kernel = runMultipass(vk, structure, rays, options, timing, batch.query);
     StrategyRun run;
     run.metrics = multipassMetrics(kernel.hits, kernel.counts, options, structure.costs());
-    const MultipassResult cpu = simulateMultipass(structure, rays, options, batch.query);
+    row["multipass_batch_rays"] = std::to_string(std::min<std::uint64_t>(kernel.batchRays, rays.size()));
+    const MultipassResult cpu = simulateMultipass(structure, rays, options, batch.query, kernel.batchRays);
     run.cpuMismatches = recordMismatches(kernel.hits, cpu.hits);
     if (!(cpu.counts == kernel.counts)) run.countsMismatch = "pass sequence or event counts differ";
     // The two architectures must produce identical hit records (and work counters).
@@ -74,6 +75,7 @@ MultipassOptions multipassOptions(const RunConfig& run) {
     o.scheduling = run.getString("strategy.scheduling");
     if (run.has("strategy.oracle_threshold")) o.oracleThreshold = run.getFloat("strategy.oracle_threshold");
     o.maxPasses = std::uint64_t(run.getInt("strategy.max_passes"));
+    o.batchRays = std::uint64_t(run.getInt("strategy.batch_rays"));
     return o;
 }
 
@@ -141,10 +143,11 @@ private:
 
 }  // namespace
 
-MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
-                          const MultipassOptions& options, const TimingOptions& timing, std::uint32_t query) {
-    if (options.traverseStepsPerPass < 1 || options.intersectionsPerPass < 1)
-        throw Error("multipass: traverse_steps_per_pass and intersections_per_pass must be at least 1");
+namespace {
+
+// One batch's instrumented run and its timer.
+MultipassRun runMultipassBatch(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
+                               const MultipassOptions& options, const TimingOptions& timing, std::uint32_t query) {
     MultipassRun run;
     auto buffers = std::make_unique<GpuBuffers>(vk, rays, structure.costs().traversalStateBytes, structure.buffers(),
                                                 structure.params());
@@ -163,6 +166,86 @@ MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const s
     run.traversalStates = buffers->downloadTraversalStates();
     run.timer = std::make_unique<MultipassTimer>(vk, std::move(buffers), std::move(counted), structure.kernelPrefix(), spec,
                                                  options, cap, run.counts, run.hits);
+    return run;
+}
+
+// The timers of a stream's batches as one: a repetition is every batch's, one after another.
+class BatchedTimer : public KernelTimer {
+public:
+    explicit BatchedTimer(std::vector<std::unique_ptr<KernelTimer>> batches) : batches_(std::move(batches)) {}
+    TimedBatch time(int warmups, int repetitions) override {
+        TimedBatch all;
+        for (const auto& batch : batches_) {
+            const TimedBatch b = batch->time(warmups, repetitions);
+            all.warmupMs += b.warmupMs;
+            if (all.ms.empty()) {
+                all.ms = b.ms;
+                all.parts = b.parts;
+                continue;
+            }
+            for (std::size_t i = 0; i < all.ms.size(); ++i) all.ms[i] += b.ms[i];
+            for (std::size_t p = 0; p < all.parts.size(); ++p)
+                for (std::size_t i = 0; i < all.parts[p].second.size(); ++i) all.parts[p].second[i] += b.parts[p].second[i];
+        }
+        return all;
+    }
+    std::vector<std::pair<std::string, double>> timeHostLoops() override {
+        std::vector<std::pair<std::string, double>> all;
+        for (const auto& batch : batches_) {
+            const auto loops = batch->timeHostLoops();
+            if (all.empty()) all = loops;
+            else
+                for (std::size_t i = 0; i < all.size(); ++i) all[i].second += loops[i].second;
+        }
+        return all;
+    }
+    void checkHits() override {
+        for (const auto& batch : batches_) batch->checkHits();
+    }
+
+private:
+    std::vector<std::unique_ptr<KernelTimer>> batches_;
+};
+
+}  // namespace
+
+std::uint64_t multipassBatchRays(const DeviceInfo& device, std::uint64_t traversalStateBytes, std::uint64_t requested,
+                                 unsigned workgroupSize) {
+    if (requested) return requested;
+    // The largest per-ray record of the batch's bindings (rayBufferSizes): the ray, the hit record,
+    // or the structure's traversal state (the BVH's: 144 bytes with its stack).
+    const std::uint64_t perRay = std::max<std::uint64_t>({sizeof(gpu::Ray), sizeof(gpu::HitRecord), traversalStateBytes});
+    const std::uint64_t fit = device.maxStorageBufferRange / perRay;
+    return std::max<std::uint64_t>(fit / workgroupSize * workgroupSize, workgroupSize);
+}
+
+MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
+                          const MultipassOptions& options, const TimingOptions& timing, std::uint32_t query) {
+    if (options.traverseStepsPerPass < 1 || options.intersectionsPerPass < 1)
+        throw Error("multipass: traverse_steps_per_pass and intersections_per_pass must be at least 1");
+    const std::uint64_t batchRays =
+        multipassBatchRays(vk.info(), structure.costs().traversalStateBytes, options.batchRays, timing.workgroupSize);
+    MultipassRun run;
+    if (batchRays >= rays.size()) {
+        run = runMultipassBatch(vk, structure, rays, options, timing, query);
+    } else {
+        // Rays in batches (each its own buffers and pass loop, the oracle's passes per batch): the
+        // per-ray records and events are those of one stream; the passes add up over the batches.
+        std::vector<std::unique_ptr<KernelTimer>> timers;
+        run.batches = 0;
+        for (std::size_t first = 0; first < rays.size(); first += batchRays) {
+            const std::vector<gpu::Ray> part(rays.begin() + std::ptrdiff_t(first),
+                                             rays.begin() + std::ptrdiff_t(std::min<std::size_t>(first + batchRays, rays.size())));
+            MultipassRun b = runMultipassBatch(vk, structure, part, options, timing, query);
+            run.hits.insert(run.hits.end(), b.hits.begin(), b.hits.end());
+            run.traversalStates.insert(run.traversalStates.end(), b.traversalStates.begin(), b.traversalStates.end());
+            run.counts += b.counts;
+            timers.push_back(std::move(b.timer));
+            ++run.batches;
+        }
+        run.timer = std::make_unique<BatchedTimer>(std::move(timers));
+    }
+    run.batchRays = batchRays;
     if (timing.warmups + timing.repetitions > 0) {
         run.gpuMs = run.timer->time(timing.warmups, timing.repetitions).ms;
         run.timer->checkHits();
@@ -184,7 +267,9 @@ const StrategyType& multipassStrategyType() {
             {"strategy.scheduling", ValueType::String, "multipass: oracle (threshold on the waiting fraction) or naive (traverse until none traverses, then intersect until none waits)", std::string("oracle"), false, -1e300, 1e300, {"oracle", "naive"}},
             {"strategy.oracle_threshold", ValueType::Float, "multipass: intersect when waiting / active rays >= this (0: as soon as any waits; Purcell: 0.2)", 0.2, false, 0, 1, {}, {"strategy.scheduling=oracle"}},
             {"strategy.max_passes", ValueType::Int, "multipass: pass cap (0: derived from the structure); reaching it fails the run", std::int64_t(0), false, 0, 1e9},
+            {"strategy.batch_rays", ValueType::Int, "multipass: rays per batch, each its own pass loop (0: as many as one binding holds, maxStorageBufferRange over the largest per-ray record)", std::int64_t(0), false, 0, 1e12},
         };
+        t.keys.back().since = 12;
         t.columns = {
             {"passes_setup", K::Count, "passes", "multipass setup passes"},
             {"passes_traverse", K::Count, "passes", "multipass traverse passes"},
@@ -197,6 +282,7 @@ const StrategyType& multipassStrategyType() {
             {"kernel_ms_write", K::Timing, "ms", "multipass: GPU time of the write pass, median"},
             {"multipass_live_ms_median", K::Timing, "ms", "multipass: host wall time of the live pass loop (instrumented passes, the oracle's read-back after each: Christen 2005 §4.3.4's CPU-controlled loop), median of one per round", 0.0, false, {}, 5},
             {"branching_mismatches", K::Count, "rays", "multipass: rays whose hit record differs from the branching caster's"},
+            {"multipass_batch_rays", K::Count, "rays", "multipass: rays per batch (strategy.batch_rays, 0 made what one binding holds); passes_* add up over the batches", 0.0, false, {}, 12},
         };
         t.run = runMultipassStrategy;
         return t;

@@ -1,6 +1,6 @@
 // The multipass (non-branching) strategy, Purcell et al. 2002 §3.2: a setup pass, then traverse
 // or intersect passes chosen by the oracle from the ray-state counts read back after each pass,
-// then a write pass. Each pass is one dispatch of a generic kernel (kernels/multipass_*.comp)
+// then a write pass. Each pass is one dispatch of a generic kernel (methods/multipass/multipass_*.comp)
 // over the whole stream, running the structure's per-ray steps.
 #pragma once
 #include <array>
@@ -22,7 +22,15 @@ struct MultipassRun {
     std::vector<double> gpuMs;         // total GPU time of each timed repetition `timing` asked for
     std::vector<std::uint8_t> traversalStates;  // the per-ray state the last pass saved
     std::unique_ptr<KernelTimer> timer;         // more timed replays (and live loops), same buffers
+    std::uint64_t batchRays = 0;                // rays per batch (multipassBatchRays)
+    std::uint64_t batches = 1;                  // batches the stream ran in
 };
+
+// Rays per batch: `requested` (strategy.batch_rays) if not 0, else the most rays whose largest
+// per-ray record (the ray, the hit record, the traversal state of `traversalStateBytes`) fits one
+// binding (maxStorageBufferRange), a multiple of the workgroup size.
+std::uint64_t multipassBatchRays(const DeviceInfo& device, std::uint64_t traversalStateBytes, std::uint64_t requested,
+                                 unsigned workgroupSize);
 
 // One instrumented run (the oracle reads the ray-state counts after every pass), then the
 // warm-ups and timed repetitions `timing` asks for (none: the timer does them later), replaying

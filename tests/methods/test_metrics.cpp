@@ -63,7 +63,7 @@ TEST(PassLoop, ThePassCapTurnsARunawayIntoAnError) {
     MultipassOptions o;
     int passes = 0;
     // A pass that never finishes any ray: the cap must stop it after exactly `cap` passes.
-    EXPECT_THROW(runPassLoop(o, 7,
+    EXPECT_THROW(runPassLoop(o, 7, 1,
                              [&](PassKind) {
                                  ++passes;
                                  PassSums s;

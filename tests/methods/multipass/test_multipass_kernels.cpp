@@ -9,6 +9,8 @@
 #include "methods/accounting.h"
 #include "methods/branching/branching_strategy.h"
 #include "methods/branching/lane_counts.h"
+#include "methods/bvh/bvh_build.h"
+#include "methods/bvh/bvh_structure.h"
 #include "methods/grid/grid_structure.h"
 #include "methods/grid/uniform_grid.h"
 #include "methods/multipass/multipass_simulator.h"
@@ -165,6 +167,61 @@ TEST_F(MultipassKernels, AgreesWithBranchingAndTheCpuSimulatorForEveryUnrollAndT
                     const ArchitectureMetrics metrics = multipassMetrics(gpu.hits, gpu.counts, o, gridStructure(grid)->costs());
                     EXPECT_GE(metrics.passesTraverse + metrics.passesIntersect, metrics.passesLowerBound);
                 }
+}
+
+// Rays in batches (strategy.batch_rays): 1,920 rays in batches of 512 are four pass loops (the
+// last of 384 rays). Per-ray records and the events of the rays equal one stream's; the passes
+// are each batch's, and add up to the four batches simulated one at a time on the CPU; the ray
+// slots Purcell's efficiency divides by are each batch's loop passes times its rays.
+TEST_F(MultipassKernels, ABatchedRunTracesAsOneStreamWithEachBatchsPasses) {
+    const TriangleMesh scene = christenSceneB();
+    GridResolutionRule rule;
+    rule.minDim = 8;
+    const std::vector<gpu::Ray> rays = generatePrimaryRays(*proceduralCamera("christen_b", 70.0f), 48, 40);
+    std::vector<std::unique_ptr<Structure>> structures;
+    structures.push_back(gridStructure(buildUniformGrid(scene, rule)));
+    structures.push_back(bvhStructure(buildBvh(scene, BvhBuildOptions{})));  // leaves of up to 4
+    for (const auto& s : structures) {
+        SCOPED_TRACE(s->kernelPrefix());
+        MultipassOptions o = oracle(0.2, 4, 2);
+        const MultipassRun whole = runMultipass(*vk_, *s, rays, o, {64, 0, 1});
+        o.batchRays = 512;
+        const MultipassRun batched = runMultipass(*vk_, *s, rays, o, {64, 0, 1});
+        EXPECT_EQ(whole.batches, 1u);
+        EXPECT_EQ(batched.batches, 4u);
+        EXPECT_EQ(recordMismatches(batched.hits, whole.hits), 0u);  // counters too
+        EXPECT_EQ(batched.traversalStates, whole.traversalStates);
+        EXPECT_EQ(batched.counts.usefulTraverse, whole.counts.usefulTraverse);
+        EXPECT_EQ(batched.counts.usefulIntersect, whole.counts.usefulIntersect);
+        EXPECT_EQ(batched.counts.structureReads, whole.counts.structureReads);
+        EXPECT_EQ(batched.counts.triangleReads, whole.counts.triangleReads);
+        EXPECT_EQ(batched.counts.stencilWrites, whole.counts.stencilWrites);
+        std::array<std::uint64_t, kPassKinds> passes{};
+        std::uint64_t slots = 0;
+        for (std::size_t first = 0; first < rays.size(); first += 512) {
+            const std::vector<gpu::Ray> part(rays.begin() + first, rays.begin() + std::min<std::size_t>(first + 512, rays.size()));
+            const MultipassResult one = simulateMultipass(*s, part, o);
+            for (int k = 0; k < kPassKinds; ++k) passes[k] += one.counts.passes[k];
+            slots += (one.counts.passes[1] + one.counts.passes[2]) * part.size();
+        }
+        EXPECT_EQ(batched.counts.passes, passes);
+        EXPECT_EQ(batched.counts.passes[0], 4u);  // a setup pass per batch
+        EXPECT_EQ(batched.counts.streamSlots, slots);
+        EXPECT_EQ(whole.counts.streamSlots, (whole.counts.passes[1] + whole.counts.passes[2]) * rays.size());
+        EXPECT_TRUE(batched.counts == simulateMultipass(*s, rays, o, gpu::kQueryClosest, 512).counts);
+        ASSERT_EQ(batched.counts.sequence.size(), batched.counts.totalPasses());
+    }
+}
+
+// What one binding holds: the BVH's traversal state is 144 bytes a ray, so 134,217,728 bytes
+// (lavapipe's maxStorageBufferRange) hold 932,067 rays, 932,032 in workgroups of 64: 1024 x 1024
+// rays run in two batches.
+TEST(MultipassBatches, TheLargestPerRayRecordSetsTheBatch) {
+    DeviceInfo device;
+    device.maxStorageBufferRange = 134217728;
+    EXPECT_EQ(multipassBatchRays(device, 144, 0, 64), 932032u);
+    EXPECT_EQ(multipassBatchRays(device, 16, 0, 64), 4194304u);  // the 32-byte ray and hit records bind first
+    EXPECT_EQ(multipassBatchRays(device, 144, 1000, 64), 1000u);
 }
 
 TEST_F(MultipassKernels, CountsAreDeterministic) {

@@ -1,10 +1,8 @@
-// Branching ray caster (Purcell et al. 2002 §3 in one kernel; the "branching architecture" of
-// their §5): one invocation per ray runs the structure's whole traversal (rtTrace of
-// methods/<structure>/structure.glsl) and writes its nearest hit.
-#version 450
-#extension GL_GOOGLE_include_directive : require
-
-#include "bindings.glsl"
+// What the kernels that run a ray's whole traversal in one invocation share (branching, persistent
+// threads): the structure's rtTrace with a subgroup ballot at every loop iteration, and the record
+// it writes. Include after bindings.glsl.
+#ifndef RT_TRACE_WHOLE_GLSL
+#define RT_TRACE_WHOLE_GLSL
 
 // SIMD efficiency (Aila & Laine 2009): at every iteration of the traversal's outer loop (voxels,
 // nodes) and of its triangle loop, a ballot counts the lanes still in the loop against the
@@ -22,9 +20,8 @@
 #include "traversal_common.glsl"
 #include "structure.glsl"
 
-void main() {
-    uint rayIndex = rtRayIndex();
-    if (rayIndex >= rtRayCount()) return;
+// Traces ray `rayIndex` and writes its record (work counters only when instrumented).
+void rtTraceAndWrite(uint rayIndex) {
     HitRecord h = rtTrace(rays[rayIndex]);
     if (instrument == 0u) {
         h.cellsVisited = 0u;
@@ -33,3 +30,5 @@ void main() {
     }
     hits[rayIndex] = h;
 }
+
+#endif  // RT_TRACE_WHOLE_GLSL

@@ -1,0 +1,36 @@
+// Persistent threads with dynamic ray fetch (Aila & Laine 2009, "persistent while-while"): a fixed
+// number of workgroups, launched once, whose subgroups take rays from one atomic counter a batch
+// at a time until the stream is done; each lane runs its ray's whole traversal (rtTrace), as the
+// branching kernel does. A batch is rays [base, base + raysPerFetch), run as raysPerFetch /
+// subgroup-size rounds of consecutive rays, so its subgroup ballots are the branching kernel's.
+#version 450
+#extension GL_GOOGLE_include_directive : require
+
+#include "bindings.glsl"
+#include "trace_whole.glsl"
+
+layout(constant_id = kSpecRaysPerFetch) const uint raysPerFetch = 32u;
+
+void main() {
+    const uint rayCount = rtRayCount();
+    bool fetching = true;
+    while (fetching) {
+        // One fetch per subgroup: the elected lane takes the next batch; every lane sees its base.
+        uint base = 0u;
+        if (gl_SubgroupInvocationID == 0u)
+            base = uint(min(atomicAdd(passCounters.counts[kCountRaysFetched], uint64_t(raysPerFetch)), uint64_t(rayCount)));
+        base = subgroupMax(base);
+        fetching = base < rayCount;
+        uint traced = 0u;
+        if (fetching) {
+            for (uint round = 0u; round < raysPerFetch / gl_SubgroupSize; ++round) {
+                uint rayIndex = base + round * gl_SubgroupSize + gl_SubgroupInvocationID;
+                if (rayIndex < rayCount) {
+                    rtTraceAndWrite(rayIndex);
+                    traced += 1u;
+                }
+            }
+        }
+        rtCount(kCountRaysTraced, traced);
+    }
+}
