@@ -45,6 +45,13 @@ RTBENCH_CONST kSpecLatticeOriginZ = 9;
 RTBENCH_CONST kSpecLatticeStep = 10;     // ... and its spacing, a power of two (float bits)
 RTBENCH_CONST kSpecQuery = 11;           // kQuery*: what a ray asks of the scene
 RTBENCH_CONST kSpecRaysPerFetch = 12;    // persistent threads: rays a subgroup fetches at a time (a multiple of its size)
+RTBENCH_CONST kSpecSchedule = 13;        // megakernel: kSchedule*, how a subgroup picks the state it runs
+
+// ---- megakernel schedules (methods/megakernel/megakernel.comp; Parker et al. 2013 §5.1-5.2) ----
+RTBENCH_CONST kScheduleSwitch = 0;          // each lane runs its own state: the subgroup runs every state present, one after another
+RTBENCH_CONST kScheduleIntersectFirst = 1;  // one state per iteration: intersect if any lane waits, else traverse
+RTBENCH_CONST kScheduleTraverseFirst = 2;   // one state per iteration: traverse if any lane traverses, else intersect
+RTBENCH_CONST kScheduleMajority = 3;        // one state per iteration: the one more lanes are in (a tie: intersect)
 
 
 // ---- queries (pbrt's Intersect and IntersectP; Embree's rtcIntersect and rtcOccluded) ----
@@ -97,11 +104,13 @@ RTBENCH_CONST kCountUsefulRays = 2;     // rays whose state the kernel serves (d
 RTBENCH_CONST kCountStencilWrites = 3;  // ray-state bytes written (state changed)
 RTBENCH_CONST kCountStructureReads = 4; // structure records read (grid: cell offsets; BVH: nodes)
 RTBENCH_CONST kCountTriangleReads = 5;  // triangle-list entries read, each with its vertices
-RTBENCH_CONST kCountActiveLanes = 6;    // branching, persistent: sum of active lanes over subgroup ballots
+RTBENCH_CONST kCountActiveLanes = 6;    // branching, persistent, megakernel: sum of active lanes over subgroup ballots
 RTBENCH_CONST kCountLaneSlots = 7;      // the same: sum of subgroup size over subgroup ballots
 RTBENCH_CONST kCountRaysFetched = 8;   // persistent threads: the ray-fetch counter (rays handed out, overshoot included)
 RTBENCH_CONST kCountRaysTraced = 9;    // persistent threads: rays whose record a lane wrote
-RTBENCH_CONST kCountSlots = 10;
+RTBENCH_CONST kCountRunsTraverse = 10; // megakernel: subgroup executions of the traverse state
+RTBENCH_CONST kCountRunsIntersect = 11;// megakernel: subgroup executions of the intersect state
+RTBENCH_CONST kCountSlots = 12;
 
 // A ray as generated once on the host and traced by every method (Embree included).
 struct Ray {
@@ -187,7 +196,7 @@ static_assert(sizeof(RayHitState) == 16);
 static_assert(sizeof(RayCounters) == 16);
 static_assert(sizeof(ShadingParams) == 48);
 static_assert(sizeof(Material) == 48);
-static_assert(sizeof(PassCounters) == 80);
+static_assert(sizeof(PassCounters) == 96);
 }  // namespace rtbench::gpu
 #else
 const float kNoHitT = 3.402823466e38;

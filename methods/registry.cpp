@@ -5,6 +5,7 @@
 #include "methods/brute/brute_structure.h"
 #include "methods/bvh/bvh_structure.h"
 #include "methods/grid/grid_structure.h"
+#include "methods/megakernel/megakernel_strategy.h"
 #include "methods/multipass/multipass_strategy.h"
 #include "methods/persistent/persistent_strategy.h"
 #include "structures/error.h"
@@ -19,7 +20,7 @@ const std::vector<const StructureType*>& structureTypes() {
 
 const std::vector<const StrategyType*>& strategyTypes() {
     static const std::vector<const StrategyType*> types = {&branchingStrategyType(), &multipassStrategyType(),
-                                                                 &persistentStrategyType()};
+                                                                 &persistentStrategyType(), &megakernelStrategyType()};
     return types;
 }
 

@@ -55,7 +55,8 @@ struct ColumnSpec {
 //  10  + Whitted ray tracing (whitted.*, whitted_*): materials and lights.
 //  11  + branching's CPU lane model beside the device's ballots (lanes_model_*).
 //  12  + persistent threads (strategy.persistent_workgroups, strategy.rays_per_fetch, rays_fetched,
-//        rays_traced, persistent_rays_per_fetch); multipass in batches (strategy.batch_rays,
+//        rays_traced, persistent_rays_per_fetch); the scheduled megakernel (strategy.schedule,
+//        megakernel_*); multipass in batches (strategy.batch_rays,
 //        multipass_batch_rays); simd_efficiency and bytes_stencil of multipass count each
 //        batch's rays.
 constexpr int kSchemaVersion = 12;

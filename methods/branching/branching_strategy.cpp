@@ -141,7 +141,7 @@ const std::vector<ColumnSpec>& wholeTraversalColumns() {
     static const std::vector<ColumnSpec> columns = [] {
         std::vector<ColumnSpec> c = {
             {"rays_cut_short", ColumnKind::Count, "rays",
-             "branching, persistent: rays in subgroups needing more loop iterations than the device runs (a failed run; llvmpipe: 65,535)"},
+             "branching, persistent, megakernel: rays in subgroups needing more loop iterations than the device runs (a failed run; llvmpipe: 65,535)"},
             {"lanes_model_active", ColumnKind::Count, "lanes",
              "branching, persistent: active lanes summed over the subgroup ballots as the CPU lane model counts them (lock-step "
              "loops; equal to the device's on llvmpipe, where a difference fails the run; elsewhere a warning)"},

@@ -105,8 +105,8 @@ TEST_F(EndToEnd, EveryCellHasItsColumnsDeclaredValueType) {
     const ExperimentResult result = run(
         "[scene]\nsource = \"procedural:christen_a\"\ntranslate = [0.25, -1, 0]\n[camera]\nwidth = 24\nheight = 16\n"
         "[structure]\ntype = [\"uniform_grid\", \"bvh\", \"auto\", \"brute_force\"]\n"
-        "[strategy]\ntype = [\"branching\", \"multipass\", \"persistent\"]\n[output]\nimages = false\n");
-    ASSERT_EQ(result.rows.size(), 12u);
+        "[strategy]\ntype = [\"branching\", \"multipass\", \"persistent\", \"megakernel\"]\n[output]\nimages = false\n");
+    ASSERT_EQ(result.rows.size(), 16u);
     const std::regex integer("-?[0-9]+"), number("-?([0-9]+\\.?[0-9]*|\\.[0-9]+)([eE][-+]?[0-9]+)?|-?inf|nan");
     std::map<std::string, int> checked;
     for (const Row& row : result.rows) {
