@@ -34,8 +34,9 @@ namespace {
 class BranchingTimer : public KernelTimer {
 public:
     BranchingTimer(VulkanContext& vk, std::unique_ptr<GpuBuffers> buffers, const std::string& kernel, KernelSpec spec,
-                   std::uint64_t invocations, std::vector<gpu::HitRecord> counted)
-        : vk_(vk), buffers_(std::move(buffers)), invocations_(invocations), counted_(std::move(counted)) {
+                   std::uint64_t invocations, std::vector<gpu::HitRecord> counted, std::string name)
+        : vk_(vk), buffers_(std::move(buffers)), invocations_(invocations), counted_(std::move(counted)),
+          name_(std::move(name)) {
         spec.instrument = false;
         timed_ = buffers_->createKernel(kernel, spec);
     }
@@ -51,13 +52,14 @@ public:
         batch.ms.assign(ms.begin() + warmups, ms.end());
         return batch;
     }
-    void checkHits() override { expectSameHits(buffers_->downloadHits(), counted_, "branching kernel"); }
+    void checkHits() override { expectSameHits(buffers_->downloadHits(), counted_, name_.c_str()); }
 
 private:
     VulkanContext& vk_;
     std::unique_ptr<GpuBuffers> buffers_;
     std::uint64_t invocations_;
     std::vector<gpu::HitRecord> counted_;
+    std::string name_;  // the kernel, as errors name it
     ComputePipeline timed_{};
 };
 
@@ -87,7 +89,8 @@ BranchingRun runBranching(VulkanContext& vk, const Structure& structure, const s
         run.activeLanes = run.counters.counts[gpu::kCountActiveLanes];
         run.laneSlots = run.counters.counts[gpu::kCountLaneSlots];
     }
-    run.timer = std::make_unique<BranchingTimer>(vk, std::move(buffers), kernel, spec, invocations, run.hits);
+    run.timer = std::make_unique<BranchingTimer>(vk, std::move(buffers), kernel, spec, invocations, run.hits,
+                                                 launch.kernel + " kernel");
     if (timing.warmups + timing.repetitions > 0) {
         run.gpuMs = run.timer->time(timing.warmups, timing.repetitions).ms;
         run.timer->checkHits();
