@@ -444,6 +444,30 @@ def raytypes() -> list:
     return out + [""]
 
 
+def strategies() -> list:
+    runs, context = load("strategies")
+    ok = runs[runs.status == "ok"].copy()
+    ok["structure"] = ok.structure_type.map({"uniform_grid": "grid", "bvh": "bvh"}).fillna(ok.structure_type)
+    ok["strategy"] = [r.strategy_type + (f" {r.strategy_schedule}" if r.strategy_type == "megakernel" else "")
+                      for r in ok.itertuples()]
+    branching = ok[ok.strategy_type == "branching"].set_index("structure").kernel_ms_median
+    failed = runs[runs.status != "ok"]
+    out = ["### `results/strategies/`: execution strategies (issue 18)", "", provenance("strategies", runs, context), "",
+           "Full table: [`results/strategies/tables.md`](results/strategies/tables.md). The bunny at "
+           f"{size(ok.iloc[0]) if len(ok) else '?'}; × branching is two runs' medians (no interval). SIMD efficiency: "
+           "lanes that take a step over lanes (ballots); multipass: Purcell's measure.", "",
+           "| structure | strategy | GPU ms | × branching | SIMD eff. | state executions (megakernel) |", "|---|---|---|---|---|---|"]
+    for r in ok.sort_values(["structure", "strategy"]).itertuples():
+        executions = "" if r.strategy_type != "megakernel" else \
+            f"{count(r.megakernel_runs_traverse)} + {count(r.megakernel_runs_intersect)}"
+        out.append(f"| {r.structure} | {r.strategy} | {num(r.kernel_ms_median)} | "
+                   f"{num(r.kernel_ms_median / branching.get(r.structure, float('nan')), 2)} | {num(r.simd_efficiency)} | {executions} |")
+    if len(failed):
+        out += ["", f"Failed: {reasons(failed.error)}"]
+    out += [""] + charts("strategies", {"strategies": "GPU time against SIMD efficiency, every strategy"})
+    return out + [""]
+
+
 def golden() -> list:
     runs, context = load("golden")
     return ["### `results/golden/`: the counts CI checks", "",
@@ -482,7 +506,7 @@ def section() -> str:
            "medians with 95% bootstrap intervals of the repetitions of one run (an interval says nothing of the spread "
            "between runs in separate processes); a speed claim is a ratio measured in the same run. Counts (passes, "
            "bytes, work, rays wrong) are the same on every machine with the same device; timings are this machine's.", ""]
-    for part in (bunny, structures, purcell2002, stability, accuracy, raytypes, golden, h200):
+    for part in (bunny, structures, purcell2002, stability, accuracy, raytypes, strategies, golden, h200):
         out += part()
     while out and out[-1] == "":
         out.pop()

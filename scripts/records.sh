@@ -10,7 +10,7 @@
 #                         draws the charts and tables here
 set -euo pipefail
 cd "$(dirname "$0")/.."
-configs=(bunny structures purcell2002 stability accuracy raytypes)
+configs=(bunny structures purcell2002 stability accuracy raytypes strategies)
 bin=${RTBENCH_BIN:-build/rtbench}
 
 charts() {
@@ -23,6 +23,7 @@ charts() {
   /usr/bin/python3 scripts/structures_tables.py "$out/structures" > /dev/null
   /usr/bin/python3 scripts/purcell_tables.py "$out/purcell2002" > /dev/null
   /usr/bin/python3 scripts/raytypes_tables.py "$out/raytypes" > /dev/null
+  /usr/bin/python3 scripts/strategies_tables.py "$out/strategies" > /dev/null
 }
 
 if [ "${1:-}" = "--charts" ]; then
@@ -45,4 +46,4 @@ for config in "${configs[@]}"; do
   echo "== $config: $(( $(date +%s) - start )) s"
 done
 [ "${CHARTS:-1}" = 0 ] || charts "$out"
-echo "== done: $out/{bunny,structures,purcell2002,stability,accuracy,raytypes}"
+echo "== done: $out/{bunny,structures,purcell2002,stability,accuracy,raytypes,strategies}"

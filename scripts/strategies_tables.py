@@ -1,0 +1,116 @@
+#!/usr/bin/python3
+"""Table and chart for a strategies results folder (configs/strategies.toml): each execution
+strategy (branching, multipass, the scheduled megakernel under each schedule, persistent threads)
+over each structure, against the branching kernel on the same structure and against Embree on the
+same rays: time, SIMD efficiency, passes or state executions, bytes, and the failed runs with why.
+
+usage: scripts/strategies_tables.py RESULTS_DIR
+  writes tables.md, strategies.png/.svg (GPU time against SIMD efficiency, one point per run)
+Uses Debian's python3-pandas and python3-matplotlib only.
+"""
+import sys
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt
+import pandas as pd
+
+from rtbench_results import commit_text, load, wrong_rays
+
+
+def strategy(run) -> str:
+    """"branching", "multipass K=4 M=2", "megakernel switch", "persistent"."""
+    if run.strategy_type == "multipass":
+        return f"multipass K={int(run.strategy_traverse_steps_per_pass)} M={int(run.strategy_intersections_per_pass)}"
+    if run.strategy_type == "megakernel":
+        return f"megakernel {run.strategy_schedule}"
+    return run.strategy_type
+
+
+def fmt(value, digits=3) -> str:
+    return "" if pd.isna(value) else f"{value:,.{digits}f}"
+
+
+def main() -> int:
+    if len(sys.argv) != 2:
+        print(__doc__)
+        return 2
+    folder = Path(sys.argv[1])
+    runs, failed, context, device = load(folder)
+    for frame in (runs, failed):
+        for column in ["strategy_schedule", "strategy_traverse_steps_per_pass", "strategy_intersections_per_pass",
+                       "megakernel_runs_traverse", "megakernel_runs_intersect", "passes_total"]:
+            if column not in frame:
+                frame[column] = float("nan")
+    runs = runs.copy()
+    runs["structure"] = runs.structure_type.map({"uniform_grid": "grid", "bvh": "bvh"}).fillna(runs.structure_type)
+    runs["strategy"] = [strategy(r) for r in runs.itertuples()]
+    runs["wrong"] = wrong_rays(runs)
+    branching = runs[runs.strategy_type == "branching"].set_index(["scene", "structure"]).kernel_ms_median
+    runs["vs_branching"] = [r.kernel_ms_median / branching.get((r.scene, r.structure), float("nan"))
+                            for r in runs.itertuples()]
+    size = f"{int(runs.camera_width.iloc[0])}x{int(runs.camera_height.iloc[0])}" if len(runs) else "-"
+
+    lines = [f"# Execution strategies — {device}, {context.get('cpu', '?')}", "",
+             f"Command: `{context.get('command', '?')}` at commit {commit_text(context)}, "
+             f"{context.get('date_utc', '?')}; {size} rays per run. {len(runs)} runs ok, {len(failed)} failed.",
+             "GPU ms: the kernel's median over the timed repetitions (its 95% interval); × branching: that median over "
+             "the branching kernel's on the same scene and structure (two runs of one sweep, so no interval: read it "
+             "to a first digit when either run has a timing warning); × Embree: that median over Embree rtcIntersect1's on the "
+             "identical rays in the same run (above 1: slower than one CPU thread). SIMD eff.: branching, persistent and megakernel: lanes "
+             "that take a step over subgroup size × steps (ballots); multipass: Purcell's rays served over rays × "
+             "passes. Executions: the megakernel's subgroup state executions (traverse + intersect; OptiX Fig. 6's "
+             "measure, summed over subgroups); passes: multipass dispatches. Wrong: rays the exact reference "
+             "contradicts.", ""]
+    lines += ["| scene | structure | strategy | GPU ms | 95% interval | × branching | × Embree | SIMD eff. | "
+              "executions (trav + isect) | passes | bytes/ray | wrong | timing warning |",
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+    for r in runs.sort_values(["scene", "structure", "strategy_type", "strategy"]).itertuples():
+        executions = "" if pd.isna(r.megakernel_runs_traverse) else \
+            f"{int(r.megakernel_runs_traverse):,} + {int(r.megakernel_runs_intersect):,}"
+        passes = "" if r.strategy_type != "multipass" else f"{int(r.passes_total):,}"
+        lines.append(f"| {r.scene} | {r.structure} | {r.strategy} | {fmt(r.kernel_ms_median, 1)} | "
+                     f"[{fmt(r.kernel_ms_ci_low, 1)}, {fmt(r.kernel_ms_ci_high, 1)}] | {fmt(r.vs_branching, 2)} | "
+                     f"{fmt(r.kernel_ms_median / r.embree1_ms_median, 2)} | {fmt(r.simd_efficiency)} | {executions} | "
+                     f"{passes} | {fmt(r.bytes_per_ray, 0)} | {int(r.wrong)} | "
+                     f"{'yes' if isinstance(r.timing_warning, str) and r.timing_warning else ''} |")
+    if len(failed):
+        lines += ["", "Failed runs (a run that cannot be trusted is a failed row with the reason):", "",
+                  "| run | structure | strategy | why |", "|---|---|---|---|"]
+        for r in failed.itertuples():
+            lines.append(f"| {r.run} | {r.structure_type} | {r.strategy_type} | {str(r.error).replace('|', '/')} |")
+    (folder / "tables.md").write_text("\n".join(lines) + "\n")
+
+    if len(runs):
+        structures = sorted(runs.structure.unique())
+        fig, axes = plt.subplots(1, len(structures), figsize=(5.5 * len(structures), 4.2), squeeze=False)
+        for ax, structure in zip(axes[0], structures):
+            g = runs[runs.structure == structure]
+            for r in g.itertuples():
+                ax.errorbar(r.simd_efficiency, r.kernel_ms_median,
+                            yerr=[[r.kernel_ms_median - r.kernel_ms_ci_low], [r.kernel_ms_ci_high - r.kernel_ms_median]],
+                            fmt="o", capsize=3)
+                ax.annotate(r.strategy, (r.simd_efficiency, r.kernel_ms_median), fontsize=7,
+                            xytext=(4, 3), textcoords="offset points")
+            embree = g.embree1_ms_median.median()
+            ax.axhline(embree, color="grey", linestyle="--", linewidth=0.8)
+            ax.annotate("Embree, 1 thread", (0.02, embree), xycoords=("axes fraction", "data"), fontsize=7,
+                        xytext=(0, 3), textcoords="offset points", color="grey")
+            ax.set_yscale("log")
+            ax.set_xlim(0, 1.05)
+            ax.set_xlabel("SIMD efficiency")
+            ax.set_ylabel("GPU ms (median, 95% interval)")
+            ax.set_title(f"{', '.join(sorted(g.scene.unique()))}, {structure}, {size}", fontsize=9)
+        fig.suptitle(f"Execution strategies on {device} ({commit_text(context)})", fontsize=9)
+        fig.tight_layout()
+        for ext in ("png", "svg"):
+            fig.savefig(folder / f"strategies.{ext}", dpi=110)
+        plt.close(fig)
+    print(folder / "tables.md")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
