@@ -448,8 +448,9 @@ def strategies() -> list:
     runs, context = load("strategies")
     ok = runs[runs.status == "ok"].copy()
     ok["structure"] = ok.structure_type.map({"uniform_grid": "grid", "bvh": "bvh"}).fillna(ok.structure_type)
-    ok["strategy"] = [r.strategy_type + (f" {r.strategy_schedule}" if r.strategy_type == "megakernel" else "")
-                      for r in ok.itertuples()]
+    ok["strategy"] = [r.strategy_type + (f" {r.strategy_schedule}" if r.strategy_type == "megakernel" else
+                                         f" K={count(r.strategy_traverse_steps_per_pass)} M={count(r.strategy_intersections_per_pass)}"
+                                         if r.strategy_type == "multipass" else "") for r in ok.itertuples()]
     branching = ok[ok.strategy_type == "branching"].set_index("structure").kernel_ms_median
     failed = runs[runs.status != "ok"]
     out = ["### `results/strategies/`: execution strategies (issue 18)", "", provenance("strategies", runs, context), "",
@@ -463,7 +464,8 @@ def strategies() -> list:
         out.append(f"| {r.structure} | {r.strategy} | {num(r.kernel_ms_median)} | "
                    f"{num(r.kernel_ms_median / branching.get(r.structure, float('nan')), 2)} | {num(r.simd_efficiency)} | {executions} |")
     if len(failed):
-        out += ["", f"Failed: {reasons(failed.error)}"]
+        out += ["", "Failed (each a row with its reason in `error`): " + "; ".join(
+            f"{r.structure_type} {r.strategy_type}: {str(r.error).split(' (first:')[0]}" for r in failed.itertuples()) + "."]
     out += [""] + charts("strategies", {"strategies": "GPU time against SIMD efficiency, every strategy"})
     return out + [""]
 

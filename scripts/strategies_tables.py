@@ -85,15 +85,17 @@ def main() -> int:
 
     if len(runs):
         structures = sorted(runs.structure.unique())
-        fig, axes = plt.subplots(1, len(structures), figsize=(5.5 * len(structures), 4.2), squeeze=False)
+        names = sorted(runs.strategy.unique())
+        markers = "osD^v<>Xph"
+        style = {n: (f"C{i % 10}", markers[i % len(markers)]) for i, n in enumerate(names)}
+        fig, axes = plt.subplots(1, len(structures), figsize=(5.5 * len(structures), 4.4), squeeze=False)
         for ax, structure in zip(axes[0], structures):
             g = runs[runs.structure == structure]
             for r in g.itertuples():
+                colour, marker = style[r.strategy]
                 ax.errorbar(r.simd_efficiency, r.kernel_ms_median,
                             yerr=[[r.kernel_ms_median - r.kernel_ms_ci_low], [r.kernel_ms_ci_high - r.kernel_ms_median]],
-                            fmt="o", capsize=3)
-                ax.annotate(r.strategy, (r.simd_efficiency, r.kernel_ms_median), fontsize=7,
-                            xytext=(4, 3), textcoords="offset points")
+                            fmt=marker, color=colour, capsize=3, label=r.strategy)
             embree = g.embree1_ms_median.median()
             ax.axhline(embree, color="grey", linestyle="--", linewidth=0.8)
             ax.annotate("Embree, 1 thread", (0.02, embree), xycoords=("axes fraction", "data"), fontsize=7,
@@ -103,6 +105,7 @@ def main() -> int:
             ax.set_xlabel("SIMD efficiency")
             ax.set_ylabel("GPU ms (median, 95% interval)")
             ax.set_title(f"{', '.join(sorted(g.scene.unique()))}, {structure}, {size}", fontsize=9)
+        axes[0][-1].legend(fontsize=7, loc="center left")
         fig.suptitle(f"Execution strategies on {device} ({commit_text(context)})", fontsize=9)
         fig.tight_layout()
         for ext in ("png", "svg"):
