@@ -109,8 +109,8 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         auto addMethodColumns = [&](const std::string& typeKey, const std::string& name,
                                     const std::vector<ColumnSpec>& columns) {
             for (ColumnSpec c : columns) {
-                // A column several methods write (branching's lane model, which persistent threads
-                // share) is declared by each, alike: its condition names them all.
+                // A column several methods write (rays_cut_short, the lane model's lanes_model_*) is
+                // declared by each, alike: its condition names them all.
                 auto same = std::find_if(s.begin(), s.end(), [&](const ColumnSpec& d) { return d.name == c.name; });
                 if (same != s.end() && !same->appliesWhen.empty() &&
                     same->appliesWhen.front().rfind(typeKey + "=", 0) == 0 && same->help == c.help &&
