@@ -108,6 +108,19 @@ LaneVerdict judgeLaneCounts(const DeviceInfo& device, std::uint64_t deviceActive
                     " need not run a subgroup's loops in lock step; the SIMD-efficiency columns are its own ballots'"};
 }
 
+std::uint64_t loopIterationBudget(const DeviceInfo& device) {
+    // A small margin covers the fixed loops around a walk's (the slab test's 3 axes...).
+    const std::uint64_t margin = 64;
+    return device.loopIterationLimit ? device.loopIterationLimit - margin : 0;
+}
+
+std::string loopLimitWhy(const DeviceInfo& device, std::uint64_t iterations, std::uint64_t rays) {
+    return "a subgroup of this run needs " + std::to_string(iterations) + " loop iterations and " + device.name +
+           " ends a kernel invocation after " + std::to_string(device.loopIterationLimit) +
+           " (Mesa's LP_MAX_TGSI_LOOP_ITERATIONS, all loops together), leaving up to " + std::to_string(rays) +
+           " rays unfinished";
+}
+
 StrategyRun judgeWholeTraversal(VulkanContext& vk, const Structure& structure, const RayBatch& batch,
                                 BranchingRun&& kernel, Row& row) {
     const std::vector<gpu::Ray>& rays = batch.rays;
@@ -116,10 +129,8 @@ StrategyRun judgeWholeTraversal(VulkanContext& vk, const Structure& structure, c
     run.cpuMismatches = recordMismatches(kernel.hits, structure.trace(rays, batch.query));
     // A device that ends long loops (llvmpipe) leaves the rays of such a subgroup unfinished, their
     // records wrong without a sign: the lane model knows each subgroup's loop iterations exactly.
-    // A small margin covers the fixed loops around the traversal's (the slab test's 3 axes...).
-    const std::uint64_t limit = vk.info().loopIterationLimit, margin = 64;
     const LaneCounts lanes =
-        branchingLaneCounts(structure, rays, vk.info().subgroupSize, limit ? limit - margin : 0, batch.query);
+        branchingLaneCounts(structure, rays, vk.info().subgroupSize, loopIterationBudget(vk.info()), batch.query);
     row["lanes_model_active"] = std::to_string(lanes.activeLanes);
     row["lanes_model_slots"] = std::to_string(lanes.laneSlots);
     const LaneVerdict verdict =
@@ -130,11 +141,8 @@ StrategyRun judgeWholeTraversal(VulkanContext& vk, const Structure& structure, c
     run.truncatedRays = lanes.raysInLongSubgroups;
     row["rays_cut_short"] = std::to_string(run.truncatedRays);
     if (run.truncatedRays)
-        run.truncatedWhy = "a subgroup of this run needs " + std::to_string(lanes.maxSubgroupIterations) +
-                           " loop iterations and " + vk.info().name + " ends a kernel invocation after " +
-                           std::to_string(limit) + " (Mesa's LP_MAX_TGSI_LOOP_ITERATIONS, all loops together), "
-                           "leaving up to " + std::to_string(run.truncatedRays) +
-                           " rays unfinished; multipass (a few iterations per pass), a finer grid or the BVH stay within it";
+        run.truncatedWhy = loopLimitWhy(vk.info(), lanes.maxSubgroupIterations, run.truncatedRays) +
+                           "; multipass (a few iterations per pass), a finer grid or the BVH stay within it";
     run.hits = std::move(kernel.hits);
     run.timer = std::move(kernel.timer);
     return run;

@@ -44,6 +44,12 @@ BranchingRun runBranching(VulkanContext& vk, const Structure& structure, const s
                           const TimingOptions& timing, std::uint32_t query = gpu::kQueryClosest,
                           const TraceLaunch& launch = {});
 
+// The loop iterations a subgroup may run before the device ends its invocation (DeviceInfo::
+// loopIterationLimit), less a margin for the fixed loops around a walk; 0 where none is known.
+std::uint64_t loopIterationBudget(const DeviceInfo& device);
+// Why a run fails whose subgroups need `iterations` loop iterations, leaving up to `rays` rays unfinished.
+std::string loopLimitWhy(const DeviceInfo& device, std::uint64_t iterations, std::uint64_t rays);
+
 // Judges a whole-traversal kernel's instrumented run (branching, persistent threads): its records
 // against the structure's rtTrace on the same rays, its subgroup ballots against the lock-step lane
 // model (judgeLaneCounts), its subgroups' loop iterations against the device's limit; writes the

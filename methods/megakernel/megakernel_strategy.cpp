@@ -15,9 +15,8 @@ StrategyRun runMegakernelStrategy(VulkanContext& vk, const Structure& structure,
     launch.kernel = "megakernel";
     launch.constants = {{gpu::kSpecSchedule, schedule}};
     BranchingRun kernel = runBranching(vk, structure, rays, timing, batch.query, launch);
-    const std::uint64_t limit = vk.info().loopIterationLimit, margin = 64;
     const MegakernelCounts model =
-        megakernelCounts(structure, rays, vk.info().subgroupSize, schedule, batch.query, limit ? limit - margin : 0);
+        megakernelCounts(structure, rays, vk.info().subgroupSize, schedule, batch.query, loopIterationBudget(vk.info()));
     const std::uint64_t runsTraverse = kernel.counters.counts[gpu::kCountRunsTraverse];
     const std::uint64_t runsIntersect = kernel.counters.counts[gpu::kCountRunsIntersect];
     row["megakernel_runs_traverse"] = std::to_string(runsTraverse);
@@ -37,11 +36,7 @@ StrategyRun runMegakernelStrategy(VulkanContext& vk, const Structure& structure,
                              " in the CPU model) differ";
     run.truncatedRays = model.raysInLongSubgroups;
     row["rays_cut_short"] = std::to_string(run.truncatedRays);
-    if (run.truncatedRays)
-        run.truncatedWhy = "a subgroup of this run needs " + std::to_string(model.maxSubgroupIterations) +
-                           " loop iterations and " + vk.info().name + " ends a kernel invocation after " +
-                           std::to_string(limit) + " (Mesa's LP_MAX_TGSI_LOOP_ITERATIONS), leaving up to " +
-                           std::to_string(run.truncatedRays) + " rays unfinished";
+    if (run.truncatedRays) run.truncatedWhy = loopLimitWhy(vk.info(), model.maxSubgroupIterations, run.truncatedRays);
     run.hits = std::move(kernel.hits);
     run.timer = std::move(kernel.timer);
     return run;
