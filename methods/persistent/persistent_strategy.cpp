@@ -43,10 +43,8 @@ StrategyRun runPersistentStrategy(VulkanContext& vk, const Structure& structure,
         run.truncatedRays = traced < rays ? rays - traced : traced - rays;
         run.truncatedWhy = "persistent threads wrote " + std::to_string(traced) + " records for " + std::to_string(rays) +
                            " rays" + (vk.info().loopIterationLimit
-                                          ? " (" + vk.info().name + " ends an invocation after " +
-                                                std::to_string(vk.info().loopIterationLimit) +
-                                                " loop iterations, all the rays it fetched together: raise "
-                                                "strategy.persistent_workgroups so that each fetches fewer)"
+                                          ? " (" + vk.info().name + " runs the persistent kernel right only on small "
+                                                "dispatches, for a cause not established: docs/method.md)"
                                           : std::string());
     } else if (fetched != expected.fetchedWhenDone) {
         run.countsMismatch = "the fetch counter ended at " + std::to_string(fetched) + ", not " +
