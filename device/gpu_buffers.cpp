@@ -47,11 +47,17 @@ void refuseOversizedRayStream(std::uint64_t rays) {
 }
 
 GpuBuffers::GpuBuffers(VulkanContext& vk, const std::vector<gpu::Ray>& rays, std::uint64_t traversalStateBytes,
-                       const std::vector<BufferData>& structureBuffers, const std::vector<std::uint8_t>& structureParams)
+                       const std::vector<BufferData>& structureBuffers, const std::vector<std::uint8_t>& structureParams,
+                       const std::vector<BufferSize>& strategyBuffers)
     : vk_(vk), rayCount_(rays.size()) {
+    if (strategyBuffers.size() > gpu::kStrategySlots)
+        throw Error("a strategy asked for " + std::to_string(strategyBuffers.size()) + " buffers of its own; there are " +
+                    std::to_string(gpu::kStrategySlots) + " slots (kernels/gpu_layout.h kStrategySlots)");
     const auto start = std::chrono::steady_clock::now();
     const std::size_t n = rays.size();
     std::vector<BufferSize> sizes = rayBufferSizes(n, traversalStateBytes);  // slots kBindingRays..kBindingRayCounters
+    for (std::uint32_t i = 0; i < gpu::kStrategySlots; ++i)  // slots kBindingStrategy..
+        sizes.push_back(i < strategyBuffers.size() ? strategyBuffers[i] : BufferSize{"unused strategy slot", 4});
     for (const BufferData& b : structureBuffers) sizes.push_back({b.what, b.bytes});
     refuseOversizedBuffers(vk.info(), sizes);
     buffers_.resize(gpu::kBindingStructure + structureBuffers.size());
@@ -62,6 +68,11 @@ GpuBuffers::GpuBuffers(VulkanContext& vk, const std::vector<gpu::Ray>& rays, std
         countersOnHost_ = vk.createHostReadbackBuffer(sizeof(gpu::PassCounters));
         std::memset(countersOnHost_.mapped, 0, sizeof(gpu::PassCounters));  // zeros until a read-back
         vk.upload(buffers_[gpu::kBindingRays], rays.data(), n * sizeof(gpu::Ray));
+        for (std::uint32_t b = gpu::kBindingStrategy; b < gpu::kBindingStructure; ++b) {
+            buffers_[b] = vk.createStorageBuffer(sizes[b - 1].bytes, sizes[b - 1].what);  // sizes has no pass-counter entry
+            const std::vector<std::uint8_t> zeros(sizes[b - 1].bytes, 0);
+            vk.upload(buffers_[b], zeros.data(), zeros.size());
+        }
         for (std::size_t i = 0; i < structureBuffers.size(); ++i) {
             const BufferData& b = structureBuffers[i];
             buffers_[gpu::kBindingStructure + i] = vk.createStorageBuffer(b.bytes, b.what);

@@ -55,12 +55,14 @@ struct BufferData {
     const void* data = nullptr;
 };
 
-// The buffers of one run: the common per-ray slots of kernels/gpu_layout.h, then the structure's
-// buffers from kBindingStructure on; and the push constants (StreamParams, then the structure's).
+// The buffers of one run: the common per-ray slots of kernels/gpu_layout.h, the strategy's own
+// (zeroed, at most kStrategySlots, from kBindingStrategy on), then the structure's buffers from
+// kBindingStructure on; and the push constants (StreamParams, then the structure's).
 class GpuBuffers {
 public:
     GpuBuffers(VulkanContext& vk, const std::vector<gpu::Ray>& rays, std::uint64_t traversalStateBytes,
-               const std::vector<BufferData>& structureBuffers, const std::vector<std::uint8_t>& structureParams);
+               const std::vector<BufferData>& structureBuffers, const std::vector<std::uint8_t>& structureParams,
+               const std::vector<BufferSize>& strategyBuffers = {});
     ~GpuBuffers();
     GpuBuffers(const GpuBuffers&) = delete;
     GpuBuffers& operator=(const GpuBuffers&) = delete;
@@ -82,6 +84,10 @@ public:
     // Multipass: the per-ray traversal state saved by the last pass, as bytes (tests compare it
     // with the CPU's).
     std::vector<std::uint8_t> downloadTraversalStates();
+    // The strategy's buffer in slot kBindingStrategy + i (a 4-byte placeholder when it has none).
+    const Buffer& strategyBuffer(std::uint32_t i) const { return buffers_.at(gpu::kBindingStrategy + i); }
+    // The pass counters themselves (device-local), for dispatches that zero them first.
+    const Buffer& passCounterBuffer() const { return buffers_[gpu::kBindingPassCounters]; }
     double uploadMs() const { return uploadMs_; }
 
 private:

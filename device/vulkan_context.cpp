@@ -323,7 +323,7 @@ Buffer VulkanContext::createStorageBuffer(VkDeviceSize size, const std::string& 
     checkBindingSize(info_, what, size);
     return createBuffer(size,
                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
-                            VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                            VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
                         VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0);
 }
 
@@ -524,21 +524,29 @@ std::vector<double> VulkanContext::dispatchAll(const std::vector<DispatchCall>& 
             const ComputePipeline& p = *call.pipeline;
             const std::uint64_t groups = (call.invocations + p.workgroupSize - 1) / p.workgroupSize;
             const auto [groupsX, groupsY] = workgroupGrid(groups, info_.maxWorkGroupCountX);
-            if (call.counters) {
-                // Orders the previous pass's counter atomics and read-back copy before the zeroing.
+            std::vector<VkBuffer> zeroed;
+            if (call.counters) zeroed.push_back(call.counters->device->buffer);
+            for (const Buffer* b : call.zeroFirst)
+                if (b) zeroed.push_back(b->buffer);
+            if (!zeroed.empty()) {
+                // Orders earlier kernels' writes and read-back copies of these buffers before the zeroing.
                 VkMemoryBarrier before{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
-                before.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+                before.srcAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_READ_BIT |
+                                       VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT;
                 before.dstAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
-                vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT |
+                                              VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
                                      VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1, &before, 0, nullptr, 0, nullptr);
-                vkCmdFillBuffer(cmd, call.counters->device->buffer, 0, VK_WHOLE_SIZE, 0);
+                for (VkBuffer b : zeroed) vkCmdFillBuffer(cmd, b, 0, VK_WHOLE_SIZE, 0);
             }
-            // Orders earlier buffer writes (uploads, the zeroing, the previous pass) before this kernel's reads and writes.
+            // Orders earlier buffer writes (uploads, the zeroing, the previous pass) before this kernel's
+            // reads and writes, and before the read of its workgroup counts when it is indirect.
             VkMemoryBarrier previous{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
             previous.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
-            previous.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+            previous.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT;
             vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                                 VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &previous, 0, nullptr, 0, nullptr);
+                                 VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT, 0, 1,
+                                 &previous, 0, nullptr, 0, nullptr);
             // The start stamp at the bottom of the pipe: written once every earlier command (the
             // dispatch before) has completed, so an interval never includes another dispatch's tail.
             if (queryPool_) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queryPool_, 2 * i);
@@ -546,7 +554,10 @@ std::vector<double> VulkanContext::dispatchAll(const std::vector<DispatchCall>& 
             vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, p.layout, 0, 1, &call.set, 0, nullptr);
             if (p.pushConstantBytes)
                 vkCmdPushConstants(cmd, p.layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, p.pushConstantBytes, call.pushConstants);
-            if (groups) vkCmdDispatch(cmd, static_cast<std::uint32_t>(groupsX), static_cast<std::uint32_t>(groupsY), 1);
+            if (call.indirect)
+                vkCmdDispatchIndirect(cmd, call.indirect->buffer, call.indirectOffset);
+            else if (groups)
+                vkCmdDispatch(cmd, static_cast<std::uint32_t>(groupsX), static_cast<std::uint32_t>(groupsY), 1);
             if (queryPool_) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queryPool_, 2 * i + 1);
             if (call.counters) {
                 // Orders this kernel's counter atomics before the copy to the host's buffer.

@@ -4,6 +4,7 @@
 #pragma once
 #include <vulkan/vulkan.h>
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -126,6 +127,11 @@ public:
         const void* pushConstants;
         std::uint64_t invocations;
         const CounterReadback* counters = nullptr;  // read back after this dispatch (the last call's stays)
+        // Indirect: the workgroup counts (VkDispatchIndirectCommand) at `indirectOffset` of this
+        // buffer, written by an earlier dispatch; `invocations` is then unused.
+        const Buffer* indirect = nullptr;
+        VkDeviceSize indirectOffset = 0;
+        std::array<const Buffer*, 2> zeroFirst{};  // buffers filled with zeros before this dispatch
     };
     static constexpr std::uint32_t kDispatchesPerSubmit = 1024;
     std::vector<double> dispatchAll(const std::vector<DispatchCall>& calls);

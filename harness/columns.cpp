@@ -214,6 +214,8 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("bytes_stencil", K::Count, "bytes", "ray-state byte reads and writes");
         add("bytes_state", K::Count, "bytes", "per-ray state saved and restored");
         add("bytes_stack", K::Count, "bytes", "multipass: per-ray node stack saved and restored (BVH)");
+        add("bytes_compaction", K::Count, "bytes", "multipass with strategy.control = device: compacted ray-list entries read and appended, 4 bytes each");
+        s.back().since = 13;
         add("bytes_triangle_list", K::Count, "bytes", "triangle-list entries read");
         add("bytes_vertices", K::Count, "bytes", "triangle vertices read");
         add("bytes_output", K::Count, "bytes", "hit records written");

@@ -29,6 +29,7 @@ void writeArchitectureColumns(const ArchitectureMetrics& m, const Structure& str
     row["bytes_stencil"] = std::to_string(m.bytes.stencil);
     row["bytes_state"] = std::to_string(m.bytes.state);
     if (m.bytes.stack) row["bytes_stack"] = std::to_string(m.bytes.stack);
+    if (m.bytes.compaction) row["bytes_compaction"] = std::to_string(m.bytes.compaction);
     row["bytes_triangle_list"] = std::to_string(m.bytes.triangleList);
     row["bytes_vertices"] = std::to_string(m.bytes.vertices);
     row["bytes_output"] = std::to_string(m.bytes.output);

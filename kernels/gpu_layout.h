@@ -29,7 +29,13 @@ RTBENCH_CONST kBindingTraversal = 3;    // the structure's traversal state [rayC
 RTBENCH_CONST kBindingHitState = 4;     // RayHitState[rayCount]: multipass best hit so far
 RTBENCH_CONST kBindingRayCounters = 5;  // RayCounters[rayCount]: per-ray work (instrumentation)
 RTBENCH_CONST kBindingPassCounters = 6; // PassCounters: oracle query + event counts of a pass
-RTBENCH_CONST kBindingStructure = 7;    // first slot of the structure's own buffers
+RTBENCH_CONST kBindingStrategy = 7;     // first of kStrategySlots slots a strategy may fill with its own buffers
+RTBENCH_CONST kStrategySlots = 2;       // (GpuBuffers: zeroed; a slot the strategy leaves empty gets 4 bytes)
+RTBENCH_CONST kBindingStructure = 9;    // first slot of the structure's own buffers
+
+// Multipass with strategy.control = "device" (methods/multipass): its two strategy slots.
+RTBENCH_CONST kBindingRayLists = kBindingStrategy + 0u;     // uint[4 * rayCount]: lists T0, T1, W0, W1 of ray indices
+RTBENCH_CONST kBindingPassControl = kBindingStrategy + 1u;  // PassControl, then PassLogEntry[passes]
 
 // ---- specialization-constant ids ----
 RTBENCH_CONST kSpecWorkgroupSize = 0;    // local_size_x of every kernel (default 64)
@@ -46,6 +52,11 @@ RTBENCH_CONST kSpecLatticeStep = 10;     // ... and its spacing, a power of two 
 RTBENCH_CONST kSpecQuery = 11;           // kQuery*: what a ray asks of the scene
 RTBENCH_CONST kSpecRaysPerFetch = 12;    // persistent threads: rays a subgroup fetches at a time (a multiple of its size)
 RTBENCH_CONST kSpecSchedule = 13;        // megakernel: kSchedule*, how a subgroup picks the state it runs
+RTBENCH_CONST kSpecCompact = 14;         // multipass: 1 = passes serve the rays of a compacted list (control on the device)
+RTBENCH_CONST kSpecOracleThreshold = 15; // multipass oracle kernel: floor(oracle_threshold * 2^31)
+RTBENCH_CONST kSpecNaive = 16;           // multipass oracle kernel: 1 = Christen's naive schedule
+RTBENCH_CONST kSpecPassCap = 17;         // multipass oracle kernel: the pass cap (multipassPassCap)
+RTBENCH_CONST kSpecMaxGroupsX = 18;      // multipass oracle kernel: maxComputeWorkGroupCount[0]
 
 // ---- megakernel schedules (methods/megakernel/megakernel.comp; Parker et al. 2013 §5.1-5.2) ----
 RTBENCH_CONST kScheduleSwitch = 0;          // each lane runs its own state: the subgroup runs every state present, one after another
@@ -96,6 +107,12 @@ RTBENCH_CONST kStateWaiting = 1;     // active: triangles of the current voxel o
 RTBENCH_CONST kStateDoneHit = 2;     // done: nearest hit found
 RTBENCH_CONST kStateLeftGrid = 3;    // done: left the structure without a hit
 RTBENCH_CONST kStateMissedBox = 4;   // done: never entered the structure's box
+
+// ---- multipass pass kinds (methods/multipass/multipass_schedule.h PassKind) ----
+RTBENCH_CONST kPassSetup = 0;
+RTBENCH_CONST kPassTraverse = 1;
+RTBENCH_CONST kPassIntersect = 2;
+RTBENCH_CONST kPassWrite = 3;
 
 // ---- PassCounters.counts indices (64-bit, summed over a dispatch) ----
 RTBENCH_CONST kCountTraversing = 0;     // rays traversing after the pass (oracle; always on)
@@ -184,6 +201,28 @@ struct PassCounters {
     uint64 counts[kCountSlots];  // byte 0 + 8 * kCount*
 };
 
+// Multipass with the oracle on the device: what the oracle kernel keeps between passes. All
+// zeros is the state before the setup pass. Lists: 0, 1 hold traversing rays, 2, 3 waiting ones;
+// a pass reads the current list of its state and files the rays it leaves active in the other
+// list of that pair (its own state) or appends them to the current list of the other state.
+struct PassControl {
+    uvec4 traverseGroups;   // byte 0: the next traverse pass's workgroups x, y, z (VkDispatchIndirectCommand), w unused
+    uvec4 intersectGroups;  // byte 16: the same for the next intersect pass; the pass not chosen gets 0 groups
+    uint listCounts[4];     // byte 32: entries in lists 0..3
+    uvec4 current;          // byte 48: x, y: the current traversing and waiting list (0 or 1 of each pair);
+                            //          z: the last pass's kPass*; w: passes run before it
+    uvec4 status;           // byte 64: x: the naive schedule's phase (kPass*); y: 1 when the loop has ended;
+                            //          z: 1 when it ended at the pass cap; w: 1 when a list held more rays
+                            //          than the stream (a kernel bug: the loop ends, the run fails)
+};
+
+// One pass of the device-controlled loop, logged by the oracle after it.
+struct PassLogEntry {
+    uint64 sums[6];   // byte 0: PassCounters slots kCountTraversing..kCountTriangleReads (instrumented runs)
+    uvec4 kindLists;  // byte 48: x: kPass*; y, z: rays on the current traversing and waiting lists after it;
+                      //          w: rays the pass was dispatched for (its input list; setup: the stream)
+};
+
 RTBENCH_CONST kNoHit = 0xFFFFFFFFu;
 
 #ifdef __cplusplus
@@ -197,6 +236,8 @@ static_assert(sizeof(RayCounters) == 16);
 static_assert(sizeof(ShadingParams) == 48);
 static_assert(sizeof(Material) == 48);
 static_assert(sizeof(PassCounters) == 96);
+static_assert(sizeof(PassControl) == 80);
+static_assert(sizeof(PassLogEntry) == 64);
 }  // namespace rtbench::gpu
 #else
 const float kNoHitT = 3.402823466e38;

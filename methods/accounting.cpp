@@ -35,8 +35,11 @@ ArchitectureMetrics multipassMetrics(const std::vector<gpu::HitRecord>& hits, co
     const std::uint64_t loopPasses = m.passesTraverse + m.passesIntersect;
     m.simdEfficiency = loopPasses ? double(counts.usefulTraverse + counts.usefulIntersect) / double(counts.streamSlots) : 1.0;
     // Every traverse and intersect pass reads the stencil byte of every ray of its stream (of its
-    // batch); changes are written.
-    m.bytes.stencil = counts.streamSlots * bytes::kStencil + counts.stencilWrites * bytes::kStencil;
+    // batch); changes are written. With the control on the device a pass reads its compacted list
+    // instead (an entry per slot) and appends each ray it leaves active to a list; the oracle
+    // kernel's 80-byte control block and log entry per pass are not counted.
+    m.bytes.stencil = (options.deviceControl ? 0 : counts.streamSlots * bytes::kStencil) + counts.stencilWrites * bytes::kStencil;
+    if (options.deviceControl) m.bytes.compaction = (counts.streamSlots + counts.listAppends) * bytes::kListEntry;
     m.bytes.cells = counts.structureReads * costs.bytesPerStructureRead;
     m.bytes.triangleList = counts.triangleReads * costs.bytesPerListEntry;
     m.bytes.vertices = counts.triangleReads * costs.bytesPerTriangle;

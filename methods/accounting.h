@@ -19,11 +19,13 @@ constexpr std::uint64_t kRay = sizeof(gpu::Ray);             // 32
 constexpr std::uint64_t kHitState = sizeof(gpu::RayHitState);  // 16
 constexpr std::uint64_t kOutput = 16;                        // t, primitive, u, v of the hit record
 constexpr std::uint64_t kBranchingState = kRay;              // read the ray once (the rest lives in registers)
+constexpr std::uint64_t kListEntry = 4;                      // a ray index in a compacted list
 }  // namespace bytes
 
 struct Bandwidth {
     std::uint64_t stencil = 0, state = 0, stack = 0, cells = 0, triangleList = 0, vertices = 0, output = 0;
-    std::uint64_t total() const { return stencil + state + stack + cells + triangleList + vertices + output; }
+    std::uint64_t compaction = 0;  // multipass with the control on the device: ray-list entries read and appended
+    std::uint64_t total() const { return stencil + state + stack + cells + triangleList + vertices + output + compaction; }
 };
 
 struct ArchitectureMetrics {

@@ -59,7 +59,9 @@ struct ColumnSpec {
 //        megakernel_*); multipass in batches (strategy.batch_rays,
 //        multipass_batch_rays); simd_efficiency and bytes_stencil of multipass count each
 //        batch's rays.
-constexpr int kSchemaVersion = 12;
+//  13  + multipass with the oracle on the device (strategy.control, bytes_compaction,
+//        kernel_ms_oracle); the oracle's threshold in fixed point (floor(t * 2^31)).
+constexpr int kSchemaVersion = 13;
 
 // The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".
 std::string paramColumn(const std::string& key);

@@ -4,11 +4,63 @@
 #include "traversal_common.glsl"
 #include "structure.glsl"
 
-// Counts a served ray's events and new state. The oracle's counts are always kept (the host
-// needs them to choose the next pass); the rest only when instrumented.
+// strategy.control = "device": the passes serve the rays of compacted lists, which the oracle
+// kernel (multipass_oracle.comp) keeps in its control block, instead of the stream's stencil.
+layout(constant_id = kSpecCompact) const uint compact = 0u;
+layout(std430, set = 0, binding = kBindingRayLists) buffer RayListBuffer { uint rayLists[]; };
+layout(std430, set = 0, binding = kBindingPassControl) buffer PassControlBuffer {
+    PassControl control;
+    PassLogEntry passLog[];
+};
+
+const uint kNoRay = 0xFFFFFFFFu;
+
+// The list a pass over rays in `state` reads, and the other list of its pair.
+uint mpCurrentList(uint state) { return state == kStateTraversing ? control.current.x : 2u + control.current.y; }
+uint mpOtherList(uint state) { return state == kStateTraversing ? 1u - control.current.x : 3u - control.current.y; }
+
+// The ray this invocation serves in a pass over the rays in `state`, or kNoRay: with the stencil,
+// its own ray when the ray's state byte says `state` (the stencil test, Purcell's early fragment
+// kill); compacted, the entry of the state's current list.
+uint mpServedRay(uint state) {
+    uint slot = rtRayIndex();
+    if (compact == 0u) return slot < rtRayCount() && uint(stencil[slot]) == state ? slot : kNoRay;
+    uint list = mpCurrentList(state);
+    return slot < control.listCounts[list] ? rayLists[list * rtRayCount() + slot] : kNoRay;
+}
+
+// Stream compaction by subgroup ballot: the subgroup's rays that `want` take consecutive entries of
+// `list`, claimed with one atomic per subgroup.
+void mpAppend(uint list, bool want, uint rayIndex) {
+    uvec4 ballot = subgroupBallot(want);
+    uint n = subgroupBallotBitCount(ballot);
+    if (n == 0u) return;
+    uint base = 0u;
+    if (subgroupElect()) base = atomicAdd(control.listCounts[list], n);
+    base = subgroupBroadcastFirst(base);
+    uint entry = base + subgroupBallotExclusiveBitCount(ballot);
+    if (want && entry < rtRayCount()) rayLists[list * rtRayCount() + entry] = rayIndex;  // else: overflow, the oracle ends the loop
+}
+
+// Compacted: files a ray the pass over `passState` leaves active. A ray still in the pass's state
+// goes to the other list of that pair (the pass reads the current one); a ray now in the other
+// state joins that state's current list. Setup (passState kNoRay) fills both current lists.
+void mpFile(uint passState, uint newState, uint rayIndex) {
+    if (compact == 0u) return;
+    mpAppend(passState == kStateTraversing ? mpOtherList(kStateTraversing) : mpCurrentList(kStateTraversing),
+             newState == kStateTraversing, rayIndex);
+    mpAppend(passState == kStateWaiting ? mpOtherList(kStateWaiting) : mpCurrentList(kStateWaiting),
+             newState == kStateWaiting, rayIndex);
+}
+
+// Counts a served ray's events and new state. The oracle's counts are kept whenever the host's
+// oracle needs them (it chooses the next pass from them); compacted, the oracle kernel reads the
+// list lengths and they are kept only when instrumented, as a check. The rest only when instrumented.
 void mpReport(uint rayIndex, uint oldState, uint newState, MpEvents e) {
-    rtCount(kCountTraversing, newState == kStateTraversing ? 1u : 0u);
-    rtCount(kCountWaiting, newState == kStateWaiting ? 1u : 0u);
+    if (compact == 0u || instrument != 0u) {
+        rtCount(kCountTraversing, newState == kStateTraversing ? 1u : 0u);
+        rtCount(kCountWaiting, newState == kStateWaiting ? 1u : 0u);
+    }
     if (instrument != 0u) {
         rtCount(kCountUsefulRays, 1u);
         rtCount(kCountStencilWrites, newState != oldState ? 1u : 0u);

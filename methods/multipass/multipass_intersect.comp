@@ -4,9 +4,8 @@
 #include "multipass_common.glsl"
 
 void main() {
-    uint rayIndex = rtRayIndex();
-    if (rayIndex >= rtRayCount()) return;
-    if (uint(stencil[rayIndex]) != kStateWaiting) return;  // the stencil test
+    uint rayIndex = mpServedRay(kStateWaiting);
+    if (rayIndex == kNoRay) return;
     MpEvents e = mpNoEvents();
     RtTraversalState ts = traversalStates[rayIndex];
     RayHitState hit = hitStates[rayIndex];
@@ -15,4 +14,5 @@ void main() {
     hitStates[rayIndex] = hit;
     if (state != kStateWaiting) stencil[rayIndex] = uint8_t(state);
     mpReport(rayIndex, kStateWaiting, state, e);
+    mpFile(kStateWaiting, state, rayIndex);
 }

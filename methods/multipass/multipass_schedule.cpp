@@ -1,10 +1,21 @@
 #include "multipass_schedule.h"
 
 #include <algorithm>
+#include <cmath>
+
+#include "kernels/gpu_layout.h"
 
 #include "structures/error.h"
 
 namespace rtbench {
+
+namespace oracle {
+using namespace gpu;
+using std::uint64_t;
+#define RT_INOUT(T) T&
+#include "multipass_oracle.glsl"
+#undef RT_INOUT
+}  // namespace oracle
 
 const char* passKindName(PassKind kind) {
     switch (kind) {
@@ -16,13 +27,22 @@ const char* passKindName(PassKind kind) {
     return "?";
 }
 
+std::uint32_t oracleThresholdQ31(double threshold) {
+    if (!(threshold >= 0.0 && threshold <= 1.0))
+        throw Error("multipass: oracle_threshold " + std::to_string(threshold) + " is outside [0, 1]");
+    return std::uint32_t(std::floor(std::ldexp(threshold, 31)));
+}
+
 PassKind PassScheduler::next(std::uint64_t traversing, std::uint64_t waiting) {
-    if (traversing + waiting == 0) return PassKind::Write;
-    if (waiting == 0) return naivePhase_ = PassKind::Traverse;
-    if (traversing == 0) return naivePhase_ = PassKind::Intersect;
-    if (options_.scheduling == "naive") return naivePhase_;  // stay in the phase until it drains
-    const double waitingFraction = double(waiting) / double(traversing + waiting);
-    return waitingFraction >= options_.oracleThreshold ? PassKind::Intersect : PassKind::Traverse;
+    if (traversing + waiting > 0xFFFFFFFFull)
+        throw Error("multipass: " + std::to_string(traversing + waiting) +
+                    " active rays in one stream, over the oracle's 2^32 - 1 (strategy.batch_rays splits the stream)");
+    std::uint32_t phase = static_cast<std::uint32_t>(naivePhase_);
+    const std::uint32_t kind = oracle::mpNextPass(std::uint32_t(traversing), std::uint32_t(waiting), phase,
+                                                  oracleThresholdQ31(options_.oracleThreshold),
+                                                  options_.scheduling == "naive");
+    naivePhase_ = static_cast<PassKind>(phase);
+    return static_cast<PassKind>(kind);
 }
 
 MultipassCounts& MultipassCounts::operator+=(const MultipassCounts& batch) {
@@ -31,16 +51,21 @@ MultipassCounts& MultipassCounts::operator+=(const MultipassCounts& batch) {
     stencilWrites += batch.stencilWrites, structureReads += batch.structureReads, triangleReads += batch.triangleReads;
     sequence.insert(sequence.end(), batch.sequence.begin(), batch.sequence.end());
     streamSlots += batch.streamSlots;
+    listAppends += batch.listAppends;
     return *this;
 }
 
 MultipassCounts runPassLoop(const MultipassOptions& options, std::uint64_t cap, std::uint64_t rays,
-                            const std::function<PassSums(PassKind)>& pass) {
+                            const std::function<PassSums(PassKind)>& pass,
+                            const std::function<void(std::uint64_t, std::uint64_t)>& afterPass) {
     MultipassCounts counts;
+    std::uint64_t traversing = 0, waiting = 0;  // active rays in each state
     auto run = [&](PassKind kind) {
         const PassSums sums = pass(kind);
         ++counts.passes[static_cast<int>(kind)];
-        if (kind == PassKind::Traverse || kind == PassKind::Intersect) counts.streamSlots += rays;
+        if (kind == PassKind::Traverse || kind == PassKind::Intersect)
+            counts.streamSlots += !options.deviceControl ? rays : kind == PassKind::Traverse ? traversing : waiting;
+        counts.listAppends += sums.traversing + sums.waiting;
         counts.sequence.push_back(kind);
         if (kind == PassKind::Traverse) counts.usefulTraverse += sums.useful;
         if (kind == PassKind::Intersect) counts.usefulIntersect += sums.useful;
@@ -50,7 +75,8 @@ MultipassCounts runPassLoop(const MultipassOptions& options, std::uint64_t cap, 
         return sums;
     };
     PassSums sums = run(PassKind::Setup);
-    std::uint64_t traversing = sums.traversing, waiting = sums.waiting;
+    traversing = sums.traversing, waiting = sums.waiting;
+    if (afterPass) afterPass(traversing, waiting);
     PassScheduler scheduler(options);
     for (PassKind kind = scheduler.next(traversing, waiting); kind != PassKind::Write;
          kind = scheduler.next(traversing, waiting)) {
@@ -63,6 +89,7 @@ MultipassCounts runPassLoop(const MultipassOptions& options, std::uint64_t cap, 
             traversing = sums.traversing, waiting += sums.waiting;
         else
             waiting = sums.waiting, traversing += sums.traversing;
+        if (afterPass) afterPass(traversing, waiting);
     }
     run(PassKind::Write);
     return counts;

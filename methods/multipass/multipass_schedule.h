@@ -25,7 +25,18 @@ struct MultipassOptions {
     double oracleThreshold = 0.2;
     std::uint64_t maxPasses = 0;  // 0: automatic cap from the structure (Structure::walkBounds)
     std::uint64_t batchRays = 0;  // rays per batch, each its own pass loop (0: what one binding holds)
+    // strategy.control: false ("host"), the host's oracle reads the counts back after each pass and
+    // every pass walks the whole stream through the stencil; true ("device"), the oracle runs on
+    // the device and each pass serves a compacted list of its rays (multipass_oracle.comp).
+    bool deviceControl = false;
 };
+
+// floor(threshold * 2^31), the oracle's threshold as the shared decision (multipass_oracle.glsl)
+// applies it; throws outside [0, 1].
+std::uint32_t oracleThresholdQ31(double threshold);
+
+static_assert(int(PassKind::Setup) == 0 && int(PassKind::Traverse) == 1 && int(PassKind::Intersect) == 2 &&
+              int(PassKind::Write) == 3, "PassKind is kernels/gpu_layout.h kPass*");
 
 class PassScheduler {
 public:
@@ -61,8 +72,12 @@ struct MultipassCounts {
     std::vector<PassKind> sequence;   // every pass in order (setup first, write last)
     // The ray slots the traverse and intersect passes walk: each such pass times the rays of its
     // stream (its batch's, when the stream runs in batches). Purcell's SIMD efficiency divides the
-    // rays served by it; every slot reads its ray's stencil byte.
+    // rays served by it; every slot reads its ray's stencil byte. With the control on the device a
+    // pass is dispatched over its compacted list instead: its slots are the list's rays, each read.
     std::uint64_t streamSlots = 0;
+    // Rays a pass (setup included) left active, summed: with the control on the device, the
+    // entries appended to the ray lists.
+    std::uint64_t listAppends = 0;
 
     std::uint64_t totalPasses() const { return passes[0] + passes[1] + passes[2] + passes[3]; }
     bool operator==(const MultipassCounts&) const = default;
@@ -74,8 +89,10 @@ struct MultipassCounts {
 // The pass loop of both the GPU strategy and the simulator over a stream of `rays` rays: setup,
 // then the scheduler's passes until no ray is active, then write. `pass` runs one pass. Throws
 // rtbench::Error when `cap` passes have run and rays are still active.
+// `afterPass`, when given, sees the rays active in each state after every pass but the write.
 MultipassCounts runPassLoop(const MultipassOptions& options, std::uint64_t cap, std::uint64_t rays,
-                            const std::function<PassSums(PassKind)>& pass);
+                            const std::function<PassSums(PassKind)>& pass,
+                            const std::function<void(std::uint64_t traversing, std::uint64_t waiting)>& afterPass = {});
 
 // A cap on passes: 4 x (ceil(Vmax / K) + ceil(Vmax * Lmax / M)) + 16, where Vmax bounds the
 // cells (voxels, nodes) one ray visits and Lmax the triangles in one (at least 1): a heuristic

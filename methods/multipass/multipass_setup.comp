@@ -1,5 +1,6 @@
 // Multipass pass 0 (eye rays and traversal setup): every ray enters the structure (the grid: clipped
-// to its box and placed in its first voxel) and is given its first state.
+// to its box and placed in its first voxel) and is given its first state; compacted, the rays left
+// active start the lists.
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "multipass_common.glsl"
@@ -16,4 +17,5 @@ void main() {
     hitStates[rayIndex] = hit;
     stencil[rayIndex] = uint8_t(state);
     mpReport(rayIndex, 0xFFu, state, e);
+    mpFile(kNoRay, state, rayIndex);
 }

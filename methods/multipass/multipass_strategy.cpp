@@ -1,6 +1,8 @@
 #include "multipass_strategy.h"
 
 #include <chrono>
+#include <cstddef>
+#include <cstring>
 
 #include "multipass_simulator.h"
 #include "structures/error.h"
@@ -12,19 +14,136 @@ namespace {
 struct Pipelines {
     VulkanContext& vk;
     std::array<ComputePipeline, kPassKinds> byKind{};
-    Pipelines(VulkanContext& v, GpuBuffers& buffers, const std::string& prefix, const KernelSpec& spec) : vk(v) {
+    ComputePipeline oracle{};  // strategy.control = "device"
+    Pipelines(VulkanContext& v, GpuBuffers& buffers, const std::string& prefix, const KernelSpec& spec,
+              bool deviceControl)
+        : vk(v) {
         static const char* names[kPassKinds] = {"multipass_setup", "multipass_traverse", "multipass_intersect",
                                                 "multipass_write"};
         for (int k = 0; k < kPassKinds; ++k) byKind[k] = buffers.createKernel(prefix + "_" + names[k], spec);
+        if (deviceControl) oracle = buffers.createKernel(prefix + "_multipass_oracle", spec);
     }
     ~Pipelines() {
         for (ComputePipeline& p : byKind) vk.destroy(p);
+        if (oracle.pipeline) vk.destroy(oracle);
     }
 };
 
-// The instrumented run of the pass loop: after each pass the host reads the ray-state counts (the
-// oracle's occlusion query) and the event counts.
-MultipassCounts runPasses(VulkanContext& vk, GpuBuffers& buffers, Pipelines& pipelines, const MultipassOptions& options,
+// The parts a repetition's GPU time is split into (kernel_ms_<part>): the pass kinds, and the
+// oracle kernel when it runs on the device.
+constexpr int kOraclePart = kPassKinds;
+const char* const kPartNames[kPassKinds + 1] = {"setup", "traverse", "intersect", "write", "oracle"};
+
+// ---- strategy.control = "device" ----
+// The control block and pass log (slot kBindingPassControl) and the two indirect passes.
+const Buffer& controlBuffer(const GpuBuffers& buffers) { return buffers.strategyBuffer(1); }
+constexpr VkDeviceSize kTraverseGroupsOffset = offsetof(gpu::PassControl, traverseGroups);
+constexpr VkDeviceSize kIntersectGroupsOffset = offsetof(gpu::PassControl, intersectGroups);
+// Oracle iterations recorded per submission: three dispatches each (dispatchAll's chunk).
+constexpr std::uint64_t kIterationsPerRound = VulkanContext::kDispatchesPerSubmit / 3;
+
+// The device-controlled loop's dispatches, each with its part: the setup pass (which first zeroes
+// the control block and the pass counters: the loop's start), then `iterations` times the oracle
+// and both indirect passes (the one the oracle did not choose has no workgroups, and after the
+// loop's end neither has), then the write pass when `write`.
+void deviceLoopCalls(const Pipelines& p, GpuBuffers& b, bool setup, std::uint64_t iterations, bool write,
+                     std::vector<VulkanContext::DispatchCall>& calls, std::vector<int>& parts) {
+    auto call = [&](const ComputePipeline& pipeline, std::uint64_t invocations, int part) {
+        calls.push_back({&pipeline, b.descriptorSet(pipeline), b.pushConstants(), invocations});
+        parts.push_back(part);
+        return &calls.back();
+    };
+    if (setup) call(p.byKind[int(PassKind::Setup)], b.rayCount(), int(PassKind::Setup))->zeroFirst = {&controlBuffer(b), &b.passCounterBuffer()};
+    for (std::uint64_t i = 0; i < iterations; ++i) {
+        call(p.oracle, 1, kOraclePart);
+        VulkanContext::DispatchCall* traverse = call(p.byKind[int(PassKind::Traverse)], 0, int(PassKind::Traverse));
+        traverse->indirect = &controlBuffer(b), traverse->indirectOffset = kTraverseGroupsOffset;
+        VulkanContext::DispatchCall* intersect = call(p.byKind[int(PassKind::Intersect)], 0, int(PassKind::Intersect));
+        intersect->indirect = &controlBuffer(b), intersect->indirectOffset = kIntersectGroupsOffset;
+    }
+    if (write) call(p.byKind[int(PassKind::Write)], b.rayCount(), int(PassKind::Write));
+}
+
+gpu::PassControl readControl(VulkanContext& vk, const GpuBuffers& buffers) {
+    gpu::PassControl c;
+    vk.download(controlBuffer(buffers), &c, sizeof c);
+    return c;
+}
+
+// The instrumented device-controlled loop: submissions of kIterationsPerRound oracle iterations
+// until the oracle has ended the loop, then the write pass. The host reads the control block once
+// per submission, and at the end the oracle's log, whose pass sequence and counts it replays
+// through runPassLoop: each pass the device ran must be the one the host's scheduler chooses on
+// the same counts, and the device's ray lists must hold the rays those counts say are active.
+MultipassCounts runDeviceLoop(VulkanContext& vk, GpuBuffers& buffers, Pipelines& pipelines,
+                              const MultipassOptions& options, std::uint64_t cap) {
+    gpu::PassControl control{};
+    for (std::uint64_t iterations = 0; !control.status.y;) {
+        if (iterations > cap)
+            throw Error("multipass (device): the oracle kernel had not ended the loop after " + std::to_string(iterations) +
+                        " iterations, over the pass cap of " + std::to_string(cap));
+        std::vector<VulkanContext::DispatchCall> calls;
+        std::vector<int> parts;
+        deviceLoopCalls(pipelines, buffers, iterations == 0, kIterationsPerRound, false, calls, parts);
+        vk.dispatchAll(calls);
+        iterations += kIterationsPerRound;
+        control = readControl(vk, buffers);
+    }
+    if (control.status.w)
+        throw Error("multipass (device): a ray list held more rays than the stream's " + std::to_string(buffers.rayCount()) +
+                    " after pass " + std::to_string(control.current.w) + " (a kernel filed rays twice)");
+    vk.dispatch(pipelines.byKind[int(PassKind::Write)], buffers.descriptorSet(pipelines.byKind[int(PassKind::Write)]),
+                buffers.pushConstants(), buffers.rayCount());
+    const std::uint64_t passes = control.current.w;  // setup included, write not
+    std::vector<std::uint8_t> bytes(sizeof(gpu::PassControl) + passes * sizeof(gpu::PassLogEntry));
+    vk.download(controlBuffer(buffers), bytes.data(), bytes.size());
+    std::vector<gpu::PassLogEntry> log(passes);
+    std::memcpy(log.data(), bytes.data() + sizeof(gpu::PassControl), passes * sizeof(gpu::PassLogEntry));
+
+    std::size_t next = 0;  // the log entry of the pass the replay runs next
+    std::uint64_t dispatched = 0;
+    const MultipassCounts counts = runPassLoop(
+        options, cap, buffers.rayCount(),
+        [&](PassKind kind) {
+            if (kind == PassKind::Write) return PassSums{};
+            if (next == log.size())
+                throw Error("multipass (device): the oracle kernel ended the loop after " + std::to_string(passes) +
+                            " passes; the host's scheduler on the device's counts runs a " + passKindName(kind) + " pass next");
+            const gpu::PassLogEntry& e = log[next++];
+            if (e.kindLists.x != std::uint32_t(kind))
+                throw Error("multipass (device): pass " + std::to_string(next) + " was a " +
+                            passKindName(PassKind(std::min<std::uint32_t>(e.kindLists.x, 3))) +
+                            " pass; the host's scheduler on the device's counts chooses " + passKindName(kind));
+            if (kind != PassKind::Setup) dispatched += e.kindLists.w;
+            PassSums sums;
+            sums.traversing = e.sums[gpu::kCountTraversing];
+            sums.waiting = e.sums[gpu::kCountWaiting];
+            sums.useful = e.sums[gpu::kCountUsefulRays];
+            sums.stencilWrites = e.sums[gpu::kCountStencilWrites];
+            sums.structureReads = e.sums[gpu::kCountStructureReads];
+            sums.triangleReads = e.sums[gpu::kCountTriangleReads];
+            return sums;
+        },
+        [&](std::uint64_t traversing, std::uint64_t waiting) {
+            const gpu::PassLogEntry& e = log[next - 1];
+            if (e.kindLists.y != traversing || e.kindLists.z != waiting)
+                throw Error("multipass (device): after pass " + std::to_string(next) + " the ray lists hold " +
+                            std::to_string(e.kindLists.y) + " traversing and " + std::to_string(e.kindLists.z) +
+                            " waiting rays; the rays' own counts say " + std::to_string(traversing) + " and " +
+                            std::to_string(waiting));
+        });
+    if (next != log.size())
+        throw Error("multipass (device): the oracle kernel ran " + std::to_string(passes) + " passes; the host's scheduler " +
+                    std::to_string(next) + " on the same counts");
+    if (dispatched != counts.streamSlots)
+        throw Error("multipass (device): the passes were dispatched for " + std::to_string(dispatched) +
+                    " list entries; their lists held " + std::to_string(counts.streamSlots));
+    return counts;
+}
+
+// The instrumented run of the pass loop with the control on the host: after each pass the host
+// reads the ray-state counts (the oracle's occlusion query) and the event counts.
+MultipassCounts runHostLoop(VulkanContext& vk, GpuBuffers& buffers, Pipelines& pipelines, const MultipassOptions& options,
                           std::uint64_t cap) {
     return runPassLoop(options, cap, buffers.rayCount(), [&](PassKind kind) {
         const ComputePipeline& p = pipelines.byKind[static_cast<int>(kind)];
@@ -39,6 +158,12 @@ MultipassCounts runPasses(VulkanContext& vk, GpuBuffers& buffers, Pipelines& pip
         sums.triangleReads = c.counts[gpu::kCountTriangleReads];
         return sums;
     });
+}
+
+MultipassCounts runLoop(VulkanContext& vk, GpuBuffers& buffers, Pipelines& pipelines, const MultipassOptions& options,
+                        std::uint64_t cap) {
+    return options.deviceControl ? runDeviceLoop(vk, buffers, pipelines, options, cap)
+                                 : runHostLoop(vk, buffers, pipelines, options, cap);
 }
 
 StrategyRun runMultipassStrategy(VulkanContext& vk, const Structure& structure, const RayBatch& batch,
@@ -76,6 +201,7 @@ MultipassOptions multipassOptions(const RunConfig& run) {
     if (run.has("strategy.oracle_threshold")) o.oracleThreshold = run.getFloat("strategy.oracle_threshold");
     o.maxPasses = std::uint64_t(run.getInt("strategy.max_passes"));
     o.batchRays = std::uint64_t(run.getInt("strategy.batch_rays"));
+    o.deviceControl = run.getString("strategy.control") == "device";
     return o;
 }
 
@@ -91,37 +217,54 @@ public:
         : vk_(vk), buffers_(std::move(buffers)), counted_(std::move(counted)), options_(options), cap_(cap),
           counts_(counts), hits_(std::move(hits)) {
         spec.instrument = false;
-        timed_ = std::make_unique<Pipelines>(vk, *buffers_, prefix, spec);
+        timed_ = std::make_unique<Pipelines>(vk, *buffers_, prefix, spec, options.deviceControl);
     }
     TimedBatch time(int warmups, int repetitions) override {
-        // The oracle's choices depend only on the rays and the structure: the replay runs the
-        // counted sequence, warm-ups and repetitions in one submission, every pass timed on its
-        // own. Its hits must equal the instrumented run's (checkHits), so a replay that strayed
-        // would be caught.
+        // One repetition's dispatches. Host control: the oracle's choices depend only on the rays
+        // and the structure, so the replay runs the counted sequence. Device control: the oracle
+        // kernel chooses again, one iteration per pass the instrumented run ran (setup included:
+        // the last ends the loop). Warm-ups and repetitions go in one submission (in chunks), every
+        // dispatch timed on its own; the hits must equal the instrumented run's (checkHits).
         std::vector<VulkanContext::DispatchCall> calls;
-        for (int i = 0; i < warmups + repetitions; ++i)
+        std::vector<int> parts;
+        if (options_.deviceControl)
+            deviceLoopCalls(*timed_, *buffers_, true, counts_.sequence.size() - 1, true, calls, parts);
+        else
             for (PassKind kind : counts_.sequence) {
                 const ComputePipeline& p = timed_->byKind[static_cast<int>(kind)];
                 calls.push_back({&p, buffers_->descriptorSet(p), buffers_->pushConstants(), buffers_->rayCount()});
+                parts.push_back(static_cast<int>(kind));
             }
+        const std::size_t perRepetition = calls.size();
+        const std::vector<VulkanContext::DispatchCall> one = calls;
+        for (int i = 1; i < warmups + repetitions; ++i) calls.insert(calls.end(), one.begin(), one.end());
         const std::vector<double> ms = vk_.dispatchAll(calls);
-        const std::size_t passes = counts_.sequence.size();
-        static const char* names[kPassKinds] = {"setup", "traverse", "intersect", "write"};
+        if (options_.deviceControl) {
+            const gpu::PassControl c = readControl(vk_, *buffers_);
+            if (!c.status.y || c.status.z || c.current.w + 1 != counts_.sequence.size())
+                throw Error("multipass (device): a timed repetition " + std::string(c.status.y ? "ran " : "had not ended after ") +
+                            std::to_string(c.current.w) + " passes (setup included); the instrumented run " +
+                            std::to_string(counts_.sequence.size() - 1));
+        }
+        const int partCount = options_.deviceControl ? kPassKinds + 1 : kPassKinds;
         TimedBatch batch;
-        for (std::size_t i = 0; i < std::size_t(warmups) * passes; ++i) batch.warmupMs += ms[i];
-        for (int k = 0; k < kPassKinds; ++k) batch.parts.push_back({names[k], {}});
+        for (std::size_t i = 0; i < std::size_t(warmups) * perRepetition; ++i) batch.warmupMs += ms[i];
+        for (int k = 0; k < partCount; ++k) batch.parts.push_back({kPartNames[k], {}});
         for (int i = warmups; i < warmups + repetitions; ++i) {
-            std::array<double, kPassKinds> byKind{};
-            for (std::size_t p = 0; p < passes; ++p)
-                byKind[static_cast<int>(counts_.sequence[p])] += ms[std::size_t(i) * passes + p];
-            for (int k = 0; k < kPassKinds; ++k) batch.parts[std::size_t(k)].second.push_back(byKind[std::size_t(k)]);
-            batch.ms.push_back(byKind[0] + byKind[1] + byKind[2] + byKind[3]);
+            std::vector<double> byPart(std::size_t(partCount), 0.0);
+            for (std::size_t c = 0; c < perRepetition; ++c) byPart[std::size_t(parts[c])] += ms[std::size_t(i) * perRepetition + c];
+            double total = 0.0;
+            for (int k = 0; k < partCount; ++k) {
+                batch.parts[std::size_t(k)].second.push_back(byPart[std::size_t(k)]);
+                total += byPart[std::size_t(k)];
+            }
+            batch.ms.push_back(total);
         }
         return batch;
     }
     std::vector<std::pair<std::string, double>> timeHostLoops() override {
         const auto start = std::chrono::steady_clock::now();
-        const MultipassCounts live = runPasses(vk_, *buffers_, *counted_, options_, cap_);
+        const MultipassCounts live = runLoop(vk_, *buffers_, *counted_, options_, cap_);
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
         if (!(live == counts_))
             throw Error("multipass: the live pass loop ran another pass sequence than the first instrumented run "
@@ -149,9 +292,16 @@ namespace {
 MultipassRun runMultipassBatch(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
                                const MultipassOptions& options, const TimingOptions& timing, std::uint32_t query) {
     MultipassRun run;
-    auto buffers = std::make_unique<GpuBuffers>(vk, rays, structure.costs().traversalStateBytes, structure.buffers(),
-                                                structure.params());
     const std::uint64_t cap = multipassPassCap(structure, options);
+    std::vector<BufferSize> own;  // the strategy's slots: with the control on the device, the ray lists and the oracle's block
+    if (options.deviceControl) {
+        if (cap > 0xFFFFFFFFull) throw Error("multipass (device): the pass cap " + std::to_string(cap) + " is over 2^32 - 1");
+        own = {{"multipass ray lists (4 x " + std::to_string(rays.size()) + " rays)", 4 * sizeof(std::uint32_t) * rays.size()},
+               {"multipass oracle control and pass log (pass cap " + std::to_string(cap) + ", strategy.max_passes)",
+                sizeof(gpu::PassControl) + cap * sizeof(gpu::PassLogEntry)}};
+    }
+    auto buffers = std::make_unique<GpuBuffers>(vk, rays, structure.costs().traversalStateBytes, structure.buffers(),
+                                                structure.params(), own);
     KernelSpec spec;
     spec.workgroupSize = timing.workgroupSize;
     spec.triangleTest = structure.triangleTest();
@@ -159,9 +309,16 @@ MultipassRun runMultipassBatch(VulkanContext& vk, const Structure& structure, co
     spec.strategyConstants = {{gpu::kSpecTraverseSteps, options.traverseStepsPerPass},
                               {gpu::kSpecIntersections, options.intersectionsPerPass},
                               {gpu::kSpecSuppress, options.suppressFinishedReads ? 1u : 0u}};
+    if (options.deviceControl)
+        spec.strategyConstants.insert(spec.strategyConstants.end(),
+                                      {{gpu::kSpecCompact, 1u},
+                                       {gpu::kSpecOracleThreshold, oracleThresholdQ31(options.oracleThreshold)},
+                                       {gpu::kSpecNaive, options.scheduling == "naive" ? 1u : 0u},
+                                       {gpu::kSpecPassCap, std::uint32_t(cap)},
+                                       {gpu::kSpecMaxGroupsX, vk.info().maxWorkGroupCountX}});
     spec.query = query;
-    auto counted = std::make_unique<Pipelines>(vk, *buffers, structure.kernelPrefix(), spec);
-    run.counts = runPasses(vk, *buffers, *counted, options, cap);
+    auto counted = std::make_unique<Pipelines>(vk, *buffers, structure.kernelPrefix(), spec, options.deviceControl);
+    run.counts = runLoop(vk, *buffers, *counted, options, cap);
     run.hits = buffers->downloadHits();
     run.traversalStates = buffers->downloadTraversalStates();
     run.timer = std::make_unique<MultipassTimer>(vk, std::move(buffers), std::move(counted), structure.kernelPrefix(), spec,
@@ -267,9 +424,11 @@ const StrategyType& multipassStrategyType() {
             {"strategy.scheduling", ValueType::String, "multipass: oracle (threshold on the waiting fraction) or naive (traverse until none traverses, then intersect until none waits)", std::string("oracle"), false, -1e300, 1e300, {"oracle", "naive"}},
             {"strategy.oracle_threshold", ValueType::Float, "multipass: intersect when waiting / active rays >= this (0: as soon as any waits; Purcell: 0.2)", 0.2, false, 0, 1, {}, {"strategy.scheduling=oracle"}},
             {"strategy.max_passes", ValueType::Int, "multipass: pass cap (0: derived from the structure); reaching it fails the run", std::int64_t(0), false, 0, 1e9},
+            {"strategy.control", ValueType::String, "multipass: who runs the oracle. host: the CPU reads the ray-state counts back after every pass and each pass walks the whole stream through the stencil (Purcell's and Christen's loop); device: an oracle kernel chooses the next pass and writes its indirect dispatch, and each pass serves a compacted list of its rays, with no host round trip per pass", std::string("host"), false, -1e300, 1e300, {"host", "device"}},
             {"strategy.batch_rays", ValueType::Int, "multipass: rays per batch, each its own pass loop (0: as many as one binding holds, maxStorageBufferRange over the largest per-ray record)", std::int64_t(0), false, 0, 1e12},
         };
         t.keys.back().since = 12;
+        t.keys[t.keys.size() - 2].since = 13;
         t.columns = {
             {"passes_setup", K::Count, "passes", "multipass setup passes"},
             {"passes_traverse", K::Count, "passes", "multipass traverse passes"},
@@ -280,6 +439,7 @@ const StrategyType& multipassStrategyType() {
             {"kernel_ms_traverse", K::Timing, "ms", "multipass: GPU time of the traverse passes, median"},
             {"kernel_ms_intersect", K::Timing, "ms", "multipass: GPU time of the intersect passes, median"},
             {"kernel_ms_write", K::Timing, "ms", "multipass: GPU time of the write pass, median"},
+            {"kernel_ms_oracle", K::Timing, "ms", "multipass with strategy.control = device: GPU time of the oracle kernel (one invocation after each pass), median", 0.0, false, {"strategy.control=device"}, 13},
             {"multipass_live_ms_median", K::Timing, "ms", "multipass: host wall time of the live pass loop (instrumented passes, the oracle's read-back after each: Christen 2005 §4.3.4's CPU-controlled loop), median of one per round", 0.0, false, {}, 5},
             {"branching_mismatches", K::Count, "rays", "multipass: rays whose hit record differs from the branching caster's"},
             {"multipass_batch_rays", K::Count, "rays", "multipass: rays per batch (strategy.batch_rays, 0 made what one binding holds); passes_* add up over the batches", 0.0, false, {}, 12},

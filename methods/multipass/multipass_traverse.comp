@@ -5,13 +5,13 @@
 #include "multipass_common.glsl"
 
 void main() {
-    uint rayIndex = rtRayIndex();
-    if (rayIndex >= rtRayCount()) return;
-    if (uint(stencil[rayIndex]) != kStateTraversing) return;  // the stencil test
+    uint rayIndex = mpServedRay(kStateTraversing);
+    if (rayIndex == kNoRay) return;
     MpEvents e = mpNoEvents();
     RtTraversalState ts = traversalStates[rayIndex];
     uint state = mpTraverse(rays[rayIndex], ts, hitStates[rayIndex], e);
     traversalStates[rayIndex] = ts;
     if (state != kStateTraversing) stencil[rayIndex] = uint8_t(state);
     mpReport(rayIndex, kStateTraversing, state, e);
+    mpFile(kStateTraversing, state, rayIndex);
 }

@@ -1,0 +1,216 @@
+// Multipass with the oracle on the device (strategy.control = "device"): the oracle kernel's
+// choices against hand-counted sequences and against the host's loop on the same rays, the
+// compacted lists' slots and appends by hand, and the fixed-point decision by hand.
+#include <gtest/gtest.h>
+
+#include "methods/accounting.h"
+#include "methods/branching/branching_strategy.h"
+#include "methods/bvh/bvh_build.h"
+#include "methods/bvh/bvh_structure.h"
+#include "methods/grid/grid_structure.h"
+#include "methods/grid/uniform_grid.h"
+#include "methods/multipass/multipass_simulator.h"
+#include "methods/multipass/multipass_strategy.h"
+#include "structures/camera.h"
+#include "structures/procedural.h"
+#include "tests/device/test_device.h"
+
+namespace rtbench {
+namespace {
+
+// The hand scene of test_multipass_kernels.cpp: a 4x1x1 grid over [0,4]x[0,1]x[0,1], voxel
+// lists v0 {0}, v1 {}, v2 {2,3}, v3 {1,4,5}; ray 0 along +x hits triangle 2, ray 1 misses the
+// box, ray 2 along -x hits triangle 4.
+TriangleMesh handScene() {
+    TriangleMesh m;
+    m.name = "hand";
+    auto tri = [&](glm::vec3 a, glm::vec3 b, glm::vec3 c) {
+        const unsigned base = unsigned(m.vertices.size());
+        m.vertices.insert(m.vertices.end(), {a, b, c});
+        m.triangles.emplace_back(base, base + 1, base + 2);
+    };
+    tri({0, 0.8f, 0.8f}, {0, 1, 0.8f}, {0, 0.8f, 1});
+    tri({4, 0.8f, 0.8f}, {4, 1, 0.8f}, {4, 0.8f, 1});
+    for (float x : {2.5f, 3.5f}) {
+        tri({x, 0, 0}, {x, 1, 0}, {x, 0, 1});
+        tri({x, 1, 0}, {x, 1, 1}, {x, 0, 1});
+    }
+    return m;
+}
+
+UniformGrid handGrid() {
+    GridResolutionRule rule;
+    rule.kind = GridResolutionRule::Kind::Explicit;
+    rule.resolution = {4, 1, 1};
+    return buildUniformGrid(handScene(), rule);
+}
+
+std::vector<gpu::Ray> handRays() {
+    auto ray = [](glm::vec3 o, glm::vec3 d) { return gpu::Ray{glm::vec4(o, 0.0f), glm::vec4(d, gpu::kNoHitT)}; };
+    return {ray({-1, 0.25f, 0.25f}, {1, 0, 0}), ray({-1, 5, 0.5f}, {1, 0, 0}), ray({5, 0.25f, 0.25f}, {-1, 0, 0})};
+}
+
+MultipassOptions onDevice(double threshold, unsigned k = 1, unsigned m = 1, bool suppress = false) {
+    MultipassOptions o;
+    o.oracleThreshold = threshold;
+    o.traverseStepsPerPass = k;
+    o.intersectionsPerPass = m;
+    o.suppressFinishedReads = suppress;
+    o.deviceControl = true;
+    return o;
+}
+
+using K = PassKind;
+
+TEST(MultipassOracle, TheThresholdInFixedPointByHand) {
+    EXPECT_EQ(oracleThresholdQ31(0.2), 429496729u);  // floor(0.2 * 2^31 = 429496729.6)
+    EXPECT_EQ(oracleThresholdQ31(1.0), 2147483648u);
+    EXPECT_EQ(oracleThresholdQ31(0.0), 0u);
+    EXPECT_THROW(oracleThresholdQ31(1.5), std::exception);
+    auto next = [](double threshold, std::uint64_t traversing, std::uint64_t waiting) {
+        MultipassOptions o;
+        o.oracleThreshold = threshold;
+        return PassScheduler(o).next(traversing, waiting);
+    };
+    EXPECT_EQ(next(0.2, 4, 1), K::Intersect);  // 1 of 5 waits: exactly 20%
+    EXPECT_EQ(next(0.2, 5, 1), K::Traverse);   // 1 of 6
+    EXPECT_EQ(next(0.2, 800000, 199999), K::Traverse);  // 0.1999992
+    EXPECT_EQ(next(0.2, 800000, 200000), K::Intersect);  // exactly 20%
+    EXPECT_EQ(next(1.0, 1, 1000), K::Traverse);  // only when none traverses
+    EXPECT_EQ(next(1.0, 0, 1), K::Intersect);
+    EXPECT_EQ(next(0.0, 1000, 1), K::Intersect);  // as soon as any waits
+    EXPECT_EQ(next(0.5, 0, 0), K::Write);
+}
+
+class MultipassDeviceControl : public VulkanTest {
+protected:
+    static MultipassRun run(const Structure& s, const std::vector<gpu::Ray>& rays, const MultipassOptions& o) {
+        return runMultipass(*vk_, s, rays, o, {64, 0, 1});
+    }
+};
+
+TEST_F(MultipassDeviceControl, HandCountedPassesListsAndBytes) {
+    // The sequence of threshold 0 by hand (test_multipass_kernels.cpp HandCountedPassesWithThresholdZero),
+    // now chosen by the oracle kernel. The lists each pass is dispatched for, by hand: after setup
+    // rays 0 and 2 wait (2 slots); I leaves 0 traversing and 2 waiting (1); I: ray 2 (1); T: ray 0
+    // (1); T (1); I (1); I (1): 8 slots, all served. Rays left active (list appends): setup 2,
+    // then 2, 1, 0, 1, 1, 1, 0: 8.
+    const UniformGrid grid = handGrid();
+    const MultipassOptions o = onDevice(0.0);
+    const MultipassRun r = run(*gridStructure(grid), handRays(), o);
+    EXPECT_EQ(r.counts.sequence, (std::vector<K>{K::Setup, K::Intersect, K::Intersect, K::Intersect, K::Traverse,
+                                                 K::Traverse, K::Intersect, K::Intersect, K::Write}));
+    EXPECT_EQ(r.counts.usefulTraverse, 2u);
+    EXPECT_EQ(r.counts.usefulIntersect, 6u);
+    EXPECT_EQ(r.counts.stencilWrites, 7u);
+    EXPECT_EQ(r.counts.streamSlots, 8u);
+    EXPECT_EQ(r.counts.listAppends, 8u);
+    EXPECT_EQ(r.hits[0].primitive, 2u);
+    EXPECT_EQ(r.hits[1].primitive, gpu::kNoHit);
+    EXPECT_EQ(r.hits[2].primitive, 4u);
+    const ArchitectureMetrics m = multipassMetrics(r.hits, r.counts, o, gridStructure(grid)->costs());
+    EXPECT_DOUBLE_EQ(m.simdEfficiency, 1.0);  // every slot of a compacted pass is a ray it serves
+    EXPECT_EQ(m.bytes.stencil, 7u);           // writes only: no pass reads the stencil
+    EXPECT_EQ(m.bytes.compaction, (8u + 8u) * 4u);
+    EXPECT_EQ(m.bytes.state, 3u * 80u + 2u * 112u + 6u * 128u + 3u * 16u);  // as with the stencil
+}
+
+TEST_F(MultipassDeviceControl, ThresholdOneAndTheNaiveScheduleByHand) {
+    const UniformGrid grid = handGrid();
+    EXPECT_EQ(run(*gridStructure(grid), handRays(), onDevice(1.0)).counts.sequence,
+              (std::vector<K>{K::Setup, K::Intersect, K::Traverse, K::Traverse, K::Intersect, K::Intersect, K::Write}));
+    MultipassOptions naive = onDevice(0.2);
+    naive.scheduling = "naive";
+    EXPECT_EQ(run(*gridStructure(grid), handRays(), naive).counts.sequence,
+              (std::vector<K>{K::Setup, K::Intersect, K::Intersect, K::Intersect, K::Traverse, K::Traverse,
+                              K::Intersect, K::Intersect, K::Write}));
+}
+
+// The oracle kernel chooses every pass the host's loop chooses on the same rays (a check that
+// does not go through the simulator), its counts equal the simulator's, and its hits branching's,
+// for every unroll, threshold and schedule, on the grid and the BVH.
+TEST_F(MultipassDeviceControl, ChoosesAsTheHostLoopForEveryUnrollAndSchedule) {
+    const TriangleMesh scene = christenSceneB();
+    GridResolutionRule rule;
+    rule.minDim = 8;
+    const std::vector<gpu::Ray> rays = generatePrimaryRays(*proceduralCamera("christen_b", 70.0f), 48, 40);
+    std::vector<std::unique_ptr<Structure>> structures;
+    structures.push_back(gridStructure(buildUniformGrid(scene, rule)));
+    structures.push_back(bvhStructure(buildBvh(scene, BvhBuildOptions{})));
+    for (const auto& s : structures) {
+        const BranchingRun branching = runBranching(*vk_, *s, rays, {64, 0, 1});
+        for (auto [k, m] : {std::pair{1u, 1u}, std::pair{4u, 2u}})
+            for (const char* schedule : {"0", "0.2", "1", "naive"})
+                for (bool suppress : {false, true}) {
+                    if (suppress && k == 1) continue;  // nothing to suppress
+                        SCOPED_TRACE(s->kernelPrefix() + " K=" + std::to_string(k) + " M=" + std::to_string(m) + " " +
+                                     schedule + (suppress ? " suppressed" : ""));
+                        MultipassOptions o = onDevice(0.2, k, m, suppress);
+                        if (std::string(schedule) == "naive")
+                            o.scheduling = "naive";
+                        else
+                            o.oracleThreshold = std::stod(schedule);
+                        const MultipassRun device = run(*s, rays, o);
+                        MultipassOptions host = o;
+                        host.deviceControl = false;
+                        const MultipassRun hostRun = run(*s, rays, host);
+                        EXPECT_EQ(device.counts.sequence, hostRun.counts.sequence);
+                        EXPECT_EQ(device.counts.usefulTraverse, hostRun.counts.usefulTraverse);
+                        EXPECT_EQ(device.counts.usefulIntersect, hostRun.counts.usefulIntersect);
+                        EXPECT_EQ(device.counts.streamSlots, device.counts.usefulTraverse + device.counts.usefulIntersect);
+                        EXPECT_EQ(recordMismatches(device.hits, branching.hits), 0u);  // counters too
+                        EXPECT_EQ(device.traversalStates, hostRun.traversalStates);
+                        EXPECT_TRUE(device.counts == simulateMultipass(*s, rays, o).counts);
+                    }
+    }
+}
+
+// Timed repetitions rerun the oracle kernel's loop uninstrumented; their hits must equal the
+// instrumented run's (the timer checks), and the oracle's own time is a part of its own.
+TEST_F(MultipassDeviceControl, TimedRepetitionsRunTheSameLoop) {
+    const TriangleMesh scene = christenSceneB();
+    GridResolutionRule rule;
+    rule.minDim = 8;
+    const std::vector<gpu::Ray> rays = generatePrimaryRays(*proceduralCamera("christen_b", 70.0f), 48, 40);
+    const auto grid = gridStructure(buildUniformGrid(scene, rule));
+    MultipassRun r = runMultipass(*vk_, *grid, rays, onDevice(0.2, 4, 2), {64, 1, 3});
+    EXPECT_EQ(r.gpuMs.size(), 3u);
+    const TimedBatch batch = r.timer->time(0, 2);
+    ASSERT_EQ(batch.parts.size(), 5u);
+    EXPECT_EQ(batch.parts[4].first, "oracle");
+    EXPECT_NO_THROW(r.timer->checkHits());
+    const auto live = r.timer->timeHostLoops();  // the instrumented loop again, checked against the first
+    ASSERT_EQ(live.size(), 1u);
+}
+
+// Batches with the control on the device: each batch its own lists and oracle loop; records and
+// events equal one stream's, passes each batch's, as with the control on the host.
+TEST_F(MultipassDeviceControl, ABatchedRunTracesAsOneStream) {
+    const TriangleMesh scene = christenSceneB();
+    const std::vector<gpu::Ray> rays = generatePrimaryRays(*proceduralCamera("christen_b", 70.0f), 48, 40);
+    const auto bvh = bvhStructure(buildBvh(scene, BvhBuildOptions{}));
+    MultipassOptions o = onDevice(0.2, 4, 2);
+    const MultipassRun whole = run(*bvh, rays, o);
+    o.batchRays = 512;
+    const MultipassRun batched = run(*bvh, rays, o);
+    EXPECT_EQ(batched.batches, 4u);
+    EXPECT_EQ(recordMismatches(batched.hits, whole.hits), 0u);
+    EXPECT_EQ(batched.counts.usefulTraverse + batched.counts.usefulIntersect,
+              whole.counts.usefulTraverse + whole.counts.usefulIntersect);
+    EXPECT_EQ(batched.counts.streamSlots, whole.counts.streamSlots);  // each ray's passes, whichever batch
+    EXPECT_TRUE(batched.counts == simulateMultipass(*bvh, rays, o, gpu::kQueryClosest, 512).counts);
+}
+
+TEST_F(MultipassDeviceControl, PassCapTurnsARunawayIntoAClearError) {
+    MultipassOptions o = onDevice(0.0);
+    o.maxPasses = 4;  // the hand scene needs 8 before the write pass
+    try {
+        run(*gridStructure(handGrid()), handRays(), o);
+        FAIL() << "expected the pass cap to fire";
+    } catch (const std::exception& e) {
+        EXPECT_STREQ(e.what(), "multipass: pass cap of 4 reached with 1 rays still active");
+    }
+}
+
+}  // namespace
+}  // namespace rtbench
