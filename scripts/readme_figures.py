@@ -448,7 +448,10 @@ def strategies() -> list:
     runs, context = load("strategies")
     ok = runs[runs.status == "ok"].copy()
     ok["structure"] = ok.structure_type.map({"uniform_grid": "grid", "bvh": "bvh"}).fillna(ok.structure_type)
+    if "strategy_control" not in ok:
+        ok["strategy_control"] = "host"
     ok["strategy"] = [r.strategy_type + (f" {r.strategy_schedule}" if r.strategy_type == "megakernel" else
+                                         (" on device" if r.strategy_control == "device" else "") +
                                          f" K={count(r.strategy_traverse_steps_per_pass)} M={count(r.strategy_intersections_per_pass)}"
                                          if r.strategy_type == "multipass" else "") for r in ok.itertuples()]
     branching = ok[ok.strategy_type == "branching"].set_index("structure").kernel_ms_median
@@ -456,7 +459,8 @@ def strategies() -> list:
     out = ["### `results/strategies/`: execution strategies (issue 18)", "", provenance("strategies", runs, context), "",
            "Full table: [`results/strategies/tables.md`](results/strategies/tables.md). The bunny at "
            f"{size(ok.iloc[0]) if len(ok) else '?'}; × branching is two runs' medians (no interval). SIMD efficiency: "
-           "lanes that take a step over lanes (ballots); multipass: Purcell's measure.", "",
+           "lanes that take a step over lanes (ballots); multipass: Purcell's measure (on device, where each pass serves a "
+           "compacted list of its rays and the oracle runs on the device, 1 by construction).", "",
            "| structure | strategy | GPU ms | × branching | SIMD eff. | state executions (megakernel) |", "|---|---|---|---|---|---|"]
     for r in ok.sort_values(["structure", "strategy"]).itertuples():
         executions = "" if r.strategy_type != "megakernel" else \

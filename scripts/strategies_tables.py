@@ -21,9 +21,11 @@ from rtbench_results import commit_text, load, wrong_rays
 
 
 def strategy(run) -> str:
-    """"branching", "multipass K=4 M=2", "megakernel switch", "persistent"."""
+    """"branching", "multipass K=4 M=2", "multipass on device K=4 M=2", "megakernel switch", "persistent"."""
     if run.strategy_type == "multipass":
-        return f"multipass K={int(run.strategy_traverse_steps_per_pass)} M={int(run.strategy_intersections_per_pass)}"
+        where = " on device" if getattr(run, "strategy_control", "host") == "device" else ""
+        return (f"multipass{where} K={int(run.strategy_traverse_steps_per_pass)} "
+                f"M={int(run.strategy_intersections_per_pass)}")
     if run.strategy_type == "megakernel":
         return f"megakernel {run.strategy_schedule}"
     return run.strategy_type
@@ -40,7 +42,7 @@ def main() -> int:
     folder = Path(sys.argv[1])
     runs, failed, context, device = load(folder)
     for frame in (runs, failed):
-        for column in ["strategy_schedule", "strategy_traverse_steps_per_pass", "strategy_intersections_per_pass",
+        for column in ["strategy_schedule", "strategy_control", "strategy_traverse_steps_per_pass", "strategy_intersections_per_pass",
                        "megakernel_runs_traverse", "megakernel_runs_intersect", "passes_total"]:
             if column not in frame:
                 frame[column] = float("nan")
@@ -61,7 +63,8 @@ def main() -> int:
              "to a first digit when either run has a timing warning); × Embree: that median over Embree rtcIntersect1's on the "
              "identical rays in the same run (above 1: slower than one CPU thread). SIMD eff.: branching, persistent and megakernel: lanes "
              "that take a step over subgroup size × steps (ballots); multipass: Purcell's rays served over rays × "
-             "passes. Executions: the megakernel's subgroup state executions (traverse + intersect; OptiX Fig. 6's "
+             "passes (on device: over the compacted lists' rays, 1 by construction). Multipass on device: the oracle "
+             "runs on the device and each pass serves a compacted list (strategy.control = device). Executions: the megakernel's subgroup state executions (traverse + intersect; OptiX Fig. 6's "
              "measure, summed over subgroups); passes: multipass dispatches. Wrong: rays the exact reference "
              "contradicts.", ""]
     lines += ["| scene | structure | strategy | GPU ms | 95% interval | × branching | × Embree | SIMD eff. | "
