@@ -24,11 +24,13 @@ std::vector<BufferSize> rayBufferSizes(std::uint64_t rays, std::uint64_t travers
 }
 
 void refuseOversizedBuffers(const DeviceInfo& device, const std::vector<BufferSize>& buffers) {
+    for (const BufferSize& b : buffers) checkBindingSize(device, b.what, b.bytes);
+    refuseOversizedTotal(device, buffers);
+}
+
+void refuseOversizedTotal(const DeviceInfo& device, const std::vector<BufferSize>& buffers) {
     std::uint64_t total = 0;
-    for (const BufferSize& b : buffers) {
-        checkBindingSize(device, b.what, b.bytes);
-        total += b.bytes;
-    }
+    for (const BufferSize& b : buffers) total += b.bytes;
     if (device.deviceLocalBytes && total > device.deviceLocalBytes)
         throw Error("the run's buffers would take " + std::to_string(total) + " bytes, over " + device.name +
                     "'s largest device-local heap of " + std::to_string(device.deviceLocalBytes) + " bytes");

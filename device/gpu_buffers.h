@@ -36,6 +36,9 @@ std::vector<BufferSize> rayBufferSizes(std::uint64_t rays, std::uint64_t travers
 // Throws rtbench::Error naming the first buffer over the device's maxStorageBufferRange (one
 // binding), or the total over its largest device-local heap; allocates nothing.
 void refuseOversizedBuffers(const DeviceInfo& device, const std::vector<BufferSize>& buffers);
+// Only the total against the largest device-local heap (a stream that runs in batches binds each
+// batch's share; every strategy's batches stay allocated until its timer is done).
+void refuseOversizedTotal(const DeviceInfo& device, const std::vector<BufferSize>& buffers);
 
 // Host memory a run holds per ray: the ray, and hit records from the kernel (instrumented and
 // timed), the CPU reference (twice for multipass), Embree (and its scratch), and the image's

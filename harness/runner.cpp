@@ -114,8 +114,9 @@ std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunC
     const StrategyType& strategy = strategyType(run.getString("strategy.type"));
     const RayType& rayKind = rayType(run.getString("rays.type"));
 
-    // Scene and rays. Refuse before allocating: the per-ray buffers on the device (the largest
-    // traversal state a structure keeps is checked again at upload) and the per-ray host data.
+    // Scene and rays. Refuse before allocating: the per-ray buffers on the device, all together
+    // (each binding holds one batch: the strategies trace a longer stream in batches; the largest
+    // traversal state a structure keeps is checked again at upload), and the per-ray host data.
     const RunScene& scene = p->scene.emplace(sceneFor(plan, run, caches, row));
     const TriangleMesh& mesh = scene.traced;
     const PinholeCamera camera = cameraFor(run, scene.full);  // the same rays at every simplification
@@ -126,7 +127,7 @@ std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunC
     }
     p->width = unsigned(run.getInt("camera.width"));
     p->height = unsigned(run.getInt("camera.height"));
-    refuseOversizedBuffers(vk.info(), rayBufferSizes(std::uint64_t(p->width) * p->height, strategy.perRayState ? 16 : 0));
+    refuseOversizedTotal(vk.info(), rayBufferSizes(std::uint64_t(p->width) * p->height, strategy.perRayState ? 16 : 0));
     refuseOversizedRayStream(std::uint64_t(p->width) * p->height);
     p->cameraRays = generatePrimaryRays(camera, p->width, p->height);
     validateRays(p->cameraRays);

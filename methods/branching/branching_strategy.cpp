@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "lane_counts.h"
+#include "methods/stream_batches.h"
 #include "structures/error.h"
 #include "structures/scene_limits.h"
 #include "plan/warnings.h"
@@ -65,11 +66,11 @@ private:
 
 }  // namespace
 
-BranchingRun runBranching(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
-                          const TimingOptions& timing, std::uint32_t query, const TraceLaunch& launch) {
-    if (timing.workgroupSize % vk.info().subgroupSize)
-        throw Error("strategy.workgroup_size " + std::to_string(timing.workgroupSize) +
-                    " is not a multiple of the subgroup size " + std::to_string(vk.info().subgroupSize));
+namespace {
+
+// One dispatch's worth of rays: uploads, and runs the instrumented dispatch; the timer keeps the buffers.
+BranchingRun runBranchingBatch(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
+                               const TimingOptions& timing, std::uint32_t query, const TraceLaunch& launch) {
     BranchingRun run;
     auto buffers = std::make_unique<GpuBuffers>(vk, rays, /*traversalStateBytes=*/0, structure.buffers(), structure.params());
     const std::string kernel = structure.kernelPrefix() + "_" + launch.kernel;
@@ -86,11 +87,48 @@ BranchingRun runBranching(VulkanContext& vk, const Structure& structure, const s
         vk.destroy(counted);
         run.hits = buffers->downloadHits();
         run.counters = buffers->readPassCounters();
-        run.activeLanes = run.counters.counts[gpu::kCountActiveLanes];
-        run.laneSlots = run.counters.counts[gpu::kCountLaneSlots];
     }
     run.timer = std::make_unique<BranchingTimer>(vk, std::move(buffers), kernel, spec, invocations, run.hits,
                                                  launch.kernel + " kernel");
+    return run;
+}
+
+}  // namespace
+
+std::uint64_t wholeTraversalBatchRays(const DeviceInfo& device, unsigned workgroupSize) {
+    return raysPerBinding(device, std::max(sizeof(gpu::Ray), sizeof(gpu::HitRecord)), workgroupSize);
+}
+
+BranchingRun runBranching(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
+                          const TimingOptions& timing, std::uint32_t query, const TraceLaunch& launch) {
+    if (timing.workgroupSize % vk.info().subgroupSize)
+        throw Error("strategy.workgroup_size " + std::to_string(timing.workgroupSize) +
+                    " is not a multiple of the subgroup size " + std::to_string(vk.info().subgroupSize));
+    const std::uint64_t batchRays = launch.batchRays ? launch.batchRays : wholeTraversalBatchRays(vk.info(), timing.workgroupSize);
+    if (batchRays % timing.workgroupSize)
+        throw Error("rays per batch " + std::to_string(batchRays) + " is not a multiple of the workgroup size " +
+                    std::to_string(timing.workgroupSize));
+    BranchingRun run;
+    if (rays.size() <= batchRays) {
+        run = runBranchingBatch(vk, structure, rays, timing, query, launch);
+    } else {
+        // Batches of whole workgroups, one after another: the records and every counter are those
+        // of one dispatch over the stream (each subgroup has the same lanes); the time adds up.
+        std::vector<std::unique_ptr<KernelTimer>> timers;
+        run.batches = 0;
+        for (const auto [first, end] : streamBatches(rays.size(), batchRays)) {
+            const std::vector<gpu::Ray> part(rays.begin() + std::ptrdiff_t(first), rays.begin() + std::ptrdiff_t(end));
+            BranchingRun b = runBranchingBatch(vk, structure, part, timing, query, launch);
+            run.hits.insert(run.hits.end(), b.hits.begin(), b.hits.end());
+            for (std::uint32_t c = 0; c < gpu::kCountSlots; ++c) run.counters.counts[c] += b.counters.counts[c];
+            timers.push_back(std::move(b.timer));
+            ++run.batches;
+        }
+        run.timer = std::make_unique<BatchedTimer>(std::move(timers));
+    }
+    run.batchRays = std::min<std::uint64_t>(batchRays, rays.size());
+    run.activeLanes = run.counters.counts[gpu::kCountActiveLanes];
+    run.laneSlots = run.counters.counts[gpu::kCountLaneSlots];
     if (timing.warmups + timing.repetitions > 0) {
         run.gpuMs = run.timer->time(timing.warmups, timing.repetitions).ms;
         run.timer->checkHits();
@@ -140,12 +178,20 @@ StrategyRun judgeWholeTraversal(VulkanContext& vk, const Structure& structure, c
     if (!verdict.warning.empty()) addWarning(row, verdict.warning);
     run.truncatedRays = lanes.raysInLongSubgroups;
     row["rays_cut_short"] = std::to_string(run.truncatedRays);
+    row["stream_batches"] = std::to_string(kernel.batches);
     if (run.truncatedRays)
         run.truncatedWhy = loopLimitWhy(vk.info(), lanes.maxSubgroupIterations, run.truncatedRays) +
                            "; multipass (a few iterations per pass), a finer grid or the BVH stay within it";
     run.hits = std::move(kernel.hits);
     run.timer = std::move(kernel.timer);
     return run;
+}
+
+ColumnSpec streamBatchesColumn() {
+    return {"stream_batches", ColumnKind::Count, "dispatches",
+            "branching, persistent, megakernel: dispatches the ray stream ran in, each of whole workgroups, one after "
+            "another (more than 1 when one binding cannot hold its ray or hit records: wholeTraversalBatchRays); "
+            "records and counts are as of one", 0.0, false, {}, 13};
 }
 
 const std::vector<ColumnSpec>& wholeTraversalColumns() {
@@ -157,7 +203,8 @@ const std::vector<ColumnSpec>& wholeTraversalColumns() {
              "branching, persistent: active lanes summed over the subgroup ballots as the CPU lane model counts them (lock-step "
              "loops; equal to the device's on llvmpipe, where a difference fails the run; elsewhere a warning)"},
             {"lanes_model_slots", ColumnKind::Count, "lanes",
-             "branching, persistent: subgroup size summed over the same ballots, as the CPU lane model counts them"}};
+             "branching, persistent: subgroup size summed over the same ballots, as the CPU lane model counts them"},
+            streamBatchesColumn()};
         for (ColumnSpec& col : c)
             if (col.name.rfind("lanes_model_", 0) == 0) col.since = 11;
         return c;

@@ -14,7 +14,13 @@ struct BranchingRun {
     std::uint64_t activeLanes = 0, laneSlots = 0;  // subgroup ballots of the instrumented run
     gpu::PassCounters counters{};                  // every counter of the instrumented run
     std::unique_ptr<KernelTimer> timer;            // more timed repetitions, on the same buffers
+    std::uint64_t batchRays = 0;                   // rays per dispatch (wholeTraversalBatchRays, or the stream)
+    std::uint64_t batches = 1;                     // dispatches the stream ran in
 };
+
+// Rays per dispatch of a whole-traversal kernel: what one binding holds of the ray and hit records
+// (maxStorageBufferRange / 32 bytes), in whole workgroups. A longer stream runs in batches.
+std::uint64_t wholeTraversalBatchRays(const DeviceInfo& device, unsigned workgroupSize);
 
 // A kernel that runs each ray's whole traversal in one invocation (kernels/trace_whole.glsl), as
 // one dispatch: the branching kernel by default; persistent threads launch fewer invocations, each
@@ -23,6 +29,7 @@ struct TraceLaunch {
     std::string kernel = "branching";  // the kernel file's name; the structure's prefix is added
     std::uint64_t invocations = 0;     // 0: one per ray
     std::vector<SpecializationConstant> constants;  // the strategy's own (KernelSpec::strategyConstants)
+    std::uint64_t batchRays = 0;  // rays per dispatch, a multiple of the workgroup size (0: wholeTraversalBatchRays)
 };
 
 // The device's subgroup lane counts (active lanes / lane slots of its ballots) against the CPU
@@ -36,7 +43,8 @@ struct LaneVerdict {
 LaneVerdict judgeLaneCounts(const DeviceInfo& device, std::uint64_t deviceActive, std::uint64_t deviceSlots,
                             std::uint64_t modelActive, std::uint64_t modelSlots);
 
-// Uploads structure and rays, runs one instrumented dispatch for hits and counters, then the
+// Uploads structure and rays, runs one instrumented dispatch for hits and counters (a dispatch per
+// batch of wholeTraversalBatchRays when the stream is longer: hits and counters as of one), then the
 // warm-ups and timed repetitions `timing` asks for (none: the timer does them later) with
 // instrumentation off; checks the timed runs' hits equal the counted ones. `query`: gpu::kQuery*.
 
@@ -56,7 +64,9 @@ std::string loopLimitWhy(const DeviceInfo& device, std::uint64_t iterations, std
 // columns of wholeTraversalColumns() to `row`.
 StrategyRun judgeWholeTraversal(VulkanContext& vk, const Structure& structure, const RayBatch& batch,
                                 BranchingRun&& kernel, Row& row);
-// rays_cut_short and the lane model's lanes_model_*: what judgeWholeTraversal writes.
+// rays_cut_short, stream_batches and the lane model's lanes_model_*: what judgeWholeTraversal writes.
 const std::vector<ColumnSpec>& wholeTraversalColumns();
+// stream_batches: BranchingRun::batches, for every strategy that runs through runBranching.
+ColumnSpec streamBatchesColumn();
 
 }  // namespace rtbench

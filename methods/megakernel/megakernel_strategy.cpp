@@ -36,6 +36,7 @@ StrategyRun runMegakernelStrategy(VulkanContext& vk, const Structure& structure,
                              " in the CPU model) differ";
     run.truncatedRays = model.raysInLongSubgroups;
     row["rays_cut_short"] = std::to_string(run.truncatedRays);
+    row["stream_batches"] = std::to_string(kernel.batches);
     if (run.truncatedRays) run.truncatedWhy = loopLimitWhy(vk.info(), model.maxSubgroupIterations, run.truncatedRays);
     run.hits = std::move(kernel.hits);
     run.timer = std::move(kernel.timer);
@@ -57,6 +58,7 @@ const StrategyType& megakernelStrategyType() {
                    std::string("intersect_first"), false, -1e300, 1e300, {"switch", "intersect_first", "traverse_first", "majority"}}};
         t.keys.back().since = 12;
         t.columns.push_back(wholeTraversalColumns().front());  // rays_cut_short
+        t.columns.push_back(streamBatchesColumn());
         for (ColumnSpec c : std::vector<ColumnSpec>{
                  {"megakernel_runs_traverse", K::Count, "executions", "megakernel: subgroup executions of the traverse state (one traversal step for the lanes in it; OptiX Fig. 6's state executions, per subgroup)"},
                  {"megakernel_runs_intersect", K::Count, "executions", "megakernel: subgroup executions of the intersect state (one triangle test for the lanes in it)"},

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstring>
 
+#include "methods/stream_batches.h"
 #include "multipass_simulator.h"
 #include "structures/error.h"
 
@@ -326,43 +327,6 @@ MultipassRun runMultipassBatch(VulkanContext& vk, const Structure& structure, co
     return run;
 }
 
-// The timers of a stream's batches as one: a repetition is every batch's, one after another.
-class BatchedTimer : public KernelTimer {
-public:
-    explicit BatchedTimer(std::vector<std::unique_ptr<KernelTimer>> batches) : batches_(std::move(batches)) {}
-    TimedBatch time(int warmups, int repetitions) override {
-        TimedBatch all;
-        for (const auto& batch : batches_) {
-            const TimedBatch b = batch->time(warmups, repetitions);
-            all.warmupMs += b.warmupMs;
-            if (all.ms.empty()) {
-                all.ms = b.ms;
-                all.parts = b.parts;
-                continue;
-            }
-            for (std::size_t i = 0; i < all.ms.size(); ++i) all.ms[i] += b.ms[i];
-            for (std::size_t p = 0; p < all.parts.size(); ++p)
-                for (std::size_t i = 0; i < all.parts[p].second.size(); ++i) all.parts[p].second[i] += b.parts[p].second[i];
-        }
-        return all;
-    }
-    std::vector<std::pair<std::string, double>> timeHostLoops() override {
-        std::vector<std::pair<std::string, double>> all;
-        for (const auto& batch : batches_) {
-            const auto loops = batch->timeHostLoops();
-            if (all.empty()) all = loops;
-            else
-                for (std::size_t i = 0; i < all.size(); ++i) all[i].second += loops[i].second;
-        }
-        return all;
-    }
-    void checkHits() override {
-        for (const auto& batch : batches_) batch->checkHits();
-    }
-
-private:
-    std::vector<std::unique_ptr<KernelTimer>> batches_;
-};
 
 }  // namespace
 
@@ -371,9 +335,8 @@ std::uint64_t multipassBatchRays(const DeviceInfo& device, std::uint64_t travers
     if (requested) return requested;
     // The largest per-ray record of the batch's bindings (rayBufferSizes): the ray, the hit record,
     // or the structure's traversal state (the BVH's: 144 bytes with its stack).
-    const std::uint64_t perRay = std::max<std::uint64_t>({sizeof(gpu::Ray), sizeof(gpu::HitRecord), traversalStateBytes});
-    const std::uint64_t fit = device.maxStorageBufferRange / perRay;
-    return std::max<std::uint64_t>(fit / workgroupSize * workgroupSize, workgroupSize);
+    return raysPerBinding(device, std::max<std::uint64_t>({sizeof(gpu::Ray), sizeof(gpu::HitRecord), traversalStateBytes}),
+                          workgroupSize);
 }
 
 MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
@@ -390,9 +353,8 @@ MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const s
         // per-ray records and events are those of one stream; the passes add up over the batches.
         std::vector<std::unique_ptr<KernelTimer>> timers;
         run.batches = 0;
-        for (std::size_t first = 0; first < rays.size(); first += batchRays) {
-            const std::vector<gpu::Ray> part(rays.begin() + std::ptrdiff_t(first),
-                                             rays.begin() + std::ptrdiff_t(std::min<std::size_t>(first + batchRays, rays.size())));
+        for (const auto [first, end] : streamBatches(rays.size(), batchRays)) {
+            const std::vector<gpu::Ray> part(rays.begin() + std::ptrdiff_t(first), rays.begin() + std::ptrdiff_t(end));
             MultipassRun b = runMultipassBatch(vk, structure, part, options, timing, query);
             run.hits.insert(run.hits.end(), b.hits.begin(), b.hits.end());
             run.traversalStates.insert(run.traversalStates.end(), b.traversalStates.begin(), b.traversalStates.end());

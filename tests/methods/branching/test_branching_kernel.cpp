@@ -8,6 +8,7 @@
 #include "methods/branching/branching_strategy.h"
 #include "harness/embree_reference.h"
 #include "methods/metrics.h"
+#include "methods/grid/uniform_grid.h"
 #include "structures/camera.h"
 #include "methods/grid/grid_reference.h"
 #include "methods/grid/grid_structure.h"
@@ -102,6 +103,51 @@ TEST_F(BranchingKernel, DegenerateTrianglesAreNeverHit) {
         ++hits;
     }
     EXPECT_GT(hits, 100u);
+}
+
+// A stream in batches of whole workgroups (what runs when one binding cannot hold the ray or hit
+// records): 1,001 rays in batches of 256 are four dispatches (the last of 233 rays). Records and
+// every counter equal one dispatch's, for branching and the megakernel, whose subgroups are the
+// same; persistent threads run a fetch loop per batch, so the fetch counter ends at the batches'
+// ends summed (by hand below), the records and lanes again as of one.
+TEST_F(BranchingKernel, AStreamInBatchesTracesAsOneDispatch) {
+    const TriangleMesh mesh = christenSceneB();
+    GridResolutionRule rule;
+    rule.minDim = 16;
+    const auto s = gridStructure(buildUniformGrid(mesh, rule));
+    const std::vector<gpu::Ray> rays = randomRays(mesh.bounds(), 1001, 16);
+    for (const char* kernel : {"branching", "megakernel"}) {
+        SCOPED_TRACE(kernel);
+        TraceLaunch launch;
+        launch.kernel = kernel;
+        const BranchingRun whole = runBranching(*vk_, *s, rays, {64, 0, 0}, gpu::kQueryClosest, launch);
+        launch.batchRays = 256;
+        const BranchingRun batched = runBranching(*vk_, *s, rays, {64, 0, 2}, gpu::kQueryClosest, launch);
+        EXPECT_EQ(whole.batches, 1u);
+        EXPECT_EQ(batched.batches, 4u);
+        EXPECT_EQ(batched.gpuMs.size(), 2u);  // each repetition every batch's, the hits checked
+        EXPECT_EQ(recordMismatches(batched.hits, whole.hits), 0u);  // counters too
+        for (std::uint32_t c = 0; c < gpu::kCountSlots; ++c) EXPECT_EQ(batched.counters.counts[c], whole.counters.counts[c]) << c;
+        EXPECT_GT(batched.laneSlots, 0u);
+    }
+    // Persistent threads, 2 workgroups of 64 fetching 8 rays a time (subgroup size 8 on llvmpipe):
+    // batches of 256, 256, 256 and 233 rays hand out 256 + 128 (16 subgroups' last fetch) each, the
+    // last 240 + 128: 3 x 384 + 368 = 1,520.
+    if (vk_->info().subgroupSize != 8) GTEST_SKIP() << "the hand count assumes subgroups of 8";
+    TraceLaunch launch;
+    launch.kernel = "persistent";
+    launch.invocations = 2 * 64;
+    launch.constants = {{gpu::kSpecRaysPerFetch, 8}};
+    launch.batchRays = 256;
+    const BranchingRun persistent = runBranching(*vk_, *s, rays, {64, 0, 0}, gpu::kQueryClosest, launch);
+    launch.kernel = "branching";
+    launch.invocations = 0;
+    launch.constants = {};
+    launch.batchRays = 0;
+    const BranchingRun branching = runBranching(*vk_, *s, rays, {64, 0, 0}, gpu::kQueryClosest, launch);
+    EXPECT_EQ(recordMismatches(persistent.hits, branching.hits), 0u);
+    EXPECT_EQ(persistent.counters.counts[gpu::kCountRaysTraced], 1001u);
+    EXPECT_EQ(persistent.counters.counts[gpu::kCountRaysFetched], 1520u);
 }
 
 TEST_F(BranchingKernel, BufferOverTheBindingLimitIsAClearError) {

@@ -1,0 +1,34 @@
+// A ray stream traced in batches, when one binding (maxStorageBufferRange) cannot hold its per-ray
+// records: each batch its own buffers and dispatches, one after another, and their timers as one.
+// Batches are whole workgroups (so whole subgroups): every subgroup's lanes, ballots and loops are
+// the ones it has in one unbatched dispatch.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "methods/strategy.h"
+
+namespace rtbench {
+
+// The most rays whose records of `perRayBytes` fit one binding, a multiple of `workgroupSize`
+// (at least one workgroup).
+std::uint64_t raysPerBinding(const DeviceInfo& device, std::uint64_t perRayBytes, unsigned workgroupSize);
+
+// [first, end) of each batch of `batchRays` rays over a stream of `rays` (the last may be shorter).
+std::vector<std::pair<std::uint64_t, std::uint64_t>> streamBatches(std::uint64_t rays, std::uint64_t batchRays);
+
+// The timers of a stream's batches as one: a repetition is every batch's, one after another (its
+// time and each part's the sum of the batches'); the host loops add up alike.
+class BatchedTimer : public KernelTimer {
+public:
+    explicit BatchedTimer(std::vector<std::unique_ptr<KernelTimer>> batches) : batches_(std::move(batches)) {}
+    TimedBatch time(int warmups, int repetitions) override;
+    std::vector<std::pair<std::string, double>> timeHostLoops() override;
+    void checkHits() override;
+
+private:
+    std::vector<std::unique_ptr<KernelTimer>> batches_;
+};
+
+}  // namespace rtbench
