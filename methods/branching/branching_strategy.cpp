@@ -116,7 +116,7 @@ BranchingRun runBranching(VulkanContext& vk, const Structure& structure, const s
         // of one dispatch over the stream (each subgroup has the same lanes); the time adds up.
         std::vector<std::unique_ptr<KernelTimer>> timers;
         run.batches = 0;
-        for (const auto [first, end] : streamBatches(rays.size(), batchRays)) {
+        for (const auto& [first, end] : streamBatches(rays.size(), batchRays)) {
             const std::vector<gpu::Ray> part(rays.begin() + std::ptrdiff_t(first), rays.begin() + std::ptrdiff_t(end));
             BranchingRun b = runBranchingBatch(vk, structure, part, timing, query, launch);
             run.hits.insert(run.hits.end(), b.hits.begin(), b.hits.end());

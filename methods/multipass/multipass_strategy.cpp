@@ -353,7 +353,7 @@ MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const s
         // per-ray records and events are those of one stream; the passes add up over the batches.
         std::vector<std::unique_ptr<KernelTimer>> timers;
         run.batches = 0;
-        for (const auto [first, end] : streamBatches(rays.size(), batchRays)) {
+        for (const auto& [first, end] : streamBatches(rays.size(), batchRays)) {
             const std::vector<gpu::Ray> part(rays.begin() + std::ptrdiff_t(first), rays.begin() + std::ptrdiff_t(end));
             MultipassRun b = runMultipassBatch(vk, structure, part, options, timing, query);
             run.hits.insert(run.hits.end(), b.hits.begin(), b.hits.end());

@@ -29,7 +29,7 @@ StrategyRun runPersistentStrategy(VulkanContext& vk, const Structure& structure,
     const PersistentCounts expected = persistentCounts(options, rays, timing.workgroupSize, vk.info().subgroupSize);
     // A stream in batches (wholeTraversalBatchRays) is a fetch loop per batch: the counter ends where each batch's does.
     std::uint64_t fetchedWhenDone = 0;
-    for (const auto [first, end] : streamBatches(rays, wholeTraversalBatchRays(vk.info(), timing.workgroupSize)))
+    for (const auto& [first, end] : streamBatches(rays, wholeTraversalBatchRays(vk.info(), timing.workgroupSize)))
         fetchedWhenDone += persistentCounts(options, end - first, timing.workgroupSize, vk.info().subgroupSize).fetchedWhenDone;
     TraceLaunch launch;
     launch.kernel = "persistent";
