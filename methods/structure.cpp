@@ -11,4 +11,15 @@ std::vector<gpu::HitRecord> Structure::trace(const std::vector<gpu::Ray>& rays, 
         cpuKernels());
 }
 
+KernelSpec structureKernelSpec(const Structure& structure, unsigned workgroupSize, std::uint32_t query,
+                               std::vector<SpecializationConstant> constants) {
+    KernelSpec spec;
+    spec.workgroupSize = workgroupSize;
+    spec.triangleTest = structure.triangleTest();
+    spec.vertexLattice = structure.vertexLattice();
+    spec.query = query;
+    spec.strategyConstants = std::move(constants);
+    return spec;
+}
+
 }  // namespace rtbench

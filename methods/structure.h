@@ -97,4 +97,9 @@ struct StructureType {
                                         const DeviceInfo& device);
 };
 
+// The specialization constants a kernel of this structure takes (workgroup size, the triangle
+// test, the vertex lattice, the query) with the strategy's own `constants`, instrumented.
+KernelSpec structureKernelSpec(const Structure& structure, unsigned workgroupSize, std::uint32_t query,
+                               std::vector<SpecializationConstant> constants);
+
 }  // namespace rtbench

@@ -30,14 +30,14 @@ void expectSameHits(const std::vector<gpu::HitRecord>& timed, const std::vector<
 
 namespace {
 
-// The uninstrumented kernel on the instrumented run's buffers. The counters are zeroed before each
-// dispatch (persistent threads fetch rays through one) and read back after it, outside its timestamps.
+// The uninstrumented kernel on the instrumented run's buffers. With `counters` (TraceLaunch::
+// countersWhenTimed) the pass counters are zeroed before each dispatch and read back after it.
 class BranchingTimer : public KernelTimer {
 public:
     BranchingTimer(VulkanContext& vk, std::unique_ptr<GpuBuffers> buffers, const std::string& kernel, KernelSpec spec,
-                   std::uint64_t invocations, std::vector<gpu::HitRecord> counted, std::string name)
+                   std::uint64_t invocations, std::vector<gpu::HitRecord> counted, std::string name, bool counters)
         : vk_(vk), buffers_(std::move(buffers)), invocations_(invocations), counted_(std::move(counted)),
-          name_(std::move(name)) {
+          name_(std::move(name)), counters_(counters) {
         spec.instrument = false;
         timed_ = buffers_->createKernel(kernel, spec);
     }
@@ -46,7 +46,8 @@ public:
         // Warm-ups and timed repetitions recorded into one submission, each timed on its own.
         const std::vector<VulkanContext::DispatchCall> calls(
             std::size_t(warmups + repetitions),
-            {&timed_, buffers_->descriptorSet(timed_), buffers_->pushConstants(), invocations_, buffers_->passCounters()});
+            {&timed_, buffers_->descriptorSet(timed_), buffers_->pushConstants(), invocations_,
+             counters_ ? buffers_->passCounters() : nullptr});
         const std::vector<double> ms = vk_.dispatchAll(calls);
         TimedBatch batch;
         for (int i = 0; i < warmups; ++i) batch.warmupMs += ms[std::size_t(i)];
@@ -61,6 +62,7 @@ private:
     std::uint64_t invocations_;
     std::vector<gpu::HitRecord> counted_;
     std::string name_;  // the kernel, as errors name it
+    bool counters_;
     ComputePipeline timed_{};
 };
 
@@ -75,12 +77,7 @@ BranchingRun runBranchingBatch(VulkanContext& vk, const Structure& structure, co
     auto buffers = std::make_unique<GpuBuffers>(vk, rays, /*traversalStateBytes=*/0, structure.buffers(), structure.params());
     const std::string kernel = structure.kernelPrefix() + "_" + launch.kernel;
     const std::uint64_t invocations = launch.invocations ? launch.invocations : rays.size();
-    KernelSpec spec;
-    spec.workgroupSize = timing.workgroupSize;
-    spec.triangleTest = structure.triangleTest();
-    spec.vertexLattice = structure.vertexLattice();
-    spec.query = query;
-    spec.strategyConstants = launch.constants;
+    const KernelSpec spec = structureKernelSpec(structure, timing.workgroupSize, query, launch.constants);
     {
         ComputePipeline counted = buffers->createKernel(kernel, spec);
         vk.dispatch(counted, buffers->descriptorSet(counted), buffers->pushConstants(), invocations, buffers->passCounters());
@@ -89,7 +86,7 @@ BranchingRun runBranchingBatch(VulkanContext& vk, const Structure& structure, co
         run.counters = buffers->readPassCounters();
     }
     run.timer = std::make_unique<BranchingTimer>(vk, std::move(buffers), kernel, spec, invocations, run.hits,
-                                                 launch.kernel + " kernel");
+                                                 launch.kernel + " kernel", launch.countersWhenTimed);
     return run;
 }
 

@@ -30,6 +30,9 @@ struct TraceLaunch {
     std::uint64_t invocations = 0;     // 0: one per ray
     std::vector<SpecializationConstant> constants;  // the strategy's own (KernelSpec::strategyConstants)
     std::uint64_t batchRays = 0;  // rays per dispatch, a multiple of the workgroup size (0: wholeTraversalBatchRays)
+    // The kernel reads the pass counters uninstrumented too (persistent threads fetch rays through
+    // one): they are zeroed before every timed dispatch and read back after it (outside its timestamps).
+    bool countersWhenTimed = false;
 };
 
 // The device's subgroup lane counts (active lanes / lane slots of its ballots) against the CPU

@@ -303,13 +303,10 @@ MultipassRun runMultipassBatch(VulkanContext& vk, const Structure& structure, co
     }
     auto buffers = std::make_unique<GpuBuffers>(vk, rays, structure.costs().traversalStateBytes, structure.buffers(),
                                                 structure.params(), own);
-    KernelSpec spec;
-    spec.workgroupSize = timing.workgroupSize;
-    spec.triangleTest = structure.triangleTest();
-    spec.vertexLattice = structure.vertexLattice();
-    spec.strategyConstants = {{gpu::kSpecTraverseSteps, options.traverseStepsPerPass},
-                              {gpu::kSpecIntersections, options.intersectionsPerPass},
-                              {gpu::kSpecSuppress, options.suppressFinishedReads ? 1u : 0u}};
+    KernelSpec spec = structureKernelSpec(structure, timing.workgroupSize, query,
+                                          {{gpu::kSpecTraverseSteps, options.traverseStepsPerPass},
+                                           {gpu::kSpecIntersections, options.intersectionsPerPass},
+                                           {gpu::kSpecSuppress, options.suppressFinishedReads ? 1u : 0u}});
     if (options.deviceControl)
         spec.strategyConstants.insert(spec.strategyConstants.end(),
                                       {{gpu::kSpecCompact, 1u},
@@ -317,7 +314,6 @@ MultipassRun runMultipassBatch(VulkanContext& vk, const Structure& structure, co
                                        {gpu::kSpecNaive, options.scheduling == "naive" ? 1u : 0u},
                                        {gpu::kSpecPassCap, std::uint32_t(cap)},
                                        {gpu::kSpecMaxGroupsX, vk.info().maxWorkGroupCountX}});
-    spec.query = query;
     auto counted = std::make_unique<Pipelines>(vk, *buffers, structure.kernelPrefix(), spec, options.deviceControl);
     run.counts = runLoop(vk, *buffers, *counted, options, cap);
     run.hits = buffers->downloadHits();

@@ -35,6 +35,7 @@ StrategyRun runPersistentStrategy(VulkanContext& vk, const Structure& structure,
     launch.kernel = "persistent";
     launch.invocations = std::uint64_t(options.workgroups) * timing.workgroupSize;
     launch.constants = {{gpu::kSpecRaysPerFetch, std::uint32_t(expected.raysPerFetch)}};
+    launch.countersWhenTimed = true;  // the ray-fetch counter starts at 0 in every dispatch
     BranchingRun kernel = runBranching(vk, structure, batch.rays, timing, batch.query, launch);
     const std::uint64_t fetched = kernel.counters.counts[gpu::kCountRaysFetched];
     const std::uint64_t traced = kernel.counters.counts[gpu::kCountRaysTraced];

@@ -138,12 +138,10 @@ TEST_F(BranchingKernel, AStreamInBatchesTracesAsOneDispatch) {
     launch.kernel = "persistent";
     launch.invocations = 2 * 64;
     launch.constants = {{gpu::kSpecRaysPerFetch, 8}};
+    launch.countersWhenTimed = true;
     launch.batchRays = 256;
     const BranchingRun persistent = runBranching(*vk_, *s, rays, {64, 0, 0}, gpu::kQueryClosest, launch);
-    launch.kernel = "branching";
-    launch.invocations = 0;
-    launch.constants = {};
-    launch.batchRays = 0;
+    launch = TraceLaunch{};
     const BranchingRun branching = runBranching(*vk_, *s, rays, {64, 0, 0}, gpu::kQueryClosest, launch);
     EXPECT_EQ(recordMismatches(persistent.hits, branching.hits), 0u);
     EXPECT_EQ(persistent.counters.counts[gpu::kCountRaysTraced], 1001u);

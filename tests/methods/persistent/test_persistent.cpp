@@ -32,6 +32,7 @@ BranchingRun runPersistent(VulkanContext& vk, const Structure& s, const std::vec
     launch.kernel = "persistent";
     launch.invocations = std::uint64_t(o.workgroups) * workgroupSize;
     launch.constants = {{gpu::kSpecRaysPerFetch, std::uint32_t(c.raysPerFetch)}};
+    launch.countersWhenTimed = true;
     return runBranching(vk, s, rays, {workgroupSize, 0, 0}, gpu::kQueryClosest, launch);
 }
 
