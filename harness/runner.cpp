@@ -114,9 +114,9 @@ std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunC
     const StrategyType& strategy = strategyType(run.getString("strategy.type"));
     const RayType& rayKind = rayType(run.getString("rays.type"));
 
-    // Scene and rays. Refuse before allocating: the per-ray buffers on the device, all together
-    // (each binding holds one batch: the strategies trace a longer stream in batches; the largest
-    // traversal state a structure keeps is checked again at upload), and the per-ray host data.
+    // Scene and rays. Refuse before allocating: the per-ray buffers on the device, together (a
+    // binding holds one batch: the strategies trace a longer stream in batches, and check the
+    // batches' structure copies and the largest traversal state again), and the per-ray host data.
     const RunScene& scene = p->scene.emplace(sceneFor(plan, run, caches, row));
     const TriangleMesh& mesh = scene.traced;
     const PinholeCamera camera = cameraFor(run, scene.full);  // the same rays at every simplification

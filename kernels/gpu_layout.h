@@ -8,6 +8,7 @@
 #define RTBENCH_GPU_LAYOUT_H
 
 #ifdef __cplusplus
+#include <cstddef>
 #include <cstdint>
 #include <glm/glm.hpp>
 namespace rtbench::gpu {
@@ -35,7 +36,8 @@ RTBENCH_CONST kBindingStructure = 9;    // first slot of the structure's own buf
 
 // Multipass with strategy.control = "device" (methods/multipass): its two strategy slots.
 RTBENCH_CONST kBindingRayLists = kBindingStrategy + 0u;     // uint[4 * rayCount]: lists T0, T1, W0, W1 of ray indices
-RTBENCH_CONST kBindingPassControl = kBindingStrategy + 1u;  // PassControl, then PassLogEntry[passes]
+RTBENCH_CONST kBindingPassControl = kBindingStrategy + 1u;  // PassControl, then PassLogEntry[kPassLogEntries]
+RTBENCH_CONST kPassLogEntries = 1024u;  // the pass log is a ring: pass p (from 1) at (p - 1) % kPassLogEntries
 
 // ---- specialization-constant ids ----
 RTBENCH_CONST kSpecWorkgroupSize = 0;    // local_size_x of every kernel (default 64)
@@ -238,6 +240,8 @@ static_assert(sizeof(Material) == 48);
 static_assert(sizeof(PassCounters) == 96);
 static_assert(sizeof(PassControl) == 80);
 static_assert(sizeof(PassLogEntry) == 64);
+static_assert(offsetof(PassControl, listCounts) == 32 && offsetof(PassControl, current) == 48 &&
+              offsetof(PassControl, status) == 64 && offsetof(PassLogEntry, kindLists) == 48);
 }  // namespace rtbench::gpu
 #else
 const float kNoHitT = 3.402823466e38;

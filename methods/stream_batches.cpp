@@ -9,6 +9,13 @@ std::uint64_t raysPerBinding(const DeviceInfo& device, std::uint64_t perRayBytes
     return std::max<std::uint64_t>(fit / workgroupSize * workgroupSize, workgroupSize);
 }
 
+void refuseOversizedBatches(const DeviceInfo& device, std::vector<BufferSize> perRay,
+                            const std::vector<BufferData>& structureBuffers, std::uint64_t batches) {
+    for (const BufferData& b : structureBuffers)
+        perRay.push_back({b.what + " x " + std::to_string(batches) + " batches", b.bytes * batches});
+    refuseOversizedTotal(device, perRay);
+}
+
 std::vector<std::pair<std::uint64_t, std::uint64_t>> streamBatches(std::uint64_t rays, std::uint64_t batchRays) {
     std::vector<std::pair<std::uint64_t, std::uint64_t>> batches;
     for (std::uint64_t first = 0; first < rays; first += batchRays) batches.emplace_back(first, std::min(first + batchRays, rays));

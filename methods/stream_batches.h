@@ -15,6 +15,12 @@ namespace rtbench {
 // (at least one workgroup).
 std::uint64_t raysPerBinding(const DeviceInfo& device, std::uint64_t perRayBytes, unsigned workgroupSize);
 
+// Throws rtbench::Error when a stream's per-ray buffers (`perRay`, for all its rays) and `batches`
+// copies of the structure's buffers (each batch uploads its own and keeps it until the timer is
+// done) exceed the device's largest device-local heap; allocates nothing.
+void refuseOversizedBatches(const DeviceInfo& device, std::vector<BufferSize> perRay,
+                            const std::vector<BufferData>& structureBuffers, std::uint64_t batches);
+
 // [first, end) of each batch of `batchRays` rays over a stream of `rays` (the last may be shorter).
 std::vector<std::pair<std::uint64_t, std::uint64_t>> streamBatches(std::uint64_t rays, std::uint64_t batchRays);
 

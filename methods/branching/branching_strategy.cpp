@@ -111,9 +111,11 @@ BranchingRun runBranching(VulkanContext& vk, const Structure& structure, const s
     } else {
         // Batches of whole workgroups, one after another: the records and every counter are those
         // of one dispatch over the stream (each subgroup has the same lanes); the time adds up.
+        const auto batches = streamBatches(rays.size(), batchRays);
+        refuseOversizedBatches(vk.info(), rayBufferSizes(rays.size(), 0), structure.buffers(), batches.size());
         std::vector<std::unique_ptr<KernelTimer>> timers;
         run.batches = 0;
-        for (const auto& [first, end] : streamBatches(rays.size(), batchRays)) {
+        for (const auto& [first, end] : batches) {
             const std::vector<gpu::Ray> part(rays.begin() + std::ptrdiff_t(first), rays.begin() + std::ptrdiff_t(end));
             BranchingRun b = runBranchingBatch(vk, structure, part, timing, query, launch);
             run.hits.insert(run.hits.end(), b.hits.begin(), b.hits.end());

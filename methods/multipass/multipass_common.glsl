@@ -30,7 +30,10 @@ uint mpServedRay(uint state) {
 }
 
 // Stream compaction by subgroup ballot: the subgroup's rays that `want` take consecutive entries of
-// `list`, claimed with one atomic per subgroup.
+// `list`, claimed with one atomic per subgroup. The ballot, the election and the broadcast must see
+// the same active lanes (the lanes reconverge after `if (subgroupElect())`, which Vulkan does not
+// promise without VK_KHR_shader_maximal_reconvergence): a device that broke it would file rays on
+// top of each other, and the run would fail (hits against branching's, the lists' overflow check).
 void mpAppend(uint list, bool want, uint rayIndex) {
     uvec4 ballot = subgroupBallot(want);
     uint n = subgroupBallotBitCount(ballot);

@@ -44,7 +44,7 @@ void main() {
         passCounters.counts[i] = uint64_t(0);
     }
     entry.kindLists = uvec4(last, traversing, waiting, dispatched);
-    passLog[passes - 1u] = entry;
+    passLog[(passes - 1u) % kPassLogEntries] = entry;  // a ring: the host reads it after every submission
 
     uint phase = max(control.status.x, kPassTraverse);  // all zeros: the naive schedule starts traversing
     uint next = mpNextPass(traversing, waiting, phase, oracleThresholdQ31, naiveSchedule != 0u);

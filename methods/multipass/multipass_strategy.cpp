@@ -30,6 +30,18 @@ struct Pipelines {
     }
 };
 
+// A pass's sums from its PassCounters slots (counts: kCountTraversing..kCountTriangleReads at least).
+PassSums passSums(const std::uint64_t* counts) {
+    PassSums sums;
+    sums.traversing = counts[gpu::kCountTraversing];
+    sums.waiting = counts[gpu::kCountWaiting];
+    sums.useful = counts[gpu::kCountUsefulRays];
+    sums.stencilWrites = counts[gpu::kCountStencilWrites];
+    sums.structureReads = counts[gpu::kCountStructureReads];
+    sums.triangleReads = counts[gpu::kCountTriangleReads];
+    return sums;
+}
+
 // The parts a repetition's GPU time is split into (kernel_ms_<part>): the pass kinds, and the
 // oracle kernel when it runs on the device.
 constexpr int kOraclePart = kPassKinds;
@@ -72,13 +84,17 @@ gpu::PassControl readControl(VulkanContext& vk, const GpuBuffers& buffers) {
 }
 
 // The instrumented device-controlled loop: submissions of kIterationsPerRound oracle iterations
-// until the oracle has ended the loop, then the write pass. The host reads the control block once
-// per submission, and at the end the oracle's log, whose pass sequence and counts it replays
-// through runPassLoop: each pass the device ran must be the one the host's scheduler chooses on
-// the same counts, and the device's ray lists must hold the rays those counts say are active.
+// until the oracle has ended the loop, then the write pass. After each submission the host reads
+// the control block and the log entries of the passes it ran (the log is a ring of
+// kPassLogEntries, more than a submission's passes); at the end it replays the log through
+// runPassLoop: each pass the device ran must be the one the host's scheduler chooses on the same
+// counts, and the device's ray lists must hold the rays those counts say are active.
 MultipassCounts runDeviceLoop(VulkanContext& vk, GpuBuffers& buffers, Pipelines& pipelines,
                               const MultipassOptions& options, std::uint64_t cap) {
+    static_assert(kIterationsPerRound < gpu::kPassLogEntries, "a submission's passes must fit the log ring");
     gpu::PassControl control{};
+    std::vector<gpu::PassLogEntry> log;
+    std::vector<std::uint8_t> bytes(sizeof(gpu::PassControl) + gpu::kPassLogEntries * sizeof(gpu::PassLogEntry));
     for (std::uint64_t iterations = 0; !control.status.y;) {
         if (iterations > cap)
             throw Error("multipass (device): the oracle kernel had not ended the loop after " + std::to_string(iterations) +
@@ -88,7 +104,10 @@ MultipassCounts runDeviceLoop(VulkanContext& vk, GpuBuffers& buffers, Pipelines&
         deviceLoopCalls(pipelines, buffers, iterations == 0, kIterationsPerRound, false, calls, parts);
         vk.dispatchAll(calls);
         iterations += kIterationsPerRound;
-        control = readControl(vk, buffers);
+        vk.download(controlBuffer(buffers), bytes.data(), bytes.size());
+        std::memcpy(&control, bytes.data(), sizeof control);
+        const auto* ring = reinterpret_cast<const gpu::PassLogEntry*>(bytes.data() + sizeof(gpu::PassControl));
+        for (std::uint64_t p = log.size(); p < control.current.w; ++p) log.push_back(ring[p % gpu::kPassLogEntries]);
     }
     if (control.status.w)
         throw Error("multipass (device): a ray list held more rays than the stream's " + std::to_string(buffers.rayCount()) +
@@ -96,10 +115,6 @@ MultipassCounts runDeviceLoop(VulkanContext& vk, GpuBuffers& buffers, Pipelines&
     vk.dispatch(pipelines.byKind[int(PassKind::Write)], buffers.descriptorSet(pipelines.byKind[int(PassKind::Write)]),
                 buffers.pushConstants(), buffers.rayCount());
     const std::uint64_t passes = control.current.w;  // setup included, write not
-    std::vector<std::uint8_t> bytes(sizeof(gpu::PassControl) + passes * sizeof(gpu::PassLogEntry));
-    vk.download(controlBuffer(buffers), bytes.data(), bytes.size());
-    std::vector<gpu::PassLogEntry> log(passes);
-    std::memcpy(log.data(), bytes.data() + sizeof(gpu::PassControl), passes * sizeof(gpu::PassLogEntry));
 
     std::size_t next = 0;  // the log entry of the pass the replay runs next
     std::uint64_t dispatched = 0;
@@ -116,14 +131,7 @@ MultipassCounts runDeviceLoop(VulkanContext& vk, GpuBuffers& buffers, Pipelines&
                             passKindName(PassKind(std::min<std::uint32_t>(e.kindLists.x, 3))) +
                             " pass; the host's scheduler on the device's counts chooses " + passKindName(kind));
             if (kind != PassKind::Setup) dispatched += e.kindLists.w;
-            PassSums sums;
-            sums.traversing = e.sums[gpu::kCountTraversing];
-            sums.waiting = e.sums[gpu::kCountWaiting];
-            sums.useful = e.sums[gpu::kCountUsefulRays];
-            sums.stencilWrites = e.sums[gpu::kCountStencilWrites];
-            sums.structureReads = e.sums[gpu::kCountStructureReads];
-            sums.triangleReads = e.sums[gpu::kCountTriangleReads];
-            return sums;
+            return passSums(e.sums);
         },
         [&](std::uint64_t traversing, std::uint64_t waiting) {
             const gpu::PassLogEntry& e = log[next - 1];
@@ -149,15 +157,7 @@ MultipassCounts runHostLoop(VulkanContext& vk, GpuBuffers& buffers, Pipelines& p
     return runPassLoop(options, cap, buffers.rayCount(), [&](PassKind kind) {
         const ComputePipeline& p = pipelines.byKind[static_cast<int>(kind)];
         vk.dispatch(p, buffers.descriptorSet(p), buffers.pushConstants(), buffers.rayCount(), buffers.passCounters());
-        const gpu::PassCounters c = buffers.readPassCounters();
-        PassSums sums;
-        sums.traversing = c.counts[gpu::kCountTraversing];
-        sums.waiting = c.counts[gpu::kCountWaiting];
-        sums.useful = c.counts[gpu::kCountUsefulRays];
-        sums.stencilWrites = c.counts[gpu::kCountStencilWrites];
-        sums.structureReads = c.counts[gpu::kCountStructureReads];
-        sums.triangleReads = c.counts[gpu::kCountTriangleReads];
-        return sums;
+        return passSums(buffers.readPassCounters().counts);
     });
 }
 
@@ -298,8 +298,8 @@ MultipassRun runMultipassBatch(VulkanContext& vk, const Structure& structure, co
     if (options.deviceControl) {
         if (cap > 0xFFFFFFFFull) throw Error("multipass (device): the pass cap " + std::to_string(cap) + " is over 2^32 - 1");
         own = {{"multipass ray lists (4 x " + std::to_string(rays.size()) + " rays)", 4 * sizeof(std::uint32_t) * rays.size()},
-               {"multipass oracle control and pass log (pass cap " + std::to_string(cap) + ", strategy.max_passes)",
-                sizeof(gpu::PassControl) + cap * sizeof(gpu::PassLogEntry)}};
+               {"multipass oracle control and pass log",
+                sizeof(gpu::PassControl) + gpu::kPassLogEntries * sizeof(gpu::PassLogEntry)}};
     }
     auto buffers = std::make_unique<GpuBuffers>(vk, rays, structure.costs().traversalStateBytes, structure.buffers(),
                                                 structure.params(), own);
@@ -347,9 +347,13 @@ MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const s
     } else {
         // Rays in batches (each its own buffers and pass loop, the oracle's passes per batch): the
         // per-ray records and events are those of one stream; the passes add up over the batches.
+        const auto batches = streamBatches(rays.size(), batchRays);
+        std::vector<BufferSize> perRay = rayBufferSizes(rays.size(), structure.costs().traversalStateBytes);
+        if (options.deviceControl) perRay.push_back({"multipass ray lists", 4 * sizeof(std::uint32_t) * rays.size()});
+        refuseOversizedBatches(vk.info(), perRay, structure.buffers(), batches.size());
         std::vector<std::unique_ptr<KernelTimer>> timers;
         run.batches = 0;
-        for (const auto& [first, end] : streamBatches(rays.size(), batchRays)) {
+        for (const auto& [first, end] : batches) {
             const std::vector<gpu::Ray> part(rays.begin() + std::ptrdiff_t(first), rays.begin() + std::ptrdiff_t(end));
             MultipassRun b = runMultipassBatch(vk, structure, part, options, timing, query);
             run.hits.insert(run.hits.end(), b.hits.begin(), b.hits.end());
@@ -398,7 +402,7 @@ const StrategyType& multipassStrategyType() {
             {"kernel_ms_intersect", K::Timing, "ms", "multipass: GPU time of the intersect passes, median"},
             {"kernel_ms_write", K::Timing, "ms", "multipass: GPU time of the write pass, median"},
             {"kernel_ms_oracle", K::Timing, "ms", "multipass with strategy.control = device: GPU time of the oracle kernel (one invocation after each pass), median", 0.0, false, {"strategy.control=device"}, 13},
-            {"multipass_live_ms_median", K::Timing, "ms", "multipass: host wall time of the live pass loop (instrumented passes, the oracle's read-back after each: Christen 2005 §4.3.4's CPU-controlled loop), median of one per round", 0.0, false, {}, 5},
+            {"multipass_live_ms_median", K::Timing, "ms", "multipass: host wall time of the live pass loop, median of one per round: with strategy.control = host the instrumented passes with the oracle's read-back after each (Christen 2005 §4.3.4's CPU-controlled loop); with device, the instrumented loop in submissions of 341 oracle iterations (the last partly idle), its control block and log read after each, and the log's replay on the host", 0.0, false, {}, 5},
             {"branching_mismatches", K::Count, "rays", "multipass: rays whose hit record differs from the branching caster's"},
             {"multipass_batch_rays", K::Count, "rays", "multipass: rays per batch (strategy.batch_rays, 0 made what one binding holds); passes_* add up over the batches", 0.0, false, {}, 12},
         };

@@ -27,16 +27,16 @@ StrategyRun runPersistentStrategy(VulkanContext& vk, const Structure& structure,
     options.raysPerFetch = std::uint32_t(config.getInt("strategy.rays_per_fetch"));
     const std::uint64_t rays = batch.rays.size();
     const PersistentCounts expected = persistentCounts(options, rays, timing.workgroupSize, vk.info().subgroupSize);
-    // A stream in batches (wholeTraversalBatchRays) is a fetch loop per batch: the counter ends where each batch's does.
-    std::uint64_t fetchedWhenDone = 0;
-    for (const auto& [first, end] : streamBatches(rays, wholeTraversalBatchRays(vk.info(), timing.workgroupSize)))
-        fetchedWhenDone += persistentCounts(options, end - first, timing.workgroupSize, vk.info().subgroupSize).fetchedWhenDone;
     TraceLaunch launch;
     launch.kernel = "persistent";
     launch.invocations = std::uint64_t(options.workgroups) * timing.workgroupSize;
     launch.constants = {{gpu::kSpecRaysPerFetch, std::uint32_t(expected.raysPerFetch)}};
     launch.countersWhenTimed = true;  // the ray-fetch counter starts at 0 in every dispatch
     BranchingRun kernel = runBranching(vk, structure, batch.rays, timing, batch.query, launch);
+    // A stream in batches is a fetch loop per batch: the counter ends where each batch's does.
+    std::uint64_t fetchedWhenDone = 0;
+    for (const auto& [first, end] : streamBatches(rays, kernel.batchRays))
+        fetchedWhenDone += persistentCounts(options, end - first, timing.workgroupSize, vk.info().subgroupSize).fetchedWhenDone;
     const std::uint64_t fetched = kernel.counters.counts[gpu::kCountRaysFetched];
     const std::uint64_t traced = kernel.counters.counts[gpu::kCountRaysTraced];
     row["persistent_rays_per_fetch"] = std::to_string(expected.raysPerFetch);

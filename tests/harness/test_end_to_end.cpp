@@ -177,7 +177,9 @@ TEST_F(EndToEnd, PersistentThreadsCutShortFailTheRunAndSaySo) {
         EXPECT_THAT(row.at("error"), ::testing::AnyOf(HasSubstr("persistent threads wrote"), HasSubstr("the fetch counter ended at"),
                                                       HasSubstr("differ from the CPU reference's")));
     }
-    if (testDeviceName() == "llvmpipe") EXPECT_EQ(row.at("status"), "failed");  // measured: cut on every run so far
+    if (testDeviceName() == "llvmpipe") {
+        EXPECT_EQ(row.at("status"), "failed");  // measured: cut on every run so far
+    }
 }
 
 // A scene source that is not there would fail every run of it: the command fails, naming the

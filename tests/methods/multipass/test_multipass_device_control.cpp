@@ -14,50 +14,18 @@
 #include "structures/camera.h"
 #include "structures/procedural.h"
 #include "tests/device/test_device.h"
+#include "tests/methods/multipass/hand_scene.h"
 
 namespace rtbench {
 namespace {
 
-// The hand scene of test_multipass_kernels.cpp: a 4x1x1 grid over [0,4]x[0,1]x[0,1], voxel
-// lists v0 {0}, v1 {}, v2 {2,3}, v3 {1,4,5}; ray 0 along +x hits triangle 2, ray 1 misses the
-// box, ray 2 along -x hits triangle 4.
-TriangleMesh handScene() {
-    TriangleMesh m;
-    m.name = "hand";
-    auto tri = [&](glm::vec3 a, glm::vec3 b, glm::vec3 c) {
-        const unsigned base = unsigned(m.vertices.size());
-        m.vertices.insert(m.vertices.end(), {a, b, c});
-        m.triangles.emplace_back(base, base + 1, base + 2);
-    };
-    tri({0, 0.8f, 0.8f}, {0, 1, 0.8f}, {0, 0.8f, 1});
-    tri({4, 0.8f, 0.8f}, {4, 1, 0.8f}, {4, 0.8f, 1});
-    for (float x : {2.5f, 3.5f}) {
-        tri({x, 0, 0}, {x, 1, 0}, {x, 0, 1});
-        tri({x, 1, 0}, {x, 1, 1}, {x, 0, 1});
-    }
-    return m;
-}
-
-UniformGrid handGrid() {
-    GridResolutionRule rule;
-    rule.kind = GridResolutionRule::Kind::Explicit;
-    rule.resolution = {4, 1, 1};
-    return buildUniformGrid(handScene(), rule);
-}
-
-std::vector<gpu::Ray> handRays() {
-    auto ray = [](glm::vec3 o, glm::vec3 d) { return gpu::Ray{glm::vec4(o, 0.0f), glm::vec4(d, gpu::kNoHitT)}; };
-    return {ray({-1, 0.25f, 0.25f}, {1, 0, 0}), ray({-1, 5, 0.5f}, {1, 0, 0}), ray({5, 0.25f, 0.25f}, {-1, 0, 0})};
-}
+// The hand scene (hand_scene.h): a 4x1x1 grid, voxel lists v0 {0}, v1 {}, v2 {2,3}, v3 {1,4,5};
+// ray 0 along +x hits triangle 2, ray 1 misses the box, ray 2 along -x hits triangle 4.
+using hand::handGrid;
+using hand::handRays;
 
 MultipassOptions onDevice(double threshold, unsigned k = 1, unsigned m = 1, bool suppress = false) {
-    MultipassOptions o;
-    o.oracleThreshold = threshold;
-    o.traverseStepsPerPass = k;
-    o.intersectionsPerPass = m;
-    o.suppressFinishedReads = suppress;
-    o.deviceControl = true;
-    return o;
+    return hand::multipassOptions(threshold, k, m, suppress, true);
 }
 
 using K = PassKind;

@@ -18,51 +18,16 @@
 #include "structures/camera.h"
 #include "structures/procedural.h"
 #include "tests/device/test_device.h"
+#include "tests/methods/multipass/hand_scene.h"
 
 namespace rtbench {
 namespace {
 
-// Grid 4x1x1 over [0,4]x[0,1]x[0,1]. Triangles (ids): 0 corner at x=0 (y,z in [0.8,1]),
-// 1 corner at x=4, 2-3 a quad at x=2.5 split along y+z=1, 4-5 the same at x=3.5.
-// Voxel lists: v0 {0}, v1 {}, v2 {2,3}, v3 {1,4,5}.
-TriangleMesh handScene() {
-    TriangleMesh m;
-    m.name = "hand";
-    auto tri = [&](glm::vec3 a, glm::vec3 b, glm::vec3 c) {
-        const unsigned base = unsigned(m.vertices.size());
-        m.vertices.insert(m.vertices.end(), {a, b, c});
-        m.triangles.emplace_back(base, base + 1, base + 2);
-    };
-    tri({0, 0.8f, 0.8f}, {0, 1, 0.8f}, {0, 0.8f, 1});
-    tri({4, 0.8f, 0.8f}, {4, 1, 0.8f}, {4, 0.8f, 1});
-    for (float x : {2.5f, 3.5f}) {
-        tri({x, 0, 0}, {x, 1, 0}, {x, 0, 1});  // y + z <= 1
-        tri({x, 1, 0}, {x, 1, 1}, {x, 0, 1});  // y + z >= 1
-    }
-    return m;
-}
-
-UniformGrid handGrid() {
-    GridResolutionRule rule;
-    rule.kind = GridResolutionRule::Kind::Explicit;
-    rule.resolution = {4, 1, 1};
-    return buildUniformGrid(handScene(), rule);
-}
-
-// Ray 0 from x=-1 along +x hits triangle 2 at t=3.5; ray 1 misses the box; ray 2 from x=5
-// along -x hits triangle 4 at t=1.5.
-std::vector<gpu::Ray> handRays() {
-    auto ray = [](glm::vec3 o, glm::vec3 d) { return gpu::Ray{glm::vec4(o, 0.0f), glm::vec4(d, gpu::kNoHitT)}; };
-    return {ray({-1, 0.25f, 0.25f}, {1, 0, 0}), ray({-1, 5, 0.5f}, {1, 0, 0}), ray({5, 0.25f, 0.25f}, {-1, 0, 0})};
-}
+using hand::handGrid;
+using hand::handRays;
 
 MultipassOptions oracle(double threshold, unsigned k = 1, unsigned m = 1, bool suppress = false) {
-    MultipassOptions o;
-    o.oracleThreshold = threshold;
-    o.traverseStepsPerPass = k;
-    o.intersectionsPerPass = m;
-    o.suppressFinishedReads = suppress;
-    return o;
+    return hand::multipassOptions(threshold, k, m, suppress);
 }
 
 class MultipassKernels : public VulkanTest {
