@@ -106,8 +106,11 @@ MultipassCounts runDeviceLoop(VulkanContext& vk, GpuBuffers& buffers, Pipelines&
         iterations += kIterationsPerRound;
         vk.download(controlBuffer(buffers), bytes.data(), bytes.size());
         std::memcpy(&control, bytes.data(), sizeof control);
-        const auto* ring = reinterpret_cast<const gpu::PassLogEntry*>(bytes.data() + sizeof(gpu::PassControl));
-        for (std::uint64_t p = log.size(); p < control.current.w; ++p) log.push_back(ring[p % gpu::kPassLogEntries]);
+        for (std::uint64_t p = log.size(); p < control.current.w; ++p) {
+            gpu::PassLogEntry e;
+            std::memcpy(&e, bytes.data() + sizeof(gpu::PassControl) + (p % gpu::kPassLogEntries) * sizeof e, sizeof e);
+            log.push_back(e);
+        }
     }
     if (control.status.w)
         throw Error("multipass (device): a ray list held more rays than the stream's " + std::to_string(buffers.rayCount()) +
