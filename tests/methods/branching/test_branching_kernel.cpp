@@ -9,6 +9,7 @@
 #include "harness/embree_reference.h"
 #include "methods/metrics.h"
 #include "methods/grid/uniform_grid.h"
+#include "methods/stream_batches.h"
 #include "structures/camera.h"
 #include "methods/grid/grid_reference.h"
 #include "methods/grid/grid_structure.h"
@@ -146,6 +147,23 @@ TEST_F(BranchingKernel, AStreamInBatchesTracesAsOneDispatch) {
     EXPECT_EQ(recordMismatches(persistent.hits, branching.hits), 0u);
     EXPECT_EQ(persistent.counters.counts[gpu::kCountRaysTraced], 1001u);
     EXPECT_EQ(persistent.counters.counts[gpu::kCountRaysFetched], 1520u);
+}
+
+// The batch arithmetic by hand: lavapipe's 134,217,728-byte binding holds 4,194,304 rays of 32
+// bytes (ray and hit record), so 4096 x 4096 rays are 4 dispatches; a record that fits fewer
+// than a workgroup still gets one workgroup; a stream's batches cover it once, the last shorter.
+TEST(StreamBatches, TheBindingSetsTheBatchAndTheBatchesCoverTheStream) {
+    DeviceInfo device;
+    device.maxStorageBufferRange = 134217728;
+    EXPECT_EQ(wholeTraversalBatchRays(device, 64), 4194304u);
+    EXPECT_EQ(streamBatches(4096u * 4096u, 4194304u).size(), 4u);
+    EXPECT_EQ(raysPerBinding(device, 144, 64), 932032u);  // the BVH multipass state (multipassBatchRays)
+    EXPECT_EQ(raysPerBinding(device, 1u << 30, 64), 64u);
+    const auto b = streamBatches(1001, 256);
+    ASSERT_EQ(b.size(), 4u);
+    EXPECT_EQ(b[0], (std::pair<std::uint64_t, std::uint64_t>{0, 256}));
+    EXPECT_EQ(b[3], (std::pair<std::uint64_t, std::uint64_t>{768, 1001}));
+    EXPECT_TRUE(streamBatches(0, 256).empty());
 }
 
 TEST_F(BranchingKernel, BufferOverTheBindingLimitIsAClearError) {
