@@ -38,9 +38,8 @@ PassKind PassScheduler::next(std::uint64_t traversing, std::uint64_t waiting) {
         throw Error("multipass: " + std::to_string(traversing + waiting) +
                     " active rays in one stream, over the oracle's 2^32 - 1 (strategy.batch_rays splits the stream)");
     std::uint32_t phase = static_cast<std::uint32_t>(naivePhase_);
-    const std::uint32_t kind = oracle::mpNextPass(std::uint32_t(traversing), std::uint32_t(waiting), phase,
-                                                  oracleThresholdQ31(options_.oracleThreshold),
-                                                  options_.scheduling == "naive");
+    const std::uint32_t kind =
+        oracle::mpNextPass(std::uint32_t(traversing), std::uint32_t(waiting), phase, thresholdQ31_, naive_);
     naivePhase_ = static_cast<PassKind>(phase);
     return static_cast<PassKind>(kind);
 }

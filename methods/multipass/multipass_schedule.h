@@ -40,12 +40,15 @@ static_assert(int(PassKind::Setup) == 0 && int(PassKind::Traverse) == 1 && int(P
 
 class PassScheduler {
 public:
-    explicit PassScheduler(const MultipassOptions& options) : options_(options) {}
+    // Throws when the options' oracle threshold is outside [0, 1].
+    explicit PassScheduler(const MultipassOptions& options)
+        : thresholdQ31_(oracleThresholdQ31(options.oracleThreshold)), naive_(options.scheduling == "naive") {}
     // The next pass after one that left `traversing` and `waiting` rays active; Write when none.
     PassKind next(std::uint64_t traversing, std::uint64_t waiting);
 
 private:
-    MultipassOptions options_;
+    std::uint32_t thresholdQ31_;  // the oracle threshold as the shared decision applies it
+    bool naive_;                  // Christen's naive schedule
     PassKind naivePhase_ = PassKind::Traverse;
 };
 

@@ -30,6 +30,9 @@ struct Pipelines {
     }
 };
 
+// The device-controlled loop's ray lists: T0, T1, W0, W1, a ray index each per ray.
+std::uint64_t rayListBytes(std::uint64_t rays) { return 4 * sizeof(std::uint32_t) * rays; }
+
 // A pass's sums from its PassCounters slots (counts: kCountTraversing..kCountTriangleReads at least).
 PassSums passSums(const std::uint64_t* counts) {
     PassSums sums;
@@ -300,7 +303,7 @@ MultipassRun runMultipassBatch(VulkanContext& vk, const Structure& structure, co
     std::vector<BufferSize> own;  // the strategy's slots: with the control on the device, the ray lists and the oracle's block
     if (options.deviceControl) {
         if (cap > 0xFFFFFFFFull) throw Error("multipass (device): the pass cap " + std::to_string(cap) + " is over 2^32 - 1");
-        own = {{"multipass ray lists (4 x " + std::to_string(rays.size()) + " rays)", 4 * sizeof(std::uint32_t) * rays.size()},
+        own = {{"multipass ray lists (4 x " + std::to_string(rays.size()) + " rays)", rayListBytes(rays.size())},
                {"multipass oracle control and pass log",
                 sizeof(gpu::PassControl) + gpu::kPassLogEntries * sizeof(gpu::PassLogEntry)}};
     }
@@ -352,7 +355,7 @@ MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const s
         // per-ray records and events are those of one stream; the passes add up over the batches.
         const auto batches = streamBatches(rays.size(), batchRays);
         std::vector<BufferSize> perRay = rayBufferSizes(rays.size(), structure.costs().traversalStateBytes);
-        if (options.deviceControl) perRay.push_back({"multipass ray lists", 4 * sizeof(std::uint32_t) * rays.size()});
+        if (options.deviceControl) perRay.push_back({"multipass ray lists", rayListBytes(rays.size())});
         refuseOversizedBatches(vk.info(), perRay, structure.buffers(), batches.size());
         std::vector<std::unique_ptr<KernelTimer>> timers;
         run.batches = 0;
@@ -392,8 +395,10 @@ const StrategyType& multipassStrategyType() {
             {"strategy.control", ValueType::String, "multipass: who runs the oracle. host: the CPU reads the ray-state counts back after every pass and each pass walks the whole stream through the stencil (Purcell's and Christen's loop); device: an oracle kernel chooses the next pass and writes its indirect dispatch, and each pass serves a compacted list of its rays, with no host round trip per pass", std::string("host"), false, -1e300, 1e300, {"host", "device"}},
             {"strategy.batch_rays", ValueType::Int, "multipass: rays per batch, each its own pass loop (0: as many as one binding holds, maxStorageBufferRange over the largest per-ray record)", std::int64_t(0), false, 0, 1e12},
         };
-        t.keys.back().since = 12;
-        t.keys[t.keys.size() - 2].since = 13;
+        for (KeySpec& k : t.keys) {
+            if (k.name == "strategy.batch_rays") k.since = 12;
+            if (k.name == "strategy.control") k.since = 13;
+        }
         t.columns = {
             {"passes_setup", K::Count, "passes", "multipass setup passes"},
             {"passes_traverse", K::Count, "passes", "multipass traverse passes"},

@@ -1,7 +1,15 @@
-// The multipass tests' hand scene: a 4x1x1 grid with hand-counted voxel lists and three rays
-// whose passes the tests count by hand (test_multipass_kernels.cpp, test_multipass_device_control.cpp).
+// The multipass tests' scenes (test_multipass_kernels.cpp, test_multipass_device_control.cpp): the
+// hand scene, a 4x1x1 grid with hand-counted voxel lists and three rays whose passes the tests
+// count by hand; and scene B with the rays and structures the tests trace it with.
 #pragma once
+#include <memory>
 #include <vector>
+
+#include "methods/bvh/bvh_build.h"
+#include "methods/bvh/bvh_structure.h"
+#include "methods/grid/grid_structure.h"
+#include "structures/camera.h"
+#include "structures/procedural.h"
 
 #include "kernels/gpu_layout.h"
 #include "methods/grid/uniform_grid.h"
@@ -42,6 +50,24 @@ inline UniformGrid handGrid() {
 inline std::vector<gpu::Ray> handRays() {
     auto ray = [](glm::vec3 o, glm::vec3 d) { return gpu::Ray{glm::vec4(o, 0.0f), glm::vec4(d, gpu::kNoHitT)}; };
     return {ray({-1, 0.25f, 0.25f}, {1, 0, 0}), ray({-1, 5, 0.5f}, {1, 0, 0}), ray({5, 0.25f, 0.25f}, {-1, 0, 0})};
+}
+
+// Scene B (Christen 2005 Table 6.1): 48 x 40 rays of its own camera.
+inline std::vector<gpu::Ray> sceneBRays() { return generatePrimaryRays(*proceduralCamera("christen_b", 70.0f), 48, 40); }
+
+// Its grid at min_dim 8.
+inline UniformGrid sceneBGrid() {
+    GridResolutionRule rule;
+    rule.minDim = 8;
+    return buildUniformGrid(christenSceneB(), rule);
+}
+
+// That grid, then its BVH (leaves of up to 4).
+inline std::vector<std::unique_ptr<Structure>> sceneBStructures() {
+    std::vector<std::unique_ptr<Structure>> structures;
+    structures.push_back(gridStructure(sceneBGrid()));
+    structures.push_back(bvhStructure(buildBvh(christenSceneB(), BvhBuildOptions{})));
+    return structures;
 }
 
 // The oracle's options: threshold, K, M, suppression, and where the oracle runs.

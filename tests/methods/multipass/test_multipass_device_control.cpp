@@ -98,14 +98,8 @@ TEST_F(MultipassDeviceControl, ThresholdOneAndTheNaiveScheduleByHand) {
 // does not go through the simulator), its counts equal the simulator's, and its hits branching's,
 // for every unroll, threshold and schedule, on the grid and the BVH.
 TEST_F(MultipassDeviceControl, ChoosesAsTheHostLoopForEveryUnrollAndSchedule) {
-    const TriangleMesh scene = christenSceneB();
-    GridResolutionRule rule;
-    rule.minDim = 8;
-    const std::vector<gpu::Ray> rays = generatePrimaryRays(*proceduralCamera("christen_b", 70.0f), 48, 40);
-    std::vector<std::unique_ptr<Structure>> structures;
-    structures.push_back(gridStructure(buildUniformGrid(scene, rule)));
-    structures.push_back(bvhStructure(buildBvh(scene, BvhBuildOptions{})));
-    for (const auto& s : structures) {
+    const std::vector<gpu::Ray> rays = hand::sceneBRays();
+    for (const auto& s : hand::sceneBStructures()) {
         const BranchingRun branching = runBranching(*vk_, *s, rays, {64, 0, 1});
         for (auto [k, m] : {std::pair{1u, 1u}, std::pair{4u, 2u}})
             for (const char* schedule : {"0", "0.2", "1", "naive"})
@@ -136,12 +130,8 @@ TEST_F(MultipassDeviceControl, ChoosesAsTheHostLoopForEveryUnrollAndSchedule) {
 // Timed repetitions rerun the oracle kernel's loop uninstrumented; their hits must equal the
 // instrumented run's (the timer checks), and the oracle's own time is a part of its own.
 TEST_F(MultipassDeviceControl, TimedRepetitionsRunTheSameLoop) {
-    const TriangleMesh scene = christenSceneB();
-    GridResolutionRule rule;
-    rule.minDim = 8;
-    const std::vector<gpu::Ray> rays = generatePrimaryRays(*proceduralCamera("christen_b", 70.0f), 48, 40);
-    const auto grid = gridStructure(buildUniformGrid(scene, rule));
-    MultipassRun r = runMultipass(*vk_, *grid, rays, onDevice(0.2, 4, 2), {64, 1, 3});
+    const auto grid = gridStructure(hand::sceneBGrid());
+    MultipassRun r = runMultipass(*vk_, *grid, hand::sceneBRays(), onDevice(0.2, 4, 2), {64, 1, 3});
     EXPECT_EQ(r.gpuMs.size(), 3u);
     const TimedBatch batch = r.timer->time(0, 2);
     ASSERT_EQ(batch.parts.size(), 5u);
@@ -154,9 +144,8 @@ TEST_F(MultipassDeviceControl, TimedRepetitionsRunTheSameLoop) {
 // Batches with the control on the device: each batch its own lists and oracle loop; records and
 // events equal one stream's, passes each batch's, as with the control on the host.
 TEST_F(MultipassDeviceControl, ABatchedRunTracesAsOneStream) {
-    const TriangleMesh scene = christenSceneB();
-    const std::vector<gpu::Ray> rays = generatePrimaryRays(*proceduralCamera("christen_b", 70.0f), 48, 40);
-    const auto bvh = bvhStructure(buildBvh(scene, BvhBuildOptions{}));
+    const std::vector<gpu::Ray> rays = hand::sceneBRays();
+    const auto bvh = bvhStructure(buildBvh(christenSceneB(), BvhBuildOptions{}));
     MultipassOptions o = onDevice(0.2, 4, 2);
     const MultipassRun whole = run(*bvh, rays, o);
     o.batchRays = 512;

@@ -111,11 +111,8 @@ TEST_F(MultipassKernels, UnrolledPassesReadTheDiscardedIterationsUnlessSuppresse
 }
 
 TEST_F(MultipassKernels, AgreesWithBranchingAndTheCpuSimulatorForEveryUnrollAndThreshold) {
-    const TriangleMesh scene = christenSceneB();
-    GridResolutionRule rule;
-    rule.minDim = 8;
-    const UniformGrid grid = buildUniformGrid(scene, rule);
-    const std::vector<gpu::Ray> rays = generatePrimaryRays(*proceduralCamera("christen_b", 70.0f), 48, 40);
+    const UniformGrid grid = hand::sceneBGrid();
+    const std::vector<gpu::Ray> rays = hand::sceneBRays();
     const BranchingRun branching = runBranching(*vk_, *gridStructure(grid), rays, {64, 0, 1});
     for (unsigned k : {1u, 2u, 4u, 8u})
         for (unsigned m : {1u, 2u, 4u})
@@ -139,14 +136,8 @@ TEST_F(MultipassKernels, AgreesWithBranchingAndTheCpuSimulatorForEveryUnrollAndT
 // are each batch's, and add up to the four batches simulated one at a time on the CPU; the ray
 // slots Purcell's efficiency divides by are each batch's loop passes times its rays.
 TEST_F(MultipassKernels, ABatchedRunTracesAsOneStreamWithEachBatchsPasses) {
-    const TriangleMesh scene = christenSceneB();
-    GridResolutionRule rule;
-    rule.minDim = 8;
-    const std::vector<gpu::Ray> rays = generatePrimaryRays(*proceduralCamera("christen_b", 70.0f), 48, 40);
-    std::vector<std::unique_ptr<Structure>> structures;
-    structures.push_back(gridStructure(buildUniformGrid(scene, rule)));
-    structures.push_back(bvhStructure(buildBvh(scene, BvhBuildOptions{})));  // leaves of up to 4
-    for (const auto& s : structures) {
+    const std::vector<gpu::Ray> rays = hand::sceneBRays();
+    for (const auto& s : hand::sceneBStructures()) {  // the grid at min_dim 8, the BVH with leaves of up to 4
         SCOPED_TRACE(s->kernelPrefix());
         MultipassOptions o = oracle(0.2, 4, 2);
         const MultipassRun whole = runMultipass(*vk_, *s, rays, o, {64, 0, 1});
