@@ -117,6 +117,40 @@ std::vector<VkPhysicalDevice> physicalDevices(VkInstance instance) {
     return devices;
 }
 
+// The device extensions the driver's ray tracing needs (VK_KHR_acceleration_structure requires
+// deferred host operations).
+constexpr std::array<const char*, 3> kRayQueryExtensions = {VK_KHR_ACCELERATION_STRUCTURE_EXTENSION_NAME,
+                                                            VK_KHR_RAY_QUERY_EXTENSION_NAME,
+                                                            VK_KHR_DEFERRED_HOST_OPERATIONS_EXTENSION_NAME};
+
+// DeviceInfo::rayQuery: the extensions, then (only when they are there) their features.
+void describeRayQuery(VkPhysicalDevice device, bool bufferDeviceAddress, DeviceInfo& info) {
+    std::uint32_t count = 0;
+    VK_CHECK(vkEnumerateDeviceExtensionProperties(device, nullptr, &count, nullptr));
+    std::vector<VkExtensionProperties> extensions(count);
+    VK_CHECK(vkEnumerateDeviceExtensionProperties(device, nullptr, &count, extensions.data()));
+    std::string missing;
+    auto lacks = [&](const std::string& what) { missing += (missing.empty() ? "" : ", ") + what; };
+    for (const char* name : kRayQueryExtensions)
+        if (std::none_of(extensions.begin(), extensions.end(),
+                         [&](const VkExtensionProperties& e) { return std::strcmp(e.extensionName, name) == 0; }))
+            lacks(name);
+    if (missing.empty()) {
+        VkPhysicalDeviceRayQueryFeaturesKHR rayQuery{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
+        VkPhysicalDeviceAccelerationStructureFeaturesKHR structures{
+            VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
+        structures.pNext = &rayQuery;
+        VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+        features.pNext = &structures;
+        vkGetPhysicalDeviceFeatures2(device, &features);
+        if (!rayQuery.rayQuery) lacks("the rayQuery feature");
+        if (!structures.accelerationStructure) lacks("the accelerationStructure feature");
+    }
+    if (!bufferDeviceAddress) lacks("the bufferDeviceAddress feature");
+    info.rayQuery = missing.empty();
+    info.rayQueryMissing = missing;
+}
+
 DeviceInfo describe(VkPhysicalDevice device) {
     VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
     VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
@@ -162,6 +196,7 @@ DeviceInfo describe(VkPhysicalDevice device) {
                                        VK_SUBGROUP_FEATURE_BALLOT_BIT;
     need((subgroup.supportedOperations & ops) == ops && (subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT),
          "subgroup basic/arithmetic/ballot in compute");
+    describeRayQuery(device, v12.bufferDeviceAddress == VK_TRUE, info);
     VkPhysicalDeviceMemoryProperties memory;
     vkGetPhysicalDeviceMemoryProperties(device, &memory);
     for (std::uint32_t h = 0; h < memory.memoryHeapCount; ++h)
@@ -234,8 +269,24 @@ VulkanContext::VulkanContext(const std::string& deviceChoice, bool validation) {
     features.pNext = &v12;
     features.features.shaderInt64 = VK_TRUE;
     features.features.shaderFloat64 = VK_TRUE;
+    // The driver's ray tracing, where the device has it (methods/ray_query): its extensions and
+    // features, and buffer device addresses for its builds.
+    VkPhysicalDeviceRayQueryFeaturesKHR rayQuery{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
+    VkPhysicalDeviceAccelerationStructureFeaturesKHR structures{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
+    std::vector<const char*> extensions;
+    if (info_.rayQuery) {
+        rayQuery.rayQuery = VK_TRUE;
+        structures.accelerationStructure = VK_TRUE;
+        structures.pNext = &rayQuery;
+        v12.pNext = &structures;
+        v12.bufferDeviceAddress = VK_TRUE;
+        extensions.assign(kRayQueryExtensions.begin(), kRayQueryExtensions.end());
+    }
     VkDeviceCreateInfo deviceInfo{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
     deviceInfo.pNext = &features;
+    deviceInfo.enabledExtensionCount = static_cast<std::uint32_t>(extensions.size());
+    deviceInfo.ppEnabledExtensionNames = extensions.data();
     deviceInfo.queueCreateInfoCount = 1;
     deviceInfo.pQueueCreateInfos = &queueInfo;
     VK_CHECK(vkCreateDevice(physical_, &deviceInfo, nullptr, &device_));
@@ -291,7 +342,7 @@ std::uint32_t VulkanContext::findMemoryType(std::uint32_t typeBits, VkMemoryProp
 }
 
 Buffer VulkanContext::createBuffer(VkDeviceSize size, VkBufferUsageFlags usage,
-                                   VkMemoryPropertyFlags required, VkMemoryPropertyFlags preferred) {
+                                   VkMemoryPropertyFlags required, VkMemoryPropertyFlags preferred, bool deviceAddress) {
     Buffer b;
     b.size = std::max<VkDeviceSize>(size, 16);  // zero-sized buffers are invalid
     VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
@@ -304,6 +355,9 @@ Buffer VulkanContext::createBuffer(VkDeviceSize size, VkBufferUsageFlags usage,
     VkMemoryAllocateInfo alloc{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     alloc.allocationSize = req.size;
     alloc.memoryTypeIndex = findMemoryType(req.memoryTypeBits, required, preferred);
+    VkMemoryAllocateFlagsInfo addressed{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_FLAGS_INFO};
+    addressed.flags = VK_MEMORY_ALLOCATE_DEVICE_ADDRESS_BIT;
+    if (deviceAddress) alloc.pNext = &addressed;
     VK_CHECK(vkAllocateMemory(device_, &alloc, nullptr, &b.memory));
     VK_CHECK(vkBindBufferMemory(device_, b.buffer, b.memory, 0));
     const VkMemoryPropertyFlags flags = memoryProperties_.memoryTypes[alloc.memoryTypeIndex].propertyFlags;
@@ -330,6 +384,39 @@ Buffer VulkanContext::createStorageBuffer(VkDeviceSize size, const std::string& 
 Buffer VulkanContext::createHostReadbackBuffer(VkDeviceSize size) {
     return createBuffer(size, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                         VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT, 0);
+}
+
+Buffer VulkanContext::createAddressedBuffer(VkDeviceSize size, VkBufferUsageFlags usage) {
+    if (!info_.rayQuery) throw Error("Vulkan: " + info_.name + " has no buffer device addresses enabled (" + info_.rayQueryMissing + ")");
+    return createBuffer(size, usage | VK_BUFFER_USAGE_SHADER_DEVICE_ADDRESS_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                        VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0, true);
+}
+
+VkDeviceAddress VulkanContext::deviceAddress(const Buffer& b) const {
+    VkBufferDeviceAddressInfo info{VK_STRUCTURE_TYPE_BUFFER_DEVICE_ADDRESS_INFO};
+    info.buffer = b.buffer;
+    return vkGetBufferDeviceAddress(device_, &info);
+}
+
+double VulkanContext::runTimed(const std::function<void(VkCommandBuffer)>& commands) {
+    VkCommandBuffer cmd = beginOneShot();
+    if (queryPool_) {
+        vkCmdResetQueryPool(cmd, queryPool_, 0, 2);
+        vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queryPool_, 0);
+    }
+    commands(cmd);
+    if (queryPool_) vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, queryPool_, 1);
+    submitAndWait(cmd);
+    if (!queryPool_) return -1.0;
+    std::array<std::uint64_t, 2> stamps{};
+    VK_CHECK(vkGetQueryPoolResults(device_, queryPool_, 0, 2, sizeof(stamps), stamps.data(), sizeof(std::uint64_t),
+                                   VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
+    return intervalMs(stamps[0], stamps[1]);
+}
+
+double VulkanContext::intervalMs(std::uint64_t start, std::uint64_t end) const {
+    const std::uint64_t mask = timestampValidBits_ >= 64 ? ~0ull : ((1ull << timestampValidBits_) - 1);
+    return static_cast<double>((end - start) & mask) * info_.timestampPeriodNs * 1e-6;
 }
 
 void VulkanContext::destroy(Buffer& b) {
@@ -588,9 +675,7 @@ std::vector<double> VulkanContext::dispatchAll(const std::vector<DispatchCall>& 
         VK_CHECK(vkGetQueryPoolResults(device_, queryPool_, 0, 2 * n, stamps.size() * sizeof(std::uint64_t),
                                        stamps.data(), sizeof(std::uint64_t),
                                        VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT));
-        const std::uint64_t mask = timestampValidBits_ >= 64 ? ~0ull : ((1ull << timestampValidBits_) - 1);
-        for (std::uint32_t i = 0; i < n; ++i)
-            ms.push_back(static_cast<double>((stamps[2 * i + 1] - stamps[2 * i]) & mask) * info_.timestampPeriodNs * 1e-6);
+        for (std::uint32_t i = 0; i < n; ++i) ms.push_back(intervalMs(stamps[2 * i], stamps[2 * i + 1]));
     }
     return ms;
 }

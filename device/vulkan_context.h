@@ -5,6 +5,7 @@
 #include <vulkan/vulkan.h>
 
 #include <array>
+#include <functional>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -38,6 +39,11 @@ struct DeviceInfo {
     // Features the kernels need (kernels/bindings.glsl): one-byte stencil, 64-bit counters,
     // subgroup arithmetic and ballots.
     std::string missingFeatures;  // empty when all are supported
+    // The driver's own ray tracing for compute kernels (methods/ray_query): VK_KHR_ray_query and
+    // VK_KHR_acceleration_structure with their features and buffer device addresses. Enabled on
+    // the device when present; rayQueryMissing says what is not (empty when rayQuery).
+    bool rayQuery = false;
+    std::string rayQueryMissing;
 };
 
 std::string vkResultName(VkResult result);
@@ -139,6 +145,16 @@ public:
     double dispatch(const ComputePipeline& pipeline, const std::vector<const Buffer*>& buffers,
                     const void* pushConstants, std::uint64_t invocations);
 
+    // ---- the driver's ray tracing (DeviceInfo::rayQuery; device/acceleration_structure.h) ----
+    VkDevice device() const { return device_; }
+    // A DEVICE_LOCAL buffer with a device address (builds and kernels take addresses), `usage`
+    // besides; upload() fills it. Not bound as a storage buffer, so not limited to one binding.
+    Buffer createAddressedBuffer(VkDeviceSize size, VkBufferUsageFlags usage);
+    VkDeviceAddress deviceAddress(const Buffer& buffer) const;
+    // Records `commands` into one command buffer between two timestamps, submits it and waits;
+    // returns their GPU time in ms (-1 where unsupported).
+    double runTimed(const std::function<void(VkCommandBuffer)>& commands);
+
     // Messages of the validation layer (warnings and errors) since creation.
     const std::vector<std::string>& validationMessages() const { return messages_; }
 
@@ -146,8 +162,9 @@ private:
     std::uint32_t findMemoryType(std::uint32_t typeBits, VkMemoryPropertyFlags required,
                                  VkMemoryPropertyFlags preferred) const;
     Buffer createBuffer(VkDeviceSize size, VkBufferUsageFlags usage,
-                        VkMemoryPropertyFlags required, VkMemoryPropertyFlags preferred);
+                        VkMemoryPropertyFlags required, VkMemoryPropertyFlags preferred, bool deviceAddress = false);
     void submitAndWait(VkCommandBuffer cmd);
+    double intervalMs(std::uint64_t start, std::uint64_t end) const;  // two timestamps' ticks apart, in ms
     VkCommandBuffer beginOneShot();
     void copyBuffer(VkBuffer from, VkBuffer to, VkDeviceSize size, bool toDevice);
 

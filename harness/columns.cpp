@@ -100,9 +100,9 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
             add(std::string("camera_target_") + axis, K::Count, "scene units", std::string("the camera's point looked at, ") + axis);
             s.back().since = 5;
         }
-        add("structure_bytes", K::Count, "bytes", "device memory of the structure (its buffers, triangle vertices included)");
+        add("structure_bytes", K::Count, "bytes", "device memory of the structure (its buffers, triangle vertices included; the driver's: its two levels' storage)");
         add("structure_bytes_per_triangle", K::Count, "bytes", "structure_bytes / scene_triangles");
-        add("structure_build_ms", K::Timing, "ms", "CPU build time of the structure");
+        add("structure_build_ms", K::Timing, "ms", "CPU build time of the structure (the driver's: its builds on the device, GPU timestamps)");
         add("predicted_work_per_ray", K::Count, "operations",
             "cost model: cells or nodes visited + triangles tested per ray, predicted from the structure alone (SAH-style, no early termination)");
         // Each structure's and strategy's own columns (methods/registry.cpp), written only by its runs.
@@ -224,7 +224,7 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         for (const StrategyType* t : strategyTypes()) addMethodColumns("strategy.type", t->name, t->columns);
         // Self-checks (a mismatch fails the run).
         add("cpu_reference_mismatches", K::Count, "rays",
-            "rays whose GPU hit record differs from the CPU reference's");
+            "rays whose GPU hit record differs from the CPU reference's (empty for the driver's ray query: another's arithmetic, judged by the exact reference)");
         add("cpu_counts_match", K::Count, "",
             "1 when pass and lane counts equal the CPU reference's (lane counts only on a device whose subgroups run "
             "in lock step; empty for branching elsewhere, where they are not compared)");

@@ -207,7 +207,8 @@ int main(int argc, char** argv) {
                           << " bytes, maxComputeWorkGroupCount[0] " << d.maxWorkGroupCountX << ", push constants "
                           << d.maxPushConstantsSize << " bytes\n  device-local heap " << d.deviceLocalBytes
                           << " bytes, timestamps " << (d.timestampsSupported ? "yes" : "no") << " (period "
-                          << d.timestampPeriodNs << " ns)\n";
+                          << d.timestampPeriodNs << " ns)\n  ray query (VK_KHR_ray_query): "
+                          << (d.rayQuery ? "yes" : "no, missing " + d.rayQueryMissing) << "\n";
             return 0;
         }
         if (*merge) {

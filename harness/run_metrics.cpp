@@ -18,6 +18,7 @@ constexpr double kPixelDifferThreshold = 0.5 / 255.0;
 
 void writeArchitectureColumns(const ArchitectureMetrics& m, const Structure& structure, std::uint64_t rays, Row& row) {
     const WorkStats& w = m.work;
+    if (!m.countsKnown) return;  // left empty: not zero
     structure.writeWorkColumns(w.cellsPerRayMean, w.cellsPerRayMax, m.bytes.cells, row);
     row["work_per_ray_mean"] = formatNumber(double(w.cellsTotal + w.trianglesTotal) / double(rays));
     row["triangles_per_ray_mean"] = formatNumber(w.trianglesPerRayMean);

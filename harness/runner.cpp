@@ -113,6 +113,9 @@ std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunC
     const StructureType& structureKind = structureType(run.getString("structure.type"));
     const StrategyType& strategy = strategyType(run.getString("strategy.type"));
     const RayType& rayKind = rayType(run.getString("rays.type"));
+    refuseUnpaired(structureKind, strategy);
+    if (strategy.refusal)
+        if (const std::string why = strategy.refusal(vk.info()); !why.empty()) throw Error(why);
 
     // Scene and rays. Refuse before allocating: the per-ray buffers on the device, together (a
     // binding holds one batch: the strategies trace a longer stream in batches, and check the
@@ -138,6 +141,7 @@ std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunC
     Structure& structure = *p->structure;
     structure.setTriangleTest(run.getString("intersection.test") == "watertight" ? gpu::kTriangleTestWatertight
                                                                                  : gpu::kTriangleTestMollerTrumbore);
+    structure.buildOnDevice(vk);
 
     // Workload: the batch of rays the run measures (rays.type), from the camera rays and, after
     // the first hit, from the structure's hits of them.
@@ -165,7 +169,7 @@ std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunC
     timing.workgroupSize = unsigned(run.getInt("strategy.workgroup_size"));
     timing.warmups = timing.repetitions = 0;  // timed in rounds with Embree
     p->method = strategy.run(vk, structure, batch, run, timing, row);
-    row["cpu_reference_mismatches"] = std::to_string(p->method.cpuMismatches);
+    row["cpu_reference_mismatches"] = p->method.cpuCompared ? std::to_string(p->method.cpuMismatches) : "";
     refuseForeignTriangles(p->method.hits, mesh.triangles.size());
     row["cpu_counts_match"] = !p->method.countsCompared ? "" : p->method.countsMismatch.empty() ? "1" : "0";
     writeArchitectureColumns(p->method.metrics, structure, rays.size(), row);
@@ -307,7 +311,7 @@ Json contextJson(const ExperimentPlan& plan, const RunnerOptions& options, const
         j["devices"].push_back({{"name", d.name}, {"driver", d.driver}, {"api", d.apiVersion}, {"type", d.type},
                                 {"subgroup_size", d.subgroupSize}, {"lock_step_subgroups", d.lockStepSubgroups},
                                 {"max_storage_buffer_range", d.maxStorageBufferRange},
-                                {"timestamp_period_ns", d.timestampPeriodNs}});
+                                {"timestamp_period_ns", d.timestampPeriodNs}, {"ray_query", d.rayQuery}});
     }
     j["plan"] = Json::array();
     for (const RunConfig& run : plan.runs)

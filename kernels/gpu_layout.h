@@ -225,6 +225,14 @@ struct PassLogEntry {
                       //          w: rays the pass was dispatched for (its input list; setup: the stream)
 };
 
+// The driver's ray query (methods/ray_query/kernels/ray_query.comp): binds kBindingRays and
+// kBindingHits only; its push constants.
+struct RayQueryParams {
+    uvec4 stream;      // byte 0: x = ray count, y = kQuery*, zw unused
+    uint64 topLevel;   // byte 16: the top-level acceleration structure's device address
+    uint64 unused;     // byte 24
+};
+
 RTBENCH_CONST kNoHit = 0xFFFFFFFFu;
 
 #ifdef __cplusplus
@@ -240,6 +248,7 @@ static_assert(sizeof(Material) == 48);
 static_assert(sizeof(PassCounters) == 96);
 static_assert(sizeof(PassControl) == 80);
 static_assert(sizeof(PassLogEntry) == 64);
+static_assert(sizeof(RayQueryParams) == 32 && offsetof(RayQueryParams, topLevel) == 16);
 static_assert(offsetof(PassControl, listCounts) == 32 && offsetof(PassControl, current) == 48 &&
               offsetof(PassControl, status) == 64 && offsetof(PassLogEntry, kindLists) == 48);
 }  // namespace rtbench::gpu

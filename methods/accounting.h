@@ -35,6 +35,7 @@ struct ArchitectureMetrics {
     double simdEfficiency = 0.0;
     Bandwidth bytes;
     WorkStats work;  // per-ray counters of the run's hit records
+    bool countsKnown = true;  // false: the method counts no work (the driver's ray query); only work.hits is set
 };
 
 // Branching: one pass; SIMD efficiency = active lanes / lane slots over subgroup ballots.

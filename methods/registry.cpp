@@ -8,19 +8,22 @@
 #include "methods/megakernel/megakernel_strategy.h"
 #include "methods/multipass/multipass_strategy.h"
 #include "methods/persistent/persistent_strategy.h"
+#include "methods/ray_query/driver_structure.h"
+#include "methods/ray_query/ray_query_strategy.h"
 #include "structures/error.h"
 
 namespace rtbench {
 
 const std::vector<const StructureType*>& structureTypes() {
     static const std::vector<const StructureType*> types = {&gridStructureType(), &bvhStructureType(), &bruteStructureType(),
-                                                                  &autoStructureType()};
+                                                                  &autoStructureType(), &driverStructureType()};
     return types;
 }
 
 const std::vector<const StrategyType*>& strategyTypes() {
     static const std::vector<const StrategyType*> types = {&branchingStrategyType(), &multipassStrategyType(),
-                                                                 &persistentStrategyType(), &megakernelStrategyType()};
+                                                                 &persistentStrategyType(), &megakernelStrategyType(),
+                                                                 &rayQueryStrategyType()};
     return types;
 }
 
@@ -38,5 +41,14 @@ const Type& byName(const std::vector<const Type*>& types, const std::string& nam
 
 const StructureType& structureType(const std::string& name) { return byName(structureTypes(), name, "structure.type"); }
 const StrategyType& strategyType(const std::string& name) { return byName(strategyTypes(), name, "strategy.type"); }
+
+void refuseUnpaired(const StructureType& structure, const StrategyType& strategy) {
+    if (!structure.onlyStrategy.empty() && structure.onlyStrategy != strategy.name)
+        throw Error("structure.type = " + structure.name + " is traced only by strategy.type = " + structure.onlyStrategy +
+                    ", not " + strategy.name);
+    if (!strategy.onlyStructure.empty() && strategy.onlyStructure != structure.name)
+        throw Error("strategy.type = " + strategy.name + " traces only structure.type = " + strategy.onlyStructure + ", not " +
+                    structure.name);
+}
 
 }  // namespace rtbench

@@ -55,6 +55,7 @@ struct StrategyRun {
     std::unique_ptr<KernelTimer> timer;  // times the kernels again, uninstrumented
     ArchitectureMetrics metrics;
     std::uint64_t cpuMismatches = 0;     // rays whose record differs from the CPU reference's
+    bool cpuCompared = true;             // false: another's arithmetic (the driver's), judged by the exact reference only
     std::string countsMismatch;          // what of the pass or lane counts differs ("" if none)
     bool countsCompared = true;          // false: the device's counts are not the model's to judge (branching's lanes off lock step)
     std::uint64_t branchingMismatches = 0;  // multipass: rays whose record differs from rtTrace's
@@ -71,6 +72,10 @@ struct StrategyType {
     std::vector<ColumnSpec> columns;  // written only by its runs
     // Whether it keeps per-ray traversal state on the device (sizes the buffers before allocating).
     bool perRayState = false;
+    std::string onlyStructure;  // the one structure.type it can trace ("": any)
+    // Why a device cannot run it ("" when it can; null: any device that runs rtbench can): the
+    // run fails with this before anything is loaded.
+    std::string (*refusal)(const DeviceInfo& device) = nullptr;
     // Uploads, runs one instrumented run of the batch's query (and the timed repetitions `timing`
     // asks for), compares with its CPU model, writes its own columns to `row`, returns its timer.
     StrategyRun (*run)(VulkanContext& vk, const Structure& structure, const RayBatch& batch, const RunConfig& config,

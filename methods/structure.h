@@ -78,8 +78,12 @@ public:
     // The lattice its vertex buffer is packed to (bits 0: float vertices; methods/triangle_store.h).
     virtual const VertexLattice& vertexLattice() const = 0;
 
+    // A structure the device builds (the driver's: methods/ray_query) builds it here, after the
+    // CPU build and before any strategy runs; the others have nothing to do.
+    virtual void buildOnDevice(VulkanContext&) {}
+
     std::uint64_t memoryBytes = 0;  // everything the structure uploads
-    double buildMs = 0.0;           // CPU build time
+    double buildMs = 0.0;           // build time (CPU; the driver's: its builds on the device)
 
 private:
     std::uint32_t triangleTest_ = gpu::kTriangleTestMollerTrumbore;
@@ -91,6 +95,7 @@ struct StructureType {
     std::string help;
     std::vector<KeySpec> keys;        // read only when structure.type is this name
     std::vector<ColumnSpec> columns;  // written only by its runs
+    std::string onlyStrategy;         // the one strategy.type that can trace it ("": any)
     // Builds the structure for a scene and the rays it will trace; refuses (throws rtbench::Error
     // naming the size and the limit) before allocating what the device could not hold.
     std::unique_ptr<Structure> (*build)(const TriangleMesh& mesh, const std::vector<gpu::Ray>& rays, const RunConfig& run,

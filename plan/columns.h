@@ -61,7 +61,10 @@ struct ColumnSpec {
 //        batch's rays.
 //  13  + multipass with the oracle on the device (strategy.control, bytes_compaction,
 //        kernel_ms_oracle); the oracle's threshold in fixed point (floor(t * 2^31)).
-constexpr int kSchemaVersion = 13;
+//  14  + the driver's acceleration structure and ray query (structure.type = driver, strategy.type =
+//        ray_query, driver_*); cpu_reference_mismatches and the work columns empty where a method
+//        counts no work.
+constexpr int kSchemaVersion = 14;
 
 // The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".
 std::string paramColumn(const std::string& key);

@@ -23,3 +23,35 @@ install_missing() {  # TAG PACKAGE...
   $sudo_cmd apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 }
+
+# Lavapipe with the driver's ray tracing (Mesa 24.1 or later), for the ray-query tests only
+# (tests/CMakeLists.txt names it to the Vulkan loader through VK_ICD_FILENAMES): Debian's
+# bookworm-backports mesa-vulkan-drivers, fetched by apt with a private source list and state
+# (the archive's signature and the package's hash checked; nothing on the system changes) and
+# unpacked into DEST, never installed. Debian 12's own lavapipe (Mesa 22.3) stays the device of
+# every other test and of the results. Idempotent: nothing is fetched when DEST has it.
+fetch_ray_query_lavapipe() {  # DEST
+  local dest=$1
+  [ -f "$dest/lvp_icd.json" ] && [ -f "$dest/libvulkan_lvp.so" ] && return 0
+  local tmp
+  tmp=$(mktemp -d)
+  mkdir -p "$tmp/lists/partial" "$tmp/cache/archives/partial"
+  echo "deb [signed-by=/usr/share/keyrings/debian-archive-keyring.gpg] http://deb.debian.org/debian bookworm-backports main" \
+    >"$tmp/sources.list"
+  local apt_private=(-o "Dir::Etc::SourceList=$tmp/sources.list" -o Dir::Etc::SourceParts=/nonexistent
+    -o "Dir::State::Lists=$tmp/lists" -o "Dir::Cache=$tmp/cache" -o APT::Sandbox::User="$(id -un)")
+  echo "[ray-query lavapipe] fetching mesa-vulkan-drivers from Debian's bookworm-backports into $dest"
+  if ! apt-get "${apt_private[@]}" update -qq || ! (cd "$tmp" && apt-get "${apt_private[@]}" download -qq mesa-vulkan-drivers/bookworm-backports); then
+    rm -rf "$tmp"
+    echo "[ray-query lavapipe] could not fetch mesa-vulkan-drivers from bookworm-backports (deb.debian.org)" >&2
+    return 1
+  fi
+  dpkg-deb -x "$tmp"/mesa-vulkan-drivers_*.deb "$tmp/root"
+  mkdir -p "$dest"
+  cp "$tmp/root/usr/lib/x86_64-linux-gnu/libvulkan_lvp.so" "$dest/libvulkan_lvp.so.part"
+  mv "$dest/libvulkan_lvp.so.part" "$dest/libvulkan_lvp.so"
+  basename "$tmp"/mesa-vulkan-drivers_*.deb >"$dest/package"
+  printf '{"file_format_version": "1.0.0", "ICD": {"library_path": "%s", "api_version": "1.3.0"}}\n' \
+    "$(cd "$dest" && pwd)/libvulkan_lvp.so" >"$dest/lvp_icd.json"
+  rm -rf "$tmp"
+}

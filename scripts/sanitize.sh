@@ -19,6 +19,7 @@ build=build-asan
 jobs=${JOBS:-$(nproc)}
 mkdir -p "$build"
 printf '*\n' >"$build/.gitignore"  # the whole folder stays out of git
+fetch_ray_query_lavapipe "$build/lavapipe-ray-query"
 cmake -S . -B "$build" -DRTBENCH_SANITIZE=ON -DRTBENCH_WITH_OIIO="${RTBENCH_WITH_OIIO:-ON}" \
   -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g -DNDEBUG" >"$build/configure.log" ||
   { cat "$build/configure.log" >&2; exit 1; }
@@ -45,7 +46,10 @@ export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:strict_string_checks=1:detec
 export LSAN_OPTIONS="${LSAN_OPTIONS:-suppressions=$supp:print_suppressions=0}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 status=0
-(cd "$build" && ctest --output-on-failure -j"$jobs" --timeout 1800 "$@") || status=$?
+# The ray-query tests load the other lavapipe (tests/CMakeLists.txt); it is the one kept loaded for them.
+(cd "$build" && ctest --output-on-failure -j"$jobs" --timeout 1800 -E '^ray_query_lavapipe[.]' "$@") || status=$?
+(cd "$build" && LD_PRELOAD="$PWD/lavapipe-ray-query/libvulkan_lvp.so${LD_PRELOAD#"$lavapipe"}" \
+  ctest --output-on-failure -j"$jobs" --timeout 1800 -R '^ray_query_lavapipe[.]' "$@") || status=$?
 end=$(date +%s)
 echo "[sanitize] build $((built - start)) s, tests $((end - built)) s, total $((end - start)) s"
 if [ "$status" -ne 0 ]; then

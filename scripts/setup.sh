@@ -9,6 +9,8 @@ cd "$(dirname "$0")/.."
 source scripts/packages.sh
 install_missing setup "${rtbench_packages[@]}"
 
+fetch_ray_query_lavapipe build/lavapipe-ray-query
+
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DRTBENCH_WITH_OIIO="${RTBENCH_WITH_OIIO:-ON}" >/dev/null
 if ! cmake --build build -j"$(nproc)" >build/build.log 2>&1; then
   grep -E -A5 "error|Error" build/build.log | head -60 >&2

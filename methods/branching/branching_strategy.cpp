@@ -188,9 +188,8 @@ StrategyRun judgeWholeTraversal(VulkanContext& vk, const Structure& structure, c
 
 ColumnSpec streamBatchesColumn() {
     return {"stream_batches", ColumnKind::Count, "dispatches",
-            "branching, persistent, megakernel: dispatches the ray stream ran in, each of whole workgroups, one after "
-            "another (more than 1 when one binding cannot hold its ray or hit records: wholeTraversalBatchRays); "
-            "records and counts are as of one", 0.0, false, {}, 13};
+            "branching, persistent, megakernel, ray_query: dispatches the ray stream ran in, each of whole workgroups, one "
+            "after another (more than 1 when one binding cannot hold its ray or hit records); records and counts are as of one", 0.0, false, {}, 13};
 }
 
 const std::vector<ColumnSpec>& wholeTraversalColumns() {

@@ -1,0 +1,24 @@
+// The driver's own ray tracing as a peer method (strategy.type = "ray_query"): one invocation per
+// ray asks VK_KHR_ray_query for the query's answer over the driver's acceleration structure
+// (structure.type = "driver"), in methods/ray_query/kernels/ray_query.comp. The driver's
+// arithmetic is not rtbench's: its hits are judged against the exact reference and Embree, as
+// Embree's are, not bit for bit against a CPU re-implementation, and it counts no work.
+#pragma once
+#include "methods/strategy.h"
+
+namespace rtbench {
+
+const StrategyType& rayQueryStrategyType();
+
+// Why `device` cannot run the driver's ray query ("" when it can): the run fails at once with it.
+std::string rayQueryRefusal(const DeviceInfo& device);
+
+// Hits the driver reports outside the query's interval [tMin, tMax) of their ray, or a miss
+// whose distance is not kNoHitT: rays whose record cannot be an answer, and the first of them.
+struct ImpossibleHits {
+    std::uint64_t rays = 0;
+    std::uint64_t first = 0;
+};
+ImpossibleHits impossibleHits(const std::vector<gpu::Ray>& rays, const std::vector<gpu::HitRecord>& hits);
+
+}  // namespace rtbench
