@@ -46,10 +46,10 @@ export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:strict_string_checks=1:detec
 export LSAN_OPTIONS="${LSAN_OPTIONS:-suppressions=$supp:print_suppressions=0}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}"
 status=0
-# The ray-query tests load the other lavapipe (tests/CMakeLists.txt); it is the one kept loaded for them.
-(cd "$build" && ctest --output-on-failure -j"$jobs" --timeout 1800 -E '^ray_query_lavapipe[.]' "$@") || status=$?
+# The *Lavapipe25 tests load the other lavapipe (tests/CMakeLists.txt); it is the one kept loaded for them.
+(cd "$build" && ctest --output-on-failure -j"$jobs" --timeout 1800 -E '^lavapipe25[.]' "$@") || status=$?
 (cd "$build" && LD_PRELOAD="$PWD/lavapipe-ray-query/libvulkan_lvp.so${LD_PRELOAD#"$lavapipe"}" \
-  ctest --output-on-failure -j"$jobs" --timeout 1800 -R '^ray_query_lavapipe[.]' "$@") || status=$?
+  ctest --output-on-failure -j"$jobs" --timeout 1800 -R '^lavapipe25[.]' "$@") || status=$?
 end=$(date +%s)
 echo "[sanitize] build $((built - start)) s, tests $((end - built)) s, total $((end - start)) s"
 if [ "$status" -ne 0 ]; then

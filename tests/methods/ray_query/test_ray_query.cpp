@@ -1,7 +1,7 @@
 // The driver's ray query (methods/ray_query). Two suites:
 // - RayQueryRefusal: on any device. Debian 12's lavapipe (Mesa 22.3) lacks VK_KHR_ray_query, so
 //   there the run fails at once saying so; the pairing of the driver's structure with its strategy.
-// - RayQueryLavapipe: on lavapipe 24.1 or later, which has the driver's ray tracing. CTest runs
+// - RayQueryLavapipe25: on lavapipe 24.1 or later, which has the driver's ray tracing. CTest runs
 //   this suite alone under VK_ICD_FILENAMES naming Debian's bookworm-backports lavapipe, unpacked
 //   into the build folder by scripts/setup.sh (tests/CMakeLists.txt). It fails, never skips,
 //   where that device lacks ray query.
@@ -89,7 +89,7 @@ TEST(RayQueryRefusal, TheDriversStructureAndItsRayQueryGoOnlyTogether) {
 
 // ---- on a device with ray query (lavapipe 24.1+ from bookworm-backports in CI) ----
 
-class RayQueryLavapipe : public VulkanTest {
+class RayQueryLavapipe25 : public VulkanTest {
 protected:
     void SetUp() override {
         ASSERT_TRUE(vk_->info().rayQuery) << vk_->info().name << " (" << vk_->info().driver
@@ -123,7 +123,7 @@ TriangleMesh twoPlanes() {
                          {glm::vec3(-1, -1, 2), glm::vec3(3, -1, 2), glm::vec3(-1, 3, 2)}});
 }
 
-TEST_F(RayQueryLavapipe, HandComputedHitsAndTheIntervalsEnds) {
+TEST_F(RayQueryLavapipe25, HandComputedHitsAndTheIntervalsEnds) {
     const auto driver = driverOf(twoPlanes());
     const glm::vec3 up(0, 0, 1);
     const std::vector<gpu::Ray> rays = {
@@ -157,7 +157,7 @@ TEST_F(RayQueryLavapipe, HandComputedHitsAndTheIntervalsEnds) {
 }
 
 // Any hit: whether something lies in [tMin, tMax), not which.
-TEST_F(RayQueryLavapipe, AnyHitAnswersWhetherNotWhich) {
+TEST_F(RayQueryLavapipe25, AnyHitAnswersWhetherNotWhich) {
     const auto driver = driverOf(twoPlanes());
     const glm::vec3 up(0, 0, 1);
     const std::vector<gpu::Ray> rays = {hand::ray({0, 0, 0}, up), hand::ray({0, 0, 0}, up, 0.0f, 1.0f),
@@ -171,7 +171,7 @@ TEST_F(RayQueryLavapipe, AnyHitAnswersWhetherNotWhich) {
 
 // The driver against rtbench's exact-division BVH on scene B's camera rays: the same hit or miss
 // and the same triangle but for rays that graze an edge, distances within float rounding.
-TEST_F(RayQueryLavapipe, SceneBAgreesWithTheCpuReference) {
+TEST_F(RayQueryLavapipe25, SceneBAgreesWithTheCpuReference) {
     const TriangleMesh mesh = proceduralScene("christen_b");
     const auto driver = driverOf(mesh);
     const std::vector<gpu::Ray> rays = generatePrimaryRays(*proceduralCamera("christen_b", 70.0f), 96, 72);
@@ -187,7 +187,7 @@ TEST_F(RayQueryLavapipe, SceneBAgreesWithTheCpuReference) {
 
 // Through the runner: an ok row judged by the exact reference, counts left empty (not zero), the
 // driver's build and memory in the structure's columns; shadow rays (any hit) alike.
-TEST_F(RayQueryLavapipe, WholeRunsOfCameraAndShadowRays) {
+TEST_F(RayQueryLavapipe25, WholeRunsOfCameraAndShadowRays) {
     TempDir dir;
     const ExperimentResult result = runConfig(
         dir, std::string(kSceneB) +
