@@ -210,7 +210,20 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("traversal_steps_per_ray_max", K::Count, "steps", "traversal step attempts per ray, max");
         add("passes_total", K::Count, "passes", "kernel dispatches over the ray stream");
         add("simd_efficiency", K::Count, "fraction",
-            "useful lanes / lanes (Purcell for multipass, Aila & Laine for branching)");
+            "the strategy's own measure, as written before schema 14 (two measures in one column; read the two below): "
+            "simd_lane_utilisation for branching, persistent and the megakernel; for multipass Purcell's over the stream "
+            "(control = host) or over its compacted lists (control = device: 1)");
+        add("simd_lane_utilisation", K::Count, "fraction",
+            "branching, persistent, megakernel: active lanes / lane slots over the kernel's subgroup ballots (Aila & Laine "
+            "2009), counted only where some lane of a subgroup still works (rays that miss at once are left out)");
+        s.back().since = 14;
+        s.back().appliesWhen = {"strategy.type=branching|persistent|megakernel"};
+        add("simd_efficiency_purcell", K::Count, "fraction",
+            "Purcell et al. 2002 Table 2's SIMD efficiency, the average fraction of the stream's rays doing useful work in a "
+            "pass, misses included: multipass, rays served / (rays x traverse and intersect passes), whatever the control; "
+            "branching, persistent, megakernel, the stream run in lock step one traversal step or triangle test at a time: "
+            "sum of (steps + tests) / (rays x the most steps + tests of one ray)");
+        s.back().since = 14;
         add("bytes_stencil", K::Count, "bytes", "ray-state byte reads and writes");
         add("bytes_state", K::Count, "bytes", "per-ray state saved and restored");
         add("bytes_stack", K::Count, "bytes", "multipass: per-ray node stack saved and restored (BVH)");

@@ -27,6 +27,8 @@ void writeArchitectureColumns(const ArchitectureMetrics& m, const Structure& str
     row["traversal_steps_per_ray_max"] = std::to_string(w.stepsPerRayMax);
     row["passes_total"] = std::to_string(m.passes);
     row["simd_efficiency"] = formatNumber(m.simdEfficiency);
+    if (m.laneUtilisation >= 0) row["simd_lane_utilisation"] = formatNumber(m.laneUtilisation);
+    row["simd_efficiency_purcell"] = formatNumber(m.purcellSimdEfficiency);
     row["bytes_stencil"] = std::to_string(m.bytes.stencil);
     row["bytes_state"] = std::to_string(m.bytes.state);
     if (m.bytes.stack) row["bytes_stack"] = std::to_string(m.bytes.stack);

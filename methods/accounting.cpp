@@ -4,13 +4,19 @@
 
 namespace rtbench {
 
+double lockStepStreamEfficiency(const WorkStats& work, std::uint64_t rays) {
+    const double slots = double(rays) * double(work.workPerRayMax);
+    return slots > 0 ? double(work.stepsTotal + work.trianglesTotal) / slots : 1.0;
+}
+
 ArchitectureMetrics branchingMetrics(const std::vector<gpu::HitRecord>& hits, std::uint64_t activeLanes,
                                      std::uint64_t laneSlots, const StructureCosts& costs) {
     ArchitectureMetrics m;
     m.work = workStats(hits);
     m.passes = 1;
-    m.simdEfficiency = laneSlots ? double(activeLanes) / double(laneSlots) : 0.0;
+    m.simdEfficiency = m.laneUtilisation = laneSlots ? double(activeLanes) / double(laneSlots) : 0.0;
     const std::uint64_t rays = hits.size();
+    m.purcellSimdEfficiency = lockStepStreamEfficiency(m.work, rays);
     m.bytes.state = rays * bytes::kBranchingState;
     m.bytes.cells = m.work.cellsTotal * costs.bytesPerCellVisit;
     m.bytes.triangleList = m.work.trianglesTotal * costs.bytesPerListEntry;
@@ -33,7 +39,9 @@ ArchitectureMetrics multipassMetrics(const std::vector<gpu::HitRecord>& hits, co
     const std::uint64_t k = options.traverseStepsPerPass, mm = options.intersectionsPerPass;
     m.passesLowerBound = (m.work.stepsPerRayMax + k - 1) / k + (m.work.trianglesPerRayMax + mm - 1) / mm;
     const std::uint64_t loopPasses = m.passesTraverse + m.passesIntersect;
-    m.simdEfficiency = loopPasses ? double(counts.usefulTraverse + counts.usefulIntersect) / double(counts.streamSlots) : 1.0;
+    const double useful = double(counts.usefulTraverse + counts.usefulIntersect);
+    m.simdEfficiency = loopPasses ? useful / double(counts.streamSlots) : 1.0;
+    m.purcellSimdEfficiency = loopPasses ? useful / double(counts.wholeStreamSlots) : 1.0;
     // Every traverse and intersect pass reads the stencil byte of every ray of its stream (of its
     // batch); changes are written. With the control on the device a pass reads its compacted list
     // instead (an entry per slot) and appends each ray it leaves active to a list; the oracle

@@ -32,13 +32,27 @@ struct ArchitectureMetrics {
     std::uint64_t passes = 0;  // all dispatches
     std::uint64_t passesSetup = 0, passesTraverse = 0, passesIntersect = 0, passesWrite = 0;
     std::uint64_t passesLowerBound = 0;  // multipass only (Purcell): traverse + intersect passes
-    double simdEfficiency = 0.0;
+    double simdEfficiency = 0.0;  // the strategy's own measure (simd_efficiency, as before schema 14)
+    // Subgroup lane utilisation (Aila & Laine 2009): active lanes / lane slots over the kernel's
+    // ballots; negative where no ballots are counted (multipass).
+    double laneUtilisation = -1.0;
+    // Purcell et al. 2002 Table 2's SIMD efficiency, "the average fraction of rays doing useful work
+    // in a given pass", over the whole stream (misses included): multipass, rays served over stream
+    // rays x traverse and intersect passes; a whole-traversal kernel, the stream run in lock step one
+    // traversal step or triangle test at a time, Σ (steps + tests) / (rays x the most of one ray).
+    double purcellSimdEfficiency = 0.0;
     Bandwidth bytes;
     WorkStats work;  // per-ray counters of the run's hit records
     bool countsKnown = true;  // false: the method counts no work (the driver's ray query); only work.hits is set
 };
 
-// Branching: one pass; SIMD efficiency = active lanes / lane slots over subgroup ballots.
+// Branching: one pass; SIMD efficiency = active lanes / lane slots over subgroup ballots; Purcell's
+// over the stream in lock step (lockStepStreamEfficiency).
+// Σ (traversal steps + triangle tests) / (rays x the most of one ray): Purcell's SIMD efficiency of
+// a whole-traversal kernel whose stream runs in lock step, one step or test an iteration (1 when
+// no ray works).
+double lockStepStreamEfficiency(const WorkStats& work, std::uint64_t rays);
+
 ArchitectureMetrics branchingMetrics(const std::vector<gpu::HitRecord>& hits, std::uint64_t activeLanes,
                                      std::uint64_t laneSlots, const StructureCosts& costs);
 

@@ -46,6 +46,7 @@ WorkStats workStats(const std::vector<gpu::HitRecord>& hits) {
         w.stepsPerRayMax = std::max(w.stepsPerRayMax, h.traversalSteps);
         w.cellsPerRayMax = std::max(w.cellsPerRayMax, h.cellsVisited);
         w.trianglesPerRayMax = std::max(w.trianglesPerRayMax, h.trianglesTested);
+        w.workPerRayMax = std::max(w.workPerRayMax, h.traversalSteps + h.trianglesTested);
     }
     if (!hits.empty()) {
         w.cellsPerRayMean = double(w.cellsTotal) / double(hits.size());

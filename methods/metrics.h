@@ -33,6 +33,7 @@ struct WorkStats {
     std::uint64_t trianglesTotal = 0;
     std::uint64_t stepsTotal = 0;  // DDA step attempts
     std::uint32_t stepsPerRayMax = 0;
+    std::uint32_t workPerRayMax = 0;  // traversal steps + triangle tests of one ray, max
 };
 
 WorkStats workStats(const std::vector<gpu::HitRecord>& hits);

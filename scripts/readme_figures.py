@@ -143,8 +143,8 @@ def bunny() -> list:
             f"- The GPU's hit records and counts against its CPU reference: {count(r.cpu_reference_mismatches)} rays differ; "
             f"counts match: {'yes' if r.cpu_counts_match == 1 else 'no'}.",
             f"- Work per ray: {num(r.voxels_per_ray_mean)} voxels and {num(r.triangles_per_ray_mean)} triangle tests "
-            f"(predicted {num(r.predicted_work_per_ray)} operations, measured {num(r.work_per_ray_mean)}); SIMD efficiency "
-            f"{num(100 * r.simd_efficiency)}%; {num(r.bytes_per_ray)} bytes per ray.",
+            f"(predicted {num(r.predicted_work_per_ray)} operations, measured {num(r.work_per_ray_mean)}); subgroup lane "
+            f"utilisation {num(100 * r.simd_lane_utilisation)}%; {num(r.bytes_per_ray)} bytes per ray.",
             f"- Grid: {num(100 * r.grid_empty_fraction)}% of {count(r.grid_cells)} voxels empty, "
             f"{num(r.grid_refs_per_triangle)} references per triangle, {num(r.grid_bytes / 1e6)} MB, built in "
             f"{num(r.grid_build_ms)} ms; Embree's BVH in {num(r.embree_build_ms)} ms. The whole run: {num(r.wall_s)} s.", ""]
@@ -244,20 +244,30 @@ def structures() -> list:
 def purcell2002() -> list:
     runs, context = load("purcell2002")
     ok = runs[runs.status == "ok"].copy()
+    arch = ok[ok.sweep == "architecture"].sort_values(["scene_triangles", "strategy_type"])
+    mp = arch[arch.strategy_type == "multipass"]
+    k = ", ".join(sorted({f"K = {count(a)}, M = {count(b)}" for a, b in zip(mp.strategy_traverse_steps_per_pass,
+                                                                            mp.strategy_intersections_per_pass)}))
+    table_2 = k == "K = 1, M = 1"
     out = ["### `results/purcell2002/`: multipass against branching (Purcell et al. 2002)", "",
            provenance("purcell2002", runs, context), "",
-           "Full tables: [`results/purcell2002/tables.md`](results/purcell2002/tables.md). Multipass: K = 4 traversal "
-           "steps and M = 2 intersections per pass, oracle threshold 0.2 (Purcell's), unless swept.", ""]
-    arch = ok[ok.sweep == "architecture"].sort_values(["scene_triangles", "strategy_type"])
+           "Full tables, with Purcell's Table 2 numbers beside ours: "
+           "[`results/purcell2002/tables.md`](results/purcell2002/tables.md). Multipass in the table below: "
+           f"{k} (traversal steps, intersections per pass; " +
+           ("Purcell's Table 2 setting, one step or one test a pass" if table_2 else "not Purcell's Table 2 setting, K = M = 1") +
+           "), oracle threshold 0.2. SIMD efficiency: Purcell's (the stream's rays doing useful work per pass, misses "
+           "included; branching run in lock step one step or test at a time); lane utilisation: the branching "
+           "kernel's subgroup ballots.", ""]
     if not arch.empty:
-        out += [f"| {size(arch.iloc[0])} | passes (traverse+intersect) | lower bound | SIMD efficiency | MB moved | GPU ms | × Embree rtcIntersect1 |",
-                "|---|---|---|---|---|---|---|"]
+        out += [f"| {size(arch.iloc[0])} | passes (traverse+intersect) | lower bound | SIMD efficiency (Purcell) | lane utilisation | MB moved | GPU ms | × Embree rtcIntersect1 |",
+                "|---|---|---|---|---|---|---|---|"]
         for _, r in arch.iterrows():
             passes = "1" if r.strategy_type == "branching" else \
                 f"{count(r.passes_total)} ({count(r.passes_traverse)}+{count(r.passes_intersect)})"
+            percent = lambda v: "" if pd.isna(v) else f"{num(100 * v)}%"
             out.append(f"| {r.scene}, {r.strategy_type} | {passes} | {count(r.get('passes_lower_bound'))} | "
-                       f"{num(100 * r.simd_efficiency)}% | {num(r.bytes_total / 1e6)} | {num(r.kernel_ms_median)} | "
-                       f"{num(r.speed_ratio_vs_embree1)} |")
+                       f"{percent(r.simd_efficiency_purcell)} | {percent(r.simd_lane_utilisation)} | "
+                       f"{num(r.bytes_total / 1e6)} | {num(r.kernel_ms_median)} | {num(r.speed_ratio_vs_embree1)} |")
         slow = []
         for scene, g in arch.groupby("scene"):
             b, m = g[g.strategy_type == "branching"], g[g.strategy_type == "multipass"]
@@ -458,15 +468,18 @@ def strategies() -> list:
     failed = runs[runs.status != "ok"]
     out = ["### `results/strategies/`: execution strategies (issue 18)", "", provenance("strategies", runs, context), "",
            "Full table: [`results/strategies/tables.md`](results/strategies/tables.md). The bunny at "
-           f"{size(ok.iloc[0]) if len(ok) else '?'}; × branching is two runs' medians (no interval). SIMD efficiency: "
-           "lanes that take a step over lanes (ballots); multipass: Purcell's measure (on device, where each pass serves a "
-           "compacted list of its rays and the oracle runs on the device, 1 by construction).", "",
-           "| structure | strategy | GPU ms | × branching | SIMD eff. | state executions (megakernel) |", "|---|---|---|---|---|---|"]
+           f"{size(ok.iloc[0]) if len(ok) else '?'}; × branching is two runs' medians (no interval). SIMD eff.: Purcell's "
+           "measure for every strategy (the stream's rays doing useful work per step, misses included; a whole-traversal "
+           "kernel run in lock step one step or test at a time); lane util.: lanes that take a step over lanes (ballots).", "",
+           "| structure | strategy | GPU ms | × branching | SIMD eff. (Purcell) | lane util. | state executions (megakernel) |",
+           "|---|---|---|---|---|---|---|"]
     for r in ok.sort_values(["structure", "strategy"]).itertuples():
         executions = "" if r.strategy_type != "megakernel" else \
             f"{count(r.megakernel_runs_traverse)} + {count(r.megakernel_runs_intersect)}"
         out.append(f"| {r.structure} | {r.strategy} | {num(r.kernel_ms_median)} | "
-                   f"{num(r.kernel_ms_median / branching.get(r.structure, float('nan')), 2)} | {num(r.simd_efficiency)} | {executions} |")
+                   f"{num(r.kernel_ms_median / branching.get(r.structure, float('nan')), 2)} | "
+                   f"{'' if pd.isna(r.simd_efficiency_purcell) else num(r.simd_efficiency_purcell)} | "
+                   f"{'' if pd.isna(r.simd_lane_utilisation) else num(r.simd_lane_utilisation)} | {executions} |")
     if len(failed):
         out += ["", "Failed (each a row with its reason in `error`): " + "; ".join(
             f"{r.structure_type} {r.strategy_type}: {str(r.error).split(' (first:')[0]}" for r in failed.itertuples()) + "."]

@@ -67,10 +67,33 @@ def split_vector_cells(runs: pd.DataFrame) -> pd.DataFrame:
     return runs
 
 
+WHOLE_TRAVERSAL = ("branching", "persistent", "megakernel")
+
+
+def split_simd_measures(runs: pd.DataFrame) -> pd.DataFrame:
+    """The two SIMD measures a folder before results schema 14 kept in one column, simd_efficiency:
+    simd_lane_utilisation (the ballots' lanes) for the whole-traversal kernels, and
+    simd_efficiency_purcell (Purcell's, over the stream) for multipass with the oracle on the host;
+    what that column cannot tell (Purcell's measure of a whole-traversal kernel, multipass on the
+    device, whose old value was over its compacted lists) stays missing."""
+    if "simd_efficiency" not in runs or "strategy_type" not in runs:
+        return runs
+    strategy = runs.strategy_type.astype("string")
+    host = ~runs["strategy_control"].astype("string").eq("device").fillna(False) if "strategy_control" in runs \
+        else pd.Series(True, index=runs.index)
+    old = pd.to_numeric(runs.simd_efficiency, errors="coerce")
+    if "simd_lane_utilisation" not in runs:
+        runs["simd_lane_utilisation"] = old.where(strategy.isin(WHOLE_TRAVERSAL).fillna(False))
+    if "simd_efficiency_purcell" not in runs:
+        runs["simd_efficiency_purcell"] = old.where((strategy.eq("multipass").fillna(False)) & host)
+    return runs
+
+
 def read_runs(folder: Path) -> pd.DataFrame:
     """A folder's runs.csv with clean types: each column's pandas dtype from the folder's columns.csv
     (integers Int64, booleans boolean, text string, missing cells <NA>); a folder without one (before
-    results schema 5) gets pandas' own guesses. 3-vectors are three numeric columns either way."""
+    results schema 5) gets pandas' own guesses. 3-vectors are three numeric columns either way; the
+    SIMD measures are two columns either way (split_simd_measures)."""
     folder = Path(folder)
     dictionary = folder / "columns.csv"
     dtypes = None
@@ -78,9 +101,11 @@ def read_runs(folder: Path) -> pd.DataFrame:
         columns = pd.read_csv(dictionary, dtype="string", keep_default_na=False)
         dtypes = {c: DTYPES[t] for c, t in zip(columns.column, columns.type)} if "type" in columns else None
     if dtypes is None:
-        return split_vector_cells(pd.read_csv(folder / "runs.csv", dtype={"run": "string", "config_hash": "string"}))
-    header = pd.read_csv(folder / "runs.csv", nrows=0).columns
-    return split_vector_cells(pd.read_csv(folder / "runs.csv", dtype={c: dtypes.get(c, "string") for c in header}))
+        runs = pd.read_csv(folder / "runs.csv", dtype={"run": "string", "config_hash": "string"})
+    else:
+        header = pd.read_csv(folder / "runs.csv", nrows=0).columns
+        runs = pd.read_csv(folder / "runs.csv", dtype={c: dtypes.get(c, "string") for c in header})
+    return split_simd_measures(split_vector_cells(runs))
 
 
 def with_vector_text(runs: pd.DataFrame) -> pd.DataFrame:

@@ -50,6 +50,7 @@ MultipassCounts& MultipassCounts::operator+=(const MultipassCounts& batch) {
     stencilWrites += batch.stencilWrites, structureReads += batch.structureReads, triangleReads += batch.triangleReads;
     sequence.insert(sequence.end(), batch.sequence.begin(), batch.sequence.end());
     streamSlots += batch.streamSlots;
+    wholeStreamSlots += batch.wholeStreamSlots;
     listAppends += batch.listAppends;
     return *this;
 }
@@ -62,8 +63,10 @@ MultipassCounts runPassLoop(const MultipassOptions& options, std::uint64_t cap, 
     auto run = [&](PassKind kind) {
         const PassSums sums = pass(kind);
         ++counts.passes[static_cast<int>(kind)];
-        if (kind == PassKind::Traverse || kind == PassKind::Intersect)
+        if (kind == PassKind::Traverse || kind == PassKind::Intersect) {
             counts.streamSlots += !options.deviceControl ? rays : kind == PassKind::Traverse ? traversing : waiting;
+            counts.wholeStreamSlots += rays;
+        }
         counts.listAppends += sums.traversing + sums.waiting;
         counts.sequence.push_back(kind);
         if (kind == PassKind::Traverse) counts.usefulTraverse += sums.useful;

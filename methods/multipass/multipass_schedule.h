@@ -78,6 +78,9 @@ struct MultipassCounts {
     // rays served by it; every slot reads its ray's stencil byte. With the control on the device a
     // pass is dispatched over its compacted list instead: its slots are the list's rays, each read.
     std::uint64_t streamSlots = 0;
+    // The same over the whole stream (its batch's) whatever the control: Purcell's SIMD
+    // efficiency's denominator, misses included (equal to streamSlots under the host's control).
+    std::uint64_t wholeStreamSlots = 0;
     // Rays a pass (setup included) left active, summed: with the control on the device, the
     // entries appended to the ray lists.
     std::uint64_t listAppends = 0;

@@ -386,11 +386,11 @@ const StrategyType& multipassStrategyType() {
         t.help = "a pass per traverse/intersect step with a ray-state stencil and an oracle (Purcell et al. 2002 §3.2)";
         t.perRayState = true;
         t.keys = {
-            {"strategy.traverse_steps_per_pass", ValueType::Int, "multipass: traversal steps per traverse pass (loop unrolling; Purcell used 4)", std::int64_t(1), false, 1, 64},
-            {"strategy.intersections_per_pass", ValueType::Int, "multipass: triangle tests per intersect pass (Purcell used 2)", std::int64_t(1), false, 1, 64},
+            {"strategy.traverse_steps_per_pass", ValueType::Int, "multipass: traversal steps per traverse pass, K (Purcell 2002: 1 in Table 2 and Figs. 7-8; 4 in his loop-unrolling experiment, §4.2)", std::int64_t(1), false, 1, 64},
+            {"strategy.intersections_per_pass", ValueType::Int, "multipass: triangle tests per intersect pass, M (Purcell 2002: 1 in Table 2 and Figs. 7-8; 2 in his loop-unrolling experiment, §4.2)", std::int64_t(1), false, 1, 64},
             {"strategy.suppress_finished_reads", ValueType::Bool, "multipass: rays that finish mid-pass skip the unrolled rest's reads", false},
-            {"strategy.scheduling", ValueType::String, "multipass: oracle (threshold on the waiting fraction) or naive (traverse until none traverses, then intersect until none waits)", std::string("oracle"), false, -1e300, 1e300, {"oracle", "naive"}},
-            {"strategy.oracle_threshold", ValueType::Float, "multipass: intersect when waiting / active rays >= this (0: as soon as any waits; Purcell: 0.2)", 0.2, false, 0, 1, {}, {"strategy.scheduling=oracle"}},
+            {"strategy.scheduling", ValueType::String, "multipass: oracle (threshold on the waiting fraction) or naive, Christen 2005 §5.6's naive sequencing (traverse until none traverses, then intersect until none waits; not Purcell's \"naive algorithm\", which is oracle_threshold = 0)", std::string("oracle"), false, -1e300, 1e300, {"oracle", "naive"}},
+            {"strategy.oracle_threshold", ValueType::Float, "multipass: intersect when waiting / active rays >= this (0: as soon as any waits, Purcell 2002's \"naive algorithm\"; 0.2: his \"20% of the rays\", read as 20% of the active rays)", 0.2, false, 0, 1, {}, {"strategy.scheduling=oracle"}},
             {"strategy.max_passes", ValueType::Int, "multipass: pass cap (0: derived from the structure); reaching it fails the run", std::int64_t(0), false, 0, 1e9},
             {"strategy.control", ValueType::String, "multipass: who runs the oracle. host: the CPU reads the ray-state counts back after every pass and each pass walks the whole stream through the stencil (Purcell's and Christen's loop); device: an oracle kernel chooses the next pass and writes its indirect dispatch, and each pass serves a compacted list of its rays, with no host round trip per pass", std::string("host"), false, -1e300, 1e300, {"host", "device"}},
             {"strategy.batch_rays", ValueType::Int, "multipass: rays per batch, each its own pass loop (0: as many as one binding holds, maxStorageBufferRange over the largest per-ray record)", std::int64_t(0), false, 0, 1e12},

@@ -117,5 +117,20 @@ TEST(WorkStats, MeansAndMaximaOverRays) {
     EXPECT_EQ(w.stepsTotal, 9u);
 }
 
+// The two SIMD measures by hand. Ray 0 takes 3 steps and 4 tests (7 iterations), ray 1 6 steps
+// (6), ray 2 nothing: in lock step the stream runs 7 iterations over 3 rays, 21 slots of which
+// 3 + 4 + 6 = 13 work (Purcell's measure); the ballots' lanes are another count altogether.
+TEST(SimdEfficiency, PurcellsOverTheStreamInLockStepAndTheLaneUtilisationApart) {
+    std::vector<gpu::HitRecord> hits = {hit(0, 1.0f, 3, 4), hit(gpu::kNoHit, 0, 6, 0), hit(gpu::kNoHit, 0, 0, 0)};
+    const WorkStats w = workStats(hits);
+    EXPECT_EQ(w.workPerRayMax, 7u);
+    EXPECT_DOUBLE_EQ(lockStepStreamEfficiency(w, hits.size()), 13.0 / 21.0);
+    const ArchitectureMetrics m = branchingMetrics(hits, 30, 48, StructureCosts{});
+    EXPECT_DOUBLE_EQ(m.laneUtilisation, 30.0 / 48.0);
+    EXPECT_DOUBLE_EQ(m.simdEfficiency, 30.0 / 48.0);
+    EXPECT_DOUBLE_EQ(m.purcellSimdEfficiency, 13.0 / 21.0);
+    EXPECT_DOUBLE_EQ(lockStepStreamEfficiency(workStats({hit(gpu::kNoHit, 0, 0, 0)}), 1), 1.0);  // no work: nothing idles
+}
+
 }  // namespace
 }  // namespace rtbench

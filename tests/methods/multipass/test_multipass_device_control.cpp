@@ -78,6 +78,9 @@ TEST_F(MultipassDeviceControl, HandCountedPassesListsAndBytes) {
     EXPECT_EQ(r.hits[2].primitive, 4u);
     const ArchitectureMetrics m = multipassMetrics(r.hits, r.counts, o, gridStructure(grid)->costs());
     EXPECT_DOUBLE_EQ(m.simdEfficiency, 1.0);  // every slot of a compacted pass is a ray it serves
+    EXPECT_EQ(r.counts.wholeStreamSlots, 7u * 3u);  // Purcell's over the whole stream: as the host loop's
+    EXPECT_DOUBLE_EQ(m.purcellSimdEfficiency, 8.0 / 21.0);
+    EXPECT_LT(m.laneUtilisation, 0.0);  // no ballots counted
     EXPECT_EQ(m.bytes.stencil, 7u);           // writes only: no pass reads the stencil
     EXPECT_EQ(m.bytes.compaction, (8u + 8u) * 4u);
     EXPECT_EQ(m.bytes.state, 3u * 80u + 2u * 112u + 6u * 128u + 3u * 16u);  // as with the stencil

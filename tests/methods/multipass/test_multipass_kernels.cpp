@@ -68,7 +68,8 @@ TEST_F(MultipassKernels, HandCountedPassesWithThresholdZero) {
     const ArchitectureMetrics m = multipassMetrics(r.hits, r.counts, oracle(0.0), gridStructure(grid)->costs());
     EXPECT_EQ(m.passes, 9u);
     EXPECT_EQ(m.passesLowerBound, 2u + 3u);  // max steps / K + max tests / M
-    EXPECT_DOUBLE_EQ(m.simdEfficiency, 8.0 / 21.0);
+    EXPECT_DOUBLE_EQ(m.simdEfficiency, 8.0 / 21.0);  // 8 rays served in 7 loop passes over 3 rays
+    EXPECT_DOUBLE_EQ(m.purcellSimdEfficiency, 8.0 / 21.0);
     EXPECT_EQ(m.bytes.stencil, 7u * 3u + 7u);
     EXPECT_EQ(m.bytes.cells, 14u * 4u);
     EXPECT_EQ(m.bytes.triangleList, 6u * 4u);
