@@ -59,6 +59,7 @@ RTBENCH_CONST kSpecOracleThreshold = 15; // multipass oracle kernel: floor(oracl
 RTBENCH_CONST kSpecNaive = 16;           // multipass oracle kernel: 1 = Christen's naive schedule
 RTBENCH_CONST kSpecPassCap = 17;         // multipass oracle kernel: the pass cap (multipassPassCap)
 RTBENCH_CONST kSpecMaxGroupsX = 18;      // multipass oracle kernel: maxComputeWorkGroupCount[0]
+RTBENCH_CONST kSpecOracleAllRays = 19;   // multipass oracle kernel: 1 = the threshold's basis is the stream's rays (oracle_basis = all)
 
 // ---- megakernel schedules (methods/megakernel/megakernel.comp; Parker et al. 2013 §5.1-5.2) ----
 RTBENCH_CONST kScheduleSwitch = 0;          // each lane runs its own state: the subgroup runs every state present, one after another

@@ -63,7 +63,8 @@ struct ColumnSpec {
 //        kernel_ms_oracle); the oracle's threshold in fixed point (floor(t * 2^31)).
 //  14  + the driver's acceleration structure and ray query (structure.type = driver, strategy.type =
 //        ray_query, driver_*); cpu_reference_mismatches and the work columns empty where a method
-//        counts no work.
+//        counts no work; the two SIMD measures apart (simd_efficiency_purcell,
+//        simd_lane_utilisation); strategy.oracle_basis.
 constexpr int kSchemaVersion = 14;
 
 // The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".

@@ -12,6 +12,7 @@ layout(constant_id = kSpecOracleThreshold) const uint oracleThresholdQ31 = 0u;
 layout(constant_id = kSpecNaive) const uint naiveSchedule = 0u;
 layout(constant_id = kSpecPassCap) const uint passCap = 0xFFFFFFFFu;
 layout(constant_id = kSpecMaxGroupsX) const uint maxGroupsX = 65535u;
+layout(constant_id = kSpecOracleAllRays) const uint oracleAllRays = 0u;
 
 // Workgroups for `rays` invocations: one row when they fit maxGroupsX, else the fewest rows of
 // the fewest groups (device/vulkan_context.h workgroupGrid).
@@ -47,7 +48,8 @@ void main() {
     passLog[(passes - 1u) % kPassLogEntries] = entry;  // a ring: the host reads it after every submission
 
     uint phase = max(control.status.x, kPassTraverse);  // all zeros: the naive schedule starts traversing
-    uint next = mpNextPass(traversing, waiting, phase, oracleThresholdQ31, naiveSchedule != 0u);
+    uint next = mpNextPass(traversing, waiting, phase, oracleThresholdQ31, naiveSchedule != 0u,
+                           oracleAllRays != 0u ? rtRayCount() : 0u);
     bool capped = next != kPassWrite && passes >= passCap;  // as runPassLoop: the cap counts setup
     bool overflow = traversing > rtRayCount() || waiting > rtRayCount();  // a list holds more rays than the stream: a bug
     bool ended = next == kPassWrite || capped || overflow;

@@ -1,5 +1,6 @@
 // Which pass runs next, from the rays active in each state after the last one: Purcell et al.
-// 2002 §3.2's oracle (intersect once waiting / active >= the threshold) and Christen 2005 §5.6's
+// 2002 §3.2's oracle (intersect once waiting / active >= the threshold, or waiting / the stream's
+// rays with strategy.oracle_basis = all) and Christen 2005 §5.6's
 // naive schedule (traverse until no ray traverses, then intersect until none waits). ONE source
 // for the host's PassScheduler (multipass_schedule.cpp) and the device's oracle kernel
 // (multipass_oracle.comp). The threshold is applied in fixed point, floor(threshold * 2^31)
@@ -10,7 +11,8 @@
 #define RT_MULTIPASS_ORACLE_GLSL
 
 // `phase`: the naive schedule's current phase, kept between calls. `traversing + waiting` < 2^32.
-uint mpNextPass(uint traversing, uint waiting, RT_INOUT(uint) phase, uint thresholdQ31, bool naive) {
+// `basisRays`: the rays the waiting fraction is of; 0: the active rays (traversing + waiting).
+uint mpNextPass(uint traversing, uint waiting, RT_INOUT(uint) phase, uint thresholdQ31, bool naive, uint basisRays) {
     if (traversing + waiting == 0u) return kPassWrite;
     if (waiting == 0u) {
         phase = kPassTraverse;
@@ -22,7 +24,8 @@ uint mpNextPass(uint traversing, uint waiting, RT_INOUT(uint) phase, uint thresh
     }
     if (naive) return phase;  // stay in the phase until it drains
     const uint64_t scaledWaiting = uint64_t(waiting) << 31u;
-    return scaledWaiting >= uint64_t(thresholdQ31) * uint64_t(traversing + waiting) ? kPassIntersect : kPassTraverse;
+    const uint basis = basisRays != 0u ? basisRays : traversing + waiting;
+    return scaledWaiting >= uint64_t(thresholdQ31) * uint64_t(basis) ? kPassIntersect : kPassTraverse;
 }
 
 #endif  // RT_MULTIPASS_ORACLE_GLSL

@@ -39,7 +39,7 @@ PassKind PassScheduler::next(std::uint64_t traversing, std::uint64_t waiting) {
                     " active rays in one stream, over the oracle's 2^32 - 1 (strategy.batch_rays splits the stream)");
     std::uint32_t phase = static_cast<std::uint32_t>(naivePhase_);
     const std::uint32_t kind =
-        oracle::mpNextPass(std::uint32_t(traversing), std::uint32_t(waiting), phase, thresholdQ31_, naive_);
+        oracle::mpNextPass(std::uint32_t(traversing), std::uint32_t(waiting), phase, thresholdQ31_, naive_, basisRays_);
     naivePhase_ = static_cast<PassKind>(phase);
     return static_cast<PassKind>(kind);
 }
@@ -79,7 +79,7 @@ MultipassCounts runPassLoop(const MultipassOptions& options, std::uint64_t cap, 
     PassSums sums = run(PassKind::Setup);
     traversing = sums.traversing, waiting = sums.waiting;
     if (afterPass) afterPass(traversing, waiting);
-    PassScheduler scheduler(options);
+    PassScheduler scheduler(options, rays);
     for (PassKind kind = scheduler.next(traversing, waiting); kind != PassKind::Write;
          kind = scheduler.next(traversing, waiting)) {
         if (counts.totalPasses() >= cap)

@@ -23,6 +23,10 @@ struct MultipassOptions {
     // intersect until no ray waits, and again.
     std::string scheduling = "oracle";
     double oracleThreshold = 0.2;
+    // What the waiting fraction is of: "active" (traversing + waiting rays; Purcell's "percentage of
+    // rays requiring intersection vs. traversal") or "all" (the stream's rays, misses and finished
+    // rays included: another reading of "20% of the rays").
+    std::string oracleBasis = "active";
     std::uint64_t maxPasses = 0;  // 0: automatic cap from the structure (Structure::walkBounds)
     std::uint64_t batchRays = 0;  // rays per batch, each its own pass loop (0: what one binding holds)
     // strategy.control: false ("host"), the host's oracle reads the counts back after each pass and
@@ -40,15 +44,18 @@ static_assert(int(PassKind::Setup) == 0 && int(PassKind::Traverse) == 1 && int(P
 
 class PassScheduler {
 public:
-    // Throws when the options' oracle threshold is outside [0, 1].
-    explicit PassScheduler(const MultipassOptions& options)
-        : thresholdQ31_(oracleThresholdQ31(options.oracleThreshold)), naive_(options.scheduling == "naive") {}
+    // Throws when the options' oracle threshold is outside [0, 1]. `streamRays`: the rays of the
+    // stream (its batch), the basis of the waiting fraction with oracle_basis = all.
+    PassScheduler(const MultipassOptions& options, std::uint64_t streamRays)
+        : thresholdQ31_(oracleThresholdQ31(options.oracleThreshold)), naive_(options.scheduling == "naive"),
+          basisRays_(options.oracleBasis == "all" ? std::uint32_t(streamRays) : 0u) {}
     // The next pass after one that left `traversing` and `waiting` rays active; Write when none.
     PassKind next(std::uint64_t traversing, std::uint64_t waiting);
 
 private:
     std::uint32_t thresholdQ31_;  // the oracle threshold as the shared decision applies it
     bool naive_;                  // Christen's naive schedule
+    std::uint32_t basisRays_;     // the waiting fraction's basis: 0, the active rays; else the stream's
     PassKind naivePhase_ = PassKind::Traverse;
 };
 

@@ -206,6 +206,7 @@ MultipassOptions multipassOptions(const RunConfig& run) {
     o.suppressFinishedReads = run.getBool("strategy.suppress_finished_reads");
     o.scheduling = run.getString("strategy.scheduling");
     if (run.has("strategy.oracle_threshold")) o.oracleThreshold = run.getFloat("strategy.oracle_threshold");
+    if (run.has("strategy.oracle_basis")) o.oracleBasis = run.getString("strategy.oracle_basis");
     o.maxPasses = std::uint64_t(run.getInt("strategy.max_passes"));
     o.batchRays = std::uint64_t(run.getInt("strategy.batch_rays"));
     o.deviceControl = run.getString("strategy.control") == "device";
@@ -319,7 +320,8 @@ MultipassRun runMultipassBatch(VulkanContext& vk, const Structure& structure, co
                                        {gpu::kSpecOracleThreshold, oracleThresholdQ31(options.oracleThreshold)},
                                        {gpu::kSpecNaive, options.scheduling == "naive" ? 1u : 0u},
                                        {gpu::kSpecPassCap, std::uint32_t(cap)},
-                                       {gpu::kSpecMaxGroupsX, vk.info().maxWorkGroupCountX}});
+                                       {gpu::kSpecMaxGroupsX, vk.info().maxWorkGroupCountX},
+                                       {gpu::kSpecOracleAllRays, options.oracleBasis == "all" ? 1u : 0u}});
     auto counted = std::make_unique<Pipelines>(vk, *buffers, structure.kernelPrefix(), spec, options.deviceControl);
     run.counts = runLoop(vk, *buffers, *counted, options, cap);
     run.hits = buffers->downloadHits();
@@ -391,6 +393,7 @@ const StrategyType& multipassStrategyType() {
             {"strategy.suppress_finished_reads", ValueType::Bool, "multipass: rays that finish mid-pass skip the unrolled rest's reads", false},
             {"strategy.scheduling", ValueType::String, "multipass: oracle (threshold on the waiting fraction) or naive, Christen 2005 §5.6's naive sequencing (traverse until none traverses, then intersect until none waits; not Purcell's \"naive algorithm\", which is oracle_threshold = 0)", std::string("oracle"), false, -1e300, 1e300, {"oracle", "naive"}},
             {"strategy.oracle_threshold", ValueType::Float, "multipass: intersect when waiting / active rays >= this (0: as soon as any waits, Purcell 2002's \"naive algorithm\"; 0.2: his \"20% of the rays\", read as 20% of the active rays)", 0.2, false, 0, 1, {}, {"strategy.scheduling=oracle"}},
+            {"strategy.oracle_basis", ValueType::String, "multipass: what the oracle's waiting fraction is of: active (traversing + waiting rays, Purcell 2002 §3.2's \"percentage of rays requiring intersection vs. traversal\") or all (every ray of the stream, finished ones included: another reading of his and Christen 2005 §5.5's \"20% of the rays\")", std::string("active"), false, -1e300, 1e300, {"active", "all"}, {"strategy.scheduling=oracle"}},
             {"strategy.max_passes", ValueType::Int, "multipass: pass cap (0: derived from the structure); reaching it fails the run", std::int64_t(0), false, 0, 1e9},
             {"strategy.control", ValueType::String, "multipass: who runs the oracle. host: the CPU reads the ray-state counts back after every pass and each pass walks the whole stream through the stencil (Purcell's and Christen's loop); device: an oracle kernel chooses the next pass and writes its indirect dispatch, and each pass serves a compacted list of its rays, with no host round trip per pass", std::string("host"), false, -1e300, 1e300, {"host", "device"}},
             {"strategy.batch_rays", ValueType::Int, "multipass: rays per batch, each its own pass loop (0: as many as one binding holds, maxStorageBufferRange over the largest per-ray record)", std::int64_t(0), false, 0, 1e12},
@@ -398,6 +401,7 @@ const StrategyType& multipassStrategyType() {
         for (KeySpec& k : t.keys) {
             if (k.name == "strategy.batch_rays") k.since = 12;
             if (k.name == "strategy.control") k.since = 13;
+            if (k.name == "strategy.oracle_basis") k.since = 14;
         }
         t.columns = {
             {"passes_setup", K::Count, "passes", "multipass setup passes"},

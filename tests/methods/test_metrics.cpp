@@ -24,24 +24,24 @@ TEST(Oracle, IntersectsWhenTheWaitingFractionReachesTheThresholdExactly) {
     o.oracleThreshold = 0.25;
     // 1 of 4 active rays waits: 0.25 >= 0.25 (Purcell §3.2: intersect once the fraction is
     // reached).
-    EXPECT_EQ(PassScheduler(o).next(3, 1), PassKind::Intersect);
+    EXPECT_EQ(PassScheduler(o, 0).next(3, 1), PassKind::Intersect);
     // 1 of 5: 0.2 < 0.25.
-    EXPECT_EQ(PassScheduler(o).next(4, 1), PassKind::Traverse);
+    EXPECT_EQ(PassScheduler(o, 0).next(4, 1), PassKind::Traverse);
 }
 
 TEST(Oracle, UsesTheWaitingNotTheTraversingFraction) {
     MultipassOptions o;
     o.oracleThreshold = 0.5;
     // 1 waiting of 10: 0.1 < 0.5 -> traverse (the traversing fraction, 0.9, would intersect).
-    EXPECT_EQ(PassScheduler(o).next(9, 1), PassKind::Traverse);
+    EXPECT_EQ(PassScheduler(o, 0).next(9, 1), PassKind::Traverse);
     // 9 waiting of 10: 0.9 >= 0.5 -> intersect (the traversing fraction, 0.1, would traverse).
-    EXPECT_EQ(PassScheduler(o).next(1, 9), PassKind::Intersect);
+    EXPECT_EQ(PassScheduler(o, 0).next(1, 9), PassKind::Intersect);
 }
 
 TEST(Oracle, NaiveSchedulingStaysInItsPhaseUntilItDrains) {
     MultipassOptions o;
     o.scheduling = "naive";
-    PassScheduler s(o);
+    PassScheduler s(o, 0);
     EXPECT_EQ(s.next(5, 0), PassKind::Traverse);
     EXPECT_EQ(s.next(4, 100), PassKind::Traverse);   // rays still traverse: stay
     EXPECT_EQ(s.next(0, 100), PassKind::Intersect);  // none traverses: switch

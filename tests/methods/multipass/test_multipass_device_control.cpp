@@ -38,7 +38,7 @@ TEST(MultipassOracle, TheThresholdInFixedPointByHand) {
     auto next = [](double threshold, std::uint64_t traversing, std::uint64_t waiting) {
         MultipassOptions o;
         o.oracleThreshold = threshold;
-        return PassScheduler(o).next(traversing, waiting);
+        return PassScheduler(o, traversing + waiting).next(traversing, waiting);
     };
     EXPECT_EQ(next(0.2, 4, 1), K::Intersect);  // 1 of 5 waits: exactly 20%
     EXPECT_EQ(next(0.2, 5, 1), K::Traverse);   // 1 of 6
@@ -48,6 +48,18 @@ TEST(MultipassOracle, TheThresholdInFixedPointByHand) {
     EXPECT_EQ(next(1.0, 0, 1), K::Intersect);
     EXPECT_EQ(next(0.0, 1000, 1), K::Intersect);  // as soon as any waits
     EXPECT_EQ(next(0.5, 0, 0), K::Write);
+}
+
+// The waiting fraction's two bases by hand (strategy.oracle_basis): 3 traversing and 2 waiting of a
+// stream of 10 are 2/5 = 40% of the active rays but 2/10 = 20% of all.
+TEST(MultipassOracle, TheTwoBasesOfTheWaitingFractionByHand) {
+    MultipassOptions o;
+    o.oracleThreshold = 0.3;
+    EXPECT_EQ(PassScheduler(o, 10).next(3, 2), K::Intersect);
+    o.oracleBasis = "all";
+    EXPECT_EQ(PassScheduler(o, 10).next(3, 2), K::Traverse);
+    EXPECT_EQ(PassScheduler(o, 10).next(2, 3), K::Intersect);  // 3 of 10 = 30%
+    EXPECT_EQ(PassScheduler(o, 10).next(0, 1), K::Intersect);  // none traverses: whatever the fraction
 }
 
 class MultipassDeviceControl : public VulkanTest {
@@ -84,6 +96,28 @@ TEST_F(MultipassDeviceControl, HandCountedPassesListsAndBytes) {
     EXPECT_EQ(m.bytes.stencil, 7u);           // writes only: no pass reads the stencil
     EXPECT_EQ(m.bytes.compaction, (8u + 8u) * 4u);
     EXPECT_EQ(m.bytes.state, 3u * 80u + 2u * 112u + 6u * 128u + 3u * 16u);  // as with the stencil
+}
+
+// The hand scene's 3 rays at threshold 0.4. After setup rays 0 and 2 wait (none traverses:
+// intersect); then ray 0 traverses and ray 2 waits: 1 of 2 active rays (50% >= 40%: intersect,
+// the threshold-0 sequence) but 1 of 3 of all (33% < 40%: traverse, the threshold-1 sequence).
+// The host's loop, the device's oracle and the CPU simulator alike.
+TEST_F(MultipassDeviceControl, TheOracleBasesGiveTheHandCountedSequences) {
+    const UniformGrid grid = handGrid();
+    const auto structure = gridStructure(grid);
+    const std::vector<K> active = {K::Setup, K::Intersect, K::Intersect, K::Intersect, K::Traverse, K::Traverse,
+                                   K::Intersect, K::Intersect, K::Write};
+    const std::vector<K> all = {K::Setup, K::Intersect, K::Traverse, K::Traverse, K::Intersect, K::Intersect, K::Write};
+    for (const bool device : {false, true}) {
+        for (const char* basis : {"active", "all"}) {
+            SCOPED_TRACE(std::string(device ? "device" : "host") + ", basis " + basis);
+            MultipassOptions o = hand::multipassOptions(0.4, 1, 1, false, device);
+            o.oracleBasis = basis;
+            const std::vector<K>& expected = std::string(basis) == "all" ? all : active;
+            EXPECT_EQ(run(*structure, handRays(), o).counts.sequence, expected);
+            EXPECT_EQ(simulateMultipass(*structure, handRays(), o).counts.sequence, expected);
+        }
+    }
 }
 
 TEST_F(MultipassDeviceControl, ThresholdOneAndTheNaiveScheduleByHand) {
