@@ -154,7 +154,8 @@ void DriverAccelerationStructure::build(const std::vector<glm::vec3>& vertices, 
         barrier(buildStage, VK_ACCESS_ACCELERATION_STRUCTURE_WRITE_BIT_KHR, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                 VK_ACCESS_ACCELERATION_STRUCTURE_READ_BIT_KHR);
     });
-    vk.destroy(scratch_);
+    // The levels hold what they need: the build's inputs and scratch go.
+    for (Buffer* b : {&scratch_, &instance_, &indices_, &vertices_}) vk.destroy(*b);
     VkAccelerationStructureDeviceAddressInfoKHR topAddress{VK_STRUCTURE_TYPE_ACCELERATION_STRUCTURE_DEVICE_ADDRESS_INFO_KHR};
     topAddress.accelerationStructure = topHandle_;
     topAddress_ = rt.address(device, &topAddress);

@@ -1,6 +1,7 @@
 // The driver's own acceleration structure over a triangle mesh (VK_KHR_acceleration_structure):
 // one bottom level over the triangles, as indexed triangles, opaque, built for fast tracing, and
-// one top level holding it once at the identity. Kernels trace it with VK_KHR_ray_query from the
+// one top level holding it once at the identity. Not compacted: the storage is the size the driver
+// asks for before the build (an upper bound). Kernels trace it with VK_KHR_ray_query from the
 // top level's device address (methods/ray_query). Built on the device and timed there.
 #pragma once
 #include <cstdint>
@@ -25,7 +26,7 @@ public:
     std::uint64_t bottomLevelBytes() const { return bottom_.size; }  // the structures' storage, as the driver sized it
     std::uint64_t topLevelBytes() const { return top_.size; }
     std::uint64_t scratchBytes() const { return scratchBytes_; }  // the larger build's scratch (freed after the build)
-    std::uint64_t inputBytes() const { return inputBytes_; }      // vertices, indices and the instance, uploaded for the build
+    std::uint64_t inputBytes() const { return inputBytes_; }      // vertices, indices and the instance, uploaded for the build (freed after it)
     double buildMs() const { return buildMs_; }                   // both builds, GPU timestamps
 
 private:

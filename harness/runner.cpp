@@ -161,7 +161,8 @@ std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunC
     row["structure_bytes"] = std::to_string(structure.memoryBytes);
     row["structure_bytes_per_triangle"] = formatNumber(double(structure.memoryBytes) / double(std::max<std::size_t>(mesh.triangles.size(), 1)));
     row["structure_build_ms"] = formatNumber(structure.buildMs, 4);
-    row["predicted_work_per_ray"] = formatNumber(structure.predictedWork(rays) / double(rays.size()));
+    const double predicted = structure.predictedWork(rays);
+    row["predicted_work_per_ray"] = predicted < 0 ? "" : formatNumber(predicted / double(rays.size()));
 
     // Method: the strategy runs the structure's kernels once, instrumented, and checks them
     // against its CPU reference.

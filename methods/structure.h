@@ -62,7 +62,8 @@ public:
     virtual WalkBounds walkBounds() const = 0;
 
     // The cost model (methods/cost_model.h): the cell or node visits plus triangle tests these
-    // rays are predicted to take, from the structure's statistics alone, before any ray is traced.
+    // rays are predicted to take, from the structure's statistics alone, before any ray is traced;
+    // negative where the structure's traversal is not rtbench's to model (the driver's).
     virtual double predictedWork(const std::vector<gpu::Ray>& rays) const = 0;
 
     // The structure's own columns (its statistics), and its words for per-ray work.

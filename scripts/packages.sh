@@ -29,11 +29,20 @@ install_missing() {  # TAG PACKAGE...
 # bookworm-backports mesa-vulkan-drivers, fetched by apt with a private source list and state
 # (the archive's signature and the package's hash checked; nothing on the system changes) and
 # unpacked into DEST, never installed. Debian 12's own lavapipe (Mesa 22.3) stays the device of
-# every other test and of the results. Idempotent: nothing is fetched when DEST has it.
+# every other test and of the results. Whatever version bookworm-backports carries (25.0.7-2~bpo12+1
+# when this was written; DEST/package names it). Idempotent: nothing is fetched when DEST has it.
 fetch_ray_query_lavapipe() {  # DEST
   local dest=$1
-  [ -f "$dest/lvp_icd.json" ] && [ -f "$dest/libvulkan_lvp.so" ] && return 0
-  local tmp
+  if [ ! -f "$dest/libvulkan_lvp.so" ]; then
+    _fetch_lavapipe_library "$dest" || return 1
+  fi
+  # Written every time: it names the library by its absolute path, which moves with the folder.
+  printf '{"file_format_version": "1.0.0", "ICD": {"library_path": "%s", "api_version": "1.3.0"}}\n' \
+    "$(cd "$dest" && pwd)/libvulkan_lvp.so" >"$dest/lvp_icd.json"
+}
+
+_fetch_lavapipe_library() {  # DEST
+  local dest=$1 tmp
   tmp=$(mktemp -d)
   mkdir -p "$tmp/lists/partial" "$tmp/cache/archives/partial"
   echo "deb [signed-by=/usr/share/keyrings/debian-archive-keyring.gpg] http://deb.debian.org/debian bookworm-backports main" \
@@ -46,12 +55,16 @@ fetch_ray_query_lavapipe() {  # DEST
     echo "[ray-query lavapipe] could not fetch mesa-vulkan-drivers from bookworm-backports (deb.debian.org)" >&2
     return 1
   fi
-  dpkg-deb -x "$tmp"/mesa-vulkan-drivers_*.deb "$tmp/root"
+  local lib
+  if ! dpkg-deb -x "$tmp"/mesa-vulkan-drivers_*.deb "$tmp/root" ||
+    ! lib=$(find "$tmp/root" -name libvulkan_lvp.so -print -quit) || [ -z "$lib" ]; then
+    rm -rf "$tmp"
+    echo "[ray-query lavapipe] the package holds no libvulkan_lvp.so" >&2
+    return 1
+  fi
   mkdir -p "$dest"
-  cp "$tmp/root/usr/lib/x86_64-linux-gnu/libvulkan_lvp.so" "$dest/libvulkan_lvp.so.part"
+  cp "$lib" "$dest/libvulkan_lvp.so.part"
   mv "$dest/libvulkan_lvp.so.part" "$dest/libvulkan_lvp.so"
   basename "$tmp"/mesa-vulkan-drivers_*.deb >"$dest/package"
-  printf '{"file_format_version": "1.0.0", "ICD": {"library_path": "%s", "api_version": "1.3.0"}}\n' \
-    "$(cd "$dest" && pwd)/libvulkan_lvp.so" >"$dest/lvp_icd.json"
   rm -rf "$tmp"
 }

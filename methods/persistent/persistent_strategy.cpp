@@ -48,9 +48,9 @@ StrategyRun runPersistentStrategy(VulkanContext& vk, const Structure& structure,
     if (traced != rays && run.truncatedWhy.empty()) {
         run.truncatedRays = traced < rays ? rays - traced : traced - rays;
         run.truncatedWhy = "persistent threads wrote " + std::to_string(traced) + " records for " + std::to_string(rays) +
-                           " rays" + (vk.info().loopIterationLimit
-                                          ? " (" + vk.info().name + " of Mesa 22.3 loses rays of the persistent kernel "
-                                                "on all but small dispatches; Mesa 25.0.7's runs them right: docs/method.md)"
+                           " rays" + (vk.info().driver.find("llvmpipe Mesa 22.") != std::string::npos
+                                          ? " (Mesa 22.3's llvmpipe loses rays of the persistent kernel on all but small "
+                                            "dispatches; Mesa 25.0.7's runs the same dispatches right: docs/method.md)"
                                           : std::string());
     } else if (fetched != fetchedWhenDone) {
         run.countsMismatch = "the fetch counter ended at " + std::to_string(fetched) + ", not " +

@@ -23,7 +23,8 @@ public:
     StructureCosts costs() const override { return {}; }  // the driver's traffic is not counted
     StructureKernels cpuKernels() const override { return cpu_->cpuKernels(); }
     WalkBounds walkBounds() const override { return cpu_->walkBounds(); }
-    double predictedWork(const std::vector<gpu::Ray>& rays) const override { return cpu_->predictedWork(rays); }
+    // The driver's traversal is not rtbench's to model: none (predicted_work_per_ray stays empty).
+    double predictedWork(const std::vector<gpu::Ray>&) const override { return -1.0; }
     void writeColumns(Row& row) const override;
     void writeWorkColumns(double, std::uint32_t, std::uint64_t, Row&) const override {}
     void setTriangleTest(std::uint32_t test) override;

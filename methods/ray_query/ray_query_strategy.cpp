@@ -36,21 +36,14 @@ public:
     RayQueryDispatch(VulkanContext& vk, const std::vector<gpu::Ray>& rays, std::uint32_t query, VkDeviceAddress topLevel,
                      unsigned workgroupSize)
         : vk_(vk), count_(rays.size()) {
-        rays_ = vk.createStorageBuffer(rays.size() * sizeof(gpu::Ray), "ray (" + std::to_string(rays.size()) + " rays)");
-        vk.upload(rays_, rays.data(), rays.size() * sizeof(gpu::Ray));
-        hits_ = vk.createStorageBuffer(rays.size() * sizeof(gpu::HitRecord), "hit record (" + std::to_string(rays.size()) + " rays)");
-        params_.stream = {std::uint32_t(rays.size()), query, 0u, 0u};
-        params_.topLevel = topLevel;
-        pipeline_ = vk.createComputePipeline(embeddedKernel("ray_query"), 2, sizeof(gpu::RayQueryParams), workgroupSize,
-                                             {{gpu::kSpecWorkgroupSize, workgroupSize}});
-        set_ = vk.createDescriptorSet(pipeline_, {&rays_, &hits_});
+        try {
+            create(rays, query, topLevel, workgroupSize);
+        } catch (...) {
+            release();  // what a failed setup made so far
+            throw;
+        }
     }
-    ~RayQueryDispatch() {
-        vk_.destroy(set_);
-        vk_.destroy(pipeline_);
-        vk_.destroy(hits_);
-        vk_.destroy(rays_);
-    }
+    ~RayQueryDispatch() { release(); }
     RayQueryDispatch(const RayQueryDispatch&) = delete;
     RayQueryDispatch& operator=(const RayQueryDispatch&) = delete;
 
@@ -62,6 +55,25 @@ public:
     }
 
 private:
+    void create(const std::vector<gpu::Ray>& rays, std::uint32_t query, VkDeviceAddress topLevel, unsigned workgroupSize) {
+        VulkanContext& vk = vk_;
+        rays_ = vk.createStorageBuffer(rays.size() * sizeof(gpu::Ray), "ray (" + std::to_string(rays.size()) + " rays)");
+        vk.upload(rays_, rays.data(), rays.size() * sizeof(gpu::Ray));
+        hits_ = vk.createStorageBuffer(rays.size() * sizeof(gpu::HitRecord), "hit record (" + std::to_string(rays.size()) + " rays)");
+        params_.stream = {std::uint32_t(rays.size()), query, 0u, 0u};
+        params_.topLevel = topLevel;
+        pipeline_ = vk.createComputePipeline(embeddedKernel("ray_query"), 2, sizeof(gpu::RayQueryParams), workgroupSize,
+                                             {{gpu::kSpecWorkgroupSize, workgroupSize}});
+        set_ = vk.createDescriptorSet(pipeline_, {&rays_, &hits_});
+    }
+    void release() {
+        if (set_) vk_.destroy(set_);
+        set_ = VK_NULL_HANDLE;
+        vk_.destroy(pipeline_);
+        vk_.destroy(hits_);
+        vk_.destroy(rays_);
+    }
+
     VulkanContext& vk_;
     std::uint64_t count_;
     Buffer rays_, hits_;
@@ -121,7 +133,6 @@ StrategyRun runRayQuery(VulkanContext& vk, const Structure& structure, const Ray
         throw Error("the driver's ray query answered " + std::to_string(impossible.rays) + " of " + std::to_string(rays.size()) +
                     " rays outside their interval [tMin, tMax) (first: ray " + std::to_string(impossible.first) + ", t " +
                     std::to_string(run.hits[impossible.first].t) + ")");
-    run.metrics.passes = batches.size();
     run.metrics.work.hits = std::uint64_t(std::count_if(run.hits.begin(), run.hits.end(),
                                                         [](const gpu::HitRecord& h) { return h.primitive != gpu::kNoHit; }));
     run.metrics.countsKnown = false;

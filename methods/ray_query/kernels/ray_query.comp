@@ -19,24 +19,32 @@ void main() {
     const uint i = gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x;
     if (i >= params.stream.x) return;
     const Ray ray = rays[i];
-    // rtbench's interval is [tMin, tMax) (gpu_layout.h kQuery*); the Vulkan spec's is closed
-    // (tmin <= t <= tmax): its end is the float below tMax. (Lavapipe 25 already leaves a hit at
-    // exactly tMax out, so the hand test cannot tell; a driver that follows the spec needs it.)
-    const float below = ray.directionTMax.w > 0.0 ? uintBitsToFloat(floatBitsToUint(ray.directionTMax.w) - 1u) : 0.0;
-    const float tMax = max(below, ray.originTMin.w);  // the driver leaves tMax < tMin undefined
-    // Opaque geometry: the driver commits every triangle it finds, so one call runs the whole walk.
-    uint flags = gl_RayFlagsOpaqueEXT;
-    if (params.stream.y == kQueryAny) flags |= gl_RayFlagsTerminateOnFirstHitEXT;
-    rayQueryEXT query;
-    rayQueryInitializeEXT(query, accelerationStructureEXT(params.topLevel), flags, 0xFFu, ray.originTMin.xyz,
-                          ray.originTMin.w, ray.directionTMax.xyz, tMax);
-    while (rayQueryProceedEXT(query)) {
-    }
     HitRecord hit;
     hit.t = kNoHitT;
     hit.primitive = kNoHit;
     hit.u = 0.0;
     hit.v = 0.0;
+    hit.cellsVisited = 0u;
+    hit.trianglesTested = 0u;
+    hit.traversalSteps = 0u;
+    hit.pad = 0u;
+    // rtbench's interval is [tMin, tMax) (gpu_layout.h kQuery*); the Vulkan spec's for a triangle
+    // is open, tmin < t < tmax ("Ray Intersection Candidate Determination"): it starts at the
+    // float below tMin (tMin >= 0: validateRays) and ends at tMax. An empty interval misses.
+    const float tMin = ray.originTMin.w, tMax = ray.directionTMax.w;
+    if (!(tMin < tMax)) {
+        hits[i] = hit;
+        return;
+    }
+    const float before = tMin > 0.0 ? uintBitsToFloat(floatBitsToUint(tMin) - 1u) : 0.0;
+    // Opaque geometry: the driver commits every triangle it finds, so one call runs the whole walk.
+    uint flags = gl_RayFlagsOpaqueEXT;
+    if (params.stream.y == kQueryAny) flags |= gl_RayFlagsTerminateOnFirstHitEXT;
+    rayQueryEXT query;
+    rayQueryInitializeEXT(query, accelerationStructureEXT(params.topLevel), flags, 0xFFu, ray.originTMin.xyz, before,
+                          ray.directionTMax.xyz, tMax);
+    while (rayQueryProceedEXT(query)) {
+    }
     if (rayQueryGetIntersectionTypeEXT(query, true) == gl_RayQueryCommittedIntersectionTriangleEXT) {
         hit.t = rayQueryGetIntersectionTEXT(query, true);
         hit.primitive = uint(rayQueryGetIntersectionPrimitiveIndexEXT(query, true));
@@ -44,9 +52,5 @@ void main() {
         hit.u = uv.x;
         hit.v = uv.y;
     }
-    hit.cellsVisited = 0u;
-    hit.trianglesTested = 0u;
-    hit.traversalSteps = 0u;
-    hit.pad = 0u;
     hits[i] = hit;
 }

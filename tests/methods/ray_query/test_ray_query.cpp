@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numeric>
 
 #include "harness/runner.h"
 #include "methods/metrics.h"
@@ -70,7 +71,7 @@ TEST(RayQueryRefusal, TheDriversStructureAndItsRayQueryGoOnlyTogether) {
     const ExperimentResult result = runConfig(
         dir, std::string(kSceneB) + "[structure]\ntype = [\"driver\", \"uniform_grid\"]\n[strategy]\ntype = [\"branching\", \"ray_query\"]\n");
     ASSERT_EQ(result.rows.size(), 4u);
-    int refused = 0;
+    int refused = 0, ok = 0;
     for (const Row& row : result.rows) {
         const bool driver = row.at("structure_type") == "driver", rayQuery = row.at("strategy_type") == "ray_query";
         if (driver && !rayQuery) {
@@ -83,8 +84,29 @@ TEST(RayQueryRefusal, TheDriversStructureAndItsRayQueryGoOnlyTogether) {
         if (driver != rayQuery) {
             EXPECT_EQ(row.at("status"), "failed");
         }
+        if (!driver && !rayQuery) ok += row.at("status") == "ok";
     }
     EXPECT_EQ(refused, 2);
+    EXPECT_EQ(ok, 1);  // the grid with branching runs as ever
+}
+
+// A driver's answer outside its ray's [tMin, tMax), or a miss with a distance, cannot be an answer.
+TEST(RayQueryRefusal, ImpossibleHitsAreTheOnesOutsideTheirInterval) {
+    const glm::vec3 up(0, 0, 1);
+    const std::vector<gpu::Ray> rays = {hand::ray({0, 0, 0}, up, 1.0f, 2.0f), hand::ray({0, 0, 0}, up, 1.0f, 2.0f),
+                                        hand::ray({0, 0, 0}, up, 1.0f, 2.0f), hand::ray({0, 0, 0}, up, 1.0f, 2.0f),
+                                        hand::ray({0, 0, 0}, up, 1.0f, 2.0f)};
+    auto at = [](std::uint32_t primitive, float t) {
+        gpu::HitRecord h{};
+        h.primitive = primitive;
+        h.t = t;
+        return h;
+    };
+    EXPECT_EQ(impossibleHits(rays, {at(0, 1.0f), at(0, 1.5f), at(gpu::kNoHit, gpu::kNoHitT), at(0, 1.5f), at(0, 1.5f)}).rays, 0u);
+    const ImpossibleHits found =
+        impossibleHits(rays, {at(0, 1.5f), at(0, 2.0f), at(0, std::nextafter(1.0f, 0.0f)), at(gpu::kNoHit, 1.5f), at(0, 1.5f)});
+    EXPECT_EQ(found.rays, 3u);  // t = tMax, t below tMin, a miss with a distance
+    EXPECT_EQ(found.first, 1u);
 }
 
 // ---- on a device with ray query (lavapipe 24.1+ from bookworm-backports in CI) ----
@@ -135,13 +157,19 @@ TEST_F(RayQueryLavapipe25, HandComputedHitsAndTheIntervalsEnds) {
         hand::ray({0, 0, 0}, up, 1.5f),              // 5: tMin 1.5: triangle 1 at t 2
         hand::ray({0, 0, 3}, -up),                   // 6: from above, backwards: triangle 1 at t 1 (no culling)
         hand::ray({0, 0, 0}, 2.0f * up),             // 7: direction length 2: triangle 0 at t 0.5
+        // rtbench's [tMin, tMax) at its ends, where the driver's interval is open (tmin < t < tmax):
+        hand::ray({0, 0, 0}, up, 1.0f),                           // 8: tMin 1 includes triangle 0 at t 1
+        hand::ray({0, 0, 0}, up, 1.0f, 1.5f),                     // 9: [1, 1.5): triangle 0
+        hand::ray({0, 0, 0}, up, 0.0f, std::nextafter(1.0f, 2.0f)),  // 10: the float past 1 ends it: triangle 0
+        hand::ray({0, 0, 0}, up, 1.0f, 1.0f),                     // 11: [1, 1) is empty: a miss
     };
     const StrategyRun run = trace(*driver, rays, gpu::kQueryClosest);
     ASSERT_EQ(run.hits.size(), rays.size());
     struct Expect { std::uint32_t primitive; float t, u, v; };
     const Expect expected[] = {{0, 1, 0.25f, 0.25f}, {0, 1, 0.375f, 0.125f}, {gpu::kNoHit, gpu::kNoHitT, 0, 0},
                                {gpu::kNoHit, gpu::kNoHitT, 0, 0}, {0, 1, 0.25f, 0.25f}, {1, 2, 0.25f, 0.25f},
-                               {1, 1, 0.25f, 0.25f}, {0, 0.5f, 0.25f, 0.25f}};
+                               {1, 1, 0.25f, 0.25f}, {0, 0.5f, 0.25f, 0.25f}, {0, 1, 0.25f, 0.25f},
+                               {0, 1, 0.25f, 0.25f}, {0, 1, 0.25f, 0.25f}, {gpu::kNoHit, gpu::kNoHitT, 0, 0}};
     for (std::size_t i = 0; i < rays.size(); ++i) {
         SCOPED_TRACE("ray " + std::to_string(i));
         EXPECT_EQ(run.hits[i].primitive, expected[i].primitive);
@@ -150,9 +178,10 @@ TEST_F(RayQueryLavapipe25, HandComputedHitsAndTheIntervalsEnds) {
         EXPECT_NEAR(run.hits[i].v, expected[i].v, 1e-6f);
         EXPECT_EQ(run.hits[i].cellsVisited + run.hits[i].trianglesTested + run.hits[i].traversalSteps, 0u);
     }
-    EXPECT_EQ(run.metrics.work.hits, 6u);
+    EXPECT_EQ(run.metrics.work.hits, 9u);
     EXPECT_FALSE(run.cpuCompared);
     EXPECT_FALSE(run.metrics.countsKnown);
+    EXPECT_EQ(run.timer->time(0, 2).ms.size(), 2u);  // timed repetitions, then their hits against the first run's
     EXPECT_NO_THROW(run.timer->checkHits());
 }
 
