@@ -792,7 +792,7 @@ def structures_work(runs, device, folder, written):
     left.set_ylabel("measured work per ray")
     left.set_title("The cost model against the measured work (branching)")
     left.legend(fontsize=7)
-    grouped_bars(right, part, "simd_efficiency", scenes, methods, log=False)
+    grouped_bars(right, part, "simd_lane_utilisation", scenes, methods, log=False)
     right.set_ylim(0, 1.05)
     right.set_ylabel("active lanes / lane slots")
     right.set_title("Lane utilisation of the branching kernel (Aila & Laine)")

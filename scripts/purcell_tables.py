@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from rtbench_results import load
+from rtbench_results import CHRISTEN_SCENES, load
 
 
 def mb(value) -> str:
@@ -50,7 +50,7 @@ def main() -> int:
     out = [f"# Results: {folder.name}", "",
            f"Device: {device}; CPU: {context['cpu']} ({context['cpu_threads']} threads); "
            f"Embree {context['embree_version']}; commit {context['git_commit']}; {context['date_utc']}.",
-           f"Command: `{context['command']}`. {len(runs)} runs ok, {len(failed)} failed.", ""]
+           f"Command: `{context['command']}`. {len(runs)} runs ok, {len(failed)} failed.", "", CHRISTEN_SCENES, ""]
 
     integer = lambda v: f"{int(v):,}"
     pct = lambda v: f"{100 * v:.1f}%"

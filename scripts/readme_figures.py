@@ -18,7 +18,7 @@ from pathlib import Path
 import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rtbench_results import commit_text, method_name, read_runs, scene_name, whitted_frames, wrong_rays  # noqa: E402
+from rtbench_results import CHRISTEN_SCENES, commit_text, method_name, read_runs, scene_name, whitted_frames, wrong_rays  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 BEGIN = "<!-- results: begin (scripts/readme_figures.py writes this section from results/; do not edit) -->"
@@ -95,7 +95,7 @@ def provenance(name: str, runs, context) -> str:
     lines = [f"Machine: {context.get('cpu', '?')}, {context.get('cpu_threads', '?')} hardware threads "
              f"(host `{context.get('host', '?')}`). Device: {device.get('name', '?')} ({device.get('driver', '?')}, "
              f"subgroup size {device.get('subgroup_size', '?')}). Embree {context.get('embree_version', '?')}.",
-             f"Command: `{context.get('command', '?')}` (by `scripts/records.sh`) at commit "
+             f"Command: `{context.get('command', '?')}` at commit "
              f"`{commit_text(context)}`, {str(context.get('date_utc', '?'))[:10]}. "
              f"{plural(len(runs), 'run')}: {len(ok)} ok, {failed} failed with their reason in `error`."]
     if flagged is not None:
@@ -257,7 +257,7 @@ def purcell2002() -> list:
            ("Purcell's Table 2 setting, one step or one test a pass" if table_2 else "not Purcell's Table 2 setting, K = M = 1") +
            "), oracle threshold 0.2. SIMD efficiency: Purcell's (the stream's rays doing useful work per pass, misses "
            "included; branching run in lock step one step or test at a time); lane utilisation: the branching "
-           "kernel's subgroup ballots.", ""]
+           "kernel's subgroup ballots. " + CHRISTEN_SCENES, ""]
     if not arch.empty:
         out += [f"| {size(arch.iloc[0])} | passes (traverse+intersect) | lower bound | SIMD efficiency (Purcell) | lane utilisation | MB moved | GPU ms | × Embree rtcIntersect1 |",
                 "|---|---|---|---|---|---|---|---|"]

@@ -69,6 +69,14 @@ def split_vector_cells(runs: pd.DataFrame) -> pd.DataFrame:
 
 WHOLE_TRAVERSAL = ("branching", "persistent", "megakernel")
 
+# What the tables say of the scenes they name after Christen 2005 (Table 6.1: A "3 Boxes", 36
+# triangles; B "Cubes distributed in room", 2,064; C "High and low polygon objects", 61,562).
+CHRISTEN_SCENES = ("Scenes A, B and C after Christen 2005 Table 6.1: scene A is his 3 boxes (36 triangles); scene B "
+                   "here is a room of 12 triangles with 166 cubes, 2,004 triangles, where his table says 2,064 "
+                   "(`procedural:christen_b_thesis`, 171 cubes, is one reading of that; no record uses it); scene C "
+                   "(`scenes/christen_c.toml`) matches his 61,562 triangles only: which objects and where they stand "
+                   "are ours, the thesis does not say.")
+
 
 def split_simd_measures(runs: pd.DataFrame) -> pd.DataFrame:
     """The two SIMD measures a folder before results schema 14 kept in one column, simd_efficiency:
