@@ -72,8 +72,7 @@ GpuBuffers::GpuBuffers(VulkanContext& vk, const std::vector<gpu::Ray>& rays, std
         vk.upload(buffers_[gpu::kBindingRays], rays.data(), n * sizeof(gpu::Ray));
         for (std::uint32_t b = gpu::kBindingStrategy; b < gpu::kBindingStructure; ++b) {
             buffers_[b] = vk.createStorageBuffer(sizes[b - 1].bytes, sizes[b - 1].what);  // sizes has no pass-counter entry
-            const std::vector<std::uint8_t> zeros(sizes[b - 1].bytes, 0);
-            vk.upload(buffers_[b], zeros.data(), zeros.size());
+            vk.fill(buffers_[b], 0);  // zeros, filled on the device (no host copy of the buffer's size)
         }
         for (std::size_t i = 0; i < structureBuffers.size(); ++i) {
             const BufferData& b = structureBuffers[i];

@@ -483,6 +483,18 @@ void VulkanContext::upload(Buffer& b, const void* data, VkDeviceSize size) {
     destroy(staging);
 }
 
+void VulkanContext::fill(Buffer& b, std::uint32_t value) {
+    VkCommandBuffer cmd = beginOneShot();
+    vkCmdFillBuffer(cmd, b.buffer, 0, VK_WHOLE_SIZE, value);
+    // Orders the fill before later compute shaders read or write the buffer.
+    VkMemoryBarrier barrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    barrier.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    barrier.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT;
+    vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, 1, &barrier, 0,
+                         nullptr, 0, nullptr);
+    submitAndWait(cmd);
+}
+
 void VulkanContext::download(const Buffer& b, void* data, VkDeviceSize size) {
     if (size == 0) return;
     if (b.mapped) {

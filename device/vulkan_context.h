@@ -100,6 +100,8 @@ public:
     // counters the kernels summed in a device-local buffer: CounterReadback).
     Buffer createHostReadbackBuffer(VkDeviceSize size);
     void upload(Buffer& buffer, const void* data, VkDeviceSize size);
+    // Every 4 bytes of the buffer set to `value` on the device (vkCmdFillBuffer), before later kernels.
+    void fill(Buffer& buffer, std::uint32_t value);
     void download(const Buffer& buffer, void* data, VkDeviceSize size);
     void destroy(Buffer& buffer);
 

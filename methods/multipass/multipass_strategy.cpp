@@ -12,6 +12,9 @@ namespace rtbench {
 
 namespace {
 
+// With the control on the device: the oracle's control block and its pass-log ring, one per batch.
+constexpr std::uint64_t kPassControlBytes = sizeof(gpu::PassControl) + gpu::kPassLogEntries * sizeof(gpu::PassLogEntry);
+
 struct Pipelines {
     VulkanContext& vk;
     std::array<ComputePipeline, kPassKinds> byKind{};
@@ -97,7 +100,7 @@ MultipassCounts runDeviceLoop(VulkanContext& vk, GpuBuffers& buffers, Pipelines&
     static_assert(kIterationsPerRound < gpu::kPassLogEntries, "a submission's passes must fit the log ring");
     gpu::PassControl control{};
     std::vector<gpu::PassLogEntry> log;
-    std::vector<std::uint8_t> bytes(sizeof(gpu::PassControl) + gpu::kPassLogEntries * sizeof(gpu::PassLogEntry));
+    std::vector<std::uint8_t> bytes(kPassControlBytes);
     for (std::uint64_t iterations = 0; !control.status.y;) {
         if (iterations > cap)
             throw Error("multipass (device): the oracle kernel had not ended the loop after " + std::to_string(iterations) +
@@ -305,8 +308,7 @@ MultipassRun runMultipassBatch(VulkanContext& vk, const Structure& structure, co
     if (options.deviceControl) {
         if (cap > 0xFFFFFFFFull) throw Error("multipass (device): the pass cap " + std::to_string(cap) + " is over 2^32 - 1");
         own = {{"multipass ray lists (4 x " + std::to_string(rays.size()) + " rays)", rayListBytes(rays.size())},
-               {"multipass oracle control and pass log",
-                sizeof(gpu::PassControl) + gpu::kPassLogEntries * sizeof(gpu::PassLogEntry)}};
+               {"multipass oracle control and pass log", kPassControlBytes}};
     }
     auto buffers = std::make_unique<GpuBuffers>(vk, rays, structure.costs().traversalStateBytes, structure.buffers(),
                                                 structure.params(), own);
@@ -357,7 +359,11 @@ MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const s
         // per-ray records and events are those of one stream; the passes add up over the batches.
         const auto batches = streamBatches(rays.size(), batchRays);
         std::vector<BufferSize> perRay = rayBufferSizes(rays.size(), structure.costs().traversalStateBytes);
-        if (options.deviceControl) perRay.push_back({"multipass ray lists", rayListBytes(rays.size())});
+        if (options.deviceControl) {
+            perRay.push_back({"multipass ray lists", rayListBytes(rays.size())});
+            perRay.push_back({"multipass oracle control and pass log x " + std::to_string(batches.size()) + " batches",
+                              kPassControlBytes * batches.size()});
+        }
         refuseOversizedBatches(vk.info(), perRay, structure.buffers(), batches.size());
         std::vector<std::unique_ptr<KernelTimer>> timers;
         run.batches = 0;
