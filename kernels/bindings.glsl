@@ -25,6 +25,7 @@ layout(constant_id = kSpecLatticeOriginY) const float latticeOriginY = 0.0;
 layout(constant_id = kSpecLatticeOriginZ) const float latticeOriginZ = 0.0;
 layout(constant_id = kSpecLatticeStep) const float latticeStep = 0.0;
 layout(constant_id = kSpecQuery) const uint query = kQueryClosest;
+layout(constant_id = kSpecNativeDivision) const uint nativeDivision = 0u;
 
 layout(std430, set = 0, binding = kBindingRays) readonly buffer RayBuffer { Ray rays[]; };
 layout(std430, set = 0, binding = kBindingHits) writeonly buffer HitBuffer { HitRecord hits[]; };

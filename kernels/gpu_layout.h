@@ -60,6 +60,7 @@ RTBENCH_CONST kSpecNaive = 16;           // multipass oracle kernel: 1 = Christe
 RTBENCH_CONST kSpecPassCap = 17;         // multipass oracle kernel: the pass cap (multipassPassCap)
 RTBENCH_CONST kSpecMaxGroupsX = 18;      // multipass oracle kernel: maxComputeWorkGroupCount[0]
 RTBENCH_CONST kSpecOracleAllRays = 19;   // multipass oracle kernel: 1 = the threshold's basis is the stream's rays (oracle_basis = all)
+RTBENCH_CONST kSpecNativeDivision = 20;  // 1: rtDivide is the device's own division (OpFDiv, 2.5 ULP allowed): strategy plain
 
 // ---- megakernel schedules (methods/megakernel/megakernel.comp; Parker et al. 2013 §5.1-5.2) ----
 RTBENCH_CONST kScheduleSwitch = 0;          // each lane runs its own state: the subgroup runs every state present, one after another

@@ -19,7 +19,10 @@
 // rounding is innocuous for division when 53 >= 2 * 24 + 2; Figueroa 1995). Needs shaderFloat64.
 // A quotient at or past FLT_MAX + half an ulp (0x7f7fffff + 2^103) overflows to infinity, as IEEE's
 // float division does (and as converting it would not: undefined in C++).
+// The plain strategy (nativeDivision != 0) measures what this costs: it divides as the device does,
+// its hits judged by the exact reference alone.
 float rtDivide(float a, float b) {
+    if (nativeDivision != 0u) return a / b;
     precise double q = double(a) / double(b);
     precise double overflow = double(uintBitsToFloat(0x7f7fffffu)) + double(uintBitsToFloat(0x73000000u));
     if (abs(q) >= overflow) return uintBitsToFloat(q > 0.0 ? 0x7f800000u : 0xff800000u);  // +-infinity

@@ -13,6 +13,8 @@
 layout(local_size_x_id = kSpecWorkgroupSize) in;
 // ray_math.glsl's triangle tests read it; the shading pass tests no triangle.
 layout(constant_id = kSpecTriangleTest) const uint triangleTest = kTriangleTestMollerTrumbore;
+// rtDivide reads it: the shading pass always divides exactly, as the CPU does.
+const uint nativeDivision = 0u;
 
 layout(std430, set = 0, binding = kShadingBindingParents) readonly buffer ParentBuffer { Ray parents[]; };
 layout(std430, set = 0, binding = kShadingBindingHits) readonly buffer HitBuffer { HitRecord hits[]; };

@@ -8,6 +8,7 @@
 #include "methods/megakernel/megakernel_strategy.h"
 #include "methods/multipass/multipass_strategy.h"
 #include "methods/persistent/persistent_strategy.h"
+#include "methods/plain/plain_strategy.h"
 #include "methods/ray_query/driver_structure.h"
 #include "methods/ray_query/ray_query_strategy.h"
 #include "structures/error.h"
@@ -23,7 +24,7 @@ const std::vector<const StructureType*>& structureTypes() {
 const std::vector<const StrategyType*>& strategyTypes() {
     static const std::vector<const StrategyType*> types = {&branchingStrategyType(), &multipassStrategyType(),
                                                                  &persistentStrategyType(), &megakernelStrategyType(),
-                                                                 &rayQueryStrategyType()};
+                                                                 &rayQueryStrategyType(), &plainStrategyType()};
     return types;
 }
 

@@ -65,7 +65,8 @@ struct ColumnSpec {
 //        ray_query, driver_*); cpu_reference_mismatches and the work columns empty where a method
 //        counts no work; the two SIMD measures apart (simd_efficiency_purcell,
 //        simd_lane_utilisation); strategy.oracle_basis.
-constexpr int kSchemaVersion = 14;
+//  15  + the plain twin of the branching kernel (strategy.type = plain, plain_cpu_differing).
+constexpr int kSchemaVersion = 15;
 
 // The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".
 std::string paramColumn(const std::string& key);

@@ -188,7 +188,7 @@ StrategyRun judgeWholeTraversal(VulkanContext& vk, const Structure& structure, c
 
 ColumnSpec streamBatchesColumn() {
     return {"stream_batches", ColumnKind::Count, "dispatches",
-            "branching, persistent, megakernel, ray_query: dispatches the ray stream ran in, each of whole workgroups, one "
+            "branching, plain, persistent, megakernel, ray_query: dispatches the ray stream ran in, each of whole workgroups, one "
             "after another (more than 1 when one binding cannot hold its ray or hit records); records and counts are as of one", 0.0, false, {}, 13};
 }
 

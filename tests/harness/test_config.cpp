@@ -91,7 +91,7 @@ TEST_F(Config, OutOfRange) {
 
 TEST_F(Config, ValueNotInTheAllowedSet) {
     EXPECT_EQ(errorOf(kMinimal + "[strategy]\ntype = \"wavefront\"\n"),
-              path_ + ":6: key 'strategy.type': 'wavefront' is not allowed (allowed: branching, multipass, persistent, megakernel, ray_query)");
+              path_ + ":6: key 'strategy.type': 'wavefront' is not allowed (allowed: branching, multipass, persistent, megakernel, ray_query, plain)");
 }
 
 TEST_F(Config, MissingRequiredKey) {

@@ -1,0 +1,66 @@
+#!/usr/bin/python3
+"""Table for a division results folder (configs/division.toml): what rtbench's bit-exact division
+costs, as the branching kernel against its plain twin (the same kernel dividing as the device
+does), each against Embree rtcIntersect1 on the same rays in the same run (a ratio of ratios), and
+how time per ray grows with the stream (issue 18 §2).
+
+usage: scripts/division_tables.py RESULTS_DIR
+  writes tables.md
+Uses Debian's python3-pandas only.
+"""
+import sys
+from pathlib import Path
+
+import pandas as pd
+
+from rtbench_results import commit_text, load, wrong_rays
+
+
+def fmt(value, digits=3) -> str:
+    return "" if pd.isna(value) else f"{value:,.{digits}f}"
+
+
+def main() -> int:
+    if len(sys.argv) != 2:
+        print(__doc__)
+        return 2
+    folder = Path(sys.argv[1])
+    runs, failed, context, device = load(folder)
+    runs = runs.copy()
+    runs["structure"] = runs.structure_type.map({"uniform_grid": "grid", "bvh": "bvh"}).fillna(runs.structure_type)
+    runs["size"] = [f"{int(w)}x{int(h)}" for w, h in zip(runs.camera_width, runs.camera_height)]
+    runs["ns_per_ray"] = runs.kernel_ms_median * 1e6 / runs.rays
+    runs["wrong"] = wrong_rays(runs)
+    lines = [f"# What bit-exact division costs — {device}, {context.get('cpu', '?')}", "",
+             f"Command: `{context.get('command', '?')}` at commit {commit_text(context)}, {context.get('date_utc', '?')}. "
+             f"{len(runs)} runs ok, {len(failed)} failed.",
+             "× Embree: the kernel's speed over Embree rtcIntersect1's on the identical rays in the same run "
+             "(`speed_ratio_vs_embree1`, its 95% bootstrap interval); exact / plain: the branching kernel's ratio over its "
+             "plain twin's (the same kernel dividing as the device does), a ratio of ratios, so drift that hits Embree and "
+             "the kernel alike cancels; ns/ray: GPU time per ray (median); 2048² / 1024²: that time per ray at 2048² over "
+             "1024²'s; differing: rays whose plain hit differs from the exactly dividing CPU reference's; wrong: rays the "
+             "exact reference contradicts.", "",
+             "| structure | rays | strategy | × Embree | 95% interval | exact / plain | ns/ray | 2048² / 1024² | differing | wrong |",
+             "|---|---|---|---|---|---|---|---|---|---|"]
+    key = runs.set_index(["structure", "size", "strategy_type"])
+    for r in runs.sort_values(["structure", "rays", "strategy_type"]).itertuples():
+        other = (r.structure, r.size, "plain")
+        over = r.speed_ratio_vs_embree1 / key.speed_ratio_vs_embree1.get(other, float("nan")) \
+            if r.strategy_type == "branching" else float("nan")
+        small = key.ns_per_ray.get((r.structure, "1024x1024", r.strategy_type), float("nan"))
+        growth = r.ns_per_ray / small if r.size == "2048x2048" else float("nan")
+        differing = getattr(r, "plain_cpu_differing", float("nan"))
+        lines.append(f"| {r.structure} | {int(r.rays):,} | {r.strategy_type} | {fmt(r.speed_ratio_vs_embree1)} | "
+                     f"[{fmt(r.speed_ratio_ci_low)}, {fmt(r.speed_ratio_ci_high)}] | {fmt(over)} | {fmt(r.ns_per_ray, 1)} | "
+                     f"{fmt(growth, 2)} | {'' if pd.isna(differing) else int(differing)} | {int(r.wrong)} |")
+    if len(failed):
+        lines += ["", "| run | structure | strategy | why |", "|---|---|---|---|"]
+        for r in failed.itertuples():
+            lines.append(f"| {r.run} | {r.structure_type} | {r.strategy_type} | {str(r.error).replace('|', '/')} |")
+    (folder / "tables.md").write_text("\n".join(lines) + "\n")
+    print(folder / "tables.md")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
