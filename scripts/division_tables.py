@@ -13,11 +13,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from rtbench_results import commit_text, load, wrong_rays
-
-
-def fmt(value, digits=3) -> str:
-    return "" if pd.isna(value) else f"{value:,.{digits}f}"
+from rtbench_results import commit_text, fmt, load, wrong_rays
 
 
 def main() -> int:

@@ -18,7 +18,7 @@ import matplotlib.pyplot as plt
 import matplotlib.ticker
 import pandas as pd
 
-from rtbench_results import commit_text, load, whitted_frames, wrong_rays
+from rtbench_results import commit_text, fmt, load, whitted_frames, wrong_rays
 
 # Purcell et al. 2002, Table 3: relative instructions / bandwidth of a frame, against ray casting
 # (his shadow caster finds the eye rays' hits by rasterization, so its frame is the shadow rays').
@@ -39,10 +39,6 @@ def workload(run) -> str:
     if run.rays_type in ("shadow", "ao"):
         return f"{run.rays_type} ({run.query})"
     return run.rays_type
-
-
-def fmt(value, digits=3) -> str:
-    return "" if pd.isna(value) else f"{value:,.{digits}f}"
 
 
 def legend_first(axes_row, fontsize):

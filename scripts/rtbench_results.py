@@ -27,6 +27,11 @@ def method_name(run) -> str:
     return {"brute_force": "brute force"}.get(kind, kind)
 
 
+def fmt(value, digits=3) -> str:
+    """A table cell: the number with thousands separators and `digits` decimals, "" when NaN."""
+    return "" if pd.isna(value) else f"{value:,.{digits}f}"
+
+
 def commit_text(context) -> str:
     """The commit a folder was made at, short: "2c376b45fb82", or "2c376b45fb82 with uncommitted
     changes (diff 4088b93b)" for a working tree that differed from it (rtbench's "-dirty-" hash)."""

@@ -17,7 +17,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import pandas as pd
 
-from rtbench_results import commit_text, load, wrong_rays
+from rtbench_results import commit_text, fmt, load, wrong_rays
 
 
 def strategy(run) -> str:
@@ -29,10 +29,6 @@ def strategy(run) -> str:
     if run.strategy_type == "megakernel":
         return f"megakernel {run.strategy_schedule}"
     return run.strategy_type
-
-
-def fmt(value, digits=3) -> str:
-    return "" if pd.isna(value) else f"{value:,.{digits}f}"
 
 
 def main() -> int:

@@ -1,7 +1,5 @@
 #include "plain_strategy.h"
 
-#include <algorithm>
-
 #include "methods/branching/branching_strategy.h"
 #include "methods/ray_query/ray_query_strategy.h"
 #include "structures/error.h"
@@ -23,23 +21,14 @@ StrategyRun runPlain(VulkanContext& vk, const Structure& structure, const RayBat
     TraceLaunch launch;
     launch.constants = {{gpu::kSpecNativeDivision, 1u}};
     BranchingRun kernel = runBranching(vk, structure, batch.rays, timing, batch.query, launch);
-    const ImpossibleHits impossible = impossibleHits(batch.rays, kernel.hits);
-    if (impossible.rays)
-        throw Error("the plain kernel answered " + std::to_string(impossible.rays) + " of " +
-                    std::to_string(batch.rays.size()) + " rays outside their interval [tMin, tMax) (first: ray " +
-                    std::to_string(impossible.first) + ")");
     row["plain_cpu_differing"] = std::to_string(hitMismatches(kernel.hits, structure.trace(batch.rays, batch.query)));
     row["stream_batches"] = std::to_string(kernel.batches);
     StrategyRun run;
-    run.metrics.work.hits = std::uint64_t(std::count_if(kernel.hits.begin(), kernel.hits.end(),
-                                                        [](const gpu::HitRecord& h) { return h.primitive != gpu::kNoHit; }));
-    // The device's own division may take another path through the structure than the CPU model's:
-    // its work is not the model's to state, and its accuracy is the exact reference's to judge.
-    run.metrics.countsKnown = false;
-    run.cpuCompared = false;
-    run.countsCompared = false;
     run.hits = std::move(kernel.hits);
     run.timer = std::move(kernel.timer);
+    // The device's own division may take another path through the structure than the CPU model's:
+    // its work is not the model's to state, and its accuracy is the exact reference's to judge.
+    judgeByTheExactReference(batch.rays, run, "the plain kernel");
     return run;
 }
 

@@ -28,6 +28,22 @@ ImpossibleHits impossibleHits(const std::vector<gpu::Ray>& rays, const std::vect
     return found;
 }
 
+void judgeByTheExactReference(const std::vector<gpu::Ray>& rays, StrategyRun& run, const std::string& who) {
+    // What can be checked of another's arithmetic: every answer lies in its ray's interval, on a
+    // triangle of the scene (the runner), and the same rays get the same answers (the timer).
+    // Accuracy is the exact reference's to judge, as Embree's is.
+    const ImpossibleHits impossible = impossibleHits(rays, run.hits);
+    if (impossible.rays)
+        throw Error(who + " answered " + std::to_string(impossible.rays) + " of " + std::to_string(rays.size()) +
+                    " rays outside their interval [tMin, tMax) (first: ray " + std::to_string(impossible.first) + ", t " +
+                    std::to_string(run.hits[impossible.first].t) + ")");
+    run.metrics.work.hits = std::uint64_t(std::count_if(run.hits.begin(), run.hits.end(),
+                                                        [](const gpu::HitRecord& h) { return h.primitive != gpu::kNoHit; }));
+    run.metrics.countsKnown = false;
+    run.cpuCompared = false;
+    run.countsCompared = false;
+}
+
 namespace {
 
 // One dispatch's rays on the device: their buffers, the kernel and its descriptor set.
@@ -125,19 +141,7 @@ StrategyRun runRayQuery(VulkanContext& vk, const Structure& structure, const Ray
     run.timer = timers.size() == 1 ? std::move(timers.front()) : std::make_unique<BatchedTimer>(std::move(timers));
     row["stream_batches"] = std::to_string(batches.size());
 
-    // What can be checked of another's arithmetic: every answer lies in its ray's interval, on a
-    // triangle of the scene (the runner), and the same rays get the same answers (the timer).
-    // Accuracy is the exact reference's to judge, as Embree's is.
-    const ImpossibleHits impossible = impossibleHits(rays, run.hits);
-    if (impossible.rays)
-        throw Error("the driver's ray query answered " + std::to_string(impossible.rays) + " of " + std::to_string(rays.size()) +
-                    " rays outside their interval [tMin, tMax) (first: ray " + std::to_string(impossible.first) + ", t " +
-                    std::to_string(run.hits[impossible.first].t) + ")");
-    run.metrics.work.hits = std::uint64_t(std::count_if(run.hits.begin(), run.hits.end(),
-                                                        [](const gpu::HitRecord& h) { return h.primitive != gpu::kNoHit; }));
-    run.metrics.countsKnown = false;
-    run.cpuCompared = false;
-    run.countsCompared = false;
+    judgeByTheExactReference(rays, run, "the driver's ray query");
     return run;
 }
 

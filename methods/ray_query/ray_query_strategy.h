@@ -21,4 +21,10 @@ struct ImpossibleHits {
 };
 ImpossibleHits impossibleHits(const std::vector<gpu::Ray>& rays, const std::vector<gpu::HitRecord>& hits);
 
+// Judges `run.hits` as Embree's are, for a kernel whose arithmetic is not rtbench's CPU reference's
+// (the driver's, the plain twin's OpFDiv): throws, naming `who`, when an answer lies outside its
+// ray's interval (impossibleHits); counts the hits; marks the run's work and its CPU comparison
+// unknown, to be judged by the exact reference.
+void judgeByTheExactReference(const std::vector<gpu::Ray>& rays, StrategyRun& run, const std::string& who);
+
 }  // namespace rtbench
