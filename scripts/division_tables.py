@@ -13,7 +13,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from rtbench_results import commit_text, fmt, load, wrong_rays
+from rtbench_results import commit_text, fmt, load, structure_names, wrong_rays
 
 
 def main() -> int:
@@ -23,7 +23,7 @@ def main() -> int:
     folder = Path(sys.argv[1])
     runs, failed, context, device = load(folder)
     runs = runs.copy()
-    runs["structure"] = runs.structure_type.map({"uniform_grid": "grid", "bvh": "bvh"}).fillna(runs.structure_type)
+    runs["structure"] = structure_names(runs.structure_type)
     runs["size"] = [f"{int(w)}x{int(h)}" for w, h in zip(runs.camera_width, runs.camera_height)]
     runs["ns_per_ray"] = runs.kernel_ms_median * 1e6 / runs.rays
     runs["wrong"] = wrong_rays(runs)

@@ -18,7 +18,7 @@ import matplotlib.pyplot as plt
 import matplotlib.ticker
 import pandas as pd
 
-from rtbench_results import commit_text, fmt, load, whitted_frames, wrong_rays
+from rtbench_results import commit_text, fmt, load, structure_names, whitted_frames, wrong_rays
 
 # Purcell et al. 2002, Table 3: relative instructions / bandwidth of a frame, against ray casting
 # (his shadow caster finds the eye rays' hits by rasterization, so its frame is the shadow rays').
@@ -63,7 +63,7 @@ def main() -> int:
     folder = Path(sys.argv[1])
     runs, failed, context, device = load(folder)
     runs = runs.copy()
-    runs["method"] = runs.structure_type.map({"uniform_grid": "grid", "bvh": "bvh"}).fillna(runs.structure_type) + \
+    runs["method"] = structure_names(runs.structure_type) + \
         " / " + runs.strategy_type
     runs["workload"] = [workload(r) for r in runs.itertuples()]
     runs["wrong"] = wrong_rays(runs)

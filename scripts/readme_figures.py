@@ -18,7 +18,7 @@ from pathlib import Path
 import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rtbench_results import CHRISTEN_SCENES, commit_text, method_name, read_runs, scene_name, whitted_frames, wrong_rays  # noqa: E402
+from rtbench_results import CHRISTEN_SCENES, commit_text, method_name, read_runs, scene_name, structure_names, whitted_frames, wrong_rays  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 BEGIN = "<!-- results: begin (scripts/readme_figures.py writes this section from results/; do not edit) -->"
@@ -389,7 +389,7 @@ def accuracy() -> list:
 def raytypes() -> list:
     runs, context = load("raytypes")
     ok = runs[runs.status == "ok"].copy()
-    ok["method"] = ok.structure_type.map({"uniform_grid": "grid"}).fillna(ok.structure_type) + " / " + ok.strategy_type
+    ok["method"] = structure_names(ok.structure_type) + " / " + ok.strategy_type
     out = ["### `results/raytypes/`: rays after the first hit (Purcell Table 3, Christen Fig. 6.11)", "",
            provenance("raytypes", runs, context), "",
            "Full tables: [`results/raytypes/tables.md`](results/raytypes/tables.md). A frame's GPU time for shadow rays "
@@ -457,7 +457,7 @@ def raytypes() -> list:
 def strategies() -> list:
     runs, context = load("strategies")
     ok = runs[runs.status == "ok"].copy()
-    ok["structure"] = ok.structure_type.map({"uniform_grid": "grid", "bvh": "bvh"}).fillna(ok.structure_type)
+    ok["structure"] = structure_names(ok.structure_type)
     if "strategy_control" not in ok:
         ok["strategy_control"] = "host"
     ok["strategy"] = [r.strategy_type + (f" {r.strategy_schedule}" if r.strategy_type == "megakernel" else

@@ -32,6 +32,11 @@ def fmt(value, digits=3) -> str:
     return "" if pd.isna(value) else f"{value:,.{digits}f}"
 
 
+def structure_names(structure_type: pd.Series) -> pd.Series:
+    """structure.type as tables name it: "grid" for uniform_grid, every other type as it is."""
+    return structure_type.map({"uniform_grid": "grid"}).fillna(structure_type)
+
+
 def commit_text(context) -> str:
     """The commit a folder was made at, short: "2c376b45fb82", or "2c376b45fb82 with uncommitted
     changes (diff 4088b93b)" for a working tree that differed from it (rtbench's "-dirty-" hash)."""

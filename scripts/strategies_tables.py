@@ -17,7 +17,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import pandas as pd
 
-from rtbench_results import commit_text, fmt, load, wrong_rays
+from rtbench_results import commit_text, fmt, load, structure_names, wrong_rays
 
 
 def strategy(run) -> str:
@@ -43,7 +43,7 @@ def main() -> int:
             if column not in frame:
                 frame[column] = float("nan")
     runs = runs.copy()
-    runs["structure"] = runs.structure_type.map({"uniform_grid": "grid", "bvh": "bvh"}).fillna(runs.structure_type)
+    runs["structure"] = structure_names(runs.structure_type)
     runs["strategy"] = [strategy(r) for r in runs.itertuples()]
     runs["wrong"] = wrong_rays(runs)
     branching = runs[runs.strategy_type == "branching"].set_index(["scene", "structure"]).kernel_ms_median
