@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "config.h"
+#include "methods/cache/cache_replay.h"
 #include "methods/registry.h"
 #include "workloads/registry.h"
 #include "structures/error.h"
@@ -235,6 +236,7 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("bytes_total", K::Count, "bytes", "all categories");
         add("bytes_per_ray", K::Count, "bytes", "bytes_total / rays");
         for (const StrategyType* t : strategyTypes()) addMethodColumns("strategy.type", t->name, t->columns);
+        for (const ColumnSpec& c : cacheColumns()) s.push_back(c);  // cache.simulate
         // Self-checks (a mismatch fails the run).
         add("cpu_reference_mismatches", K::Count, "rays",
             "rays whose GPU hit record differs from the CPU reference's (empty for the driver's ray query: another's arithmetic, judged by the exact reference)");

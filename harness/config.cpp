@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "embree_config.h"
+#include "methods/cache/cache_replay.h"
 #include "methods/registry.h"
 #include "workloads/registry.h"
 #include "output_folder.h"
@@ -134,6 +135,7 @@ const std::vector<KeySpec>& configSchema() {
         add({"strategy.type", ValueType::String, strategyHelp, strategies.front(), false, -1e300, 1e300, strategies});
         add({"strategy.workgroup_size", ValueType::Int, "invocations per workgroup (specialization constant)", std::int64_t(64), false, 1, 1024});
         for (const StrategyType* t : strategyTypes()) addMethodKeys("strategy.type", t->name, t->keys);
+        for (const KeySpec& k : cacheKeys()) add(k);  // Purcell 2002 Fig. 9's cache, for branching and multipass
         // What the run traces (workloads/registry.cpp), and each ray type's own keys.
         std::vector<std::string> rayTypeNames;
         std::string rayTypeHelp = "the rays the run measures:";

@@ -273,6 +273,7 @@ void finishRun(RunInProgress& p, const std::string& folder, Caches& caches, Row&
     if (method.branchingMismatches)
         throw Error("the multipass hit records differ from the branching caster's on " +
                     std::to_string(method.branchingMismatches) + " of " + std::to_string(rays.size()) + " rays");
+    if (!method.modelMismatch.empty()) throw Error(method.modelMismatch);
 }
 
 // One run, whole: prepared, timed round after round, finished.

@@ -58,9 +58,10 @@ vec3 rtLatticePoint(uint x, uint y, uint z) {
 // (`packedTriangles`, kernels/gpu_layout.h) when vertexBits != 0.
 void rtStoredVertices(uint tri, RT_OUT(vec3) v0, RT_OUT(vec3) v1, RT_OUT(vec3) v2) {
     if (vertexBits == 0u) {
-        v0 = vec3(triangles[tri].v0);
-        v1 = vec3(triangles[tri].v1);
-        v2 = vec3(triangles[tri].v2);
+        Triangle stored = triangles[tri];  // one read of the triangle (the cache trace sees one)
+        v0 = vec3(stored.v0);
+        v1 = vec3(stored.v1);
+        v2 = vec3(stored.v2);
         return;
     }
     const uint w = kPackedTriangleWords * tri;

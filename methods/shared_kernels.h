@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "kernels/gpu_layout.h"
+#include "methods/cache/memory_trace.h"
 #include "structures/mesh.h"
 
 namespace rtbench {

@@ -59,6 +59,9 @@ struct StrategyRun {
     std::string countsMismatch;          // what of the pass or lane counts differs ("" if none)
     bool countsCompared = true;          // false: the device's counts are not the model's to judge (branching's lanes off lock step)
     std::uint64_t branchingMismatches = 0;  // multipass: rays whose record differs from rtTrace's
+    // Where two of the strategy's CPU models disagree (cache.simulate: the cache replay's bytes and
+    // the bandwidth accounting's); fails the run after the kernel's own checks.
+    std::string modelMismatch;
     // Rays in subgroups that need more loop iterations than the device runs (the CPU lane model's
     // count against DeviceInfo::loopIterationLimit), and why; fails the run first.
     std::uint64_t truncatedRays = 0;

@@ -66,7 +66,8 @@ struct ColumnSpec {
 //        counts no work; the two SIMD measures apart (simd_efficiency_purcell,
 //        simd_lane_utilisation); strategy.oracle_basis.
 //  15  + the plain twin of the branching kernel (strategy.type = plain, plain_cpu_differing).
-constexpr int kSchemaVersion = 15;
+//  16  + Purcell 2002 Fig. 9's texture cache (cache.* keys, cache_* columns).
+constexpr int kSchemaVersion = 16;
 
 // The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".
 std::string paramColumn(const std::string& key);

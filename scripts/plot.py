@@ -598,6 +598,43 @@ def bandwidth_by_category(runs, device, folder, written):
     save(fig, folder, "bandwidth_by_category", written)
 
 
+# Purcell Fig. 9's data types: the cache_ratio_<kind> column of each bytes_<column> (cells: voxels or
+# BVH nodes); output is written, never cached (ratio 1).
+CACHED = [("bytes_stencil", "stencil"), ("bytes_state", "state"), ("bytes_stack", "stack"), ("bytes_voxel", "cells"),
+          ("bytes_node", "cells"), ("bytes_triangle_list", "triangle_list"), ("bytes_vertices", "vertices"),
+          ("bytes_output", None)]
+
+
+def texture_cache(runs, device, folder, written):
+    """Purcell et al. 2002 Fig. 9: memory traffic with the texture cache over traffic without, a bar
+    per run (cache.simulate), each split by data type: a type's traffic with the cache over the
+    run's total without it, so the bar's height is cache_ratio_total."""
+    if "cache_ratio_total" not in runs or runs.cache_ratio_total.isna().all():
+        return skip(folder, "texture_cache", "no run with cache.simulate = true")
+    chosen = runs[runs.cache_ratio_total.notna()]
+    keys = [k for k in swept_keys(chosen) if k not in ("scene_source", "strategy_type")]
+    chosen = chosen.sort_values(["scene", "strategy_type"] + keys)
+    labels = run_labels(chosen, ["scene", "strategy_type"], keys)
+    parts = pd.DataFrame(index=chosen.index)
+    for column, kind in CACHED:
+        if column not in chosen or not chosen[column].fillna(0).any():
+            continue
+        ratio = 1.0 if kind is None else chosen[f"cache_ratio_{kind}"].fillna(0)
+        parts[column] = chosen[column].fillna(0) * ratio / chosen.bytes_total
+    if ((parts.sum(axis=1) - chosen.cache_ratio_total).abs() > 1e-3).any():
+        raise PlotError(f"{folder}: texture_cache: the data types' parts do not add up to cache_ratio_total")
+    names = dict(BYTES)
+    fig, ax = plt.subplots(figsize=(max(7, 1.25 * len(chosen)), 5.0))
+    stacked_bars(ax, labels, parts, [(c, names[c]) for c in parts.columns])
+    ax.axhline(1.0, color="grey", linewidth=0.8, linestyle=":")
+    ax.set_ylabel("traffic with the cache / without it")
+    cache = chosen.iloc[0]
+    ax.set_title(f"Texture cache (Purcell Fig. 9 style): {int(cache.cache_capacity_bytes):,} bytes, "
+                 f"{int(cache.cache_line_bytes)}-byte lines, {int(cache.cache_ways)}-way; {size(chosen)}\n"
+                 f"replayed on the CPU, the same on every device (kernels timed on {device})")
+    save(fig, folder, "texture_cache", written)
+
+
 def unrolling(runs, device, folder, written):
     unroll = runs[runs.sweep.str.startswith("unroll")]
     if unroll.empty:
@@ -1202,7 +1239,7 @@ def run(folder: Path) -> int:
     for chart in (speed_vs_accuracy, vertex_precision, simplification):
         draw(chart.__name__, folder, chart, runs, device, folder, written)
     runs = runs[variant(runs) == ""]  # the other charts compare methods on the scene as it is
-    for chart in (passes_vs_threshold, bandwidth_by_category, unrolling, grid_resolution, kernel_time,
+    for chart in (passes_vs_threshold, bandwidth_by_category, texture_cache, unrolling, grid_resolution, kernel_time,
                   structures_time, structures_memory, structures_work):
         draw(chart.__name__, folder, chart, runs, device, folder, written)
     draw("failure_map", folder, failure_map, runs, failed, device, folder, written)

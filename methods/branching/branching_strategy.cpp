@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "lane_counts.h"
+#include "methods/cache/cache_replay.h"
 #include "methods/stream_batches.h"
 #include "structures/error.h"
 #include "structures/scene_limits.h"
@@ -213,8 +214,13 @@ const std::vector<ColumnSpec>& wholeTraversalColumns() {
 namespace {
 
 StrategyRun runBranchingStrategy(VulkanContext& vk, const Structure& structure, const RayBatch& batch,
-                                 const RunConfig&, const TimingOptions& timing, Row& row) {
-    return judgeWholeTraversal(vk, structure, batch, runBranching(vk, structure, batch.rays, timing, batch.query), row);
+                                 const RunConfig& config, const TimingOptions& timing, Row& row) {
+    StrategyRun run =
+        judgeWholeTraversal(vk, structure, batch, runBranching(vk, structure, batch.rays, timing, batch.query), row);
+    if (const auto cache = cacheConfig(config))
+        run.modelMismatch =
+            writeCacheColumns(branchingCacheReplay(structure, batch.rays, batch.query, *cache), run.metrics.bytes, row);
+    return run;
 }
 
 }  // namespace

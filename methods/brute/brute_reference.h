@@ -13,8 +13,9 @@ using namespace rtbench::gpu;
 #include "methods/shared_source_begin.h"
 struct BruteKernels : KernelConstants {
     using RtTraversalState = BruteTraversalState;
-    const Triangle* triangles;
-    const std::uint32_t* packedTriangles;
+    static constexpr std::uint64_t kTraversalStackBytes = 0;  // no node stack
+    TracedArray<Triangle, MemoryKind::Vertices> triangles;
+    TracedArray<std::uint32_t, MemoryKind::Vertices> packedTriangles;
     BruteParams params;
 #include "../../kernels/ray_math.glsl"
 #include "../../kernels/traversal_common.glsl"

@@ -13,10 +13,11 @@ using namespace rtbench::gpu;
 #include "methods/shared_source_begin.h"
 struct BvhKernels : KernelConstants {
     using RtTraversalState = BvhTraversalState;
-    const BvhNode* nodes;
-    const std::uint32_t* triangleList;
-    const Triangle* triangles;
-    const std::uint32_t* packedTriangles;
+    static constexpr std::uint64_t kTraversalStackBytes = sizeof(BvhTraversalState::stack);  // its node stack, at its end
+    TracedArray<BvhNode, MemoryKind::Cells> nodes;
+    TracedArray<std::uint32_t, MemoryKind::TriangleList> triangleList;
+    TracedArray<Triangle, MemoryKind::Vertices> triangles;
+    TracedArray<std::uint32_t, MemoryKind::Vertices> packedTriangles;
     BvhParams params;
 #include "../../kernels/ray_math.glsl"
 #include "../../kernels/traversal_common.glsl"

@@ -17,10 +17,11 @@ using namespace rtbench::gpu;
 #include "methods/shared_source_begin.h"
 struct GridKernels : KernelConstants {
     using RtTraversalState = GridTraversalState;
-    const std::uint32_t* cellOffsets;
-    const std::uint32_t* triangleList;
-    const Triangle* triangles;
-    const std::uint32_t* packedTriangles;
+    static constexpr std::uint64_t kTraversalStackBytes = 0;  // no node stack
+    TracedArray<std::uint32_t, MemoryKind::Cells> cellOffsets;
+    TracedArray<std::uint32_t, MemoryKind::TriangleList> triangleList;
+    TracedArray<Triangle, MemoryKind::Vertices> triangles;
+    TracedArray<std::uint32_t, MemoryKind::Vertices> packedTriangles;
     GridParams params;
 #include "../../kernels/ray_math.glsl"
 #include "../../kernels/traversal_common.glsl"

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstring>
 
+#include "methods/cache/cache_replay.h"
 #include "methods/stream_batches.h"
 #include "multipass_simulator.h"
 #include "structures/error.h"
@@ -195,6 +196,9 @@ StrategyRun runMultipassStrategy(VulkanContext& vk, const Structure& structure, 
     row["passes_intersect"] = std::to_string(run.metrics.passesIntersect);
     row["passes_write"] = std::to_string(run.metrics.passesWrite);
     row["passes_lower_bound"] = std::to_string(run.metrics.passesLowerBound);
+    if (const auto cache = cacheConfig(config))
+        run.modelMismatch = writeCacheColumns(
+            multipassCacheReplay(structure, rays, options, batch.query, kernel.batchRays, *cache), run.metrics.bytes, row);
     run.hits = std::move(kernel.hits);
     run.timer = std::move(kernel.timer);
     return run;

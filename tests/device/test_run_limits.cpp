@@ -11,6 +11,7 @@
 #include "harness/runner.h"
 #include "tests/device/test_device.h"
 #include "structures/error.h"
+#include "tests/harness/test_experiment.h"
 #include "tests/temp_dir.h"
 #include "tests/error_of.h"
 #include "methods/grid/grid_structure.h"
@@ -40,13 +41,8 @@ class RunLimits : public ::testing::Test {
 protected:
     Row runOne(const std::string& scene, const std::string& body) {
         dir_.write("scene.off", scene);
-        const std::string path = dir_.write(
-            "limits.toml", "[experiment]\nname = \"limits\"\noutput = \"" + dir_.file("out") +
-                               "\"\nrepetitions = 1\nwarmups = 0\n[scene]\nsource = \"scene.off\"\n[device]\nname = \"" +
-                               testDeviceName() + "\"\nvalidation = true\n[output]\nimages = false\n" + body);
-        RunnerOptions options;
-        options.quiet = true;
-        const ExperimentResult result = runExperiment(loadExperiment(path), options);
+        const ExperimentResult result =
+            runTestConfig(dir_, "limits", "[scene]\nsource = \"scene.off\"\n[output]\nimages = false\n" + body);
         EXPECT_EQ(result.rows.size(), 1u);
         return result.rows.at(0);
     }

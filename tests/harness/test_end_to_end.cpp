@@ -14,6 +14,7 @@
 #include "harness/runner.h"
 #include "tests/device/test_device.h"
 #include "tests/error_of.h"
+#include "tests/harness/test_experiment.h"
 #include "tests/temp_dir.h"
 
 namespace rtbench {
@@ -30,10 +31,7 @@ RunnerOptions quietOptions() {
 class EndToEnd : public ::testing::Test {
 protected:
     ExperimentResult run(const std::string& body, RunnerOptions options = quietOptions()) {
-        const std::string path = dir_.write("e2e.toml", "[experiment]\nname = \"e2e\"\noutput = \"" + dir_.file("out") +
-                                                            "\"\nrepetitions = 1\nwarmups = 0\n[device]\nname = \"" +
-                                                            testDeviceName() + "\"\nvalidation = true\n" + body);
-        return runExperiment(loadExperiment(path), options);
+        return runTestConfig(dir_, "e2e", body, options);
     }
     TempDir dir_;
 };

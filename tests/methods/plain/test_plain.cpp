@@ -11,6 +11,7 @@
 #include "harness/runner.h"
 #include "methods/plain/plain_strategy.h"
 #include "tests/device/test_device.h"
+#include "tests/harness/test_experiment.h"
 #include "tests/temp_dir.h"
 
 namespace rtbench {
@@ -59,14 +60,7 @@ TEST(Plain, EveryBranchingKernelReadsTheNativeDivisionConstant) {
     }
 }
 
-ExperimentResult runConfig(TempDir& dir, const std::string& body) {
-    const std::string path = dir.write("plain.toml", "[experiment]\nname = \"plain\"\noutput = \"" + dir.file("out") +
-                                                         "\"\nrepetitions = 1\nwarmups = 0\n[device]\nname = \"" +
-                                                         testDeviceName() + "\"\nvalidation = true\n" + body);
-    RunnerOptions options;
-    options.quiet = true;
-    return runExperiment(loadExperiment(path), options);
-}
+ExperimentResult runConfig(TempDir& dir, const std::string& body) { return runTestConfig(dir, "plain", body); }
 
 // Scene B through each structure, closest and any hit: plain's rows are ok against the exact
 // reference, with no work counted, and where the device's division is IEEE's (llvmpipe's is
@@ -89,7 +83,9 @@ TEST(Plain, RunsBesideBranchingOnTheSameRays) {
         EXPECT_EQ(cell("cpu_reference_mismatches"), "");
         EXPECT_EQ(cell("work_per_ray_mean"), "");
         EXPECT_EQ(cell("stream_batches"), "1");
-        if (llvmpipe) EXPECT_EQ(cell("plain_cpu_differing"), "0");
+        if (llvmpipe) {
+            EXPECT_EQ(cell("plain_cpu_differing"), "0");
+        }
     }
     EXPECT_EQ(plain, 6);
 }

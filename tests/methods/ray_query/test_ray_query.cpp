@@ -19,20 +19,14 @@
 #include "structures/procedural.h"
 #include "tests/device/test_device.h"
 #include "tests/methods/hand_scenes.h"
+#include "tests/harness/test_experiment.h"
 #include "tests/temp_dir.h"
 
 namespace rtbench {
 namespace {
 using ::testing::HasSubstr;
 
-ExperimentResult runConfig(TempDir& dir, const std::string& body) {
-    const std::string path = dir.write("rq.toml", "[experiment]\nname = \"rq\"\noutput = \"" + dir.file("out") +
-                                                      "\"\nrepetitions = 1\nwarmups = 0\n[device]\nname = \"" +
-                                                      testDeviceName() + "\"\nvalidation = true\n" + body);
-    RunnerOptions options;
-    options.quiet = true;
-    return runExperiment(loadExperiment(path), options);
-}
+ExperimentResult runConfig(TempDir& dir, const std::string& body) { return runTestConfig(dir, "rq", body); }
 
 const char* kSceneB = "[scene]\nsource = \"procedural:christen_b\"\n[camera]\nwidth = 48\nheight = 36\n";
 

@@ -1,0 +1,145 @@
+#include "cache_replay.h"
+
+#include <variant>
+
+#include "methods/cache/memory_trace.h"
+#include "methods/multipass/multipass_simulator.h"
+#include "structures/error.h"
+
+namespace rtbench {
+
+namespace {
+
+void placeStructure(MemoryTrace& trace, const Structure& structure) {
+    for (const StructureBuffer& b : structure.buffers()) trace.place(b.data, b.bytes);
+}
+
+// The accounting's bytes of one data type.
+std::uint64_t accountedBytes(const Bandwidth& b, MemoryKind kind) {
+    switch (kind) {
+        case MemoryKind::Stencil:
+            return b.stencil;
+        case MemoryKind::State:
+            return b.state;
+        case MemoryKind::Stack:
+            return b.stack;
+        case MemoryKind::Cells:
+            return b.cells;
+        case MemoryKind::TriangleList:
+            return b.triangleList;
+        case MemoryKind::Vertices:
+            return b.vertices;
+        case MemoryKind::Output:
+            return b.output;
+    }
+    return 0;
+}
+
+constexpr MemoryKind kReadKinds[] = {MemoryKind::Stencil, MemoryKind::State,        MemoryKind::Stack,
+                                     MemoryKind::Cells,   MemoryKind::TriangleList, MemoryKind::Vertices};
+
+}  // namespace
+
+CacheSimulator branchingCacheReplay(const Structure& structure, const std::vector<gpu::Ray>& rays, std::uint32_t query,
+                                    const CacheConfig& config) {
+    CacheSimulator cache(config);
+    MemoryTrace trace(cache);
+    placeStructure(trace, structure);
+    std::vector<gpu::HitRecord> hits(rays.size());
+    trace.place(rays.data(), rays.size() * sizeof(gpu::Ray));
+    trace.place(hits.data(), hits.size() * sizeof(gpu::HitRecord));
+    std::visit(
+        [&](auto kernels) {
+            kernels.query = query;
+            const MemoryTrace::Scope scope(trace);
+            for (std::size_t i = 0; i < rays.size(); ++i) {
+                trace.read(MemoryKind::State, &rays[i], sizeof(gpu::Ray));  // the ray, read once
+                hits[i] = kernels.rtTrace(rays[i]);
+                trace.write(MemoryKind::Output, &hits[i], bytes::kOutput);
+            }
+        },
+        structure.cpuKernels());
+    return cache;
+}
+
+CacheSimulator multipassCacheReplay(const Structure& structure, const std::vector<gpu::Ray>& rays,
+                                    const MultipassOptions& options, std::uint32_t query, std::uint64_t batchRays,
+                                    const CacheConfig& config) {
+    if (options.deviceControl)
+        throw Error("cache.simulate replays Purcell's multipass, whose passes walk the whole stream through the stencil "
+                    "(strategy.control = host), not the device-controlled one's compacted lists");
+    CacheSimulator cache(config);
+    MemoryTrace trace(cache);
+    placeStructure(trace, structure);
+    simulateMultipass(structure, rays, options, query, batchRays, &trace);
+    return cache;
+}
+
+const std::vector<KeySpec>& cacheKeys() {
+    static const std::vector<KeySpec> keys = [] {
+        const std::vector<std::string> asked = {"strategy.type=branching|multipass", "cache.simulate=true"};
+        std::vector<KeySpec> k = {
+            {"cache.simulate", ValueType::Bool, "branching and multipass (host control): replay the run's memory references on the CPU through a texture cache, as Purcell et al. 2002 §4.1 did for Fig. 9 (one reference at a time, as by a single-pixel-wide pipeline), and write the cache_* columns", false, false, -1e300, 1e300, {}, {"strategy.type=branching|multipass"}},
+            {"cache.size_bytes", ValueType::Int, "the cache's size (Purcell: 64 KB); it holds size / (line x ways) whole sets", std::int64_t(65536), false, 1, 1073741824.0, {}, asked},
+            {"cache.line_bytes", ValueType::Int, "its line (Purcell: 48 bytes, four float RGB or three float RGBA texels)", std::int64_t(48), false, 1, 65536, {}, asked},
+            {"cache.ways", ValueType::Int, "lines per set, the least recently used replaced (Purcell: 1, direct-mapped)", std::int64_t(1), false, 1, 1024, {}, asked},
+        };
+        for (KeySpec& key : k) key.since = 16;
+        return k;
+    }();
+    return keys;
+}
+
+const std::vector<ColumnSpec>& cacheColumns() {
+    static const std::vector<ColumnSpec> columns = [] {
+        using K = ColumnKind;
+        const std::vector<std::string> asked = {"cache.simulate=true"};
+        std::vector<ColumnSpec> c = {
+            {"cache_capacity_bytes", K::Count, "bytes", "cache.simulate: the bytes the cache holds, sets x ways x line (64 KB of 48-byte lines: 65,520)", 0.0, false, asked},
+            {"cache_ratio_total", K::Count, "fraction", "cache.simulate: memory traffic with the cache / without it, all data types (Purcell 2002 Fig. 9's bar: a missed line costs the whole line; writes cost their bytes either way)", 0.0, false, asked}};
+        for (const MemoryKind kind : kReadKinds) {
+            const std::string name = memoryKindName(kind);
+            const std::string without = kind == MemoryKind::Cells ? "bytes_voxel or bytes_node" : "bytes_" + name;
+            c.push_back({"cache_ratio_" + name, K::Count, "fraction", "cache.simulate: traffic of " + name + " data with the cache / without it (" + without + ")", 0.0, false, asked});
+            c.push_back({"cache_hit_rate_" + name, K::Count, "fraction", "cache.simulate: of the cache lines the " + name + " reads touch, the fraction found in the cache (empty: no reads)", 0.0, false, asked});
+        }
+        for (ColumnSpec& col : c) col.since = 16;
+        return c;
+    }();
+    return columns;
+}
+
+std::optional<CacheConfig> cacheConfig(const RunConfig& run) {
+    if (!run.has("cache.simulate") || !run.getBool("cache.simulate")) return std::nullopt;
+    CacheConfig c;
+    c.sizeBytes = std::uint64_t(run.getInt("cache.size_bytes"));
+    c.lineBytes = std::uint64_t(run.getInt("cache.line_bytes"));
+    c.ways = std::uint64_t(run.getInt("cache.ways"));
+    return c;
+}
+
+std::string writeCacheColumns(const CacheSimulator& cache, const Bandwidth& accounted, Row& row) {
+    std::string differs;
+    std::uint64_t with = 0, without = 0;
+    for (int k = 0; k < kMemoryKinds; ++k) {
+        const MemoryKind kind = static_cast<MemoryKind>(k);
+        const CacheKindStats& s = cache.stats(kind);
+        if (s.bytesWithout() != accountedBytes(accounted, kind))
+            differs += std::string(differs.empty() ? "" : "; ") + memoryKindName(kind) + " " +
+                       std::to_string(s.bytesWithout()) + " bytes in the cache replay, " +
+                       std::to_string(accountedBytes(accounted, kind)) + " accounted";
+        with += cache.bytesWith(kind);
+        without += s.bytesWithout();
+    }
+    row["cache_capacity_bytes"] = std::to_string(cache.capacityBytes());
+    row["cache_ratio_total"] = formatNumber(without ? double(with) / double(without) : 1.0);
+    for (const MemoryKind kind : kReadKinds) {
+        const CacheKindStats& s = cache.stats(kind);
+        const std::string name = memoryKindName(kind);
+        if (s.bytesWithout()) row["cache_ratio_" + name] = formatNumber(double(cache.bytesWith(kind)) / double(s.bytesWithout()));
+        if (s.lineLookups) row["cache_hit_rate_" + name] = formatNumber(double(s.lineHits) / double(s.lineLookups));
+    }
+    return differs.empty() ? "" : "the cache replay's bytes differ from the bandwidth accounting's: " + differs;
+}
+
+}  // namespace rtbench

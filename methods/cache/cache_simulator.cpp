@@ -1,0 +1,72 @@
+#include "cache_simulator.h"
+
+#include <algorithm>
+
+#include "structures/error.h"
+
+namespace rtbench {
+
+const char* memoryKindName(MemoryKind kind) {
+    switch (kind) {
+        case MemoryKind::Stencil:
+            return "stencil";
+        case MemoryKind::State:
+            return "state";
+        case MemoryKind::Stack:
+            return "stack";
+        case MemoryKind::Cells:
+            return "cells";
+        case MemoryKind::TriangleList:
+            return "triangle_list";
+        case MemoryKind::Vertices:
+            return "vertices";
+        case MemoryKind::Output:
+            return "output";
+    }
+    return "?";
+}
+
+CacheSimulator::CacheSimulator(const CacheConfig& config) : config_(config) {
+    if (!config.sizeBytes || !config.lineBytes || !config.ways)
+        throw Error("cache: size, line and ways must each be at least 1");
+    sets_ = config.sizeBytes / (config.lineBytes * config.ways);
+    if (!sets_)
+        throw Error("cache: " + std::to_string(config.sizeBytes) + " bytes hold no set of " + std::to_string(config.ways) +
+                    " lines of " + std::to_string(config.lineBytes) + " bytes");
+    tags_.assign(sets_ * config.ways, 0);
+}
+
+bool CacheSimulator::lookup(std::uint64_t line) {
+    // Sets by the line number modulo their count (not a power of two with 48-byte lines).
+    const auto set = tags_.begin() + std::ptrdiff_t((line % sets_) * config_.ways);
+    const auto end = set + std::ptrdiff_t(config_.ways);
+    const std::uint64_t tag = line + 1;
+    auto found = std::find(set, end, tag);
+    const bool hit = found != end;
+    if (!hit) found = end - 1;  // the least recently used way (or an empty one) goes
+    std::rotate(set, found, found + 1);  // to the front
+    *set = tag;
+    return hit;
+}
+
+void CacheSimulator::read(MemoryKind kind, std::uint64_t address, std::uint64_t bytes) {
+    if (!bytes) return;
+    CacheKindStats& s = stats_[static_cast<int>(kind)];
+    s.readBytes += bytes;
+    for (std::uint64_t line = address / config_.lineBytes, last = (address + bytes - 1) / config_.lineBytes; line <= last;
+         ++line) {
+        ++s.lineLookups;
+        s.lineHits += lookup(line);
+    }
+}
+
+void CacheSimulator::write(MemoryKind kind, std::uint64_t, std::uint64_t bytes) {
+    stats_[static_cast<int>(kind)].writeBytes += bytes;
+}
+
+std::uint64_t CacheSimulator::bytesWith(MemoryKind kind) const {
+    const CacheKindStats& s = stats(kind);
+    return (s.lineLookups - s.lineHits) * config_.lineBytes + s.writeBytes;
+}
+
+}  // namespace rtbench
