@@ -73,26 +73,27 @@ def main() -> int:
         grid = (f" Our bunny: a {int(r.grid_res_x)} x {int(r.grid_res_y)} x {int(r.grid_res_z)} grid at min_dim "
                 f"{int(r.structure_min_dim)}, {100 * r.hits / r.rays:.1f}% of the rays hit; Purcell's: 98 x 64 x 163, "
                 "82% (his camera and scene box are not given), so his rays do more work and the pass counts differ.")
-    out += [f"## Passes and SIMD efficiency ({heading}), {size(arch)}", "",
-            f"Multipass: {unrolling(multipass)} (traversal steps, intersections per pass), oracle threshold 0.2. "
-            "Passes counted over the traverse and intersect kernels (plus one setup and one write pass); "
-            "the lower bound is max steps / K + max tests / M over the rays. Branching: one pass. Two SIMD "
-            "measures: Purcell's (Table 2: the average fraction of the stream's rays doing useful work in a "
-            "pass, misses included; for branching, the stream run in lock step one step or test at a time) and "
-            "the subgroups' lane utilisation (Aila & Laine's ballots, branching only: counted only where some "
-            "lane of a subgroup still works). Purcell's numbers are his Table 2's." + grid, "",
-            table(arch, {"scene": ("scene", str), "strategy_type": ("architecture", str),
-                         "passes_total": ("passes", integer), "passes_traverse": ("traverse", integer),
-                         "passes_intersect": ("intersect", integer), "passes_lower_bound": ("lower bound", integer),
-                         "traversal_steps_per_ray_max": ("max steps/ray", integer),
-                         "triangles_per_ray_max": ("max tests/ray", integer),
-                         "simd_efficiency_purcell": ("SIMD eff. (Purcell)", pct),
-                         "simd_lane_utilisation": ("lane util.", pct), "kernel_mrays_s": ("Mrays/s", fixed(3)),
-                         "speed_ratio_vs_embree1": ("vs Embree", fixed(4)),
-                         "hit_miss_agreement": ("hit/miss agr.", pct)}), ""]
+    if len(arch):
+        out += [f"## Passes and SIMD efficiency ({heading}), {size(arch)}", "",
+                f"Multipass: {unrolling(multipass)} (traversal steps, intersections per pass), oracle threshold 0.2. "
+                "Passes counted over the traverse and intersect kernels (plus one setup and one write pass); "
+                "the lower bound is max steps / K + max tests / M over the rays. Branching: one pass. Two SIMD "
+                "measures: Purcell's (Table 2: the average fraction of the stream's rays doing useful work in a "
+                "pass, misses included; for branching, the stream run in lock step one step or test at a time) and "
+                "the subgroups' lane utilisation (Aila & Laine's ballots, branching only: counted only where some "
+                "lane of a subgroup still works). Purcell's numbers are his Table 2's." + grid, "",
+                table(arch, {"scene": ("scene", str), "strategy_type": ("architecture", str),
+                             "passes_total": ("passes", integer), "passes_traverse": ("traverse", integer),
+                             "passes_intersect": ("intersect", integer), "passes_lower_bound": ("lower bound", integer),
+                             "traversal_steps_per_ray_max": ("max steps/ray", integer),
+                             "triangles_per_ray_max": ("max tests/ray", integer),
+                             "simd_efficiency_purcell": ("SIMD eff. (Purcell)", pct),
+                             "simd_lane_utilisation": ("lane util.", pct), "kernel_mrays_s": ("Mrays/s", fixed(3)),
+                             "speed_ratio_vs_embree1": ("vs Embree", fixed(4)),
+                             "hit_miss_agreement": ("hit/miss agr.", pct)}), ""]
 
     arch = arch[~arch.scene.str.contains("Purcell")]
-    out += [f"## Bandwidth by data type (Purcell Fig. 8), MB per {size(arch)} frame", "",
+    out += [] if arch.empty else [f"## Bandwidth by data type (Purcell Fig. 8), MB per {size(arch)} frame", "",
             table(arch, {"scene": ("scene", str), "strategy_type": ("architecture", str),
                          "bytes_stencil": ("stencil", mb), "bytes_state": ("state", mb), "bytes_voxel": ("voxels", mb),
                          "bytes_triangle_list": ("tri lists", mb), "bytes_vertices": ("vertices", mb),
@@ -125,7 +126,7 @@ def main() -> int:
     oracle["schedule"] = oracle.apply(lambda r: "naive" if r.strategy_scheduling == "naive"
                                       else f"oracle {r.strategy_oracle_threshold:g}", axis=1)
     oracle = oracle.sort_values(["scene", "strategy_scheduling", "strategy_oracle_threshold"])
-    out += [f"## Oracle threshold ({unrolling(oracle)}, {size(oracle)})", "",
+    out += [] if oracle.empty else [f"## Oracle threshold ({unrolling(oracle)}, {size(oracle)})", "",
             table(oracle, {"scene": ("scene", str), "schedule": ("schedule", str), "passes_total": ("passes", integer),
                            "passes_traverse": ("traverse", integer), "passes_intersect": ("intersect", integer),
                            "passes_lower_bound": ("lower bound", integer),
@@ -134,7 +135,7 @@ def main() -> int:
 
     unroll = runs[runs.sweep.str.startswith("unroll")].sort_values(
         ["strategy_suppress_finished_reads", "strategy_traverse_steps_per_pass", "strategy_intersections_per_pass"])
-    out += [f"## Loop unrolling on the bunny (oracle 0.2, {size(unroll)})", "",
+    out += [] if unroll.empty else [f"## Loop unrolling on the bunny (oracle 0.2, {size(unroll)})", "",
             table(unroll, {"strategy_traverse_steps_per_pass": ("K", integer),
                            "strategy_intersections_per_pass": ("M", integer),
                            "strategy_suppress_finished_reads": ("suppress", str), "passes_total": ("passes", integer),
@@ -155,7 +156,7 @@ def main() -> int:
                 "measured here.", ""]
 
     grid = runs[runs.sweep == "grid"].sort_values(["strategy_type", "structure_min_dim"])
-    out += [f"## Grid resolution on the bunny (min_dim heuristic, {size(grid)})", "",
+    out += [] if grid.empty else [f"## Grid resolution on the bunny (min_dim heuristic, {size(grid)})", "",
             table(grid, {"strategy_type": ("architecture", str), "structure_min_dim": ("min_dim", integer),
                          "grid_cells": ("cells", integer), "grid_empty_fraction": ("empty", pct),
                          "grid_refs_per_triangle": ("refs/tri", fixed(2)),
@@ -165,13 +166,14 @@ def main() -> int:
                          "simd_lane_utilisation": ("lane util.", pct), "kernel_mrays_s": ("Mrays/s", fixed(3)),
                          "grid_build_ms": ("build ms", fixed(0))}), ""]
 
+    multipass = runs[runs.strategy_type == "multipass"]
     checks = runs[["cpu_reference_mismatches", "cpu_counts_match", "hit_miss_agreement"]]
     out += ["## Checks", "",
             f"- CPU functional simulator: hit records identical on every ray in {int((checks.cpu_reference_mismatches == 0).sum())} "
             f"of {len(runs)} runs; pass/bandwidth/lane counts identical in {int(checks.cpu_counts_match.sum())} of {len(runs)}.",
             f"- Multipass against branching: identical hit records on every ray in "
-            f"{int((runs[runs.strategy_type == 'multipass'].branching_mismatches == 0).sum())} of "
-            f"{int((runs.strategy_type == 'multipass').sum())} multipass runs.",
+            f"{int((multipass.get('branching_mismatches', pd.Series(dtype=float)) == 0).sum())} of "
+            f"{len(multipass)} multipass runs.",
             f"- Hit/miss agreement with Embree: min {100 * checks.hit_miss_agreement.min():.4f}% over all runs.",
             f"- Total wall time of the runs: {runs.wall_s.sum() / 60:.1f} min.", ""]
     (folder / "tables.md").write_text("\n".join(out))
