@@ -3,6 +3,7 @@
 #include "methods/auto/auto_structure.h"
 #include "methods/branching/branching_strategy.h"
 #include "methods/brute/brute_structure.h"
+#include "methods/cpu/cpu_strategy.h"
 #include "methods/bvh/bvh_structure.h"
 #include "methods/grid/grid_structure.h"
 #include "methods/megakernel/megakernel_strategy.h"
@@ -24,7 +25,8 @@ const std::vector<const StructureType*>& structureTypes() {
 const std::vector<const StrategyType*>& strategyTypes() {
     static const std::vector<const StrategyType*> types = {&branchingStrategyType(), &multipassStrategyType(),
                                                                  &persistentStrategyType(), &megakernelStrategyType(),
-                                                                 &rayQueryStrategyType(), &plainStrategyType()};
+                                                                 &rayQueryStrategyType(), &plainStrategyType(),
+                                                                 &cpuStrategyType()};
     return types;
 }
 

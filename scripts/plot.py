@@ -28,7 +28,7 @@ import pandas as pd  # noqa: E402
 from matplotlib import ticker, transforms  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 from rtbench_results import AXES, VECTOR_KEYS, load, method_name, scene_name, wrong_rays  # noqa: E402
-COLORS = {"branching": "tab:blue", "multipass": "tab:orange", "Embree rtcIntersect1": "tab:green"}
+COLORS = {"branching": "tab:blue", "multipass": "tab:orange", "Embree rtcIntersect1": "tab:green", "cpu": "tab:red"}
 BYTES = [("bytes_stencil", "stencil"), ("bytes_state", "state variables"), ("bytes_stack", "node stack"),
          ("bytes_voxel", "voxel data"), ("bytes_node", "BVH nodes"), ("bytes_triangle_list", "triangle lists"),
          ("bytes_vertices", "triangle vertices"), ("bytes_output", "output")]
@@ -635,6 +635,49 @@ def texture_cache(runs, device, folder, written):
     save(fig, folder, "texture_cache", written)
 
 
+def christen_grid_size(runs, device, folder, written):
+    """Christen 2005 Fig. 6.9: frame time against grid size (sweeps fig6_9 and fig6_8 of
+    configs/christen2005.toml), a line per scene and GPU architecture."""
+    if not (runs.sweep == "fig6_9").any():
+        return skip(folder, "christen_grid_size", "no run of a sweep named fig6_9")
+    sizes = runs[runs.sweep.isin(["fig6_8", "fig6_9"]) & runs.strategy_type.isin(["multipass", "branching"])]
+    fig, ax = plt.subplots(figsize=(8, 5))
+    for (scene, method), g in sizes.groupby(["scene", "strategy_type"]):
+        g = g.sort_values("grid_res_x")
+        ax.plot(g.grid_res_x, g.kernel_ms_median, "o-" if method == "multipass" else "s--", label=f"{scene}, {method}")
+    ax.set_yscale("log")
+    ax.set_xlabel("grid cells along each axis (n × n × n)")
+    ax.set_ylabel("frame time, median (ms, log scale)")
+    ax.legend(fontsize=7, loc="best")
+    ax.set_title(f"Render time against grid size (Christen 2005 Fig. 6.9 style), {size(sizes)}\n{device}")
+    save(fig, folder, "christen_grid_size", written)
+
+
+def christen_gpu_cpu(runs, device, folder, written):
+    """Christen 2005 Figs. 6.10-6.11: frame time by iteration (1: the camera rays, sweep fig6_8;
+    2-4: mirror reflections 1-3, sweep fig6_11) of both GPU architectures and of the CPU running
+    the same grid traversal, a panel per scene."""
+    if not (runs.sweep == "fig6_11").any():
+        return skip(folder, "christen_gpu_cpu", "no run of a sweep named fig6_11")
+    scenes = runs[runs.sweep == "fig6_11"].scene_source.unique()
+    gens = runs[runs.sweep.isin(["fig6_8", "fig6_11"]) & runs.scene_source.isin(scenes)].copy()
+    gens["iteration"] = [1 + int(i) if t == "reflection" else 1 for t, i in zip(gens.rays_type, gens.reflection_iteration.fillna(0))]
+    fig, axes = plt.subplots(1, len(scenes), figsize=(5.5 * len(scenes), 4.5), squeeze=False)
+    for ax, source in zip(axes[0], scenes):
+        part = gens[gens.scene_source == source]
+        for method, g in part.groupby("strategy_type"):
+            g = g.sort_values("iteration")
+            ax.plot(g.iteration, g.kernel_ms_median, "o-", label=method, color=COLORS.get(method))
+        ax.set_yscale("log")
+        ax.set_xticks(sorted(part.iteration.unique()))
+        ax.set_xlabel("iteration (1: camera rays; n: mirror reflection n - 1)")
+        ax.set_ylabel("frame time, median (ms, log scale; cpu: wall time)")
+        ax.set_title(part.scene.iloc[0])
+        ax.legend(fontsize=7, loc="best")
+    fig.suptitle(f"The GPU against the CPU on the same grid (Christen 2005 Figs. 6.10-6.11 style), {size(gens)}; {device}")
+    save(fig, folder, "christen_gpu_cpu", written)
+
+
 def unrolling(runs, device, folder, written):
     unroll = runs[runs.sweep.str.startswith("unroll")]
     if unroll.empty:
@@ -1239,7 +1282,7 @@ def run(folder: Path) -> int:
     for chart in (speed_vs_accuracy, vertex_precision, simplification):
         draw(chart.__name__, folder, chart, runs, device, folder, written)
     runs = runs[variant(runs) == ""]  # the other charts compare methods on the scene as it is
-    for chart in (passes_vs_threshold, bandwidth_by_category, texture_cache, unrolling, grid_resolution, kernel_time,
+    for chart in (passes_vs_threshold, bandwidth_by_category, texture_cache, christen_grid_size, christen_gpu_cpu, unrolling, grid_resolution, kernel_time,
                   structures_time, structures_memory, structures_work):
         draw(chart.__name__, folder, chart, runs, device, folder, written)
     draw("failure_map", folder, failure_map, runs, failed, device, folder, written)

@@ -498,6 +498,39 @@ def strategies() -> list:
     return out + [""]
 
 
+def christen2005() -> list:
+    if not folder_of("christen2005").exists():
+        return []
+    runs, context = load("christen2005")
+    ok = runs[runs.status == "ok"].copy()
+    out = ["### `results/christen2005/`: Christen 2005's benchmarks (§6.2)", "",
+           provenance("christen2005", runs, context), "",
+           "Full tables: [`results/christen2005/tables.md`](results/christen2005/tables.md). His scenes A, B (Table 6.1's "
+           "2,064 triangles) and C at 256×256 over a uniform grid: his multipass (K = M = 1, oracle 20%, the host in "
+           "control), the branching kernel, and the CPU running the same grid traversal on the host's threads "
+           "(`strategy.type = \"cpu\"`). His figures are bitmaps missing from the thesis text: shapes, not numbers, compare.", ""]
+    first = ok[ok.sweep == "fig6_8"]
+    if not first.empty:
+        out += ["| Fig. 6.8, grid 20×20×20 | multipass ms | branching ms | cpu ms | cpu / branching |", "|---|---|---|---|---|"]
+        for _, g in first.sort_values("scene_triangles").groupby("scene_triangles"):
+            ms = {t: g[g.strategy_type == t].kernel_ms_median.iloc[0] for t in ("multipass", "branching", "cpu")
+                  if (g.strategy_type == t).any()}
+            nan = float("nan")
+            out.append(f"| {g.scene.iloc[0]} ({count(g.scene_triangles.iloc[0])} triangles) | {num(ms.get('multipass', nan))} | "
+                       f"{num(ms.get('branching', nan))} | {num(ms.get('cpu', nan))} | "
+                       f"{num(ms.get('cpu', nan) / ms.get('branching', nan), 2)} |")
+    sizes = ok[ok.sweep.isin(["fig6_8", "fig6_9"]) & ok.strategy_type.isin(["multipass", "branching"])]
+    if not sizes.empty:
+        best = []
+        for (scene, method), g in sizes.groupby(["scene", "strategy_type"]):
+            r = g.loc[g.kernel_ms_median.idxmin()]
+            best.append(f"{scene} {method} at {count(r.grid_res_x)}³ ({num(r.kernel_ms_median)} ms)")
+        out += ["", "- **Fig. 6.9**, the fastest grid (10³–60³): " + "; ".join(best) + "."]
+    out += [""] + charts("christen2005", {"christen_grid_size": "render time against grid size (Christen Fig. 6.9)",
+                                           "christen_gpu_cpu": "the GPU against the CPU by iteration (Christen Figs. 6.10-6.11)"})
+    return out + [""]
+
+
 def golden() -> list:
     runs, context = load("golden")
     return ["### `results/golden/`: the counts CI checks", "",
@@ -536,7 +569,7 @@ def section() -> str:
            "medians with 95% bootstrap intervals of the repetitions of one run (an interval says nothing of the spread "
            "between runs in separate processes); a speed claim is a ratio measured in the same run. Counts (passes, "
            "bytes, work, rays wrong) are the same on every machine with the same device; timings are this machine's.", ""]
-    for part in (bunny, structures, purcell2002, stability, accuracy, raytypes, strategies, golden, h200):
+    for part in (bunny, structures, purcell2002, stability, accuracy, raytypes, strategies, christen2005, golden, h200):
         out += part()
     while out and out[-1] == "":
         out.pop()

@@ -5,6 +5,7 @@ from pathlib import Path
 import pandas as pd
 
 SCENES = {"cgal:bunny00": "bunny", "procedural:christen_a": "scene A", "procedural:christen_b": "scene B",
+          "procedural:christen_b_thesis": "scene B (Table 6.1)",
           "christen_c": "scene C", "teapot_in_stadium": "teapot in stadium", "million": "1M triangles",
           "procedural:closed_box": "closed box", "procedural:icosphere": "icosphere", "whitted_room": "Whitted room"}
 
@@ -83,7 +84,7 @@ WHOLE_TRAVERSAL = ("branching", "persistent", "megakernel")
 # triangles; B "Cubes distributed in room", 2,064; C "High and low polygon objects", 61,562).
 CHRISTEN_SCENES = ("Scenes A, B and C after Christen 2005 Table 6.1: scene A is his 3 boxes (36 triangles); scene B "
                    "here is a room of 12 triangles with 166 cubes, 2,004 triangles, where his table says 2,064 "
-                   "(`procedural:christen_b_thesis`, 171 cubes, is one reading of that; no record uses it); scene C "
+                   "(`procedural:christen_b_thesis`, 171 cubes, is one reading of that, used by results/christen2005 only); scene C "
                    "(`scenes/christen_c.toml`) matches his 61,562 triangles only: which objects and where they stand "
                    "are ours, the thesis does not say.")
 

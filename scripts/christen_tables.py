@@ -1,0 +1,102 @@
+#!/usr/bin/python3
+"""Tables for a christen2005 results folder (configs/christen2005.toml): Christen 2005 §6.2's
+benchmarks at his settings, his scenes A, B and C at 256 x 256 over a uniform grid.
+  Fig. 6.8    render time per scene at a 20 x 20 x 20 grid (sweep fig6_8);
+  Fig. 6.9    render time against grid size (sweeps fig6_9 and fig6_8);
+  Figs. 6.10-6.11  the GPU against the CPU running the same grid traversal, by iteration (sweeps
+              fig6_8 for the camera rays and fig6_11 for the reflections).
+His figures are bitmaps the thesis text lacks: there are no numbers of his to put beside ours.
+
+usage: scripts/christen_tables.py RESULTS_DIR
+  writes tables.md
+Uses Debian's python3-pandas only.
+"""
+import sys
+from pathlib import Path
+
+import pandas as pd
+
+from rtbench_results import CHRISTEN_SCENES, commit_text, fmt, load, scene_name, wrong_rays
+
+STRATEGIES = ["multipass", "branching", "cpu"]
+
+
+def grid_text(r) -> str:
+    return f"{int(r.grid_res_x)}×{int(r.grid_res_y)}×{int(r.grid_res_z)}"
+
+
+def generation(r) -> int:
+    """Christen's iteration: 1 for the camera rays, 1 + n for mirror reflection n (our reading)."""
+    return 1 + int(r.reflection_iteration) if r.rays_type == "reflection" else 1
+
+
+def main() -> int:
+    if len(sys.argv) != 2:
+        print(__doc__)
+        return 2
+    folder = Path(sys.argv[1])
+    runs, failed, context, device = load(folder)
+    runs = runs.copy()
+    runs["scene_label"] = [f"{scene_name(s)}, {int(t):,} triangles" for s, t in zip(runs.scene_source, runs.scene_triangles)]
+    runs["grid"] = [grid_text(r) for r in runs.itertuples()]
+    runs["wrong"] = wrong_rays(runs)
+    runs["iteration"] = [generation(r) for r in runs.itertuples()]
+    lines = [f"# Christen 2005's benchmarks — {device}, {context.get('cpu', '?')}", "",
+             f"Command: `{context.get('command', '?')}` at commit {commit_text(context)}, {context.get('date_utc', '?')}. "
+             f"{len(runs)} runs ok, {len(failed)} failed. {CHRISTEN_SCENES}", "",
+             "All at 256×256 (his size), uniform grid. multipass: Christen's architecture (K = M = 1, oracle 20%, the host "
+             "in control, every pass over the whole stream; our stencil test stands for his early-z); branching: one "
+             "kernel; cpu: the same grid traversal (the kernels' source compiled as C++) on the host's "
+             f"{'/'.join(sorted({str(int(t)) for t in runs.get('host_threads', pd.Series(dtype=float)).dropna()})) or '?'} "
+             "TBB threads. ms: median time of a frame (GPU time; cpu: wall time); × Embree: its speed over Embree "
+             "rtcIntersect1's on the same rays in the same run, with the 95% bootstrap interval; wrong: rays the exact "
+             "reference contradicts. Christen's figures are bitmaps missing from the thesis text: compare shapes, "
+             "not numbers.", ""]
+
+    first = runs[runs.sweep == "fig6_8"].copy()
+    first["order"] = first.strategy_type.map(STRATEGIES.index)
+    lines += ["## Fig. 6.8: render time per scene, grid 20×20×20", "",
+              "| scene | strategy | ms | Mrays/s | × Embree | 95% interval | passes | wrong |", "|---|---|---|---|---|---|---|---|"]
+    for r in first.sort_values(["scene_triangles", "order"]).itertuples():
+        lines.append(f"| {r.scene_label} | {r.strategy_type} | {fmt(r.kernel_ms_median)} | {fmt(r.kernel_mrays_s)} | "
+                     f"{fmt(r.speed_ratio_vs_embree1)} | [{fmt(r.speed_ratio_ci_low)}, {fmt(r.speed_ratio_ci_high)}] | "
+                     f"{int(r.passes_total):,} | {int(r.wrong)} |")
+
+    sizes = runs[runs.sweep.isin(["fig6_8", "fig6_9"]) & runs.strategy_type.isin(["multipass", "branching"])]
+    lines += ["", "## Fig. 6.9: render time against grid size", "",
+              "ms of each architecture; voxels and tests: per ray, mean (the same for both).", "",
+              "| scene | grid | voxels/ray | tests/ray | multipass ms | passes | branching ms |", "|---|---|---|---|---|---|---|"]
+    rows = []
+    for (label, cells), g in sizes.groupby(["scene_label", "grid_cells"]):
+        m, b = g[g.strategy_type == "multipass"], g[g.strategy_type == "branching"]
+        r = g.iloc[0]
+        rows.append(((r.scene_triangles, cells),
+                     f"| {label} | {r.grid} | {fmt(r.voxels_per_ray_mean)} | {fmt(r.triangles_per_ray_mean)} | "
+                     f"{fmt(m.kernel_ms_median.iloc[0]) if len(m) else ''} | {int(m.passes_total.iloc[0]) if len(m) else ''} | "
+                     f"{fmt(b.kernel_ms_median.iloc[0]) if len(b) else ''} |"))
+    lines += [text for _, text in sorted(rows)]
+
+    gens = runs[runs.sweep.isin(["fig6_8", "fig6_11"]) & (runs.scene_source != "procedural:christen_a")]
+    lines += ["", "## Figs. 6.10-6.11: the GPU against the CPU on the same grid, by iteration", "",
+              "Iteration 1: the camera rays; 2-4: mirror reflections 1-3 of every surface (our reading of his iterations). "
+              "cpu / GPU: the CPU's median time over the GPU architecture's, two runs timed round by round together "
+              "(experiment.order = interleaved); no interval.", "",
+              "| scene | iteration | rays | multipass ms | branching ms | cpu ms | cpu / multipass | cpu / branching |",
+              "|---|---|---|---|---|---|---|---|"]
+    for (label, it), g in gens.sort_values(["scene_triangles", "iteration"]).groupby(["scene_label", "iteration"], sort=False):
+        ms = {s: g[g.strategy_type == s].kernel_ms_median.iloc[0] for s in STRATEGIES if (g.strategy_type == s).any()}
+        nan = float("nan")
+        lines.append(f"| {label} | {it} | {int(g.rays.iloc[0]):,} | {fmt(ms.get('multipass', nan))} | "
+                     f"{fmt(ms.get('branching', nan))} | {fmt(ms.get('cpu', nan))} | "
+                     f"{fmt(ms.get('cpu', nan) / ms.get('multipass', nan), 2)} | {fmt(ms.get('cpu', nan) / ms.get('branching', nan), 2)} |")
+    if len(failed):
+        lines += ["", "| run | scene | strategy | why |", "|---|---|---|---|"]
+        for r in failed.itertuples():
+            lines.append(f"| {r.run} | {scene_name(r.scene_source)} | {r.strategy_type} | {str(r.error).replace('|', '/')} |")
+    (folder / "tables.md").write_text("\n".join(lines) + "\n")
+    print(folder / "tables.md")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
