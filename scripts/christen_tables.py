@@ -16,7 +16,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from rtbench_results import CHRISTEN_SCENES, commit_text, fmt, load, scene_name, wrong_rays
+from rtbench_results import CHRISTEN_SCENES, commit_text, failed_rows, fmt, load, scene_name, write_tables, wrong_rays
 
 STRATEGIES = ["multipass", "branching", "cpu"]
 
@@ -89,13 +89,7 @@ def main() -> int:
         lines.append(f"| {label} | {it} | {int(g.rays.iloc[0]):,} | {fmt(ms.get('multipass', nan))} | "
                      f"{fmt(ms.get('branching', nan))} | {fmt(ms.get('cpu', nan))} | "
                      f"{fmt(ms.get('cpu', nan) / ms.get('multipass', nan), 2)} | {fmt(ms.get('cpu', nan) / ms.get('branching', nan), 2)} |")
-    if len(failed):
-        lines += ["", "| run | scene | strategy | why |", "|---|---|---|---|"]
-        for r in failed.itertuples():
-            lines.append(f"| {r.run} | {scene_name(r.scene_source)} | {r.strategy_type} | {str(r.error).replace('|', '/')} |")
-    (folder / "tables.md").write_text("\n".join(lines) + "\n")
-    print(folder / "tables.md")
-    return 0
+    return write_tables(folder, lines + failed_rows(failed, "scene", lambda r: scene_name(r.scene_source)))
 
 
 if __name__ == "__main__":

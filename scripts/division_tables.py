@@ -13,7 +13,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from rtbench_results import commit_text, fmt, load, structure_names, wrong_rays
+from rtbench_results import commit_text, failed_rows, fmt, load, structure_names, write_tables, wrong_rays
 
 
 def main() -> int:
@@ -49,13 +49,7 @@ def main() -> int:
         lines.append(f"| {r.structure} | {int(r.rays):,} | {r.strategy_type} | {fmt(r.speed_ratio_vs_embree1)} | "
                      f"[{fmt(r.speed_ratio_ci_low)}, {fmt(r.speed_ratio_ci_high)}] | {fmt(over)} | {fmt(r.ns_per_ray, 1)} | "
                      f"{fmt(growth, 2)} | {'' if pd.isna(differing) else int(differing)} | {int(r.wrong)} |")
-    if len(failed):
-        lines += ["", "| run | structure | strategy | why |", "|---|---|---|---|"]
-        for r in failed.itertuples():
-            lines.append(f"| {r.run} | {r.structure_type} | {r.strategy_type} | {str(r.error).replace('|', '/')} |")
-    (folder / "tables.md").write_text("\n".join(lines) + "\n")
-    print(folder / "tables.md")
-    return 0
+    return write_tables(folder, lines + failed_rows(failed, "structure", lambda r: r.structure_type))
 
 
 if __name__ == "__main__":

@@ -183,3 +183,18 @@ def whitted_frames(runs: pd.DataFrame) -> pd.DataFrame:
                          "secondary_simd": upto[upto.whitted_rays == "secondary"].simd_efficiency.mean(),
                          "wrong": int(wrong_rays(upto).sum())})
     return pd.DataFrame(rows)
+
+
+def failed_rows(failed: pd.DataFrame, what: str, name) -> list:
+    """The failed runs as a Markdown table (empty when none): run, `what` (name(row)), strategy, why."""
+    if not len(failed):
+        return []
+    return ["", f"| run | {what} | strategy | why |", "|---|---|---|---|"] + [
+        f"| {r.run} | {name(r)} | {r.strategy_type} | {str(r.error).replace('|', '/')} |" for r in failed.itertuples()]
+
+
+def write_tables(folder: Path, lines: list) -> int:
+    """Writes folder/tables.md and names it."""
+    (folder / "tables.md").write_text("\n".join(lines) + "\n")
+    print(folder / "tables.md")
+    return 0
