@@ -91,7 +91,7 @@ TEST_F(Config, OutOfRange) {
 
 TEST_F(Config, ValueNotInTheAllowedSet) {
     EXPECT_EQ(errorOf(kMinimal + "[strategy]\ntype = \"wavefront\"\n"),
-              path_ + ":6: key 'strategy.type': 'wavefront' is not allowed (allowed: branching, multipass, persistent, megakernel, ray_query, plain)");
+              path_ + ":6: key 'strategy.type': 'wavefront' is not allowed (allowed: branching, multipass, persistent, megakernel, ray_query, plain, cpu)");
 }
 
 TEST_F(Config, MissingRequiredKey) {
@@ -210,7 +210,7 @@ TEST_F(Config, UnknownKeyInASweep) {
     EXPECT_EQ(errorOf(kMinimal + "[[sweep]]\nstrategy.kk = [1, 2]\n"),
               path_ + ":6: unknown key 'strategy.kk' (allowed in [strategy]: type, workgroup_size, "
                       "traverse_steps_per_pass, intersections_per_pass, suppress_finished_reads, scheduling, "
-                      "oracle_threshold, oracle_basis, max_passes, control, batch_rays, persistent_workgroups, rays_per_fetch, schedule)");
+                      "oracle_threshold, oracle_basis, max_passes, control, batch_rays, persistent_workgroups, rays_per_fetch, schedule, threads)");
 }
 
 }  // namespace
