@@ -16,18 +16,13 @@ from pathlib import Path
 
 import pandas as pd
 
-from rtbench_results import CHRISTEN_SCENES, commit_text, failed_rows, fmt, load, scene_name, write_tables, wrong_rays
+from rtbench_results import CHRISTEN_SCENES, christen_iterations, commit_text, failed_rows, fmt, load, scene_name, write_tables, wrong_rays
 
 STRATEGIES = ["multipass", "branching", "cpu"]
 
 
 def grid_text(r) -> str:
     return f"{int(r.grid_res_x)}×{int(r.grid_res_y)}×{int(r.grid_res_z)}"
-
-
-def generation(r) -> int:
-    """Christen's iteration: 1 for the camera rays, 1 + n for mirror reflection n (our reading)."""
-    return 1 + int(r.reflection_iteration) if r.rays_type == "reflection" else 1
 
 
 def main() -> int:
@@ -40,7 +35,7 @@ def main() -> int:
     runs["scene_label"] = [f"{scene_name(s)}, {int(t):,} triangles" for s, t in zip(runs.scene_source, runs.scene_triangles)]
     runs["grid"] = [grid_text(r) for r in runs.itertuples()]
     runs["wrong"] = wrong_rays(runs)
-    runs["iteration"] = [generation(r) for r in runs.itertuples()]
+    runs["iteration"] = christen_iterations(runs)
     lines = [f"# Christen 2005's benchmarks — {device}, {context.get('cpu', '?')}", "",
              f"Command: `{context.get('command', '?')}` at commit {commit_text(context)}, {context.get('date_utc', '?')}. "
              f"{len(runs)} runs ok, {len(failed)} failed. {CHRISTEN_SCENES}", "",

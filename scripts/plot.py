@@ -27,7 +27,7 @@ import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 from matplotlib import ticker, transforms  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
-from rtbench_results import AXES, VECTOR_KEYS, load, method_name, scene_name, wrong_rays  # noqa: E402
+from rtbench_results import AXES, VECTOR_KEYS, christen_iterations, load, method_name, scene_name, wrong_rays  # noqa: E402
 COLORS = {"branching": "tab:blue", "multipass": "tab:orange", "Embree rtcIntersect1": "tab:green", "cpu": "tab:red"}
 BYTES = [("bytes_stencil", "stencil"), ("bytes_state", "state variables"), ("bytes_stack", "node stack"),
          ("bytes_voxel", "voxel data"), ("bytes_node", "BVH nodes"), ("bytes_triangle_list", "triangle lists"),
@@ -661,7 +661,7 @@ def christen_gpu_cpu(runs, device, folder, written):
         return skip(folder, "christen_gpu_cpu", "no run of a sweep named fig6_11")
     scenes = runs[runs.sweep == "fig6_11"].scene_source.unique()
     gens = runs[runs.sweep.isin(["fig6_8", "fig6_11"]) & runs.scene_source.isin(scenes)].copy()
-    gens["iteration"] = [1 + int(i) if t == "reflection" else 1 for t, i in zip(gens.rays_type, gens.reflection_iteration.fillna(0))]
+    gens["iteration"] = christen_iterations(gens)
     fig, axes = plt.subplots(1, len(scenes), figsize=(5.5 * len(scenes), 4.5), squeeze=False)
     for ax, source in zip(axes[0], scenes):
         part = gens[gens.scene_source == source]

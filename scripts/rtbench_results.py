@@ -198,3 +198,10 @@ def write_tables(folder: Path, lines: list) -> int:
     (folder / "tables.md").write_text("\n".join(lines) + "\n")
     print(folder / "tables.md")
     return 0
+
+
+def christen_iterations(runs: pd.DataFrame) -> list:
+    """Christen 2005's iteration of each run (Figs. 6.10-6.11), as configs/christen2005.toml reads it:
+    1 for the camera rays, 1 + n for mirror reflection n."""
+    return [1 + int(n) if kind == "reflection" else 1
+            for kind, n in zip(runs.rays_type, runs.get("reflection_iteration", pd.Series(0, index=runs.index)).fillna(0))]
