@@ -7,7 +7,8 @@ import pandas as pd
 SCENES = {"cgal:bunny00": "bunny", "procedural:christen_a": "scene A", "procedural:christen_b": "scene B",
           "procedural:christen_b_thesis": "scene B (Table 6.1)",
           "christen_c": "scene C", "teapot_in_stadium": "teapot in stadium", "million": "1M triangles",
-          "procedural:closed_box": "closed box", "procedural:icosphere": "icosphere", "whitted_room": "Whitted room"}
+          "procedural:closed_box": "closed box", "procedural:icosphere": "icosphere", "whitted_room": "Whitted room",
+          "purcell_bunny": "bunny on a floor", "procedural:forest": "forest", "procedural:building": "building"}
 
 
 def scene_name(source: str) -> str:

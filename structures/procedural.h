@@ -25,7 +25,7 @@ TriangleMesh christenSceneBThesis(std::uint32_t seed = 2005);
 
 // Closed meshes for accuracy and stability (every ray from inside must hit; a miss is a leak):
 // closed_box: the cube [-1, 1]^3, each face split into `quadsPerEdge`^2 squares of two triangles,
-// facing inward, vertices shared: with 8 (768 triangles), its edges lie on the planes of an
+// facing outward (right-hand normals), vertices shared: with 8 (768 triangles), its edges lie on the planes of an
 // 8x8x8 grid over it, and the origin is a voxel corner.
 TriangleMesh closedBox(int quadsPerEdge = 8);
 // icosphere: the unit sphere as an icosahedron subdivided `levels` times (20 x 4^levels
@@ -34,9 +34,28 @@ TriangleMesh icosphere(int levels = 4);
 // tetrahedron: a regular-ish tetrahedron around the origin (4 triangles).
 TriangleMesh tetrahedron();
 
+// Purcell et al. 2002's other scenes of Table 2, invented to their description (§4.1): the paper
+// gives their sizes, their grids and a sentence each, nothing of their geometry.
+// forest: "trees with millions of tiny triangles", "moderate depth complexity" (his: 1.0M
+// triangles, grid 581 x 128 x 581). A 20 x 20 ground square (2 triangles) and kForestTrees trees,
+// each a trunk (a box, 12) and a crown of kForestLeavesPerTree one-triangle leaves (each within
+// half a percent of the tree's height of its centre) in an ellipsoid;
+// heights 3 to 4.4, so the box is about 20 x 4.4 x 20, his proportions: 1,000,002 triangles.
+constexpr int kForestTrees = 250, kForestLeavesPerTree = 3988;
+TriangleMesh forest(std::uint32_t seed = 2002);
+// building: "walls made of large polygons, furnishings made of small polygons", "high depth
+// complexity" (his Soda Hall: 1.5M triangles, grid 250 x 198 x 128; ours 1,373,652). Ten storeys of 4 x 2 rooms,
+// 39.45 x 31.25 x 20.2 with its walls (his proportions); floors and walls are boxes, each outer wall of a room has a
+// window, each inner wall a door; each room a table (5 boxes) and four chairs (6 boxes each), every
+// furniture box's faces split into 7 x 7 squares (588 triangles).
+TriangleMesh building();
+// Appends the box [lo, hi] with each face split into quadsPerEdge^2 squares (outward-facing).
+void appendMeshedBox(TriangleMesh& mesh, glm::vec3 lo, glm::vec3 hi, int quadsPerEdge);
+
 // The NAMEs of procedural:NAME.
 const std::vector<std::string>& proceduralSceneNames();
-// "christen_a" | "christen_b" | "christen_b_thesis" | "closed_box" | "icosphere" | "tetrahedron";
+// "christen_a" | "christen_b" | "christen_b_thesis" | "closed_box" | "icosphere" | "tetrahedron" |
+// "forest" | "building";
 // throws rtbench::Error listing the names otherwise.
 TriangleMesh proceduralScene(const std::string& name);
 

@@ -330,7 +330,8 @@ TEST(CommittedScenes, LoadWithTheirTriangleCounts) {
     };
     for (const Expected& e :
          {Expected{"christen_c.toml", 61562, 7}, Expected{"teapot_in_stadium.toml", 75612, 2},
-          Expected{"million.toml", 1007892, 7}, Expected{"whitted_room.toml", 8768, 3}}) {
+          Expected{"million.toml", 1007892, 7}, Expected{"whitted_room.toml", 8768, 3},
+          Expected{"purcell_bunny.toml", 75410, 2}}) {
         const SceneDescription d = readSceneDescription(sceneFile(e.file));
         EXPECT_EQ(d.mesh.triangles.size(), e.triangles) << e.file;
         EXPECT_EQ(d.meshesRead, e.meshes) << e.file;
