@@ -235,6 +235,26 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("bytes_output", K::Count, "bytes", "hit records written");
         add("bytes_total", K::Count, "bytes", "all categories");
         add("bytes_per_ray", K::Count, "bytes", "bytes_total / rays");
+        // Purcell Table 1 / Fig. 7's compute, estimated (methods/instructions/instruction_estimate.h).
+        const std::string estimate = "estimate: static SPIR-V instructions (glslang, unoptimised; every branch counted) ";
+        add("instructions_per_step", K::Count, "instructions",
+            estimate + "of one traversal event (grid: rtDdaStep, a DDA step; BVH: rtBvhChildren, an inner node)");
+        add("instructions_per_test", K::Count, "instructions", estimate + "of one ray-triangle test (rtIntersectStored, the run's test)");
+        add("instructions_traverse", K::Count, "instructions",
+            estimate + "x exact counts: traversal (Fig. 7's traverser): steps x instructions_per_step, and for multipass "
+            "each ray a traverse pass serves x the traverse kernel's other instructions");
+        add("instructions_intersect", K::Count, "instructions",
+            estimate + "x exact counts: intersection (Fig. 7's intersector): tests x instructions_per_test, and for "
+            "multipass each ray an intersect pass serves x the intersect kernel's other instructions");
+        add("instructions_other", K::Count, "instructions",
+            estimate + "x rays: the rest of the kernel (branching) or the setup and write kernels (multipass); rays the "
+            "stencil turns away cost none (Purcell's early fragment kill)");
+        add("instructions_total", K::Count, "instructions", "instructions_traverse + instructions_intersect + instructions_other");
+        add("instructions_per_byte", K::Count, "ratio", "instructions_total / bytes_total: compute against bandwidth (Purcell §4.2)");
+        for (auto it = s.end() - 7; it != s.end(); ++it) {
+            it->since = 17;
+            it->appliesWhen = {"strategy.type=branching|multipass"};
+        }
         for (const StrategyType* t : strategyTypes()) addMethodColumns("strategy.type", t->name, t->columns);
         for (const ColumnSpec& c : cacheColumns()) s.push_back(c);  // cache.simulate
         // Self-checks (a mismatch fails the run).

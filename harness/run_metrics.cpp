@@ -38,6 +38,15 @@ void writeArchitectureColumns(const ArchitectureMetrics& m, const Structure& str
     row["bytes_output"] = std::to_string(m.bytes.output);
     row["bytes_total"] = std::to_string(m.bytes.total());
     row["bytes_per_ray"] = formatNumber(double(m.bytes.total()) / double(rays));
+    if (const InstructionEstimate& i = m.instructions; i.known) {
+        row["instructions_per_step"] = std::to_string(i.perStep);
+        row["instructions_per_test"] = std::to_string(i.perTest);
+        row["instructions_traverse"] = std::to_string(i.traverse);
+        row["instructions_intersect"] = std::to_string(i.intersect);
+        row["instructions_other"] = std::to_string(i.other);
+        row["instructions_total"] = std::to_string(i.total());
+        row["instructions_per_byte"] = formatNumber(double(i.total()) / double(m.bytes.total()));
+    }
 }
 
 SampleStats writeTimingColumns(const std::string& prefix, const std::vector<double>& ms, Row& row) {

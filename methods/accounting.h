@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "kernels/gpu_layout.h"
+#include "methods/instructions/instruction_estimate.h"
 #include "methods/metrics.h"
 #include "methods/multipass/multipass_schedule.h"
 #include "methods/structure.h"
@@ -43,6 +44,7 @@ struct ArchitectureMetrics {
     double purcellSimdEfficiency = 0.0;
     Bandwidth bytes;
     WorkStats work;  // per-ray counters of the run's hit records
+    InstructionEstimate instructions;  // Purcell Table 1 / Fig. 7's compute (branching and multipass)
     bool countsKnown = true;  // false: the method counts no work (the driver's ray query); only work.hits is set
 };
 

@@ -41,6 +41,13 @@ struct WalkBounds {
     std::uint64_t maxTrianglesPerCell = 0;  // triangles one cell lists at most
 };
 
+// Purcell Table 1's per-event compute (methods/instructions): the kernel functions one traversal
+// event runs, and which per-ray counter counts the event (cells visited, or traversal steps).
+struct StepFunctions {
+    std::vector<std::string> names;  // GLSL function names (none: no traversal, brute force)
+    bool perCellVisited = false;
+};
+
 // What a build produced, ready for any strategy.
 class Structure {
 public:
@@ -60,6 +67,7 @@ public:
     // CPU reference: every ray's hit record for the query (gpu::kQuery*), bit for bit the kernels'.
     std::vector<gpu::HitRecord> trace(const std::vector<gpu::Ray>& rays, std::uint32_t query = gpu::kQueryClosest) const;
     virtual WalkBounds walkBounds() const = 0;
+    virtual StepFunctions stepFunctions() const { return {}; }
 
     // The cost model (methods/cost_model.h): the cell or node visits plus triangle tests these
     // rays are predicted to take, from the structure's statistics alone, before any ray is traced;

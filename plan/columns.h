@@ -67,7 +67,7 @@ struct ColumnSpec {
 //        simd_lane_utilisation); strategy.oracle_basis.
 //  15  + the plain twin of the branching kernel (strategy.type = plain, plain_cpu_differing).
 //  16  + Purcell 2002 Fig. 9's texture cache (cache.* keys, cache_* columns).
-constexpr int kSchemaVersion = 16;
+constexpr int kSchemaVersion = 17;
 
 // The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".
 std::string paramColumn(const std::string& key);

@@ -732,6 +732,43 @@ def grid_resolution(runs, device, folder, written):
     save(fig, folder, "grid_resolution", written)
 
 
+INSTRUCTIONS = [("instructions_traverse", "traverser"), ("instructions_intersect", "intersector"),
+                ("instructions_other", "others")]
+
+
+def compute_by_kernel(runs, device, folder, written):
+    """Purcell et al. 2002 Fig. 7: compute by kernel (the instruction estimate: static SPIR-V counts x
+    exact event counts) beside bandwidth, a pair of bars per run of the architecture and table2-*
+    sweeps (else every run that has the estimate)."""
+    if "instructions_total" not in runs or runs.instructions_total.isna().all():
+        return skip(folder, "compute_by_kernel", "no instruction estimate (instructions_* columns: branching and "
+                    "multipass runs of schema 17 on)")
+    if runs.structure_type.nunique() > 1:
+        return skip(folder, "compute_by_kernel", "several structures (structure_type): the structures_* charts compare them")
+    chosen = runs[runs.instructions_total.notna()]
+    purcell = chosen.sweep.eq("architecture") | chosen.sweep.str.startswith("table2-")
+    chosen = chosen[purcell] if purcell.any() else chosen
+    chosen = chosen.assign(view=chosen.sweep.where(chosen.sweep.str.startswith("table2-"), chosen.scene)
+                           .str.replace("table2-", "").str.replace("-", " "))
+    keys = [k for k in swept_keys(chosen) if k not in ("scene_source", "strategy_type", "camera_position", "camera_look_at",
+                                                       "structure_min_dim")]
+    chosen = chosen.sort_values(["view", "strategy_type"] + keys).head(24)
+    labels = run_labels(chosen, ["view", "strategy_type"], keys)
+    fig, (left, right) = plt.subplots(1, 2, figsize=(max(10, 1.3 * len(chosen)), 5.2))
+    stacked_bars(left, labels, chosen, INSTRUCTIONS, 1e-9)
+    left.set_ylabel("instructions per frame (billions, estimated)")
+    left.set_title("compute by kernel")
+    present = [(c, n) for c, n in BYTES if c in chosen and chosen[c].fillna(0).any()]
+    stacked_bars(right, labels, chosen, present, 1e-9)
+    right.set_ylabel("bytes read and written per frame (GB)")
+    right.set_title("bandwidth by data type")
+    for ax in (left, right):
+        ax.tick_params(axis="x", labelrotation=90 if len(chosen) > 6 else 0, labelsize=7)
+    fig.suptitle(f"Compute and bandwidth (Purcell Fig. 7 style), {size(chosen)}: instructions are static SPIR-V counts "
+                 f"(glslang, unoptimised) x exact event counts, an estimate\n{device}")
+    save(fig, folder, "compute_by_kernel", written, rect=(0, 0, 1, 0.93))
+
+
 def kernel_time(runs, device, folder, written):
     if runs.structure_type.nunique() > 1:
         return skip(folder, "kernel_time", "several structures (structure_type): the structures_* charts compare them")
@@ -1283,6 +1320,7 @@ def run(folder: Path) -> int:
         draw(chart.__name__, folder, chart, runs, device, folder, written)
     runs = runs[variant(runs) == ""]  # the other charts compare methods on the scene as it is
     for chart in (passes_vs_threshold, bandwidth_by_category, texture_cache, christen_grid_size, christen_gpu_cpu, unrolling, grid_resolution, kernel_time,
+                  compute_by_kernel,
                   structures_time, structures_memory, structures_work):
         draw(chart.__name__, folder, chart, runs, device, folder, written)
     draw("failure_map", folder, failure_map, runs, failed, device, folder, written)

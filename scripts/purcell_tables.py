@@ -161,6 +161,24 @@ def main() -> int:
                          "bytes_output": ("output", mb), "bytes_total": ("total", mb),
                          "bytes_per_ray": ("bytes/ray", fixed(0))}), ""]
 
+    compute = arch[arch.instructions_total.notna()] if "instructions_total" in arch else arch.iloc[0:0]
+    giga = lambda v: f"{v / 1e9:,.2f}"
+    out += [] if compute.empty else [f"## Compute and bandwidth by kernel (Purcell Table 1, Fig. 7), {size(compute)}", "",
+            "Instructions estimated as Purcell's cost model counts them: each kernel's static SPIR-V instructions "
+            "(glslang's unoptimised output, every branch counted; not the device's ISA) weighted by the run's exact "
+            "events: a traversal step (grid: `rtDdaStep`; BVH: `rtBvhChildren`) per step, a triangle test "
+            "(`rtIntersectStored`, the run's test only) per test, the rest of a kernel once per ray it serves; a ray "
+            "the stencil turns away costs no instruction (his early fragment kill). Purcell's Table 1 counts are not "
+            "legible in the paper's text as we have it; his text: the branching architecture \"consumes fewer "
+            "instructions and significantly less bandwidth\", the multipass one pays extra instructions to save and "
+            "restore state.", "",
+            table(compute, {"scene": ("scene", str), "strategy_type": ("architecture", str),
+                             "instructions_per_step": ("per step", integer), "instructions_per_test": ("per test", integer),
+                             "instructions_traverse": ("traverser (G)", giga),
+                             "instructions_intersect": ("intersector (G)", giga),
+                             "instructions_other": ("others (G)", giga), "instructions_total": ("total (G)", giga),
+                             "bytes_total": ("bytes (GB)", giga), "instructions_per_byte": ("instr./byte", fixed(2))}), ""]
+
     cache = runs[runs.cache_ratio_total.notna()] if "cache_ratio_total" in runs else runs.iloc[0:0]
     if len(cache):
         cache = cache.sort_values(["scene", "rays_type", "strategy_type"])

@@ -23,6 +23,7 @@ public:
     StructureCosts costs() const override { return chosen_->costs(); }
     StructureKernels cpuKernels() const override { return chosen_->cpuKernels(); }
     WalkBounds walkBounds() const override { return chosen_->walkBounds(); }
+    StepFunctions stepFunctions() const override { return chosen_->stepFunctions(); }
     double predictedWork(const std::vector<gpu::Ray>& rays) const override { return chosen_->predictedWork(rays); }
     const VertexLattice& vertexLattice() const override { return chosen_->vertexLattice(); }
     void setTriangleTest(std::uint32_t test) override {

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "lane_counts.h"
+#include "device/embedded_kernels.h"
 #include "methods/cache/cache_replay.h"
 #include "methods/stream_batches.h"
 #include "structures/error.h"
@@ -217,6 +218,8 @@ StrategyRun runBranchingStrategy(VulkanContext& vk, const Structure& structure, 
                                  const RunConfig& config, const TimingOptions& timing, Row& row) {
     StrategyRun run =
         judgeWholeTraversal(vk, structure, batch, runBranching(vk, structure, batch.rays, timing, batch.query), row);
+    run.metrics.instructions = wholeTraversalInstructions(embeddedKernel(structure.kernelPrefix() + "_branching"),
+                                                          kernelEvents(structure, run.metrics.work), batch.rays.size());
     if (const auto cache = cacheConfig(config))
         run.modelMismatch =
             writeCacheColumns(branchingCacheReplay(structure, batch.rays, batch.query, *cache), run.metrics.bytes, row);

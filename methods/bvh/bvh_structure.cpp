@@ -51,6 +51,7 @@ public:
 
     // A ray visits each reference at most once: inner nodes + leaves bound its steps; a leaf holds
     // at most largestLeaf triangles.
+    StepFunctions stepFunctions() const override { return {{"rtBvhChildren"}, /*perCellVisited=*/true}; }  // an inner node
     WalkBounds walkBounds() const override { return {bvh_.stats.innerNodes + bvh_.stats.leaves, bvh_.stats.largestLeaf}; }
 
     // The tree's SAH cost (computed by the flattener with both costs 1) per ray entering its box.

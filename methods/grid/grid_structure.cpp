@@ -77,6 +77,7 @@ public:
     }
 
     // A ray visits at most resX + resY + resZ voxels; a voxel lists at most maxReferencesInCell.
+    StepFunctions stepFunctions() const override { return {{"rtDdaStep"}, /*perCellVisited=*/false}; }  // a DDA step
     WalkBounds walkBounds() const override {
         const auto& r = grid_.stats.resolution;
         return {std::uint64_t(r[0]) + r[1] + r[2], grid_.stats.maxReferencesInCell};

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstring>
 
+#include "device/embedded_kernels.h"
 #include "methods/cache/cache_replay.h"
 #include "methods/stream_batches.h"
 #include "multipass_simulator.h"
@@ -184,6 +185,11 @@ StrategyRun runMultipassStrategy(VulkanContext& vk, const Structure& structure, 
     MultipassRun kernel = runMultipass(vk, structure, rays, options, timing, batch.query);
     StrategyRun run;
     run.metrics = multipassMetrics(kernel.hits, kernel.counts, options, structure.costs());
+    const std::string prefix = structure.kernelPrefix() + "_multipass_";
+    run.metrics.instructions = multipassInstructions(
+        {embeddedKernel(prefix + "setup"), embeddedKernel(prefix + "traverse"), embeddedKernel(prefix + "intersect"),
+         embeddedKernel(prefix + "write")},
+        kernelEvents(structure, run.metrics.work), kernel.counts, rays.size());
     row["multipass_batch_rays"] = std::to_string(std::min<std::uint64_t>(kernel.batchRays, rays.size()));
     const MultipassResult cpu = simulateMultipass(structure, rays, options, batch.query, kernel.batchRays);
     run.cpuMismatches = recordMismatches(kernel.hits, cpu.hits);
