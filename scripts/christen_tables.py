@@ -12,11 +12,10 @@ usage: scripts/christen_tables.py RESULTS_DIR
 Uses Debian's python3-pandas only.
 """
 import sys
-from pathlib import Path
 
 import pandas as pd
 
-from rtbench_results import CHRISTEN_SCENES, christen_iterations, commit_text, failed_rows, fmt, load, scene_name, write_tables, wrong_rays
+from rtbench_results import CHRISTEN_SCENES, christen_iterations, command_text, failed_rows, fmt, open_results, scene_name, write_tables, wrong_rays
 
 STRATEGIES = ["multipass", "branching", "cpu"]
 
@@ -26,18 +25,13 @@ def grid_text(r) -> str:
 
 
 def main() -> int:
-    if len(sys.argv) != 2:
-        print(__doc__)
-        return 2
-    folder = Path(sys.argv[1])
-    runs, failed, context, device = load(folder)
-    runs = runs.copy()
+    folder, runs, failed, context, device = open_results(__doc__)
     runs["scene_label"] = [f"{scene_name(s)}, {int(t):,} triangles" for s, t in zip(runs.scene_source, runs.scene_triangles)]
     runs["grid"] = [grid_text(r) for r in runs.itertuples()]
     runs["wrong"] = wrong_rays(runs)
     runs["iteration"] = christen_iterations(runs)
     lines = [f"# Christen 2005's benchmarks — {device}, {context.get('cpu', '?')}", "",
-             f"Command: `{context.get('command', '?')}` at commit {commit_text(context)}, {context.get('date_utc', '?')}. "
+             command_text(context) + " "
              f"{len(runs)} runs ok, {len(failed)} failed. {CHRISTEN_SCENES}", "",
              "All at 256×256 (his size), uniform grid. multipass: Christen's architecture (K = M = 1, oracle 20%, the host "
              "in control, every pass over the whole stream; our stencil test stands for his early-z); branching: one "
@@ -84,6 +78,27 @@ def main() -> int:
         lines.append(f"| {label} | {it} | {int(g.rays.iloc[0]):,} | {fmt(ms.get('multipass', nan))} | "
                      f"{fmt(ms.get('branching', nan))} | {fmt(ms.get('cpu', nan))} | "
                      f"{fmt(ms.get('cpu', nan) / ms.get('multipass', nan), 2)} | {fmt(ms.get('cpu', nan) / ms.get('branching', nan), 2)} |")
+
+    stencil = runs[(runs.strategy_type == "multipass") & runs.sweep.isin(["fig6_8", "fig6_11"])]
+    if "kernel_ms_stencil_pass" in stencil and stencil.kernel_ms_stencil_pass.notna().any():
+        stencil = stencil[stencil.kernel_ms_stencil_pass.notna()].sort_values(["scene_triangles", "iteration"])
+        lines += ["", "## §5.5: what masking the rays by state costs", "",
+                  "Christen's kernels could not test a ray's state: early-z culling skipped the fragments of rays in "
+                  "other states after \"an additional pass which sets the depth-values of those rays that don't need "
+                  "processing\", one before each traverse and each intersect pass, so his GPU ran two passes for each of "
+                  "ours. Our kernels test the ray's state byte themselves (its reads and writes: `bytes_stencil`); "
+                  "`passes_total` counts no masking pass. Measured here: one traverse pass more over the stream once "
+                  "every ray is done (`kernel_ms_stencil_pass`, outside the frame's time): what the state test alone "
+                  "costs a pass; × loop passes, the frame's share of it, an upper bound (a served ray's test is part of "
+                  "its work).", "",
+                  "| scene | iteration | loop passes | his passes with masking | state-test pass ms | × loop passes, ms | frame ms | share |",
+                  "|---|---|---|---|---|---|---|---|"]
+        for r in stencil.itertuples():
+            loop = int(r.passes_traverse + r.passes_intersect)
+            cost = r.kernel_ms_stencil_pass * loop
+            lines.append(f"| {r.scene_label} | {r.iteration} | {loop:,} | {int(r.passes_total) + loop:,} | "
+                         f"{fmt(r.kernel_ms_stencil_pass)} | {fmt(cost)} | {fmt(r.kernel_ms_median)} | "
+                         f"{fmt(100 * cost / r.kernel_ms_median)}% |")
     return write_tables(folder, lines + failed_rows(failed, "scene", lambda r: scene_name(r.scene_source)))
 
 

@@ -9,26 +9,20 @@ usage: scripts/division_tables.py RESULTS_DIR
 Uses Debian's python3-pandas only.
 """
 import sys
-from pathlib import Path
 
 import pandas as pd
 
-from rtbench_results import commit_text, failed_rows, fmt, load, structure_names, write_tables, wrong_rays
+from rtbench_results import command_text, failed_rows, fmt, open_results, structure_names, write_tables, wrong_rays
 
 
 def main() -> int:
-    if len(sys.argv) != 2:
-        print(__doc__)
-        return 2
-    folder = Path(sys.argv[1])
-    runs, failed, context, device = load(folder)
-    runs = runs.copy()
+    folder, runs, failed, context, device = open_results(__doc__)
     runs["structure"] = structure_names(runs.structure_type)
     runs["size"] = [f"{int(w)}x{int(h)}" for w, h in zip(runs.camera_width, runs.camera_height)]
     runs["ns_per_ray"] = runs.kernel_ms_median * 1e6 / runs.rays
     runs["wrong"] = wrong_rays(runs)
     lines = [f"# What bit-exact division costs — {device}, {context.get('cpu', '?')}", "",
-             f"Command: `{context.get('command', '?')}` at commit {commit_text(context)}, {context.get('date_utc', '?')}. "
+             command_text(context) + " "
              f"{len(runs)} runs ok, {len(failed)} failed.",
              "× Embree: the kernel's speed over Embree rtcIntersect1's on the identical rays in the same run "
              "(`speed_ratio_vs_embree1`, its 95% bootstrap interval); exact / plain: the branching kernel's ratio over its "

@@ -748,8 +748,9 @@ def compute_by_kernel(runs, device, folder, written):
     chosen = runs[runs.instructions_total.notna()]
     purcell = chosen.sweep.eq("architecture") | chosen.sweep.str.startswith("table2-")
     chosen = chosen[purcell] if purcell.any() else chosen
-    chosen = chosen.assign(view=chosen.sweep.where(chosen.sweep.str.startswith("table2-"), chosen.scene)
-                           .str.replace("table2-", "").str.replace("-", " "))
+    table2 = chosen.sweep.str.startswith("table2-")
+    chosen = chosen.assign(view=chosen.scene.where(~table2, chosen.sweep.str.replace("table2-", "").str.replace("-", " ") +
+                                                   " (Table 2)"))
     keys = [k for k in swept_keys(chosen) if k not in ("scene_source", "strategy_type", "camera_position", "camera_look_at",
                                                        "structure_min_dim")]
     chosen = chosen.sort_values(["view", "strategy_type"] + keys).head(24)
@@ -1145,24 +1146,25 @@ def by_key(runs, classes, key, followers, device, folder, written, failed=None):
             ppms += list(ppm)
             anchor(left, list(y.index) * 3, list(y) + list(lo) + list(hi))
             anchor(right, ppm.index, ppm)
-        # Axes.
+        # Axes. strategy.type = cpu times the host's threads, not the device.
+        timed = "GPU (cpu: host)" if "strategy_type" in group and (group.strategy_type == "cpu").any() else "GPU"
         positive = finite(times)
         positive = positive[positive > 0]
         if not positive.empty and positive.max() / positive.min() >= 10:
             left.set_yscale("log")
             left.yaxis.set_minor_formatter(ticker.LogFormatterSciNotation(labelOnlyBase=False, minor_thresholds=(2, 0.5)))
             left.tick_params(axis="y", which="minor", labelsize=6)
-            left.set_ylabel("GPU ms per frame\n(median; log)")
+            left.set_ylabel(f"{timed} ms per frame\n(median; log)")
         else:
             left.set_ylim(bottom=0)
-            left.set_ylabel("GPU ms per frame\n(median)")
+            left.set_ylabel(f"{timed} ms per frame\n(median)")
         if finite(ppms).empty:
             all_zero_axis(right, "no exact reference in these runs (exact_wrong_ppm)")
             right.set_ylabel("rays wrong per million\nvs the exact reference")
         else:
             wrong_ppm_axis(right, ppms, "rays wrong per million vs\nthe exact reference (log above 1)")
         sizes = size(group)
-        left.set_title(f"{scene} ({sizes}): GPU time", fontsize=9)
+        left.set_title(f"{scene} ({sizes}): {timed} time", fontsize=9)
         right.set_title(f"{scene} ({sizes}): rays wrong against the exact reference", fontsize=9)
         for ax in (left, right):
             x_axis(ax, key, members, order, numeric, data, text, faceted)
@@ -1215,7 +1217,7 @@ def by_key(runs, classes, key, followers, device, folder, written, failed=None):
     bottom = (0.17 * lines + 0.15) / fig.get_size_inches()[1]
     fig.text(0.01, 0.01, caption, fontsize=7.5, va="bottom", ha="left", color="0.2")
     follow = f" (with {', '.join(followers)})" if followers else ""
-    fig.suptitle(f"Against {key}{follow}: GPU time and rays wrong, a colour per method"
+    fig.suptitle(f"Against {key}{follow}: time and rays wrong, a colour per method"
                  f"{', a row per scene' if faceted else ''}\n{device}", fontsize=10)
     save(fig, folder, name, written, rect=(0, bottom, 1, 1))
 

@@ -5,11 +5,10 @@ usage: scripts/purcell_tables.py RESULTS_DIR   (reads runs.csv and context.json,
 Uses Debian's python3-pandas only.
 """
 import sys
-from pathlib import Path
 
 import pandas as pd
 
-from rtbench_results import CHRISTEN_SCENES, load
+from rtbench_results import CHRISTEN_SCENES, open_results
 
 
 def mb(value) -> str:
@@ -28,8 +27,8 @@ def table(frame: pd.DataFrame, columns: dict) -> str:
 
 # Purcell et al. 2002 Table 2, "bunny ray cast" (1024 x 1024, one traversal step or one intersection
 # test per pass, §4.2): passes in all, traverse, intersect; the most traversal steps and
-# intersection tests of one ray; SIMD efficiency. His other scenes (Soda Hall, a forest) are not
-# ours. His grid: 98 x 64 x 163 at min_dim 64, 82% of the rays hit (§4.3).
+# intersection tests of one ray; SIMD efficiency. His grid: 98 x 64 x 163 at min_dim 64, 82% of the
+# rays hit (§4.3); the table2-* sweeps rebuild his scene and his other ones (PURCELL_TABLE_2).
 PURCELL_BUNNY = {"passes_total": 1085, "passes_traverse": 610, "passes_intersect": 471, "traversal_steps_per_ray_max": 221,
                  "triangles_per_ray_max": 328, "simd_efficiency_purcell": 0.105}
 
@@ -81,11 +80,7 @@ def unrolling(runs: pd.DataFrame) -> str:
 
 
 def main() -> int:
-    if len(sys.argv) != 2:
-        print(__doc__)
-        return 2
-    folder = Path(sys.argv[1])
-    runs, failed, context, device = load(folder)
+    folder, runs, failed, context, device = open_results(__doc__)
     out = [f"# Results: {folder.name}", "",
            f"Device: {device}; CPU: {context['cpu']} ({context['cpu_threads']} threads); "
            f"Embree {context['embree_version']}; commit {context['git_commit']}; {context['date_utc']}.",
@@ -111,7 +106,8 @@ def main() -> int:
         r = bunny.iloc[0]
         grid = (f" Our bunny: a {int(r.grid_res_x)} x {int(r.grid_res_y)} x {int(r.grid_res_z)} grid at min_dim "
                 f"{int(r.structure_min_dim)}, {100 * r.hits / r.rays:.1f}% of the rays hit; Purcell's: 98 x 64 x 163, "
-                "82% (his camera and scene box are not given), so his rays do more work and the pass counts differ.")
+                "82% (his camera and scene box are not given), so his rays do more work and the pass counts differ; the "
+                "next section rebuilds his setup.")
     if len(arch):
         out += [f"## Passes and SIMD efficiency ({heading}), {size(arch)}", "",
                 f"Multipass: {unrolling(multipass)} (traversal steps, intersections per pass), oracle threshold 0.2. "

@@ -18,7 +18,7 @@ import matplotlib.pyplot as plt
 import matplotlib.ticker
 import pandas as pd
 
-from rtbench_results import commit_text, fmt, load, structure_names, whitted_frames, wrong_rays
+from rtbench_results import commit_text, fmt, open_results, structure_names, whitted_frames, wrong_rays
 
 # Purcell et al. 2002, Table 3: relative instructions / bandwidth of a frame, against ray casting
 # (his shadow caster finds the eye rays' hits by rasterization, so its frame is the shadow rays').
@@ -57,12 +57,7 @@ def save(fig, folder: Path, name: str):
 
 
 def main() -> int:
-    if len(sys.argv) != 2:
-        print(__doc__)
-        return 2
-    folder = Path(sys.argv[1])
-    runs, failed, context, device = load(folder)
-    runs = runs.copy()
+    folder, runs, failed, context, device = open_results(__doc__)
     runs["method"] = structure_names(runs.structure_type) + \
         " / " + runs.strategy_type
     runs["workload"] = [workload(r) for r in runs.itertuples()]

@@ -19,6 +19,7 @@ import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from rtbench_results import CHRISTEN_SCENES, commit_text, method_name, read_runs, scene_name, structure_names, whitted_frames, wrong_rays  # noqa: E402
+from purcell_tables import PURCELL_TABLE_2  # noqa: E402  (his Table 2, the paper's numbers)
 
 ROOT = Path(__file__).resolve().parent.parent
 BEGIN = "<!-- results: begin (scripts/readme_figures.py writes this section from results/; do not edit) -->"
@@ -321,6 +322,34 @@ def purcell2002() -> list:
                    f"{scene_name(r.scene_source)}, {size(r)}): traffic with the cache over without, {ratios}. Triangle "
                    f"vertices are found in the cache on {num(100 * cache.cache_hit_rate_vertices.min())}–"
                    f"{num(100 * cache.cache_hit_rate_vertices.max())}% of line lookups (Purcell: 96–99%).")
+    views = ok[ok.sweep.str.startswith("table2-") & (ok.strategy_type == "multipass")]
+    if not views.empty:
+        parts = []
+        for view, paper in PURCELL_TABLE_2.items():
+            for _, r in views[views.sweep == "table2-" + view].iterrows():
+                parts.append(f"{view.replace('-', ' ')} {count(r.passes_total)} ({count(r.passes_traverse)}+"
+                             f"{count(r.passes_intersect)}) against his {count(paper['passes_total'])} "
+                             f"({count(paper['passes_traverse'])}+{count(paper['passes_intersect'])})")
+        bunny = views[views.sweep == "table2-bunny"]
+        bunny_note = "" if bunny.empty else (
+            f" The bunny's: a {count(bunny.grid_res_x.iloc[0])} × {count(bunny.grid_res_y.iloc[0])} × "
+            f"{count(bunny.grid_res_z.iloc[0])} grid, {num(100 * bunny.hits.iloc[0] / bunny.rays.iloc[0])}% of the rays hit, "
+            f"SIMD efficiency {num(100 * bunny.simd_efficiency_purcell.iloc[0])}% (his {num(100 * PURCELL_TABLE_2['bunny']['simd_efficiency_purcell'])}%).")
+        out.append(f"- **Purcell's Table 2 scenes, rebuilt** ({size(views.iloc[0])}, K = M = 1; the bunny on a floor that "
+                   "makes his grid, Soda Hall and the forest invented to his description, `structures/procedural.h`), "
+                   "passes (traverse+intersect): " + "; ".join(parts) + "." + bunny_note)
+    compute = arch[arch.instructions_total.notna()] if "instructions_total" in arch else arch.iloc[0:0]
+    if not compute.empty:
+        ratios = []
+        for scene, g in compute.groupby("scene"):
+            b, m = g[g.strategy_type == "branching"], g[g.strategy_type == "multipass"]
+            if len(b) and len(m):
+                ratios.append(m.instructions_total.iloc[0] / b.instructions_total.iloc[0])
+        if ratios:
+            out.append(f"- **Compute** (Purcell Table 1, Fig. 7; an estimate: static SPIR-V instructions × exact events): "
+                       f"multipass takes {num(min(ratios), 2)}–{num(max(ratios), 2)}× the branching kernel's instructions "
+                       f"(saving and restoring state each pass); instructions per byte moved "
+                       f"{num(compute.instructions_per_byte.min(), 2)}–{num(compute.instructions_per_byte.max(), 2)}.")
     multipass = ok[ok.strategy_type == "multipass"]
     out += [f"- Exactness: in {int((ok.cpu_reference_mismatches == 0).sum())} of the {len(ok)} ok runs the GPU's hit "
             f"records equal the CPU simulator's on every ray, and in {int((ok.cpu_counts_match == 1).sum())} its pass, "
@@ -329,7 +358,8 @@ def purcell2002() -> list:
     out += charts("purcell2002", {"passes_vs_threshold": "passes against oracle threshold",
                                   "bandwidth_by_category": "bandwidth by data type",
                                   "texture_cache": "texture cache (Purcell Fig. 9)", "unrolling": "loop unrolling",
-                                  "grid_resolution": "grid resolution", "kernel_time": "multipass GPU time by kernel"})
+                                  "grid_resolution": "grid resolution", "kernel_time": "multipass GPU time by kernel",
+                                  "compute_by_kernel": "compute and bandwidth by kernel (Purcell Fig. 7)"})
     return out + [""]
 
 

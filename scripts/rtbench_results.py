@@ -1,5 +1,6 @@
 """Loading an rtbench results folder for the scripts (Debian's python3-pandas)."""
 import json
+import sys
 from pathlib import Path
 
 import pandas as pd
@@ -139,6 +140,23 @@ def with_vector_text(runs: pd.DataFrame) -> pd.DataFrame:
                 for values in zip(*parts)]
         runs.insert(runs.columns.get_loc(key + "_x"), key, pd.array(text, dtype="string"))
     return runs
+
+
+def open_results(doc: str):
+    """A table script's one argument, the RESULTS_DIR, loaded as `load` loads it, the ok runs a copy
+    to add columns to: (folder, runs, failed, context, device). Any other command line prints the
+    script's usage (`doc`) and exits with status 2."""
+    if len(sys.argv) != 2:
+        print(doc)
+        sys.exit(2)
+    folder = Path(sys.argv[1])
+    runs, failed, context, device = load(folder)
+    return folder, runs.copy(), failed, context, device
+
+
+def command_text(context: dict) -> str:
+    """How a folder was made: its command, commit and date (context.json)."""
+    return f"Command: `{context.get('command', '?')}` at commit {commit_text(context)}, {context.get('date_utc', '?')}."
 
 
 def load(folder: Path):

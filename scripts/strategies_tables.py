@@ -9,7 +9,6 @@ usage: scripts/strategies_tables.py RESULTS_DIR
 Uses Debian's python3-pandas and python3-matplotlib only.
 """
 import sys
-from pathlib import Path
 
 import matplotlib
 
@@ -17,7 +16,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import pandas as pd
 
-from rtbench_results import commit_text, fmt, load, structure_names, wrong_rays
+from rtbench_results import commit_text, fmt, open_results, structure_names, wrong_rays
 
 
 def strategy(run) -> str:
@@ -32,11 +31,7 @@ def strategy(run) -> str:
 
 
 def main() -> int:
-    if len(sys.argv) != 2:
-        print(__doc__)
-        return 2
-    folder = Path(sys.argv[1])
-    runs, failed, context, device = load(folder)
+    folder, runs, failed, context, device = open_results(__doc__)
     for frame in (runs, failed):
         for column in ["strategy_schedule", "strategy_control", "strategy_traverse_steps_per_pass", "strategy_intersections_per_pass",
                        "megakernel_runs_traverse", "megakernel_runs_intersect", "passes_total"]:

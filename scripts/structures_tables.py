@@ -7,9 +7,8 @@ keys). Writes tables.md next to runs.csv and prints it.
 usage: scripts/structures_tables.py RESULTS_DIR
 """
 import sys
-from pathlib import Path
 
-from rtbench_results import commit_text, load, method_name
+from rtbench_results import command_text, method_name, open_results
 
 
 def fmt(value, digits=3):
@@ -19,16 +18,11 @@ def fmt(value, digits=3):
 
 
 def main() -> int:
-    if len(sys.argv) != 2:
-        print(__doc__)
-        return 2
-    folder = Path(sys.argv[1])
-    runs, failed, context, device = load(folder)
-    runs = runs.copy()
+    folder, runs, failed, context, device = open_results(__doc__)
     runs["method"] = [method_name(r) for _, r in runs.iterrows()]
     lines = [f"# Structures side by side — {device}, {context.get('cpu', '?')}",
              "",
-             f"Command: `{context.get('command', '?')}` at commit {commit_text(context)}, {context.get('date_utc', '?')}.",
+             command_text(context),
              "GPU time is the median of the timed repetitions; Embree is rtcIntersect1 on the same rays in the same run.",
              ""]
     lines += ["| scene | triangles | strategy | structure | GPU ms | × Embree | bytes/triangle | build ms | predicted work/ray | measured work/ray |",
