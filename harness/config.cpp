@@ -100,7 +100,7 @@ const std::vector<KeySpec>& configSchema() {
         timingKey({"experiment.time_budget_s", ValueType::Float, "adaptive repetitions: stop adding rounds once a run's timing has taken this long", 30.0, false, 0, 1e6});
         timingKey({"experiment.noise_cv", ValueType::Float, "noise guard: a timing_warning when a method's coefficient of variation exceeds this", 0.05, false, 0, 1e3});
         timingKey({"experiment.noise_other_cpu", ValueType::Float, "noise guard: a timing_warning when other processes took more than this fraction of the machine's CPU time while the run ran", 0.1, false, 0, 1});
-        add({"scene.source", ValueType::String, "mesh file (.off/.obj/.ply/.stl, relative to the config), scene description (.toml, relative to the config: meshes with transforms and seeded scatters, see structures/scene_description.h), cgal:NAME, or procedural:christen_a|christen_b|christen_b_thesis|closed_box|icosphere|tetrahedron", {}, true});
+        add({"scene.source", ValueType::String, "mesh file (.off/.obj/.ply/.stl, relative to the config), scene description (.toml, relative to the config: meshes with transforms and seeded scatters, see structures/scene_description.h), cgal:NAME, or procedural:christen_a|christen_b|christen_b_thesis|closed_box|icosphere|tetrahedron|forest|building", {}, true});
         add({"scene.scale", ValueType::Float, "uniform scale applied to every vertex, in float: v * scale + translate (camera.position and camera.look_at move with the scene)", 1.0, false, 1e-30, 1e30});
         add({"scene.translate", ValueType::Float3, "translation applied after scene.scale, in float (stability sweeps move a scene away from the origin)", std::array<double, 3>{0, 0, 0}});
         add({"scene.simplify_ratio", ValueType::Float, "simplify the scene by edge collapse (CGAL Surface_mesh_simplification, Lindstrom-Turk) to at most this fraction of its triangles; every method traces the simplified scene, the exact reference the full one", {}, false, 1e-9, 1, {}, {}, {}, "scene simplification"});
@@ -111,6 +111,8 @@ const std::vector<KeySpec>& configSchema() {
         add({"camera.look_at", ValueType::Float3, "point looked at (default: the scene box centre)", {}});
         add({"camera.up", ValueType::Float3, "up vector", std::array<double, 3>{0, 1, 0}});
         add({"camera.fov_deg", ValueType::Float, "vertical field of view in degrees", 45.0, false, 1, 179});
+        add({"camera.tile", ValueType::Int, "Purcell 2002 §5.3's tiled rendering: the method traces the camera rays in tiles of this many pixels square, tile after tile (0: row after row); width and height must be whole numbers of tiles. Multipass renders each tile to completion with strategy.batch_rays = tile x tile. The records, checks and images are the same; what changes is the order of memory references (cache.simulate) and the device's time. Embree traces row after row", std::int64_t(0), false, 0, 4096, {}, {"rays.type=primary"}});
+        s.back().since = 17;
         // Each structure's and strategy's own keys, read only when it is chosen (methods/registry.cpp).
         auto addMethodKeys = [&](const std::string& typeKey, const std::string& name, const std::vector<KeySpec>& keys) {
             for (KeySpec k : keys) {

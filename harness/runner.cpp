@@ -31,6 +31,7 @@
 #include "exact_reference.h"
 #include "images.h"
 #include "methods/registry.h"
+#include "methods/tile_order.h"
 #include "methods/triangle_store.h"
 #include "noise_guard.h"
 #include "path_check.h"
@@ -84,6 +85,7 @@ struct RunInProgress {
     Workload workload;  // the batch the run measures
     std::string shadingMismatch;  // how the device's shading passes differ from the CPU's ("" if not)
     std::unique_ptr<Structure> structure;
+    RayBatch tiled;  // camera.tile: the batch in tile order, as the method traced it
     StrategyRun method;
     std::vector<gpu::HitRecord> embreeHits, scratch;  // written by the Embree batches
     std::unique_ptr<Rounds> rounds;
@@ -169,7 +171,13 @@ std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunC
     TimingOptions timing;
     timing.workgroupSize = unsigned(run.getInt("strategy.workgroup_size"));
     timing.warmups = timing.repetitions = 0;  // timed in rounds with Embree
-    p->method = strategy.run(vk, structure, batch, run, timing, row);
+    // camera.tile (Purcell §5.3): the method traces the rays tile by tile; its records come back
+    // in the batch's order. Embree traces them row by row.
+    const unsigned tile = run.has("camera.tile") ? unsigned(run.getInt("camera.tile")) : 0u;  // camera rays only
+    const std::vector<std::uint32_t> order = tileOrder(p->width, p->height, tile);
+    if (!order.empty()) p->tiled = inTileOrder(batch, order);
+    p->method = strategy.run(vk, structure, order.empty() ? batch : p->tiled, run, timing, row);
+    if (!order.empty()) p->method.hits = inBatchOrder(p->method.hits, order);
     row["cpu_reference_mismatches"] = p->method.cpuCompared ? std::to_string(p->method.cpuMismatches) : "";
     refuseForeignTriangles(p->method.hits, mesh.triangles.size());
     row["cpu_counts_match"] = !p->method.countsCompared ? "" : p->method.countsMismatch.empty() ? "1" : "0";

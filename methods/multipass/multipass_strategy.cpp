@@ -246,16 +246,23 @@ public:
         // kernel chooses again, one iteration per pass the instrumented run ran (setup included:
         // the last ends the loop). Warm-ups and repetitions go in one submission (in chunks), every
         // dispatch timed on its own; the hits must equal the instrumented run's (checkHits).
+        // Host control also times, after the write pass, one traverse pass more over the stream
+        // whose rays are all done: the ray-state test alone (Christen 2005 §5.5 paid a masking
+        // pass before each pass for it); not in the repetition's total.
         std::vector<VulkanContext::DispatchCall> calls;
         std::vector<int> parts;
         if (options_.deviceControl)
             deviceLoopCalls(*timed_, *buffers_, true, counts_.sequence.size() - 1, true, calls, parts);
-        else
+        else {
             for (PassKind kind : counts_.sequence) {
                 const ComputePipeline& p = timed_->byKind[static_cast<int>(kind)];
                 calls.push_back({&p, buffers_->descriptorSet(p), buffers_->pushConstants(), buffers_->rayCount()});
                 parts.push_back(static_cast<int>(kind));
             }
+            const ComputePipeline& traverse = timed_->byKind[static_cast<int>(PassKind::Traverse)];
+            calls.push_back({&traverse, buffers_->descriptorSet(traverse), buffers_->pushConstants(), buffers_->rayCount()});
+            parts.push_back(kPassKinds);
+        }
         const std::size_t perRepetition = calls.size();
         const std::vector<VulkanContext::DispatchCall> one = calls;
         for (int i = 1; i < warmups + repetitions; ++i) calls.insert(calls.end(), one.begin(), one.end());
@@ -267,17 +274,18 @@ public:
                             std::to_string(c.current.w) + " passes (setup included); the instrumented run " +
                             std::to_string(counts_.sequence.size() - 1));
         }
-        const int partCount = options_.deviceControl ? kPassKinds + 1 : kPassKinds;
+        const int partCount = kPassKinds + 1;  // and the oracle (device control) or the state-test pass (host)
         TimedBatch batch;
         for (std::size_t i = 0; i < std::size_t(warmups) * perRepetition; ++i) batch.warmupMs += ms[i];
-        for (int k = 0; k < partCount; ++k) batch.parts.push_back({kPartNames[k], {}});
+        for (int k = 0; k < partCount; ++k)
+            batch.parts.push_back({k < kPassKinds || options_.deviceControl ? kPartNames[k] : "stencil_pass", {}});
         for (int i = warmups; i < warmups + repetitions; ++i) {
             std::vector<double> byPart(std::size_t(partCount), 0.0);
             for (std::size_t c = 0; c < perRepetition; ++c) byPart[std::size_t(parts[c])] += ms[std::size_t(i) * perRepetition + c];
             double total = 0.0;
             for (int k = 0; k < partCount; ++k) {
                 batch.parts[std::size_t(k)].second.push_back(byPart[std::size_t(k)]);
-                total += byPart[std::size_t(k)];
+                if (k < kPassKinds || options_.deviceControl) total += byPart[std::size_t(k)];
             }
             batch.ms.push_back(total);
         }
@@ -429,6 +437,7 @@ const StrategyType& multipassStrategyType() {
             {"kernel_ms_traverse", K::Timing, "ms", "multipass: GPU time of the traverse passes, median"},
             {"kernel_ms_intersect", K::Timing, "ms", "multipass: GPU time of the intersect passes, median"},
             {"kernel_ms_write", K::Timing, "ms", "multipass: GPU time of the write pass, median"},
+            {"kernel_ms_stencil_pass", K::Timing, "ms", "multipass with strategy.control = host: GPU time of one more traverse pass over the stream when every ray is done (after the write pass, not in kernel_ms): what the ray-state test alone costs a pass, which Christen 2005 §5.5's early-z culling paid a masking pass for (not counted in passes_total: our kernels test the state byte themselves, bytes_stencil), median", 0.0, false, {"strategy.control=host"}, 17},
             {"kernel_ms_oracle", K::Timing, "ms", "multipass with strategy.control = device: GPU time of the oracle kernel (one invocation after each pass), median", 0.0, false, {"strategy.control=device"}, 13},
             {"multipass_live_ms_median", K::Timing, "ms", "multipass: host wall time of the live pass loop, median of one per round: with strategy.control = host the instrumented passes with the oracle's read-back after each (Christen 2005 §4.3.4's CPU-controlled loop); with device, the instrumented loop in submissions of 341 oracle iterations (the last partly idle), its control block and log read after each, and the log's replay on the host", 0.0, false, {}, 5},
             {"branching_mismatches", K::Count, "rays", "multipass: rays whose hit record differs from the branching caster's"},

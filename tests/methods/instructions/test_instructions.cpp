@@ -10,7 +10,9 @@
 #include "methods/multipass/multipass_schedule.h"
 #include "structures/error.h"
 #include "tests/error_of.h"
+#include "structures/procedural.h"
 #include "tests/harness/test_experiment.h"
+#include "tests/methods/hand_scenes.h"
 
 namespace rtbench {
 namespace {
@@ -128,6 +130,29 @@ TEST(InstructionEstimate, WeightsTheStaticCountsByTheEvents) {
     EXPECT_EQ(multipass.traverse, 7u * 5u + 10u * 4u);
     EXPECT_EQ(multipass.intersect, 5u * 5u + 3u * 4u);
     EXPECT_EQ(multipass.other, 2u * (5u + 5u));
+}
+
+// A run's events: the grid counts its DDA steps, the BVH its inner nodes (cells visited) (brute
+// force: none, EveryBranchingAndMultipassRunWritesItsColumns); the test the run does not use and, for float vertices, the packed decoder are
+// left out.
+TEST(InstructionEstimate, EachStructureNamesItsEventAndItsCounter) {
+    const TriangleMesh scene = christenSceneA();
+    WorkStats work;
+    work.stepsTotal = 11;
+    work.cellsTotal = 7;
+    work.trianglesTotal = 5;
+    const std::unique_ptr<Structure> grid = gridStructure(hand::gridOf(scene, {4, 4, 4}));
+    const std::unique_ptr<Structure> bvh = bvhStructure(hand::bvhOf(scene, 2));
+    KernelEvents e = kernelEvents(*grid, work);
+    EXPECT_EQ(e.stepFunctions, std::vector<std::string>{"rtDdaStep"});
+    EXPECT_EQ(e.steps, 11u);
+    EXPECT_EQ(e.tests, 5u);
+    EXPECT_EQ(e.leaveOut, (std::set<std::string>{"rtIntersectWatertight", "rtLatticePoint"}));
+    e = kernelEvents(*bvh, work);
+    EXPECT_EQ(e.stepFunctions, std::vector<std::string>{"rtBvhChildren"});
+    EXPECT_EQ(e.steps, 7u);
+    bvh->setTriangleTest(gpu::kTriangleTestWatertight);
+    EXPECT_EQ(kernelEvents(*bvh, work).leaveOut, (std::set<std::string>{"rtIntersectTriangle", "rtLatticePoint"}));
 }
 
 // The same GLSL function compiles to the same instructions in every kernel: a step or a test costs
