@@ -98,7 +98,7 @@ def main() -> int:
             cost = r.kernel_ms_stencil_pass * loop
             lines.append(f"| {r.scene_label} | {r.iteration} | {loop:,} | {int(r.passes_total) + loop:,} | "
                          f"{fmt(r.kernel_ms_stencil_pass)} | {fmt(cost)} | {fmt(r.kernel_ms_median)} | "
-                         f"{fmt(100 * cost / r.kernel_ms_median)}% |")
+                         f"{100 * cost / r.kernel_ms_median:.0f}% |")
     return write_tables(folder, lines + failed_rows(failed, "scene", lambda r: scene_name(r.scene_source)))
 
 

@@ -748,12 +748,15 @@ def compute_by_kernel(runs, device, folder, written):
     chosen = runs[runs.instructions_total.notna()]
     purcell = chosen.sweep.eq("architecture") | chosen.sweep.str.startswith("table2-")
     chosen = chosen[purcell] if purcell.any() else chosen
+    if len(chosen) > 24:
+        return skip(folder, "compute_by_kernel", f"{len(chosen)} runs with the estimate and no architecture or table2-* "
+                    "sweep to choose from: too many bars for one chart (the instructions_* columns hold them)")
     table2 = chosen.sweep.str.startswith("table2-")
     chosen = chosen.assign(view=chosen.scene.where(~table2, chosen.sweep.str.replace("table2-", "").str.replace("-", " ") +
                                                    " (Table 2)"))
     keys = [k for k in swept_keys(chosen) if k not in ("scene_source", "strategy_type", "camera_position", "camera_look_at",
                                                        "structure_min_dim")]
-    chosen = chosen.sort_values(["view", "strategy_type"] + keys).head(24)
+    chosen = chosen.sort_values(["view", "strategy_type"] + keys)
     labels = run_labels(chosen, ["view", "strategy_type"], keys)
     fig, (left, right) = plt.subplots(1, 2, figsize=(max(10, 1.3 * len(chosen)), 5.2))
     stacked_bars(left, labels, chosen, INSTRUCTIONS, 1e-9)

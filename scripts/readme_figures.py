@@ -556,6 +556,15 @@ def christen2005() -> list:
             r = g.loc[g.kernel_ms_median.idxmin()]
             best.append(f"{scene} {method} at {count(r.grid_res_x)}³ ({num(r.kernel_ms_median)} ms)")
         out += ["", "- **Fig. 6.9**, the fastest grid (10³–60³): " + "; ".join(best) + "."]
+    masked = ok[(ok.strategy_type == "multipass") & ok.sweep.isin(["fig6_8", "fig6_11"])]
+    if "kernel_ms_stencil_pass" in masked and masked.kernel_ms_stencil_pass.notna().any():
+        masked = masked[masked.kernel_ms_stencil_pass.notna()]
+        share = masked.kernel_ms_stencil_pass * (masked.passes_traverse + masked.passes_intersect) / masked.kernel_ms_median
+        out.append(f"- **§5.5, masking by state**: his early-z culling needed a masking pass before every traverse and "
+                   f"intersect pass (twice our loop passes; `passes_total` counts none: our kernels test the state byte "
+                   f"themselves). That test alone, timed as one more pass over finished rays, costs "
+                   f"{num(masked.kernel_ms_stencil_pass.min())}–{num(masked.kernel_ms_stencil_pass.max())} ms a pass here, "
+                   f"{num(100 * share.min())}–{num(100 * share.max())}% of a frame over its loop passes (an upper bound).")
     out += [""] + charts("christen2005", {"christen_grid_size": "render time against grid size (Christen Fig. 6.9)",
                                            "christen_gpu_cpu": "the GPU against the CPU by iteration (Christen Figs. 6.10-6.11)"})
     return out + [""]
