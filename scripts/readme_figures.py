@@ -18,7 +18,7 @@ from pathlib import Path
 import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rtbench_results import CHRISTEN_SCENES, commit_text, method_name, read_runs, scene_name, structure_names, whitted_frames, wrong_rays  # noqa: E402
+from rtbench_results import CHRISTEN_SCENES, commit_text, masking_share, method_name, read_runs, scene_name, structure_names, whitted_frames, wrong_rays  # noqa: E402
 from purcell_tables import PURCELL_TABLE_2  # noqa: E402  (his Table 2, the paper's numbers)
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -559,7 +559,7 @@ def christen2005() -> list:
     masked = ok[(ok.strategy_type == "multipass") & ok.sweep.isin(["fig6_8", "fig6_11"])]
     if "kernel_ms_stencil_pass" in masked and masked.kernel_ms_stencil_pass.notna().any():
         masked = masked[masked.kernel_ms_stencil_pass.notna()]
-        share = masked.kernel_ms_stencil_pass * (masked.passes_traverse + masked.passes_intersect) / masked.kernel_ms_median
+        share = masking_share(masked)
         out.append(f"- **§5.5, masking by state**: his early-z culling needed a masking pass before every traverse and "
                    f"intersect pass (twice our loop passes; `passes_total` counts none: our kernels test the state byte "
                    f"themselves). That test alone, timed as one more pass over finished rays, costs "

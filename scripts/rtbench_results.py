@@ -154,6 +154,12 @@ def open_results(doc: str):
     return folder, runs.copy(), failed, context, device
 
 
+def masking_share(runs: pd.DataFrame) -> pd.Series:
+    """Multipass: the state test alone (kernel_ms_stencil_pass) times the traverse and intersect passes,
+    over the frame's time: an upper bound on the share of a frame the ray-state test costs."""
+    return runs.kernel_ms_stencil_pass * (runs.passes_traverse + runs.passes_intersect) / runs.kernel_ms_median
+
+
 def command_text(context: dict) -> str:
     """How a folder was made: its command, commit and date (context.json)."""
     return f"Command: `{context.get('command', '?')}` at commit {commit_text(context)}, {context.get('date_utc', '?')}."

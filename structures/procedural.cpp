@@ -56,11 +56,10 @@ TriangleMesh roomWithCubes(const std::string& name, int cubes, std::uint32_t see
     mesh.name = name;
     appendBox(mesh, {-10.0f, 0.0f, -10.0f}, {10.0f, 6.0f, 10.0f}, /*inward=*/true);
     Xorshift32 random(seed);
-    auto next01 = [&random]() { return random.next01(); };
     for (int i = 0; i < cubes; ++i) {
-        const float size = 0.2f + 0.8f * next01();
-        const glm::vec3 lo(-9.5f + (19.0f - size) * next01(), 0.5f + (5.0f - size) * next01(),
-                           -9.5f + (19.0f - size) * next01());
+        const float size = 0.2f + 0.8f * random.next01();
+        const glm::vec3 lo(-9.5f + (19.0f - size) * random.next01(), 0.5f + (5.0f - size) * random.next01(),
+                           -9.5f + (19.0f - size) * random.next01());
         appendBox(mesh, lo, lo + glm::vec3(size));
     }
     return mesh;

@@ -249,13 +249,12 @@ TEST(CacheReplay, RunsWriteTheCacheColumns) {
                       "[strategy]\ntype = [\"branching\", \"multipass\"]\n[cache]\nsimulate = true\nline_bytes = 64\n");
     ASSERT_EQ(result.rows.size(), 4u);
     for (const Row& row : result.rows) {
-        const auto cell = [&row](const char* key) { return row.count(key) ? row.at(key) : std::string(); };
-        SCOPED_TRACE(cell("label"));
-        EXPECT_EQ(cell("status"), "ok") << cell("error");
-        EXPECT_EQ(cell("cache_capacity_bytes"), "65536");
-        EXPECT_NE(cell("cache_ratio_total"), "");
-        EXPECT_NE(cell("cache_hit_rate_vertices"), "");
-        EXPECT_EQ(cell("cache_hit_rate_stencil").empty(), cell("strategy_type") == "branching");
+        SCOPED_TRACE(cellOf(row, "label"));
+        EXPECT_EQ(cellOf(row, "status"), "ok") << cellOf(row, "error");
+        EXPECT_EQ(cellOf(row, "cache_capacity_bytes"), "65536");
+        EXPECT_NE(cellOf(row, "cache_ratio_total"), "");
+        EXPECT_NE(cellOf(row, "cache_hit_rate_vertices"), "");
+        EXPECT_EQ(cellOf(row, "cache_hit_rate_stencil").empty(), cellOf(row, "strategy_type") == "branching");
     }
     EXPECT_THAT(errorOf([&] {
                     runTestConfig(dir, "plaincache",

@@ -52,15 +52,14 @@ TEST(CpuStrategyRuns, AreJudgedAndTimedAsTheKernelsAre) {
         "[rays]\ntype = [\"primary\", \"shadow\"]\n");
     ASSERT_EQ(result.rows.size(), 4u);
     for (const Row& row : result.rows) {
-        const auto cell = [&row](const char* key) { return row.count(key) ? row.at(key) : std::string(); };
-        SCOPED_TRACE(cell("label"));
-        EXPECT_EQ(cell("status"), "ok") << cell("error");
-        EXPECT_EQ(cell("host_threads"), "2");
-        EXPECT_EQ(cell("cpu_reference_mismatches"), "");
-        EXPECT_NE(cell("work_per_ray_mean"), "");
-        EXPECT_EQ(cell("simd_lane_utilisation"), "");
-        EXPECT_GT(std::stod(cell("kernel_ms_median")), 0.0);
-        EXPECT_EQ(cell("exact_wrong_ppm"), "0");
+        SCOPED_TRACE(cellOf(row, "label"));
+        EXPECT_EQ(cellOf(row, "status"), "ok") << cellOf(row, "error");
+        EXPECT_EQ(cellOf(row, "host_threads"), "2");
+        EXPECT_EQ(cellOf(row, "cpu_reference_mismatches"), "");
+        EXPECT_NE(cellOf(row, "work_per_ray_mean"), "");
+        EXPECT_EQ(cellOf(row, "simd_lane_utilisation"), "");
+        EXPECT_GT(std::stod(cellOf(row, "kernel_ms_median")), 0.0);
+        EXPECT_EQ(cellOf(row, "exact_wrong_ppm"), "0");
     }
     EXPECT_THAT(errorOf([&] {
                     runTestConfig(dir, "threads", "[scene]\nsource = \"procedural:christen_a\"\n[strategy]\ntype = \"branching\"\nthreads = 2\n");

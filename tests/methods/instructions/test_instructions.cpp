@@ -185,19 +185,18 @@ TEST(InstructionEstimate, EveryBranchingAndMultipassRunWritesItsColumns) {
     ASSERT_EQ(result.rows.size(), 6u);
     std::map<std::string, std::string> perTest;
     for (const Row& row : result.rows) {
-        const auto cell = [&row](const char* key) { return row.count(key) ? row.at(key) : std::string(); };
-        const auto number = [&](const char* key) { return std::stoull(cell(key)); };
-        SCOPED_TRACE(cell("label"));
-        ASSERT_EQ(cell("status"), "ok") << cell("error");
+        const auto number = [&](const char* key) { return std::stoull(cellOf(row, key)); };
+        SCOPED_TRACE(cellOf(row, "label"));
+        ASSERT_EQ(cellOf(row, "status"), "ok") << cellOf(row, "error");
         EXPECT_EQ(number("instructions_total"),
                   number("instructions_traverse") + number("instructions_intersect") + number("instructions_other"));
         EXPECT_GT(number("instructions_intersect"), 0u);
         // Brute force takes no traversal steps.
-        EXPECT_EQ(number("instructions_per_step") == 0, cell("structure_type") == "brute_force");
+        EXPECT_EQ(number("instructions_per_step") == 0, cellOf(row, "structure_type") == "brute_force");
         // A test costs the two architectures alike.
-        auto [it, added] = perTest.emplace(cell("structure_type"), cell("instructions_per_test"));
+        auto [it, added] = perTest.emplace(cellOf(row, "structure_type"), cellOf(row, "instructions_per_test"));
         if (!added) {
-            EXPECT_EQ(it->second, cell("instructions_per_test"));
+            EXPECT_EQ(it->second, cellOf(row, "instructions_per_test"));
         }
     }
 }

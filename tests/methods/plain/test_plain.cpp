@@ -76,15 +76,14 @@ TEST(Plain, RunsBesideBranchingOnTheSameRays) {
     int plain = 0;
     for (const Row& row : result.rows) {
         SCOPED_TRACE(row.at("label"));
-        const auto cell = [&row](const char* key) { return row.count(key) ? row.at(key) : std::string(); };
         EXPECT_EQ(row.at("status"), "ok") << row.at("error");
         if (row.at("label").find("plain") == std::string::npos) continue;
         ++plain;
-        EXPECT_EQ(cell("cpu_reference_mismatches"), "");
-        EXPECT_EQ(cell("work_per_ray_mean"), "");
-        EXPECT_EQ(cell("stream_batches"), "1");
+        EXPECT_EQ(cellOf(row, "cpu_reference_mismatches"), "");
+        EXPECT_EQ(cellOf(row, "work_per_ray_mean"), "");
+        EXPECT_EQ(cellOf(row, "stream_batches"), "1");
         if (llvmpipe) {
-            EXPECT_EQ(cell("plain_cpu_differing"), "0");
+            EXPECT_EQ(cellOf(row, "plain_cpu_differing"), "0");
         }
     }
     EXPECT_EQ(plain, 6);
