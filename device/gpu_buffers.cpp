@@ -3,7 +3,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cstring>
 
 #include "structures/error.h"
@@ -48,21 +47,70 @@ void refuseOversizedRayStream(std::uint64_t rays) {
                     std::to_string(hostMemoryLimit()) + " bytes (half the physical memory)");
 }
 
-GpuBuffers::GpuBuffers(VulkanContext& vk, const std::vector<gpu::Ray>& rays, std::uint64_t traversalStateBytes,
-                       const std::vector<BufferData>& structureBuffers, const std::vector<std::uint8_t>& structureParams,
-                       const std::vector<BufferSize>& strategyBuffers)
-    : vk_(vk), rayCount_(rays.size()) {
+DeviceStructure::DeviceStructure(VulkanContext& vk, const std::vector<BufferData>& buffers) : vk_(vk) {
+    for (const BufferData& b : buffers) sizes_.push_back({b.what, b.bytes});
+    refuseOversizedBuffers(vk.info(), sizes_);
+    buffers_.resize(buffers.size());
+    try {
+        for (std::size_t i = 0; i < buffers.size(); ++i) {
+            buffers_[i] = vk.createStorageBuffer(buffers[i].bytes, buffers[i].what);
+            vk.upload(buffers_[i], buffers[i].data, buffers[i].bytes);
+        }
+    } catch (...) {
+        for (Buffer& b : buffers_) vk.destroy(b);
+        throw;
+    }
+}
+
+DeviceStructure::~DeviceStructure() {
+    for (Buffer& b : buffers_) vk_.destroy(b);
+}
+
+namespace {
+
+// Every buffer of a run: its per-ray slots, the strategy's and the structure's, in slot order
+// (without the pass counters), for the refusals before anything is allocated.
+std::vector<BufferSize> runBufferSizes(std::uint64_t rays, std::uint64_t traversalStateBytes,
+                                       const std::vector<BufferSize>& strategyBuffers,
+                                       const std::vector<BufferSize>& structureBuffers) {
     if (strategyBuffers.size() > gpu::kStrategySlots)
         throw Error("a strategy asked for " + std::to_string(strategyBuffers.size()) + " buffers of its own; there are " +
                     std::to_string(gpu::kStrategySlots) + " slots (kernels/gpu_layout.h kStrategySlots)");
-    const auto start = std::chrono::steady_clock::now();
-    const std::size_t n = rays.size();
-    std::vector<BufferSize> sizes = rayBufferSizes(n, traversalStateBytes);  // slots kBindingRays..kBindingRayCounters
+    std::vector<BufferSize> sizes = rayBufferSizes(rays, traversalStateBytes);  // slots kBindingRays..kBindingRayCounters
     for (std::uint32_t i = 0; i < gpu::kStrategySlots; ++i)  // slots kBindingStrategy..
         sizes.push_back(i < strategyBuffers.size() ? strategyBuffers[i] : BufferSize{"unused strategy slot", 4});
-    for (const BufferData& b : structureBuffers) sizes.push_back({b.what, b.bytes});
+    sizes.insert(sizes.end(), structureBuffers.begin(), structureBuffers.end());
+    return sizes;
+}
+
+// The structure's buffers on the device, once the whole run is known to fit.
+std::shared_ptr<const DeviceStructure> uploadStructure(VulkanContext& vk, std::uint64_t rays,
+                                                       std::uint64_t traversalStateBytes,
+                                                       const std::vector<BufferData>& structureBuffers,
+                                                       const std::vector<BufferSize>& strategyBuffers) {
+    std::vector<BufferSize> structureSizes;
+    for (const BufferData& b : structureBuffers) structureSizes.push_back({b.what, b.bytes});
+    refuseOversizedBuffers(vk.info(), runBufferSizes(rays, traversalStateBytes, strategyBuffers, structureSizes));
+    return std::make_shared<const DeviceStructure>(vk, structureBuffers);
+}
+
+}  // namespace
+
+GpuBuffers::GpuBuffers(VulkanContext& vk, const std::vector<gpu::Ray>& rays, std::uint64_t traversalStateBytes,
+                       const std::vector<BufferData>& structureBuffers, const std::vector<std::uint8_t>& structureParams,
+                       const std::vector<BufferSize>& strategyBuffers)
+    : GpuBuffers(vk, rays, traversalStateBytes,
+                 uploadStructure(vk, rays.size(), traversalStateBytes, structureBuffers, strategyBuffers),
+                 structureParams, strategyBuffers) {}
+
+GpuBuffers::GpuBuffers(VulkanContext& vk, const std::vector<gpu::Ray>& rays, std::uint64_t traversalStateBytes,
+                       std::shared_ptr<const DeviceStructure> structure, const std::vector<std::uint8_t>& structureParams,
+                       const std::vector<BufferSize>& strategyBuffers)
+    : vk_(vk), structure_(std::move(structure)), rayCount_(rays.size()) {
+    const std::size_t n = rays.size();
+    const std::vector<BufferSize> sizes = runBufferSizes(n, traversalStateBytes, strategyBuffers, structure_->sizes());
     refuseOversizedBuffers(vk.info(), sizes);
-    buffers_.resize(gpu::kBindingStructure + structureBuffers.size());
+    buffers_.resize(gpu::kBindingStructure);
     try {
         for (std::uint32_t b = gpu::kBindingRays; b <= gpu::kBindingRayCounters; ++b)
             buffers_[b] = vk.createStorageBuffer(sizes[b].bytes, sizes[b].what);
@@ -73,11 +121,6 @@ GpuBuffers::GpuBuffers(VulkanContext& vk, const std::vector<gpu::Ray>& rays, std
         for (std::uint32_t b = gpu::kBindingStrategy; b < gpu::kBindingStructure; ++b) {
             buffers_[b] = vk.createStorageBuffer(sizes[b - 1].bytes, sizes[b - 1].what);  // sizes has no pass-counter entry
             vk.fill(buffers_[b], 0);  // zeros, filled on the device (no host copy of the buffer's size)
-        }
-        for (std::size_t i = 0; i < structureBuffers.size(); ++i) {
-            const BufferData& b = structureBuffers[i];
-            buffers_[gpu::kBindingStructure + i] = vk.createStorageBuffer(b.bytes, b.what);
-            vk.upload(buffers_[gpu::kBindingStructure + i], b.data, b.bytes);
         }
         const gpu::PassCounters zero{};  // what a dispatch without a read-back adds to
         vk.upload(buffers_[gpu::kBindingPassCounters], &zero, sizeof zero);
@@ -92,7 +135,6 @@ GpuBuffers::GpuBuffers(VulkanContext& vk, const std::vector<gpu::Ray>& rays, std
     pushConstants_.resize(sizeof stream);
     std::memcpy(pushConstants_.data(), &stream, sizeof stream);
     pushConstants_.insert(pushConstants_.end(), structureParams.begin(), structureParams.end());
-    uploadMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 namespace {
@@ -120,7 +162,7 @@ ComputePipeline GpuBuffers::createKernel(const std::string& name, const KernelSp
                 throw Error(name + ": specialization constant " + std::to_string(c.id) + " given twice");
         constants.push_back(c);
     }
-    return vk_.createComputePipeline(embeddedKernel(name), std::uint32_t(buffers_.size()),
+    return vk_.createComputePipeline(embeddedKernel(name), std::uint32_t(buffers_.size() + structure_->buffers().size()),
                                      std::uint32_t(pushConstants_.size()), spec.workgroupSize, constants);
 }
 
@@ -134,6 +176,7 @@ VkDescriptorSet GpuBuffers::descriptorSet(const ComputePipeline& pipeline) {
     if (!set_) {
         std::vector<const Buffer*> bound;
         for (const Buffer& b : buffers_) bound.push_back(&b);
+        for (const Buffer& b : structure_->buffers()) bound.push_back(&b);
         set_ = vk_.createDescriptorSet(pipeline, bound);
     }
     return set_;

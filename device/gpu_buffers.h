@@ -3,6 +3,7 @@
 // anything is allocated, and the refusals of what the device or the host cannot hold.
 #pragma once
 #include <array>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -58,13 +59,39 @@ struct BufferData {
     const void* data = nullptr;
 };
 
-// The buffers of one run: the common per-ray slots of kernels/gpu_layout.h, the strategy's own
-// (zeroed, at most kStrategySlots, from kBindingStrategy on), then the structure's buffers from
-// kBindingStructure on; and the push constants (StreamParams, then the structure's).
+// A structure's buffers on the device, uploaded once. The batches of a stream each bind the same
+// (GpuBuffers holds it shared: it goes with the last batch's timer), so a stream in many batches
+// costs the structure's bytes once.
+class DeviceStructure {
+public:
+    // Throws rtbench::Error naming a buffer over maxStorageBufferRange; allocates nothing then.
+    DeviceStructure(VulkanContext& vk, const std::vector<BufferData>& buffers);
+    ~DeviceStructure();
+    DeviceStructure(const DeviceStructure&) = delete;
+    DeviceStructure& operator=(const DeviceStructure&) = delete;
+
+    const std::vector<Buffer>& buffers() const { return buffers_; }
+    const std::vector<BufferSize>& sizes() const { return sizes_; }
+
+private:
+    VulkanContext& vk_;
+    std::vector<Buffer> buffers_;  // from slot kBindingStructure on
+    std::vector<BufferSize> sizes_;
+};
+
+// The buffers of one run (or one batch of its stream): the common per-ray slots of
+// kernels/gpu_layout.h, the strategy's own (zeroed, at most kStrategySlots, from kBindingStrategy
+// on), then the structure's buffers from kBindingStructure on; and the push constants
+// (StreamParams, then the structure's).
 class GpuBuffers {
 public:
+    // Uploads the structure's buffers for this stream alone.
     GpuBuffers(VulkanContext& vk, const std::vector<gpu::Ray>& rays, std::uint64_t traversalStateBytes,
                const std::vector<BufferData>& structureBuffers, const std::vector<std::uint8_t>& structureParams,
+               const std::vector<BufferSize>& strategyBuffers = {});
+    // Binds a structure already on the device (one batch of a stream).
+    GpuBuffers(VulkanContext& vk, const std::vector<gpu::Ray>& rays, std::uint64_t traversalStateBytes,
+               std::shared_ptr<const DeviceStructure> structure, const std::vector<std::uint8_t>& structureParams,
                const std::vector<BufferSize>& strategyBuffers = {});
     ~GpuBuffers();
     GpuBuffers(const GpuBuffers&) = delete;
@@ -91,17 +118,16 @@ public:
     const Buffer& strategyBuffer(std::uint32_t i) const { return buffers_.at(gpu::kBindingStrategy + i); }
     // The pass counters themselves (device-local), for dispatches that zero them first.
     const Buffer& passCounterBuffer() const { return buffers_[gpu::kBindingPassCounters]; }
-    double uploadMs() const { return uploadMs_; }
 
 private:
     VulkanContext& vk_;
-    std::vector<Buffer> buffers_;  // by binding slot
+    std::vector<Buffer> buffers_;  // by binding slot, up to kBindingStructure
+    std::shared_ptr<const DeviceStructure> structure_;  // the slots from kBindingStructure on
     Buffer countersOnHost_;        // the pass counters' copy the host reads
     VulkanContext::CounterReadback counters_{};
     VkDescriptorSet set_ = VK_NULL_HANDLE;
     std::vector<std::uint8_t> pushConstants_;
     std::uint64_t rayCount_ = 0;
-    double uploadMs_ = 0.0;
 };
 
 }  // namespace rtbench

@@ -9,11 +9,11 @@ std::uint64_t raysPerBinding(const DeviceInfo& device, std::uint64_t perRayBytes
     return std::max<std::uint64_t>(fit / workgroupSize * workgroupSize, workgroupSize);
 }
 
-void refuseOversizedBatches(const DeviceInfo& device, std::vector<BufferSize> perRay,
-                            const std::vector<BufferData>& structureBuffers, std::uint64_t batches) {
-    for (const BufferData& b : structureBuffers)
-        perRay.push_back({b.what + " x " + std::to_string(batches) + " batches", b.bytes * batches});
-    refuseOversizedTotal(device, perRay);
+std::shared_ptr<const DeviceStructure> uploadForBatches(VulkanContext& vk, std::vector<BufferSize> perRay,
+                                                        const std::vector<BufferData>& structureBuffers) {
+    for (const BufferData& b : structureBuffers) perRay.push_back({b.what, b.bytes});
+    refuseOversizedTotal(vk.info(), perRay);
+    return std::make_shared<const DeviceStructure>(vk, structureBuffers);
 }
 
 std::vector<std::pair<std::uint64_t, std::uint64_t>> streamBatches(std::uint64_t rays, std::uint64_t batchRays) {

@@ -1,5 +1,6 @@
 // A ray stream traced in batches, when one binding (maxStorageBufferRange) cannot hold its per-ray
-// records: each batch its own buffers and dispatches, one after another, and their timers as one.
+// records: each batch its own per-ray buffers and dispatches, one after another, the structure on the
+// device once for all of them (uploadForBatches), and their timers as one.
 // Batches are whole workgroups (so whole subgroups): every subgroup's lanes, ballots and loops are
 // the ones it has in one unbatched dispatch.
 #pragma once
@@ -15,11 +16,12 @@ namespace rtbench {
 // (at least one workgroup).
 std::uint64_t raysPerBinding(const DeviceInfo& device, std::uint64_t perRayBytes, unsigned workgroupSize);
 
-// Throws rtbench::Error when a stream's per-ray buffers (`perRay`, for all its rays) and `batches`
-// copies of the structure's buffers (each batch uploads its own and keeps it until the timer is
-// done) exceed the device's largest device-local heap; allocates nothing.
-void refuseOversizedBatches(const DeviceInfo& device, std::vector<BufferSize> perRay,
-                            const std::vector<BufferData>& structureBuffers, std::uint64_t batches);
+// The structure's buffers on the device, once for every batch of a stream, after refusing
+// (allocating nothing) when the stream's per-ray buffers (`perRay`, for all its rays: every batch
+// keeps its own until the timer is done) and the structure's exceed the device's largest
+// device-local heap.
+std::shared_ptr<const DeviceStructure> uploadForBatches(VulkanContext& vk, std::vector<BufferSize> perRay,
+                                                        const std::vector<BufferData>& structureBuffers);
 
 // [first, end) of each batch of `batchRays` rays over a stream of `rays` (the last may be shorter).
 std::vector<std::pair<std::uint64_t, std::uint64_t>> streamBatches(std::uint64_t rays, std::uint64_t batchRays);

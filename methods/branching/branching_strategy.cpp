@@ -72,11 +72,14 @@ private:
 
 namespace {
 
-// One dispatch's worth of rays: uploads, and runs the instrumented dispatch; the timer keeps the buffers.
+// One dispatch's worth of rays: uploads, and runs the instrumented dispatch; the timer keeps the
+// buffers. `shared`: the structure on the device for every batch (null: this stream's own).
 BranchingRun runBranchingBatch(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
-                               const TimingOptions& timing, std::uint32_t query, const TraceLaunch& launch) {
+                               const TimingOptions& timing, std::uint32_t query, const TraceLaunch& launch,
+                               const std::shared_ptr<const DeviceStructure>& shared) {
     BranchingRun run;
-    auto buffers = std::make_unique<GpuBuffers>(vk, rays, /*traversalStateBytes=*/0, structure.buffers(), structure.params());
+    auto buffers = shared ? std::make_unique<GpuBuffers>(vk, rays, /*traversalStateBytes=*/0, shared, structure.params())
+                          : std::make_unique<GpuBuffers>(vk, rays, /*traversalStateBytes=*/0, structure.buffers(), structure.params());
     const std::string kernel = structure.kernelPrefix() + "_" + launch.kernel;
     const std::uint64_t invocations = launch.invocations ? launch.invocations : rays.size();
     const KernelSpec spec = structureKernelSpec(structure, timing.workgroupSize, query, launch.constants);
@@ -109,17 +112,17 @@ BranchingRun runBranching(VulkanContext& vk, const Structure& structure, const s
                     std::to_string(timing.workgroupSize));
     BranchingRun run;
     if (rays.size() <= batchRays) {
-        run = runBranchingBatch(vk, structure, rays, timing, query, launch);
+        run = runBranchingBatch(vk, structure, rays, timing, query, launch, nullptr);
     } else {
         // Batches of whole workgroups, one after another: the records and every counter are those
         // of one dispatch over the stream (each subgroup has the same lanes); the time adds up.
         const auto batches = streamBatches(rays.size(), batchRays);
-        refuseOversizedBatches(vk.info(), rayBufferSizes(rays.size(), 0), structure.buffers(), batches.size());
+        const auto shared = uploadForBatches(vk, rayBufferSizes(rays.size(), 0), structure.buffers());
         std::vector<std::unique_ptr<KernelTimer>> timers;
         run.batches = 0;
         for (const auto& [first, end] : batches) {
             const std::vector<gpu::Ray> part(rays.begin() + std::ptrdiff_t(first), rays.begin() + std::ptrdiff_t(end));
-            BranchingRun b = runBranchingBatch(vk, structure, part, timing, query, launch);
+            BranchingRun b = runBranchingBatch(vk, structure, part, timing, query, launch, shared);
             run.hits.insert(run.hits.end(), b.hits.begin(), b.hits.end());
             for (std::uint32_t c = 0; c < gpu::kCountSlots; ++c) run.counters.counts[c] += b.counters.counts[c];
             timers.push_back(std::move(b.timer));

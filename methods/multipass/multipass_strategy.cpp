@@ -317,9 +317,11 @@ private:
 
 namespace {
 
-// One batch's instrumented run and its timer.
+// One batch's instrumented run and its timer. `shared`: the structure on the device for every
+// batch (null: this stream's own).
 MultipassRun runMultipassBatch(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
-                               const MultipassOptions& options, const TimingOptions& timing, std::uint32_t query) {
+                               const MultipassOptions& options, const TimingOptions& timing, std::uint32_t query,
+                               const std::shared_ptr<const DeviceStructure>& shared) {
     MultipassRun run;
     const std::uint64_t cap = multipassPassCap(structure, options);
     std::vector<BufferSize> own;  // the strategy's slots: with the control on the device, the ray lists and the oracle's block
@@ -328,8 +330,9 @@ MultipassRun runMultipassBatch(VulkanContext& vk, const Structure& structure, co
         own = {{"multipass ray lists (4 x " + std::to_string(rays.size()) + " rays)", rayListBytes(rays.size())},
                {"multipass oracle control and pass log", kPassControlBytes}};
     }
-    auto buffers = std::make_unique<GpuBuffers>(vk, rays, structure.costs().traversalStateBytes, structure.buffers(),
-                                                structure.params(), own);
+    const std::uint64_t stateBytes = structure.costs().traversalStateBytes;
+    auto buffers = shared ? std::make_unique<GpuBuffers>(vk, rays, stateBytes, shared, structure.params(), own)
+                          : std::make_unique<GpuBuffers>(vk, rays, stateBytes, structure.buffers(), structure.params(), own);
     KernelSpec spec = structureKernelSpec(structure, timing.workgroupSize, query,
                                           {{gpu::kSpecTraverseSteps, options.traverseStepsPerPass},
                                            {gpu::kSpecIntersections, options.intersectionsPerPass},
@@ -371,7 +374,7 @@ MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const s
         multipassBatchRays(vk.info(), structure.costs().traversalStateBytes, options.batchRays, timing.workgroupSize);
     MultipassRun run;
     if (batchRays >= rays.size()) {
-        run = runMultipassBatch(vk, structure, rays, options, timing, query);
+        run = runMultipassBatch(vk, structure, rays, options, timing, query, nullptr);
     } else {
         // Rays in batches (each its own buffers and pass loop, the oracle's passes per batch): the
         // per-ray records and events are those of one stream; the passes add up over the batches.
@@ -382,12 +385,12 @@ MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const s
             perRay.push_back({"multipass oracle control and pass log x " + std::to_string(batches.size()) + " batches",
                               kPassControlBytes * batches.size()});
         }
-        refuseOversizedBatches(vk.info(), perRay, structure.buffers(), batches.size());
+        const auto shared = uploadForBatches(vk, perRay, structure.buffers());
         std::vector<std::unique_ptr<KernelTimer>> timers;
         run.batches = 0;
         for (const auto& [first, end] : batches) {
             const std::vector<gpu::Ray> part(rays.begin() + std::ptrdiff_t(first), rays.begin() + std::ptrdiff_t(end));
-            MultipassRun b = runMultipassBatch(vk, structure, part, options, timing, query);
+            MultipassRun b = runMultipassBatch(vk, structure, part, options, timing, query, shared);
             run.hits.insert(run.hits.end(), b.hits.begin(), b.hits.end());
             run.traversalStates.insert(run.traversalStates.end(), b.traversalStates.begin(), b.traversalStates.end());
             run.counts += b.counts;

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "methods/branching/branching_strategy.h"
+#include "methods/stream_batches.h"
 #include "device/gpu_buffers.h"
 #include "harness/runner.h"
 #include "tests/device/test_device.h"
@@ -179,6 +180,54 @@ TEST_F(KernelSpecs, AStrategyConstantThatRepeatsACommonIdIsRefused) {
     spec.strategyConstants = {{gpu::kSpecTraverseSteps, 3}};
     ComputePipeline pipeline = buffers.createKernel("grid_multipass_setup", spec);
     vk_->destroy(pipeline);
+}
+
+// A stream in batches uploads the structure once, bound by every batch: its bytes count once
+// against the heap, however many batches (each batch used to upload its own copy, so 256 batches
+// of the bunny's 8.5 MB grid were refused on lavapipe's 2 GiB).
+TEST_F(KernelSpecs, BatchesShareOneUploadOfTheStructure) {
+    const TriangleMesh mesh = christenSceneA();
+    GridResolutionRule rule;
+    rule.minDim = 4;
+    const std::unique_ptr<Structure> structure = gridStructure(buildUniformGrid(mesh, rule));
+    std::uint64_t structureBytes = 0;
+    for (const BufferData& b : structure->buffers()) structureBytes += b.bytes;
+    const std::uint64_t heap = vk_->info().deviceLocalBytes;
+    ASSERT_GT(heap, 2 * structureBytes);
+    // Per-ray buffers that leave room for the structure once, not twice.
+    const std::vector<BufferSize> perRay = {{"rays", heap - structureBytes - structureBytes / 2}};
+    const auto shared = uploadForBatches(*vk_, perRay, structure->buffers());
+    ASSERT_TRUE(shared);
+    EXPECT_EQ(shared->buffers().size(), structure->buffers().size());
+    const std::vector<BufferSize> tooMany = {{"rays", heap - structureBytes + 1}};
+    EXPECT_THAT(errorOf([&] { uploadForBatches(*vk_, tooMany, structure->buffers()); }),
+                HasSubstr("largest device-local heap"));
+    // Two batches bound to it trace what one stream does.
+    std::vector<gpu::Ray> rays;
+    for (int i = 0; i < 128; ++i)
+        rays.push_back(gpu::Ray{glm::vec4(-4.0f + 0.06f * float(i), 0.5f, -10.0f, 0.0f), glm::vec4(0, 0, 1, gpu::kNoHitT)});
+    auto trace = [&](const std::vector<gpu::Ray>& part, GpuBuffers& buffers) {
+        const KernelSpec spec = structureKernelSpec(*structure, 64, gpu::kQueryClosest, {});
+        ComputePipeline pipeline = buffers.createKernel(structure->kernelPrefix() + "_branching", spec);
+        vk_->dispatch(pipeline, buffers.descriptorSet(pipeline), buffers.pushConstants(), part.size(), buffers.passCounters());
+        vk_->destroy(pipeline);
+        return buffers.downloadHits();
+    };
+    GpuBuffers whole(*vk_, rays, 0, structure->buffers(), structure->params());
+    const std::vector<gpu::HitRecord> expected = trace(rays, whole);
+    const std::vector<gpu::Ray> first(rays.begin(), rays.begin() + 64), second(rays.begin() + 64, rays.end());
+    GpuBuffers a(*vk_, first, 0, shared, structure->params()), b(*vk_, second, 0, shared, structure->params());
+    std::vector<gpu::HitRecord> hits = trace(first, a);
+    const std::vector<gpu::HitRecord> rest = trace(second, b);
+    hits.insert(hits.end(), rest.begin(), rest.end());
+    ASSERT_EQ(hits.size(), expected.size());
+    int hitCount = 0;
+    for (std::size_t i = 0; i < hits.size(); ++i) {
+        EXPECT_EQ(hits[i].t, expected[i].t) << i;
+        EXPECT_EQ(hits[i].primitive, expected[i].primitive) << i;
+        hitCount += expected[i].t < gpu::kNoHitT;
+    }
+    EXPECT_GT(hitCount, 10);
 }
 
 }  // namespace
