@@ -175,7 +175,7 @@ def main() -> int:
                              "instructions_other": ("others (G)", giga), "instructions_total": ("total (G)", giga),
                              "bytes_total": ("bytes (GB)", giga), "instructions_per_byte": ("instr./byte", fixed(2))}), ""]
 
-    cache = runs[runs.cache_ratio_total.notna()] if "cache_ratio_total" in runs else runs.iloc[0:0]
+    cache = runs[runs.cache_ratio_total.notna() & (runs.sweep != "tiling")] if "cache_ratio_total" in runs else runs.iloc[0:0]
     if len(cache):
         cache = cache.sort_values(["scene", "rays_type", "strategy_type"])
         c = cache.iloc[0]
@@ -184,7 +184,8 @@ def main() -> int:
                 f"The run's memory references replayed on the CPU, one at a time as by \"a single pixel wide graphics "
                 f"pipeline\" (§4.1), through a {int(c.cache_capacity_bytes):,}-byte cache of {int(c.cache_line_bytes)}-byte "
                 f"lines, {int(c.cache_ways)}-way (Purcell: \"a 64KB direct-mapped texture cache with a 48-byte line "
-                "size\"); writes bypass it. Ratio: traffic with the cache / without it (a missed line costs the whole "
+                "size\"); writes bypass it, and a multipass pass's writes make the lines they touch stale for the next pass (it "
+                "reads what the pass rendered). Ratio: traffic with the cache / without it (a missed line costs the whole "
                 "line); hit rate: of the lines a data type's reads touch, those found in the cache. Purcell gives no "
                 "numbers for Fig. 9's bars; his text: the multipass architecture barely benefits, the branching one "
                 "does, and triangle data hits 96-99% in both (on his scenes, at his 82% bunny hit rate).", "",
@@ -196,6 +197,29 @@ def main() -> int:
                               "cache_hit_rate_cells": ("voxel hits", rate),
                               "cache_hit_rate_triangle_list": ("tri list hits", rate),
                               "cache_hit_rate_vertices": ("vertex hits (Purcell: 96-99%)", rate)}), ""]
+
+    tiling = runs[runs.sweep == "tiling"].copy()
+    if len(tiling):
+        tiling["order"] = tiling.camera_tile.map(lambda t: f"tiles {int(t)} x {int(t)}" if t > 0 else "rows")
+        batch = tiling.multipass_batch_rays if "multipass_batch_rays" in tiling else pd.Series(float("nan"), tiling.index)
+        tiling["batch"] = [("" if pd.isna(b) else "all" if b >= r else f"{int(b):,}") for b, r in zip(batch, tiling.rays)]
+        tiling = tiling.sort_values(["strategy_type", "camera_tile", "batch"])
+        rate = lambda v: f"{100 * v:.1f}%"
+        out += [f"## Tiled rendering (Purcell §5.3), {size(tiling)}", "",
+                "Purcell: \"break the image into small tiles ... rendered to completion before proceeding to the next "
+                "tile\", so that the streamed ray state no longer displaces the cacheable structure; his \"preliminary "
+                "experiments\" gave no numbers. The texture cache above on the bunny's Table 2 view: branching traces "
+                "ray after ray in row order or tile by tile; multipass runs its pass loop over a batch of rays, the "
+                "whole stream, one image row (256 rays) or one 16 x 16 tile (256 rays), batch after batch, so the last "
+                "two differ only in which rays share a batch. Passes add up over the batches (each its own oracle and "
+                "pass loop), which is what a lavapipe frame of many batches pays for.", "",
+                table(tiling, {"strategy_type": ("architecture", str), "order": ("order", str),
+                               "batch": ("rays a batch", str), "passes_total": ("passes", integer),
+                               "cache_ratio_total": ("cache ratio, all", fixed(3)),
+                               "cache_hit_rate_state": ("state hits", rate), "cache_hit_rate_cells": ("voxel hits", rate),
+                               "cache_hit_rate_triangle_list": ("tri list hits", rate),
+                               "cache_hit_rate_vertices": ("vertex hits", rate),
+                               "kernel_mrays_s": ("Mrays/s", fixed(3))}), ""]
 
     oracle = runs[runs.sweep.isin(["oracle", "naive"]) | ((runs.sweep == "architecture") & (runs.strategy_type == "multipass"))].copy()
     oracle["schedule"] = oracle.apply(lambda r: "naive" if r.strategy_scheduling == "naive"

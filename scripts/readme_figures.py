@@ -312,7 +312,7 @@ def purcell2002() -> list:
                    f"{num(grid.triangles_per_ray_mean.max())} to {num(grid.triangles_per_ray_mean.min())} and voxels per ray "
                    f"from {num(grid.voxels_per_ray_mean.min())} to {num(grid.voxels_per_ray_mean.max())} over min_dim "
                    f"{count(grid.structure_min_dim.min())}–{count(grid.structure_min_dim.max())}.")
-    cache = ok[ok.cache_ratio_total.notna()] if "cache_ratio_total" in ok else ok.iloc[0:0]
+    cache = ok[ok.cache_ratio_total.notna() & (ok.sweep != "tiling")] if "cache_ratio_total" in ok else ok.iloc[0:0]
     if not cache.empty:
         cache = cache.sort_values(["rays_type", "strategy_type"])
         ratios = "; ".join(f"{r.strategy_type}, {r.rays_type} rays: {num(r.cache_ratio_total, 2)}" for _, r in cache.iterrows())
@@ -322,6 +322,23 @@ def purcell2002() -> list:
                    f"{scene_name(r.scene_source)}, {size(r)}): traffic with the cache over without, {ratios}. Triangle "
                    f"vertices are found in the cache on {num(100 * cache.cache_hit_rate_vertices.min())}–"
                    f"{num(100 * cache.cache_hit_rate_vertices.max())}% of line lookups (Purcell: 96–99%).")
+    tiling = ok[ok.sweep == "tiling"]
+    if not tiling.empty:
+        def order(r):
+            tile = f"{count(r.camera_tile)}×{count(r.camera_tile)} tiles" if r.camera_tile > 0 else "rows"
+            if r.strategy_type == "branching":
+                return tile
+            return "the whole stream" if r.multipass_batch_rays >= r.rays else \
+                f"{count(r.multipass_batch_rays)} rays a batch in {tile}"
+        parts = []
+        for arch_name, g in tiling.sort_values(["camera_tile", "multipass_batch_rays"], ascending=[True, False]).groupby("strategy_type"):
+            runs_of = ", ".join(f"{order(r)} {num(100 * r.cache_hit_rate_vertices)}% (ratio {num(r.cache_ratio_total, 2)})"
+                                for _, r in g.iterrows())
+            parts.append(f"{arch_name}: {runs_of}")
+        r = tiling.iloc[0]
+        out.append(f"- **Tiled rendering** (Purcell §5.3; his preliminary experiments gave no numbers; the bunny's Table 2 "
+                   f"view, {size(r)}, the cache above): vertex lookups found in the cache (traffic with the cache over "
+                   "without), " + "; ".join(parts) + ".")
     views = ok[ok.sweep.str.startswith("table2-") & (ok.strategy_type == "multipass")]
     if not views.empty:
         parts = []

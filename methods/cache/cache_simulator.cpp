@@ -60,8 +60,24 @@ void CacheSimulator::read(MemoryKind kind, std::uint64_t address, std::uint64_t 
     }
 }
 
-void CacheSimulator::write(MemoryKind kind, std::uint64_t, std::uint64_t bytes) {
+void CacheSimulator::write(MemoryKind kind, std::uint64_t address, std::uint64_t bytes) {
+    if (!bytes) return;
     stats_[static_cast<int>(kind)].writeBytes += bytes;
+    for (std::uint64_t line = address / config_.lineBytes, last = (address + bytes - 1) / config_.lineBytes; line <= last;
+         ++line)
+        if (written_.empty() || written_.back() != line) written_.push_back(line);
+}
+
+void CacheSimulator::endPass() {
+    for (const std::uint64_t line : written_) {
+        const auto set = tags_.begin() + std::ptrdiff_t((line % sets_) * config_.ways);
+        const auto end = set + std::ptrdiff_t(config_.ways);
+        const auto found = std::find(set, end, line + 1);
+        if (found == end) continue;
+        std::rotate(found, found + 1, end);  // to the back, emptied: the next miss in the set takes it
+        *(end - 1) = 0;
+    }
+    written_.clear();
 }
 
 std::uint64_t CacheSimulator::bytesWith(MemoryKind kind) const {

@@ -3,7 +3,9 @@
 // pixel wide graphics pipeline". Size, line and associativity are configurable (cache.* keys).
 // Reads go through the cache: each line a read touches is looked up, and a miss fetches the
 // whole line. Writes (stencil, state, hit records: the framebuffer's) bypass it: they cost their
-// bytes with or without the cache and leave its contents as they are.
+// bytes with or without the cache and bring nothing in. A multipass pass reads its state from
+// one texture and renders the new state to another (ping-pong), so nothing a pass reads changes
+// during it, and what it wrote is new data to the next: endPass() drops the lines written.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -39,6 +41,9 @@ public:
 
     void read(MemoryKind kind, std::uint64_t address, std::uint64_t bytes);
     void write(MemoryKind kind, std::uint64_t address, std::uint64_t bytes);
+    // The end of a rendering pass: every line written since the last one leaves the cache (its
+    // copy there is stale), the others stay in their order.
+    void endPass();
 
     const CacheConfig& config() const { return config_; }
     std::uint64_t sets() const { return sets_; }
@@ -56,6 +61,7 @@ private:
     // ways_ entries per set, most recently used first; a line number + 1 (0: empty).
     std::vector<std::uint64_t> tags_;
     std::array<CacheKindStats, kMemoryKinds> stats_{};
+    std::vector<std::uint64_t> written_;  // lines written this pass
 };
 
 }  // namespace rtbench

@@ -27,6 +27,7 @@ public:
     void write(MemoryKind kind, const void* p, std::uint64_t bytes) {
         if (bytes) cache_.write(kind, address(p, bytes), bytes);
     }
+    void endPass() { cache_.endPass(); }
 
     // Makes `trace` the calling thread's current trace while the Scope lives.
     class Scope {

@@ -120,6 +120,7 @@ MultipassResult simulateMultipassOver(Kernels base, const std::vector<gpu::Ray>&
             Kernels k = base;
             PassSums sums;
             for (std::size_t i = 0; i < n; ++i) serve(k, i, kind, sums);
+            trace->endPass();  // what the pass rendered is the next pass's texture
             return sums;
         }
         return tbb::parallel_reduce(
