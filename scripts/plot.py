@@ -613,6 +613,7 @@ def texture_cache(runs, device, folder, written):
         return skip(folder, "texture_cache", "no run with cache.simulate = true")
     chosen = runs[runs.cache_ratio_total.notna()]
     keys = [k for k in swept_keys(chosen) if k not in ("scene_source", "strategy_type")]
+    keys = [first for first, _ in key_classes(chosen, keys)]  # camera_height goes with camera_width
     chosen = chosen.sort_values(["scene", "strategy_type"] + keys)
     labels = run_labels(chosen, ["scene", "strategy_type"], keys)
     parts = pd.DataFrame(index=chosen.index)
@@ -624,8 +625,10 @@ def texture_cache(runs, device, folder, written):
     if ((parts.sum(axis=1) - chosen.cache_ratio_total).abs() > 1e-3).any():
         raise PlotError(f"{folder}: texture_cache: the data types' parts do not add up to cache_ratio_total")
     names = dict(BYTES)
-    fig, ax = plt.subplots(figsize=(max(7, 1.25 * len(chosen)), 5.0))
+    lines = max(label.count("\n") + 1 for label in labels)
+    fig, ax = plt.subplots(figsize=(max(7, 1.6 * len(chosen)), 4.0 + 0.2 * lines))
     stacked_bars(ax, labels, parts, [(c, names[c]) for c in parts.columns])
+    ax.tick_params(axis="x", labelsize=8)
     ax.axhline(1.0, color="grey", linewidth=0.8, linestyle=":")
     ax.set_ylabel("traffic with the cache / without it")
     cache = chosen.iloc[0]

@@ -179,7 +179,6 @@ def main() -> int:
     if len(cache):
         cache = cache.sort_values(["scene", "rays_type", "strategy_type"])
         c = cache.iloc[0]
-        rate = lambda v: f"{100 * v:.1f}%"
         out += [f"## Texture cache (Purcell Fig. 9), {size(cache)}", "",
                 f"The run's memory references replayed on the CPU, one at a time as by \"a single pixel wide graphics "
                 f"pipeline\" (§4.1), through a {int(c.cache_capacity_bytes):,}-byte cache of {int(c.cache_line_bytes)}-byte "
@@ -194,17 +193,17 @@ def main() -> int:
                               "cache_ratio_state": ("state", fixed(3)), "cache_ratio_cells": ("voxels", fixed(3)),
                               "cache_ratio_triangle_list": ("tri lists", fixed(3)),
                               "cache_ratio_vertices": ("vertices", fixed(3)),
-                              "cache_hit_rate_cells": ("voxel hits", rate),
-                              "cache_hit_rate_triangle_list": ("tri list hits", rate),
-                              "cache_hit_rate_vertices": ("vertex hits (Purcell: 96-99%)", rate)}), ""]
+                              "cache_hit_rate_cells": ("voxel hits", pct),
+                              "cache_hit_rate_triangle_list": ("tri list hits", pct),
+                              "cache_hit_rate_vertices": ("vertex hits (Purcell: 96-99%)", pct)}), ""]
 
     tiling = runs[runs.sweep == "tiling"].copy()
     if len(tiling):
         tiling["order"] = tiling.camera_tile.map(lambda t: f"tiles {int(t)} x {int(t)}" if t > 0 else "rows")
         batch = tiling.multipass_batch_rays if "multipass_batch_rays" in tiling else pd.Series(float("nan"), tiling.index)
         tiling["batch"] = [("" if pd.isna(b) else "all" if b >= r else f"{int(b):,}") for b, r in zip(batch, tiling.rays)]
-        tiling = tiling.sort_values(["strategy_type", "camera_tile", "batch"])
-        rate = lambda v: f"{100 * v:.1f}%"
+        tiling["batch_order"] = [-(r if pd.isna(b) or b >= r else b) for b, r in zip(batch, tiling.rays)]  # the whole stream first
+        tiling = tiling.sort_values(["strategy_type", "camera_tile", "batch_order"])
         out += [f"## Tiled rendering (Purcell §5.3), {size(tiling)}", "",
                 "Purcell: \"break the image into small tiles ... rendered to completion before proceeding to the next "
                 "tile\", so that the streamed ray state no longer displaces the cacheable structure; his \"preliminary "
@@ -216,9 +215,9 @@ def main() -> int:
                 table(tiling, {"strategy_type": ("architecture", str), "order": ("order", str),
                                "batch": ("rays a batch", str), "passes_total": ("passes", integer),
                                "cache_ratio_total": ("cache ratio, all", fixed(3)),
-                               "cache_hit_rate_state": ("state hits", rate), "cache_hit_rate_cells": ("voxel hits", rate),
-                               "cache_hit_rate_triangle_list": ("tri list hits", rate),
-                               "cache_hit_rate_vertices": ("vertex hits", rate),
+                               "cache_hit_rate_state": ("state hits", pct), "cache_hit_rate_cells": ("voxel hits", pct),
+                               "cache_hit_rate_triangle_list": ("tri list hits", pct),
+                               "cache_hit_rate_vertices": ("vertex hits", pct),
                                "kernel_mrays_s": ("Mrays/s", fixed(3))}), ""]
 
     oracle = runs[runs.sweep.isin(["oracle", "naive"]) | ((runs.sweep == "architecture") & (runs.strategy_type == "multipass"))].copy()
