@@ -32,6 +32,15 @@ struct TimedBatch {
     std::vector<std::pair<std::string, std::vector<double>>> parts;
 };
 
+// The TimedBatch of a submission of identical repetitions, whose times `ms` come in order:
+// the first `warmups` summed as the warm-up, the rest one each.
+inline TimedBatch splitWarmups(const std::vector<double>& ms, int warmups) {
+    TimedBatch batch;
+    for (int i = 0; i < warmups; ++i) batch.warmupMs += ms.at(std::size_t(i));
+    batch.ms.assign(ms.begin() + warmups, ms.end());
+    return batch;
+}
+
 // What a strategy's run keeps on the device to time its kernels again, a batch at a time: the
 // runner alternates its batches with Embree's in rounds, so that drift hits both.
 class KernelTimer {

@@ -26,6 +26,13 @@ std::shared_ptr<const DeviceStructure> uploadForBatches(VulkanContext& vk, std::
 // [first, end) of each batch of `batchRays` rays over a stream of `rays` (the last may be shorter).
 std::vector<std::pair<std::uint64_t, std::uint64_t>> streamBatches(std::uint64_t rays, std::uint64_t batchRays);
 
+// Runs `runBatch(part)` on each batch of `batchRays` rays of `rays`, one after another, hands each
+// batch's run to `gather` (its hits and counts, in stream order), and returns the batches'
+// timers as one (BatchedTimer). A run is a strategy's *Run struct with a `timer`.
+template <class RunBatch, class Gather>
+std::unique_ptr<KernelTimer> traceInBatches(const std::vector<gpu::Ray>& rays, std::uint64_t batchRays,
+                                            RunBatch runBatch, Gather gather);
+
 // The timers of a stream's batches as one: a repetition is every batch's, one after another (its
 // time and each part's the sum of the batches'); the host loops add up alike.
 class BatchedTimer : public KernelTimer {
@@ -38,5 +45,18 @@ public:
 private:
     std::vector<std::unique_ptr<KernelTimer>> batches_;
 };
+
+template <class RunBatch, class Gather>
+std::unique_ptr<KernelTimer> traceInBatches(const std::vector<gpu::Ray>& rays, std::uint64_t batchRays,
+                                            RunBatch runBatch, Gather gather) {
+    std::vector<std::unique_ptr<KernelTimer>> timers;
+    for (const auto& [first, end] : streamBatches(rays.size(), batchRays)) {
+        const std::vector<gpu::Ray> part(rays.begin() + std::ptrdiff_t(first), rays.begin() + std::ptrdiff_t(end));
+        auto run = runBatch(part);
+        gather(run);
+        timers.push_back(std::move(run.timer));
+    }
+    return std::make_unique<BatchedTimer>(std::move(timers));
+}
 
 }  // namespace rtbench

@@ -50,11 +50,7 @@ public:
             std::size_t(warmups + repetitions),
             {&timed_, buffers_->descriptorSet(timed_), buffers_->pushConstants(), invocations_,
              counters_ ? buffers_->passCounters() : nullptr});
-        const std::vector<double> ms = vk_.dispatchAll(calls);
-        TimedBatch batch;
-        for (int i = 0; i < warmups; ++i) batch.warmupMs += ms[std::size_t(i)];
-        batch.ms.assign(ms.begin() + warmups, ms.end());
-        return batch;
+        return splitWarmups(vk_.dispatchAll(calls), warmups);
     }
     void checkHits() override { expectSameHits(buffers_->downloadHits(), counted_, name_.c_str()); }
 
@@ -116,19 +112,16 @@ BranchingRun runBranching(VulkanContext& vk, const Structure& structure, const s
     } else {
         // Batches of whole workgroups, one after another: the records and every counter are those
         // of one dispatch over the stream (each subgroup has the same lanes); the time adds up.
-        const auto batches = streamBatches(rays.size(), batchRays);
         const auto shared = uploadForBatches(vk, rayBufferSizes(rays.size(), 0), structure.buffers());
-        std::vector<std::unique_ptr<KernelTimer>> timers;
         run.batches = 0;
-        for (const auto& [first, end] : batches) {
-            const std::vector<gpu::Ray> part(rays.begin() + std::ptrdiff_t(first), rays.begin() + std::ptrdiff_t(end));
-            BranchingRun b = runBranchingBatch(vk, structure, part, timing, query, launch, shared);
-            run.hits.insert(run.hits.end(), b.hits.begin(), b.hits.end());
-            for (std::uint32_t c = 0; c < gpu::kCountSlots; ++c) run.counters.counts[c] += b.counters.counts[c];
-            timers.push_back(std::move(b.timer));
-            ++run.batches;
-        }
-        run.timer = std::make_unique<BatchedTimer>(std::move(timers));
+        run.timer = traceInBatches(
+            rays, batchRays,
+            [&](const std::vector<gpu::Ray>& part) { return runBranchingBatch(vk, structure, part, timing, query, launch, shared); },
+            [&](const BranchingRun& b) {
+                run.hits.insert(run.hits.end(), b.hits.begin(), b.hits.end());
+                for (std::uint32_t c = 0; c < gpu::kCountSlots; ++c) run.counters.counts[c] += b.counters.counts[c];
+                ++run.batches;
+            });
     }
     run.batchRays = std::min<std::uint64_t>(batchRays, rays.size());
     run.activeLanes = run.counters.counts[gpu::kCountActiveLanes];

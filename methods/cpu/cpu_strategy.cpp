@@ -32,17 +32,13 @@ public:
               std::vector<gpu::HitRecord> counted)
         : structure_(structure), rays_(std::move(rays)), query_(query), arena_(threads), counted_(std::move(counted)) {}
     TimedBatch time(int warmups, int repetitions) override {
-        TimedBatch batch;
+        std::vector<double> ms;
         for (int i = 0; i < warmups + repetitions; ++i) {
             const auto start = std::chrono::steady_clock::now();
             last_ = traceOnHost(structure_, rays_, query_, arena_);
-            const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-            if (i < warmups)
-                batch.warmupMs += ms;
-            else
-                batch.ms.push_back(ms);
+            ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
         }
-        return batch;
+        return splitWarmups(ms, warmups);
     }
     void checkHits() override { expectSameHits(last_, counted_, "the CPU traversal"); }
 

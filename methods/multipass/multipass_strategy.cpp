@@ -378,26 +378,24 @@ MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const s
     } else {
         // Rays in batches (each its own buffers and pass loop, the oracle's passes per batch): the
         // per-ray records and events are those of one stream; the passes add up over the batches.
-        const auto batches = streamBatches(rays.size(), batchRays);
+        const std::size_t batches = streamBatches(rays.size(), batchRays).size();
         std::vector<BufferSize> perRay = rayBufferSizes(rays.size(), structure.costs().traversalStateBytes);
         if (options.deviceControl) {
             perRay.push_back({"multipass ray lists", rayListBytes(rays.size())});
-            perRay.push_back({"multipass oracle control and pass log x " + std::to_string(batches.size()) + " batches",
-                              kPassControlBytes * batches.size()});
+            perRay.push_back({"multipass oracle control and pass log x " + std::to_string(batches) + " batches",
+                              kPassControlBytes * batches});
         }
         const auto shared = uploadForBatches(vk, perRay, structure.buffers());
-        std::vector<std::unique_ptr<KernelTimer>> timers;
         run.batches = 0;
-        for (const auto& [first, end] : batches) {
-            const std::vector<gpu::Ray> part(rays.begin() + std::ptrdiff_t(first), rays.begin() + std::ptrdiff_t(end));
-            MultipassRun b = runMultipassBatch(vk, structure, part, options, timing, query, shared);
-            run.hits.insert(run.hits.end(), b.hits.begin(), b.hits.end());
-            run.traversalStates.insert(run.traversalStates.end(), b.traversalStates.begin(), b.traversalStates.end());
-            run.counts += b.counts;
-            timers.push_back(std::move(b.timer));
-            ++run.batches;
-        }
-        run.timer = std::make_unique<BatchedTimer>(std::move(timers));
+        run.timer = traceInBatches(
+            rays, batchRays,
+            [&](const std::vector<gpu::Ray>& part) { return runMultipassBatch(vk, structure, part, options, timing, query, shared); },
+            [&](const MultipassRun& b) {
+                run.hits.insert(run.hits.end(), b.hits.begin(), b.hits.end());
+                run.traversalStates.insert(run.traversalStates.end(), b.traversalStates.begin(), b.traversalStates.end());
+                run.counts += b.counts;
+                ++run.batches;
+            });
     }
     run.batchRays = batchRays;
     if (timing.warmups + timing.repetitions > 0) {

@@ -103,11 +103,7 @@ public:
     RayQueryTimer(VulkanContext& vk, std::unique_ptr<RayQueryDispatch> dispatch, std::vector<gpu::HitRecord> first)
         : vk_(vk), dispatch_(std::move(dispatch)), first_(std::move(first)) {}
     TimedBatch time(int warmups, int repetitions) override {
-        const std::vector<double> ms = vk_.dispatchAll(std::vector(std::size_t(warmups + repetitions), dispatch_->call()));
-        TimedBatch batch;
-        for (int i = 0; i < warmups; ++i) batch.warmupMs += ms[std::size_t(i)];
-        batch.ms.assign(ms.begin() + warmups, ms.end());
-        return batch;
+        return splitWarmups(vk_.dispatchAll(std::vector(std::size_t(warmups + repetitions), dispatch_->call())), warmups);
     }
     // The driver answers the same rays the same way every time.
     void checkHits() override { expectSameHits(dispatch_->hits(), first_, "ray_query kernel"); }
@@ -127,19 +123,26 @@ StrategyRun runRayQuery(VulkanContext& vk, const Structure& structure, const Ray
     const std::vector<gpu::Ray>& rays = batch.rays;
 
     // Batches of what one binding holds of the ray or hit records, one dispatch each.
-    const auto batches = streamBatches(rays.size(), raysPerBinding(vk.info(), sizeof(gpu::HitRecord), timing.workgroupSize));
+    struct BatchRun {
+        std::vector<gpu::HitRecord> hits;
+        std::unique_ptr<KernelTimer> timer;
+    };
     StrategyRun run;
-    std::vector<std::unique_ptr<KernelTimer>> timers;
-    for (const auto& [first, end] : batches) {
-        const std::vector<gpu::Ray> part(rays.begin() + std::ptrdiff_t(first), rays.begin() + std::ptrdiff_t(end));
-        auto dispatch = std::make_unique<RayQueryDispatch>(vk, part, batch.query, topLevel, timing.workgroupSize);
-        vk.dispatchAll({dispatch->call()});
-        std::vector<gpu::HitRecord> hits = dispatch->hits();
-        run.hits.insert(run.hits.end(), hits.begin(), hits.end());
-        timers.push_back(std::make_unique<RayQueryTimer>(vk, std::move(dispatch), std::move(hits)));
-    }
-    run.timer = timers.size() == 1 ? std::move(timers.front()) : std::make_unique<BatchedTimer>(std::move(timers));
-    row["stream_batches"] = std::to_string(batches.size());
+    std::size_t batches = 0;
+    run.timer = traceInBatches(
+        rays, raysPerBinding(vk.info(), sizeof(gpu::HitRecord), timing.workgroupSize),
+        [&](const std::vector<gpu::Ray>& part) {
+            auto dispatch = std::make_unique<RayQueryDispatch>(vk, part, batch.query, topLevel, timing.workgroupSize);
+            vk.dispatchAll({dispatch->call()});
+            BatchRun b{dispatch->hits(), nullptr};
+            b.timer = std::make_unique<RayQueryTimer>(vk, std::move(dispatch), b.hits);
+            return b;
+        },
+        [&](const BatchRun& b) {
+            run.hits.insert(run.hits.end(), b.hits.begin(), b.hits.end());
+            ++batches;
+        });
+    row["stream_batches"] = std::to_string(batches);
 
     judgeByTheExactReference(rays, run, "the driver's ray query");
     return run;
