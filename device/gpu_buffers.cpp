@@ -47,8 +47,14 @@ void refuseOversizedRayStream(std::uint64_t rays) {
                     std::to_string(hostMemoryLimit()) + " bytes (half the physical memory)");
 }
 
-DeviceStructure::DeviceStructure(VulkanContext& vk, const std::vector<BufferData>& buffers) : vk_(vk) {
-    for (const BufferData& b : buffers) sizes_.push_back({b.what, b.bytes});
+std::vector<BufferSize> sizesOf(const std::vector<BufferData>& buffers) {
+    std::vector<BufferSize> sizes;
+    for (const BufferData& b : buffers) sizes.push_back({b.what, b.bytes});
+    return sizes;
+}
+
+DeviceStructure::DeviceStructure(VulkanContext& vk, const std::vector<BufferData>& buffers)
+    : vk_(vk), sizes_(sizesOf(buffers)) {
     refuseOversizedBuffers(vk.info(), sizes_);
     buffers_.resize(buffers.size());
     try {
@@ -88,9 +94,7 @@ std::shared_ptr<const DeviceStructure> uploadStructure(VulkanContext& vk, std::u
                                                        std::uint64_t traversalStateBytes,
                                                        const std::vector<BufferData>& structureBuffers,
                                                        const std::vector<BufferSize>& strategyBuffers) {
-    std::vector<BufferSize> structureSizes;
-    for (const BufferData& b : structureBuffers) structureSizes.push_back({b.what, b.bytes});
-    refuseOversizedBuffers(vk.info(), runBufferSizes(rays, traversalStateBytes, strategyBuffers, structureSizes));
+    refuseOversizedBuffers(vk.info(), runBufferSizes(rays, traversalStateBytes, strategyBuffers, sizesOf(structureBuffers)));
     return std::make_shared<const DeviceStructure>(vk, structureBuffers);
 }
 

@@ -58,6 +58,8 @@ struct BufferData {
     std::uint64_t bytes = 0;
     const void* data = nullptr;
 };
+// Their sizes, in order, for the refusals.
+std::vector<BufferSize> sizesOf(const std::vector<BufferData>& buffers);
 
 // A structure's buffers on the device, uploaded once. The batches of a stream each bind the same
 // (GpuBuffers holds it shared: it goes with the last batch's timer), so a stream in many batches

@@ -11,7 +11,8 @@ std::uint64_t raysPerBinding(const DeviceInfo& device, std::uint64_t perRayBytes
 
 std::shared_ptr<const DeviceStructure> uploadForBatches(VulkanContext& vk, std::vector<BufferSize> perRay,
                                                         const std::vector<BufferData>& structureBuffers) {
-    for (const BufferData& b : structureBuffers) perRay.push_back({b.what, b.bytes});
+    const std::vector<BufferSize> structure = sizesOf(structureBuffers);
+    perRay.insert(perRay.end(), structure.begin(), structure.end());
     refuseOversizedTotal(vk.info(), perRay);
     return std::make_shared<const DeviceStructure>(vk, structureBuffers);
 }

@@ -36,9 +36,13 @@ CacheSimulator::CacheSimulator(const CacheConfig& config) : config_(config) {
     tags_.assign(sets_ * config.ways, 0);
 }
 
-bool CacheSimulator::lookup(std::uint64_t line) {
+std::size_t CacheSimulator::setOf(std::uint64_t line) const {
     // Sets by the line number modulo their count (not a power of two with 48-byte lines).
-    const auto set = tags_.begin() + std::ptrdiff_t((line % sets_) * config_.ways);
+    return std::size_t((line % sets_) * config_.ways);
+}
+
+bool CacheSimulator::lookup(std::uint64_t line) {
+    const auto set = tags_.begin() + std::ptrdiff_t(setOf(line));
     const auto end = set + std::ptrdiff_t(config_.ways);
     const std::uint64_t tag = line + 1;
     auto found = std::find(set, end, tag);
@@ -70,7 +74,7 @@ void CacheSimulator::write(MemoryKind kind, std::uint64_t address, std::uint64_t
 
 void CacheSimulator::endPass() {
     for (const std::uint64_t line : written_) {
-        const auto set = tags_.begin() + std::ptrdiff_t((line % sets_) * config_.ways);
+        const auto set = tags_.begin() + std::ptrdiff_t(setOf(line));
         const auto end = set + std::ptrdiff_t(config_.ways);
         const auto found = std::find(set, end, line + 1);
         if (found == end) continue;

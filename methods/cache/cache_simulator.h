@@ -55,6 +55,7 @@ public:
 
 private:
     bool lookup(std::uint64_t line);  // true on a hit; a miss brings the line in
+    std::size_t setOf(std::uint64_t line) const;  // index in tags_ of the first way of the line's set
 
     CacheConfig config_;
     std::uint64_t sets_;
