@@ -154,6 +154,7 @@ ComputePipeline GpuBuffers::createKernel(const std::string& name, const KernelSp
         {gpu::kSpecWorkgroupSize, spec.workgroupSize},
         {gpu::kSpecInstrument, spec.instrument ? 1u : 0u},
         {gpu::kSpecTriangleTest, spec.triangleTest},
+        {gpu::kSpecDivision, spec.division},
         {gpu::kSpecVertexBits, spec.vertexLattice.bits},
         {gpu::kSpecLatticeOriginX, floatBits(spec.vertexLattice.origin.x)},
         {gpu::kSpecLatticeOriginY, floatBits(spec.vertexLattice.origin.y)},

@@ -141,8 +141,10 @@ std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunC
     // its prediction for them).
     p->structure = structureKind.build(mesh, p->cameraRays, run, vk.info());
     Structure& structure = *p->structure;
-    structure.setTriangleTest(run.getString("intersection.test") == "watertight" ? gpu::kTriangleTestWatertight
-                                                                                 : gpu::kTriangleTestMollerTrumbore);
+    structure.setArithmetic({run.getString("intersection.test") == "watertight" ? gpu::kTriangleTestWatertight
+                                                                                : gpu::kTriangleTestMollerTrumbore,
+                             run.getString("intersection.division") == "double" ? gpu::kDivisionDouble
+                                                                                : gpu::kDivisionInteger});
     structure.buildOnDevice(vk);
 
     // Workload: the batch of rays the run measures (rays.type), from the camera rays and, after

@@ -61,6 +61,7 @@ RTBENCH_CONST kSpecPassCap = 17;         // multipass oracle kernel: the pass ca
 RTBENCH_CONST kSpecMaxGroupsX = 18;      // multipass oracle kernel: maxComputeWorkGroupCount[0]
 RTBENCH_CONST kSpecOracleAllRays = 19;   // multipass oracle kernel: 1 = the threshold's basis is the stream's rays (oracle_basis = all)
 RTBENCH_CONST kSpecNativeDivision = 20;  // 1: rtDivide is the device's own division (OpFDiv, 2.5 ULP allowed): strategy plain
+RTBENCH_CONST kSpecDivision = 21;        // kDivision*: how rtDivide rounds exactly (intersection.division)
 
 // ---- megakernel schedules (methods/megakernel/megakernel.comp; Parker et al. 2013 §5.1-5.2) ----
 RTBENCH_CONST kScheduleSwitch = 0;          // each lane runs its own state: the subgroup runs every state present, one after another
@@ -100,6 +101,10 @@ RTBENCH_CONST kShadingBindingLights = 8;     // vec4[lights] (at least one): the
 RTBENCH_CONST kShadingBindingWeights = 9;    // float[parents]: each parent ray's weight
 RTBENCH_CONST kShadingBindingMadeWeights = 10;  // float[parents * fan-out]: each ray made's weight
 RTBENCH_CONST kShadingBindingCount = 11;
+
+// ---- exact division (kernels/ray_math.glsl rtDivide): both give IEEE's correctly rounded quotient ----
+RTBENCH_CONST kDivisionInteger = 0;  // the device's quotient corrected with 32-bit integer products (no double)
+RTBENCH_CONST kDivisionDouble = 1;   // the double quotient rounded to float (needs fast float64)
 
 // ---- ray-triangle tests (kernels/ray_math.glsl) ----
 RTBENCH_CONST kTriangleTestMollerTrumbore = 0;  // Moller & Trumbore 1997

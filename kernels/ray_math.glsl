@@ -11,22 +11,76 @@
 #ifndef RT_RAY_MATH_GLSL
 #define RT_RAY_MATH_GLSL
 
-// a / b correctly rounded, as IEEE float division on the CPU gives it. Vulkan allows OpFDiv an
-// error of 2.5 ULP, and NVIDIA's driver uses it: on an H200 about 3% of the bunny's rays came back
-// with other bits than the CPU's. The double quotient is within 2.5 double ULP (2^-50.7 relative)
-// of a / b, while a quotient of two floats lies at least about 2^-49 (relative) from any midpoint
-// between floats, so rounding it to float gives the correctly rounded float quotient (double
-// rounding is innocuous for division when 53 >= 2 * 24 + 2; Figueroa 1995). Needs shaderFloat64.
-// A quotient at or past FLT_MAX + half an ulp (0x7f7fffff + 2^103) overflows to infinity, as IEEE's
-// float division does (and as converting it would not: undefined in C++).
-// The plain strategy (nativeDivision != 0) measures what this costs: it divides as the device does,
-// its hits judged by the exact reference alone.
-float rtDivide(float a, float b) {
-    if (nativeDivision != 0u) return a / b;
+// a / b correctly rounded through a double quotient (intersection.division = "double"). Vulkan
+// allows OpFDiv an error of 2.5 ULP, and NVIDIA's driver uses it: on an H200 about 3% of the
+// bunny's rays came back with other bits than the CPU's. The double quotient is within 2.5 double
+// ULP (2^-50.7 relative) of a / b, while a quotient of two floats lies at least about 2^-49
+// (relative) from any midpoint between floats, so rounding it to float gives the correctly rounded
+// float quotient (double rounding is innocuous for division when 53 >= 2 * 24 + 2; Figueroa 1995).
+// Needs shaderFloat64. A quotient at or past FLT_MAX + half an ulp (0x7f7fffff + 2^103) overflows
+// to infinity, as IEEE's float division does (and as converting it would not: undefined in C++).
+float rtDivideByDouble(float a, float b) {
     precise double q = double(a) / double(b);
     precise double overflow = double(uintBitsToFloat(0x7f7fffffu)) + double(uintBitsToFloat(0x73000000u));
     if (abs(q) >= overflow) return uintBitsToFloat(q > 0.0 ? 0x7f800000u : 0xff800000u);  // +-infinity
     return float(q);
+}
+
+// Q = round(A 2^s / B) for 24-bit significands A and B (2^23 <= A, B < 2^24) and s = 23 when
+// A >= B, else 24, so that 2^23 <= Q < 2^24 (never 2^24: A 2^s / B <= 2^24 - 1 either way), from
+// a guess within 127 of it, in straight-line 32-bit integer arithmetic. The guess's remainder
+// A 2^s - guess B is below 2^31 in magnitude, so its low 32 bits (wrapping products) are it,
+// exactly; the float quotient remainder / B is within 1/2 of the exact one, so rounding it errs by
+// one at most, which the last step corrects: Q is right iff -B < 2 (A 2^s - Q B) < B. Neither
+// side is ever equal (A 2^(s+1) is a multiple of 2^24, a larger power of two than divides B), so
+// a quotient never sits on a midpoint and there is no tie to break.
+uint rtQuotientSignificand(uint A, uint B, uint s, uint guess) {
+    int remainder = int((A << s) - guess * B);
+    precise float estimate = float(remainder) / float(B);
+    int correction = int(floor(estimate + 0.5f));
+    remainder -= correction * int(B);
+    if (2 * remainder > int(B)) correction += 1;
+    if (2 * remainder < -int(B)) correction -= 1;
+    return uint(int(guess) + correction);
+}
+
+// a / b correctly rounded with no double arithmetic on its common path (intersection.division =
+// "integer"; issue 18 §2: double runs at 1/64 rate on consumer GPUs, and the Moller-Trumbore test
+// divides once per triangle). For normal a = A 2^(ea-23) and b = B 2^(eb-23) the quotient is
+// Q 2^(ea-eb-s) with Q from rtQuotientSignificand; scaling by a power of two does not change a
+// rounding while the result stays normal, so only the significands are divided. The guess is the
+// device's own division of the significands (OpFDiv, within 2.5 ULP: at most 6 units of Q off).
+// No loop: a loop at each of a kernel's divisions made lavapipe's LLVM compile a kernel for minutes.
+// A zero dividend gives a signed zero; other zero, subnormal, infinite or NaN operands and a
+// subnormal quotient go through rtDivideByDouble (rare: none on the common path); a quotient
+// past FLT_MAX is infinity, as IEEE's overflow gives.
+float rtDivideByIntegers(float a, float b) {
+    uint ua = floatBitsToUint(a);
+    uint ub = floatBitsToUint(b);
+    uint ea = (ua >> 23u) & 0xffu;
+    uint eb = (ub >> 23u) & 0xffu;
+    uint sign = (ua ^ ub) & 0x80000000u;
+    if (eb == 0u || eb == 255u || ea == 255u) return rtDivideByDouble(a, b);
+    if (ea == 0u) return (ua & 0x7fffffffu) == 0u ? uintBitsToFloat(sign) : rtDivideByDouble(a, b);
+    uint A = (ua & 0x007fffffu) | 0x00800000u;
+    uint B = (ub & 0x007fffffu) | 0x00800000u;
+    uint s = A >= B ? 23u : 24u;
+    int exponent = int(ea) - int(eb) + 150 - int(s);  // the quotient's biased exponent
+    if (exponent <= 0) return rtDivideByDouble(a, b);  // subnormal or zero
+    if (exponent >= 255) return uintBitsToFloat(sign | 0x7f800000u);  // +-infinity
+    precise float guess = uintBitsToFloat(A | 0x3f000000u) / uintBitsToFloat(B | 0x3f000000u);
+    precise float scaled = guess * uintBitsToFloat(s == 23u ? 0x4b000000u : 0x4b800000u);  // * 2^s, exact
+    uint q = rtQuotientSignificand(A, B, s, uint(scaled));
+    return uintBitsToFloat(sign | (uint(exponent) << 23u) | (q - 0x00800000u));
+}
+
+// a / b correctly rounded, as IEEE float division on the CPU gives it (intersection.division), or
+// the device's own (nativeDivision != 0: the plain strategy, which measures what exactness costs;
+// its hits are judged by the exact reference alone).
+float rtDivide(float a, float b) {
+    if (nativeDivision != 0u) return a / b;
+    if (division == kDivisionDouble) return rtDivideByDouble(a, b);
+    return rtDivideByIntegers(a, b);
 }
 
 // The correctly rounded sqrt(x), for x > 0 finite, from a guess within 4 ulps of it: the midpoint

@@ -13,8 +13,10 @@
 layout(local_size_x_id = kSpecWorkgroupSize) in;
 // ray_math.glsl's triangle tests read it; the shading pass tests no triangle.
 layout(constant_id = kSpecTriangleTest) const uint triangleTest = kTriangleTestMollerTrumbore;
-// rtDivide reads it: the shading pass always divides exactly, as the CPU does.
+// rtDivide reads them: the shading pass always divides exactly, as the CPU does (either exact
+// division gives the same bits).
 const uint nativeDivision = 0u;
+const uint division = kDivisionInteger;
 
 layout(std430, set = 0, binding = kShadingBindingParents) readonly buffer ParentBuffer { Ray parents[]; };
 layout(std430, set = 0, binding = kShadingBindingHits) readonly buffer HitBuffer { HitRecord hits[]; };

@@ -27,6 +27,7 @@ public:
     Kernels configured() const {
         Kernels k = kernels();
         k.triangleTest = triangleTest();
+        k.division = division();
         k.setLattice(vertexLattice());
         return k;
     }

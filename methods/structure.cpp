@@ -16,6 +16,7 @@ KernelSpec structureKernelSpec(const Structure& structure, unsigned workgroupSiz
     KernelSpec spec;
     spec.workgroupSize = workgroupSize;
     spec.triangleTest = structure.triangleTest();
+    spec.division = structure.division();
     spec.vertexLattice = structure.vertexLattice();
     spec.query = query;
     spec.strategyConstants = std::move(constants);

@@ -49,6 +49,12 @@ struct StepFunctions {
 };
 
 // What a build produced, ready for any strategy.
+// The arithmetic every kernel of a run and its CPU reference share.
+struct KernelArithmetic {
+    std::uint32_t triangleTest = gpu::kTriangleTestMollerTrumbore;  // gpu::kTriangleTest*: intersection.test
+    std::uint32_t division = gpu::kDivisionInteger;  // gpu::kDivision*: intersection.division (the same bits either way)
+};
+
 class Structure {
 public:
     virtual ~Structure() = default;
@@ -80,10 +86,12 @@ public:
     virtual void writeWorkColumns(double cellsPerRayMean, std::uint32_t cellsPerRayMax,
                                   std::uint64_t cellBytes, Row& row) const = 0;
 
-    // The ray-triangle test its kernels and CPU reference run (gpu::kTriangleTest*,
-    // intersection.test): set by the runner after the build, read by the strategies.
-    virtual void setTriangleTest(std::uint32_t test) { triangleTest_ = test; }
-    std::uint32_t triangleTest() const { return triangleTest_; }
+    // The arithmetic its kernels and CPU reference run (KernelArithmetic): set by the runner after
+    // the build, read by the strategies. A structure that wraps another passes it on.
+    virtual void setArithmetic(const KernelArithmetic& arithmetic) { arithmetic_ = arithmetic; }
+    void setTriangleTest(std::uint32_t test) { setArithmetic({test, arithmetic_.division}); }
+    std::uint32_t triangleTest() const { return arithmetic_.triangleTest; }
+    std::uint32_t division() const { return arithmetic_.division; }
     // The lattice its vertex buffer is packed to (bits 0: float vertices; methods/triangle_store.h).
     virtual const VertexLattice& vertexLattice() const = 0;
 
@@ -95,7 +103,7 @@ public:
     double buildMs = 0.0;           // build time (CPU; the driver's: its builds on the device)
 
 private:
-    std::uint32_t triangleTest_ = gpu::kTriangleTestMollerTrumbore;
+    KernelArithmetic arithmetic_;
 };
 
 // A structure as the registry lists it: its structure.type value, keys, columns and builder.

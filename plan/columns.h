@@ -67,7 +67,9 @@ struct ColumnSpec {
 //        simd_lane_utilisation); strategy.oracle_basis.
 //  15  + the plain twin of the branching kernel (strategy.type = plain, plain_cpu_differing).
 //  16  + Purcell 2002 Fig. 9's texture cache (cache.* keys, cache_* columns).
-constexpr int kSchemaVersion = 17;
+//  17  + the instruction estimate (instructions_*), tiled rendering (camera.tile).
+//  18  + intersection.division (integer: no double on the common path; runs before it: double).
+constexpr int kSchemaVersion = 18;
 
 // The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".
 std::string paramColumn(const std::string& key);

@@ -545,6 +545,29 @@ def strategies() -> list:
     return out + [""]
 
 
+def division() -> list:
+    runs, context = load("division")
+    ok = runs[runs.status == "ok"].copy()
+    ok["structure"] = structure_names(ok.structure_type)
+    # Runs before intersection.division (results schema 18) divided through the double quotient.
+    division_of = ok.intersection_division.fillna("double") if "intersection_division" in ok else "double"
+    ok["kernel"] = ["plain" if t == "plain" else d for t, d in zip(ok.strategy_type, pd.Series(division_of, index=ok.index))]
+    ratio = ok.set_index(["structure", "rays", "kernel"]).speed_ratio_vs_embree1
+    out = ["### `results/division/`: what bit-exact division costs (issue 18 §2)", "", provenance("division", runs, context),
+           "", "Full table: [`results/division/tables.md`](results/division/tables.md). The bunny, the branching kernel "
+           "dividing exactly through 32-bit integer products (`intersection.division = \"integer\"`, the default: no double "
+           "on the common path) or a double quotient (`\"double\"`), and its plain twin dividing as the device does "
+           "(`OpFDiv`); each is its speed over Embree rtcIntersect1's on the same rays in the same run, so a ratio "
+           "between two of them is a ratio of ratios.", "",
+           "| structure | rays | × Embree: integer | double | plain | integer / double | integer / plain |",
+           "|---|---|---|---|---|---|---|"]
+    for (structure, rays), _ in ok.groupby(["structure", "rays"]):
+        get = lambda kernel: ratio.get((structure, rays, kernel), float("nan"))
+        out.append(f"| {structure} | {count(rays)} | {num(get('integer'))} | {num(get('double'))} | {num(get('plain'))} | "
+                   f"{num(get('integer') / get('double'), 3)} | {num(get('integer') / get('plain'), 3)} |")
+    return out + [""]
+
+
 def christen2005() -> list:
     if not folder_of("christen2005").exists():
         return []
@@ -625,7 +648,7 @@ def section() -> str:
            "medians with 95% bootstrap intervals of the repetitions of one run (an interval says nothing of the spread "
            "between runs in separate processes); a speed claim is a ratio measured in the same run. Counts (passes, "
            "bytes, work, rays wrong) are the same on every machine with the same device; timings are this machine's.", ""]
-    for part in (bunny, structures, purcell2002, stability, accuracy, raytypes, strategies, christen2005, golden, h200):
+    for part in (bunny, structures, purcell2002, stability, accuracy, raytypes, strategies, division, christen2005, golden, h200):
         out += part()
     while out and out[-1] == "":
         out.pop()

@@ -26,9 +26,9 @@ public:
     StepFunctions stepFunctions() const override { return chosen_->stepFunctions(); }
     double predictedWork(const std::vector<gpu::Ray>& rays) const override { return chosen_->predictedWork(rays); }
     const VertexLattice& vertexLattice() const override { return chosen_->vertexLattice(); }
-    void setTriangleTest(std::uint32_t test) override {
-        Structure::setTriangleTest(test);
-        chosen_->setTriangleTest(test);
+    void setArithmetic(const KernelArithmetic& arithmetic) override {
+        Structure::setArithmetic(arithmetic);
+        chosen_->setArithmetic(arithmetic);
     }
     void writeColumns(Row& row) const override {
         chosen_->writeColumns(row);

@@ -40,6 +40,8 @@ KernelEvents kernelEvents(const Structure& structure, const WorkStats& work) {
     e.leaveOut.insert(structure.triangleTest() == gpu::kTriangleTestWatertight ? "rtIntersectTriangle"
                                                                                  : "rtIntersectWatertight");
     if (structure.vertexLattice().bits == 0) e.leaveOut.insert("rtLatticePoint");
+    // The division not chosen, and the integer division's rare fallback (non-normal operands).
+    e.leaveOut.insert(structure.division() == gpu::kDivisionDouble ? "rtDivideByIntegers" : "rtDivideByDouble");
     return e;
 }
 

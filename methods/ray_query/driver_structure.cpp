@@ -8,9 +8,9 @@ namespace rtbench {
 DriverStructure::DriverStructure(const TriangleMesh& mesh, std::unique_ptr<Structure> cpu)
     : vertices_(mesh.vertices), triangles_(mesh.triangles), cpu_(std::move(cpu)) {}
 
-void DriverStructure::setTriangleTest(std::uint32_t test) {
-    Structure::setTriangleTest(test);
-    cpu_->setTriangleTest(test);
+void DriverStructure::setArithmetic(const KernelArithmetic& arithmetic) {
+    Structure::setArithmetic(arithmetic);
+    cpu_->setArithmetic(arithmetic);
 }
 
 void DriverStructure::buildOnDevice(VulkanContext& vk) {

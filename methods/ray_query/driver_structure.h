@@ -27,7 +27,7 @@ public:
     double predictedWork(const std::vector<gpu::Ray>&) const override { return -1.0; }
     void writeColumns(Row& row) const override;
     void writeWorkColumns(double, std::uint32_t, std::uint64_t, Row&) const override {}
-    void setTriangleTest(std::uint32_t test) override;
+    void setArithmetic(const KernelArithmetic& arithmetic) override;
     const VertexLattice& vertexLattice() const override { return cpu_->vertexLattice(); }
     // The driver builds its structure: memoryBytes become its two levels' storage, buildMs the
     // builds' GPU time.

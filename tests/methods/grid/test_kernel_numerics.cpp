@@ -53,29 +53,6 @@ std::uint64_t differingRecords(const std::vector<gpu::HitRecord>& a, const std::
     return differing;
 }
 
-// rtDivide (kernels/ray_math.glsl, run here as the CPU reference runs it): the double quotient
-// rounded to float must be IEEE's float quotient, bit for bit, overflow to infinity included.
-TEST(RtDivide, EqualsIeeeFloatDivisionOnRandomAndExtremePairs) {
-    gridref::GridKernels k{};
-    std::mt19937 rng(11);
-    std::uniform_int_distribution<std::uint32_t> bits(0x00800000u, 0x7f7fffffu);  // positive normal floats
-    std::uint64_t differing = 0;
-    for (int i = 0; i < 2000000; ++i) {
-        float a, b;
-        const std::uint32_t ba = bits(rng) | (rng() & 0x80000000u), bb = bits(rng) | (rng() & 0x80000000u);
-        std::memcpy(&a, &ba, 4);
-        std::memcpy(&b, &bb, 4);
-        const volatile float ieee = a / b;
-        const float ours = k.rtDivide(a, b);
-        differing += std::memcmp(&ours, (const void*)&ieee, 4) != 0;
-    }
-    EXPECT_EQ(differing, 0u);
-    EXPECT_EQ(k.rtDivide(1.0f, 1e-39f), std::numeric_limits<float>::infinity());
-    EXPECT_EQ(k.rtDivide(-3.4028235e38f, 0.5f), -std::numeric_limits<float>::infinity());
-    EXPECT_EQ(k.rtDivide(3.4028235e38f, 1.0f), 3.4028235e38f);
-    EXPECT_EQ(k.rtDivide(1.0f, 3.0f), 1.0f / 3.0f);
-}
-
 using KernelNumerics = VulkanTest;
 
 TEST_F(KernelNumerics, SliversAtTheEdgesOfTheRangeMatchTheCpuReferenceBitForBit) {

@@ -147,12 +147,13 @@ TEST(InstructionEstimate, EachStructureNamesItsEventAndItsCounter) {
     EXPECT_EQ(e.stepFunctions, std::vector<std::string>{"rtDdaStep"});
     EXPECT_EQ(e.steps, 11u);
     EXPECT_EQ(e.tests, 5u);
-    EXPECT_EQ(e.leaveOut, (std::set<std::string>{"rtIntersectWatertight", "rtLatticePoint"}));
+    EXPECT_EQ(e.leaveOut, (std::set<std::string>{"rtIntersectWatertight", "rtLatticePoint", "rtDivideByDouble"}));
     e = kernelEvents(*bvh, work);
     EXPECT_EQ(e.stepFunctions, std::vector<std::string>{"rtBvhChildren"});
     EXPECT_EQ(e.steps, 7u);
-    bvh->setTriangleTest(gpu::kTriangleTestWatertight);
-    EXPECT_EQ(kernelEvents(*bvh, work).leaveOut, (std::set<std::string>{"rtIntersectTriangle", "rtLatticePoint"}));
+    bvh->setArithmetic({gpu::kTriangleTestWatertight, gpu::kDivisionDouble});
+    EXPECT_EQ(kernelEvents(*bvh, work).leaveOut,
+              (std::set<std::string>{"rtIntersectTriangle", "rtLatticePoint", "rtDivideByIntegers"}));
 }
 
 // The same GLSL function compiles to the same instructions in every kernel: a step or a test costs
