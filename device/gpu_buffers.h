@@ -20,7 +20,7 @@ struct KernelSpec {
     std::uint32_t workgroupSize = 64;
     bool instrument = true;
     std::uint32_t triangleTest = gpu::kTriangleTestMollerTrumbore;
-    std::uint32_t division = gpu::kDivisionInteger;
+    std::uint32_t division = gpu::kDivisionDouble;
     std::uint32_t query = gpu::kQueryClosest;  // gpu::kQuery*: closest hit or any hit
     VertexLattice vertexLattice;  // bits != 0: the structure's vertices are packed to it
     std::vector<SpecializationConstant> strategyConstants;

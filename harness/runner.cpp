@@ -143,8 +143,8 @@ std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunC
     Structure& structure = *p->structure;
     structure.setArithmetic({run.getString("intersection.test") == "watertight" ? gpu::kTriangleTestWatertight
                                                                                 : gpu::kTriangleTestMollerTrumbore,
-                             run.getString("intersection.division") == "double" ? gpu::kDivisionDouble
-                                                                                : gpu::kDivisionInteger});
+                             run.getString("intersection.division") == "integer" ? gpu::kDivisionInteger
+                                                                                 : gpu::kDivisionDouble});
     structure.buildOnDevice(vk);
 
     // Workload: the batch of rays the run measures (rays.type), from the camera rays and, after

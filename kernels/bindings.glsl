@@ -26,7 +26,7 @@ layout(constant_id = kSpecLatticeOriginZ) const float latticeOriginZ = 0.0;
 layout(constant_id = kSpecLatticeStep) const float latticeStep = 0.0;
 layout(constant_id = kSpecQuery) const uint query = kQueryClosest;
 layout(constant_id = kSpecNativeDivision) const uint nativeDivision = 0u;
-layout(constant_id = kSpecDivision) const uint division = kDivisionInteger;
+layout(constant_id = kSpecDivision) const uint division = kDivisionDouble;
 
 layout(std430, set = 0, binding = kBindingRays) readonly buffer RayBuffer { Ray rays[]; };
 layout(std430, set = 0, binding = kBindingHits) writeonly buffer HitBuffer { HitRecord hits[]; };

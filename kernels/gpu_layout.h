@@ -103,8 +103,8 @@ RTBENCH_CONST kShadingBindingMadeWeights = 10;  // float[parents * fan-out]: eac
 RTBENCH_CONST kShadingBindingCount = 11;
 
 // ---- exact division (kernels/ray_math.glsl rtDivide): both give IEEE's correctly rounded quotient ----
-RTBENCH_CONST kDivisionInteger = 0;  // the device's quotient corrected with 32-bit integer products (no double)
-RTBENCH_CONST kDivisionDouble = 1;   // the double quotient rounded to float (needs fast float64)
+RTBENCH_CONST kDivisionDouble = 0;   // the double quotient rounded to float (one double division)
+RTBENCH_CONST kDivisionInteger = 1;  // the device's quotient corrected with 32-bit integer products (no double)
 
 // ---- ray-triangle tests (kernels/ray_math.glsl) ----
 RTBENCH_CONST kTriangleTestMollerTrumbore = 0;  // Moller & Trumbore 1997

@@ -16,7 +16,7 @@ layout(constant_id = kSpecTriangleTest) const uint triangleTest = kTriangleTestM
 // rtDivide reads them: the shading pass always divides exactly, as the CPU does (either exact
 // division gives the same bits).
 const uint nativeDivision = 0u;
-const uint division = kDivisionInteger;
+const uint division = kDivisionDouble;
 
 layout(std430, set = 0, binding = kShadingBindingParents) readonly buffer ParentBuffer { Ray parents[]; };
 layout(std430, set = 0, binding = kShadingBindingHits) readonly buffer HitBuffer { HitRecord hits[]; };

@@ -24,7 +24,7 @@ struct KernelConstants {
     std::uint32_t triangleTest = gpu::kTriangleTestMollerTrumbore;
     std::uint32_t query = gpu::kQueryClosest;  // gpu::kQuery*: closest hit or any hit
     std::uint32_t nativeDivision = 0;  // the CPU's float division is IEEE's, correctly rounded, either way
-    std::uint32_t division = gpu::kDivisionInteger;  // gpu::kDivision*: how rtDivide rounds exactly
+    std::uint32_t division = gpu::kDivisionDouble;  // gpu::kDivision*: how rtDivide rounds exactly
     std::uint32_t vertexBits = 0;  // packed vertices on this lattice when != 0 (methods/triangle_store.h)
     float latticeOriginX = 0.0f, latticeOriginY = 0.0f, latticeOriginZ = 0.0f, latticeStep = 0.0f;
     std::vector<std::uint32_t>* loopLog = nullptr;  // when set: per outer iteration, the triangle-loop trips

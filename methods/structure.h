@@ -52,7 +52,7 @@ struct StepFunctions {
 // The arithmetic every kernel of a run and its CPU reference share.
 struct KernelArithmetic {
     std::uint32_t triangleTest = gpu::kTriangleTestMollerTrumbore;  // gpu::kTriangleTest*: intersection.test
-    std::uint32_t division = gpu::kDivisionInteger;  // gpu::kDivision*: intersection.division (the same bits either way)
+    std::uint32_t division = gpu::kDivisionDouble;  // gpu::kDivision*: intersection.division (the same bits either way)
 };
 
 class Structure {

@@ -68,7 +68,7 @@ struct ColumnSpec {
 //  15  + the plain twin of the branching kernel (strategy.type = plain, plain_cpu_differing).
 //  16  + Purcell 2002 Fig. 9's texture cache (cache.* keys, cache_* columns).
 //  17  + the instruction estimate (instructions_*), tiled rendering (camera.tile).
-//  18  + intersection.division (integer: no double on the common path; runs before it: double).
+//  18  + intersection.division (double, as every run before it divided, or integer: no double).
 constexpr int kSchemaVersion = 18;
 
 // The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".

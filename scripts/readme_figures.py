@@ -552,19 +552,30 @@ def division() -> list:
     # Runs before intersection.division (results schema 18) divided through the double quotient.
     division_of = ok.intersection_division.fillna("double") if "intersection_division" in ok else "double"
     ok["kernel"] = ["plain" if t == "plain" else d for t, d in zip(ok.strategy_type, pd.Series(division_of, index=ok.index))]
-    ratio = ok.set_index(["structure", "rays", "kernel"]).speed_ratio_vs_embree1
+    by_kernel = ok.set_index(["structure", "rays", "kernel"])
+    ratio = by_kernel.speed_ratio_vs_embree1
     out = ["### `results/division/`: what bit-exact division costs (issue 18 §2)", "", provenance("division", runs, context),
            "", "Full table: [`results/division/tables.md`](results/division/tables.md). The bunny, the branching kernel "
-           "dividing exactly through 32-bit integer products (`intersection.division = \"integer\"`, the default: no double "
-           "on the common path) or a double quotient (`\"double\"`), and its plain twin dividing as the device does "
+           "dividing exactly through 32-bit integer products (`intersection.division = \"integer\"`: no double on the "
+           "common path) or a double quotient (`\"double\"`, the default), and its plain twin dividing as the device does "
            "(`OpFDiv`); each is its speed over Embree rtcIntersect1's on the same rays in the same run, so a ratio "
-           "between two of them is a ratio of ratios.", "",
+           "between two of them is a ratio of ratios. Each cell: the median ratio and its 95% bootstrap interval; † a "
+           "run the noise guard flagged (`timing_warning`).", "",
            "| structure | rays | × Embree: integer | double | plain | integer / double | integer / plain |",
            "|---|---|---|---|---|---|---|"]
+
+    def cell(structure, rays, kernel):
+        if (structure, rays, kernel) not in by_kernel.index:
+            return "—"
+        r = by_kernel.loc[(structure, rays, kernel)]
+        flagged = " †" if "timing_warning" in r and isinstance(r.timing_warning, str) and r.timing_warning else ""
+        return f"{num(r.speed_ratio_vs_embree1)} {interval(r.speed_ratio_ci_low, r.speed_ratio_ci_high)}{flagged}"
+
     for (structure, rays), _ in ok.groupby(["structure", "rays"]):
         get = lambda kernel: ratio.get((structure, rays, kernel), float("nan"))
-        out.append(f"| {structure} | {count(rays)} | {num(get('integer'))} | {num(get('double'))} | {num(get('plain'))} | "
-                   f"{num(get('integer') / get('double'), 3)} | {num(get('integer') / get('plain'), 3)} |")
+        out.append(f"| {structure} | {count(rays)} | {cell(structure, rays, 'integer')} | {cell(structure, rays, 'double')} | "
+                   f"{cell(structure, rays, 'plain')} | {num(get('integer') / get('double'), 3)} | "
+                   f"{num(get('integer') / get('plain'), 3)} |")
     return out + [""]
 
 

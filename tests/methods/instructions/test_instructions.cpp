@@ -147,13 +147,13 @@ TEST(InstructionEstimate, EachStructureNamesItsEventAndItsCounter) {
     EXPECT_EQ(e.stepFunctions, std::vector<std::string>{"rtDdaStep"});
     EXPECT_EQ(e.steps, 11u);
     EXPECT_EQ(e.tests, 5u);
-    EXPECT_EQ(e.leaveOut, (std::set<std::string>{"rtIntersectWatertight", "rtLatticePoint", "rtDivideByDouble"}));
+    EXPECT_EQ(e.leaveOut, (std::set<std::string>{"rtIntersectWatertight", "rtLatticePoint", "rtDivideByIntegers"}));
     e = kernelEvents(*bvh, work);
     EXPECT_EQ(e.stepFunctions, std::vector<std::string>{"rtBvhChildren"});
     EXPECT_EQ(e.steps, 7u);
-    bvh->setArithmetic({gpu::kTriangleTestWatertight, gpu::kDivisionDouble});
+    bvh->setArithmetic({gpu::kTriangleTestWatertight, gpu::kDivisionInteger});
     EXPECT_EQ(kernelEvents(*bvh, work).leaveOut,
-              (std::set<std::string>{"rtIntersectTriangle", "rtLatticePoint", "rtDivideByIntegers"}));
+              (std::set<std::string>{"rtIntersectTriangle", "rtLatticePoint", "rtDivideByDouble"}));
 }
 
 // The same GLSL function compiles to the same instructions in every kernel: a step or a test costs
