@@ -28,15 +28,16 @@ float rtDivideByDouble(float a, float b) {
 
 // Q = round(A 2^s / B) for 24-bit significands A and B (2^23 <= A, B < 2^24) and s = 23 when
 // A >= B, else 24, so that 2^23 <= Q < 2^24 (never 2^24: A 2^s / B <= 2^24 - 1 either way), from
-// a guess within 127 of it, in straight-line 32-bit integer arithmetic. The guess's remainder
-// A 2^s - guess B is below 2^31 in magnitude, so its low 32 bits (wrapping products) are it,
-// exactly; the float quotient remainder / B is within 1/2 of the exact one, so rounding it errs by
-// one at most, which the last step corrects: Q is right iff -B < 2 (A 2^s - Q B) < B. Neither
-// side is ever equal (A 2^(s+1) is a multiple of 2^24, a larger power of two than divides B), so
-// a quotient never sits on a midpoint and there is no tie to break.
-uint rtQuotientSignificand(uint A, uint B, uint s, uint guess) {
+// a guess within 127 of it and `reciprocal`, 2^23 / B within a few ULP, in straight-line 32-bit
+// integer arithmetic. The guess's remainder A 2^s - guess B is below 2^31 in magnitude, so its
+// low 32 bits (wrapping products) are it, exactly; remainder * reciprocal * 2^-23 is within 1/2
+// of remainder / B (off by 2^-14 at most), so rounding it errs by one at most, which the last step
+// corrects: Q is right iff -B < 2 (A 2^s - Q B) < B. Neither side is ever equal (A 2^(s+1) is a
+// multiple of 2^24, a larger power of two than divides B), so a quotient never sits on a
+// midpoint and there is no tie to break.
+uint rtQuotientSignificand(uint A, uint B, uint s, uint guess, float reciprocal) {
     int remainder = int((A << s) - guess * B);
-    precise float estimate = float(remainder) / float(B);
+    precise float estimate = float(remainder) * reciprocal * uintBitsToFloat(0x34000000u);  // * 2^-23
     int correction = int(floor(estimate + 0.5f));
     remainder -= correction * int(B);
     if (2 * remainder > int(B)) correction += 1;
@@ -49,7 +50,8 @@ uint rtQuotientSignificand(uint A, uint B, uint s, uint guess) {
 // divides once per triangle). For normal a = A 2^(ea-23) and b = B 2^(eb-23) the quotient is
 // Q 2^(ea-eb-s) with Q from rtQuotientSignificand; scaling by a power of two does not change a
 // rounding while the result stays normal, so only the significands are divided. The guess is the
-// device's own division of the significands (OpFDiv, within 2.5 ULP: at most 6 units of Q off).
+// dividend's significand times the device's own reciprocal of the divisor's (OpFDiv, within 2.5
+// ULP, then one rounding: at most 8 units of Q off); one division, its reciprocal used twice.
 // No loop: a loop at each of a kernel's divisions made lavapipe's LLVM compile a kernel for minutes.
 // A zero dividend gives a signed zero; other zero, subnormal, infinite or NaN operands and a
 // subnormal quotient go through rtDivideByDouble (rare: none on the common path); a quotient
@@ -68,9 +70,10 @@ float rtDivideByIntegers(float a, float b) {
     int exponent = int(ea) - int(eb) + 150 - int(s);  // the quotient's biased exponent
     if (exponent <= 0) return rtDivideByDouble(a, b);  // subnormal or zero
     if (exponent >= 255) return uintBitsToFloat(sign | 0x7f800000u);  // +-infinity
-    precise float guess = uintBitsToFloat(A | 0x3f000000u) / uintBitsToFloat(B | 0x3f000000u);
+    precise float reciprocal = 1.0f / uintBitsToFloat(B | 0x3f000000u);  // 2^23 / B, one OpFDiv
+    precise float guess = uintBitsToFloat(A | 0x3f000000u) * reciprocal;
     precise float scaled = guess * uintBitsToFloat(s == 23u ? 0x4b000000u : 0x4b800000u);  // * 2^s, exact
-    uint q = rtQuotientSignificand(A, B, s, uint(scaled));
+    uint q = rtQuotientSignificand(A, B, s, uint(scaled), reciprocal);
     return uintBitsToFloat(sign | (uint(exponent) << 23u) | (q - 0x00800000u));
 }
 

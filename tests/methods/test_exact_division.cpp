@@ -50,7 +50,8 @@ std::uint32_t roundedQuotient(std::uint32_t A, std::uint32_t B, std::uint32_t s)
 
 TEST(ExactDivision, QuotientSignificandFromAnyGuessWithin127OfIt) {
     // Every dividend significand against divisors at both ends and in between, from guesses up to
-    // 127 off (a conforming device's OpFDiv is at most 6 off: 2.5 ULP at the larger binade).
+    // 127 off (a conforming device's is at most 8 off) and reciprocals 2^23 / B up to 4 ULP off
+    // (OpFDiv may err by 2.5).
     gridref::GridKernels k{};
     std::mt19937 rng(5);
     std::vector<std::uint32_t> divisors = {0x800000u, 0x800001u, 0xffffffu, 0xfffffeu, 0xc00000u, 0xaaaaabu};
@@ -63,7 +64,11 @@ TEST(ExactDivision, QuotientSignificandFromAnyGuessWithin127OfIt) {
             ASSERT_GE(expected, 0x800000u);
             ASSERT_LT(expected, 0x1000000u);
             for (int offset : {-127, -6, -1, 0, 1, 6, 127})
-                wrong += k.rtQuotientSignificand(A, B, s, std::uint32_t(std::int64_t(expected) + offset)) != expected;
+                for (int ulps : {-4, 0, 4}) {
+                    const float reciprocal = fromBits(std::uint32_t(std::int64_t(bitsOf(8388608.0f / float(B))) + ulps));
+                    wrong += k.rtQuotientSignificand(A, B, s, std::uint32_t(std::int64_t(expected) + offset), reciprocal) !=
+                             expected;
+                }
         }
     EXPECT_EQ(wrong, 0u);
 }
@@ -118,7 +123,7 @@ TEST(ExactDivision, EqualsIeeeOnRandomPairsOverTheWholeRange) {
 TEST(ExactDivision, OneThirdByHand) {
     gridref::GridKernels k{};
     EXPECT_EQ(bitsOf(k.rtDivideByIntegers(1.0f, 3.0f)), 0x3eaaaaabu);
-    EXPECT_EQ(k.rtQuotientSignificand(0x800000u, 0xc00000u, 24u, 0xaaaaaau), 0xaaaaabu);
+    EXPECT_EQ(k.rtQuotientSignificand(0x800000u, 0xc00000u, 24u, 0xaaaaaau, 2.0f / 3.0f), 0xaaaaabu);
 }
 
 using ExactDivisionOnDevice = VulkanTest;
