@@ -1,8 +1,9 @@
 #!/usr/bin/python3
 """Table for a division results folder (configs/division.toml): what rtbench's bit-exact division
 costs, as the branching kernel dividing exactly each way (intersection.division: integer or double)
-against its plain twin (the same kernel dividing as the device does), each against Embree rtcIntersect1 on the same rays in the same run (a ratio of ratios), and
-how time per ray grows with the stream (issue 18 §2).
+against its plain twin (the same kernel dividing as the device does), each against Embree
+rtcIntersect1 on the same rays in the same run (a ratio of ratios), and how time per ray grows with
+the stream (issue 18 §2).
 
 usage: scripts/division_tables.py RESULTS_DIR
   writes tables.md
@@ -12,7 +13,7 @@ import sys
 
 import pandas as pd
 
-from rtbench_results import command_text, failed_rows, fmt, open_results, structure_names, write_tables, wrong_rays
+from rtbench_results import command_text, division_names, failed_rows, fmt, open_results, structure_names, write_tables, wrong_rays
 
 
 def main() -> int:
@@ -21,9 +22,7 @@ def main() -> int:
     runs["size"] = [f"{int(w)}x{int(h)}" for w, h in zip(runs.camera_width, runs.camera_height)]
     runs["ns_per_ray"] = runs.kernel_ms_median * 1e6 / runs.rays
     runs["wrong"] = wrong_rays(runs)
-    # Runs before intersection.division (results schema 18) divided through the double quotient.
-    division = runs.intersection_division if "intersection_division" in runs else pd.Series("double", index=runs.index)
-    runs["kernel"] = [t if t != "branching" else f"branching, {d}" for t, d in zip(runs.strategy_type, division.fillna("double"))]
+    runs["kernel"] = [t if t != "branching" else f"branching, {d}" for t, d in zip(runs.strategy_type, division_names(runs))]
     lines = [f"# What bit-exact division costs — {device}, {context.get('cpu', '?')}", "",
              command_text(context) + " "
              f"{len(runs)} runs ok, {len(failed)} failed.",

@@ -18,7 +18,7 @@ from pathlib import Path
 import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rtbench_results import CHRISTEN_SCENES, commit_text, masking_share, method_name, read_runs, scene_name, structure_names, whitted_frames, wrong_rays  # noqa: E402
+from rtbench_results import CHRISTEN_SCENES, commit_text, division_names, masking_share, method_name, read_runs, scene_name, structure_names, whitted_frames, wrong_rays  # noqa: E402
 from purcell_tables import PURCELL_TABLE_2  # noqa: E402  (his Table 2, the paper's numbers)
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -549,9 +549,7 @@ def division() -> list:
     runs, context = load("division")
     ok = runs[runs.status == "ok"].copy()
     ok["structure"] = structure_names(ok.structure_type)
-    # Runs before intersection.division (results schema 18) divided through the double quotient.
-    division_of = ok.intersection_division.fillna("double") if "intersection_division" in ok else "double"
-    ok["kernel"] = ["plain" if t == "plain" else d for t, d in zip(ok.strategy_type, pd.Series(division_of, index=ok.index))]
+    ok["kernel"] = ["plain" if t == "plain" else d for t, d in zip(ok.strategy_type, division_names(ok))]
     by_kernel = ok.set_index(["structure", "rays", "kernel"])
     ratio = by_kernel.speed_ratio_vs_embree1
     out = ["### `results/division/`: what bit-exact division costs (issue 18 §2)", "", provenance("division", runs, context),

@@ -40,6 +40,14 @@ def structure_names(structure_type: pd.Series) -> pd.Series:
     return structure_type.map({"uniform_grid": "grid"}).fillna(structure_type)
 
 
+def division_names(runs: pd.DataFrame) -> pd.Series:
+    """intersection.division of each run: "double" for runs before the key (results schema 18), which all
+    divided through the double quotient."""
+    if "intersection_division" not in runs:
+        return pd.Series("double", index=runs.index)
+    return runs.intersection_division.fillna("double")
+
+
 def commit_text(context) -> str:
     """The commit a folder was made at, short: "2c376b45fb82", or "2c376b45fb82 with uncommitted
     changes (diff 4088b93b)" for a working tree that differed from it (rtbench's "-dirty-" hash)."""

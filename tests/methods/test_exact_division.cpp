@@ -57,19 +57,21 @@ TEST(ExactDivision, QuotientSignificandFromAnyGuessWithin127OfIt) {
     std::vector<std::uint32_t> divisors = {0x800000u, 0x800001u, 0xffffffu, 0xfffffeu, 0xc00000u, 0xaaaaabu};
     for (int i = 0; i < 4; ++i) divisors.push_back(0x800000u | (rng() & 0x7fffffu));
     std::uint64_t wrong = 0;
-    for (std::uint32_t B : divisors)
+    for (std::uint32_t B : divisors) {
+        std::vector<float> reciprocals;  // 2^23 / B, and 4 ULP either side
+        for (int ulps : {-4, 0, 4})
+            reciprocals.push_back(fromBits(std::uint32_t(std::int64_t(bitsOf(8388608.0f / float(B))) + ulps)));
         for (std::uint32_t A = 0x800000u; A < 0x1000000u; ++A) {
             const std::uint32_t s = A >= B ? 23u : 24u;
             const std::uint32_t expected = roundedQuotient(A, B, s);
             ASSERT_GE(expected, 0x800000u);
             ASSERT_LT(expected, 0x1000000u);
             for (int offset : {-127, -6, -1, 0, 1, 6, 127})
-                for (int ulps : {-4, 0, 4}) {
-                    const float reciprocal = fromBits(std::uint32_t(std::int64_t(bitsOf(8388608.0f / float(B))) + ulps));
+                for (float reciprocal : reciprocals)
                     wrong += k.rtQuotientSignificand(A, B, s, std::uint32_t(std::int64_t(expected) + offset), reciprocal) !=
                              expected;
-                }
         }
+    }
     EXPECT_EQ(wrong, 0u);
 }
 
