@@ -19,7 +19,13 @@
 // float quotient (double rounding is innocuous for division when 53 >= 2 * 24 + 2; Figueroa 1995).
 // Needs shaderFloat64. A quotient at or past FLT_MAX + half an ulp (0x7f7fffff + 2^103) overflows
 // to infinity, as IEEE's float division does (and as converting it would not: undefined in C++).
+// A zero divisor is written out (IEEE: +-infinity, NaN for 0/0 and NaN/0), since C++ leaves x / 0
+// undefined and the CPU reference runs this source; no kernel divides by zero (callers test first).
 float rtDivideByDouble(float a, float b) {
+    if (b == 0.0f) {
+        if (a == 0.0f || a != a) return uintBitsToFloat(0x7fc00000u);  // NaN
+        return uintBitsToFloat(((floatBitsToUint(a) ^ floatBitsToUint(b)) & 0x80000000u) | 0x7f800000u);
+    }
     precise double q = double(a) / double(b);
     precise double overflow = double(uintBitsToFloat(0x7f7fffffu)) + double(uintBitsToFloat(0x73000000u));
     if (abs(q) >= overflow) return uintBitsToFloat(q > 0.0 ? 0x7f800000u : 0xff800000u);  // +-infinity
