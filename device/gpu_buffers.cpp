@@ -11,15 +11,9 @@
 
 namespace rtbench {
 
-std::vector<BufferSize> rayBufferSizes(std::uint64_t rays, std::uint64_t traversalStateBytes) {
-    const std::uint64_t perRay = traversalStateBytes ? rays : 1;  // unused slots get a minimal buffer
+std::vector<BufferSize> rayBufferSizes(std::uint64_t rays) {
     const std::string n = " (" + std::to_string(rays) + " rays)";
-    return {{"ray" + n, rays * sizeof(gpu::Ray)},
-            {"hit record" + n, rays * sizeof(gpu::HitRecord)},
-            {"ray state", perRay},
-            {"traversal state" + n, perRay * std::max<std::uint64_t>(traversalStateBytes, 1)},
-            {"hit state" + n, perRay * sizeof(gpu::RayHitState)},
-            {"ray counter" + n, perRay * sizeof(gpu::RayCounters)}};
+    return {{"ray" + n, rays * sizeof(gpu::Ray)}, {"hit record" + n, rays * sizeof(gpu::HitRecord)}};
 }
 
 void refuseOversizedBuffers(const DeviceInfo& device, const std::vector<BufferSize>& buffers) {
@@ -76,13 +70,12 @@ namespace {
 
 // Every buffer of a run: its per-ray slots, the strategy's and the structure's, in slot order
 // (without the pass counters), for the refusals before anything is allocated.
-std::vector<BufferSize> runBufferSizes(std::uint64_t rays, std::uint64_t traversalStateBytes,
-                                       const std::vector<BufferSize>& strategyBuffers,
+std::vector<BufferSize> runBufferSizes(std::uint64_t rays, const std::vector<BufferSize>& strategyBuffers,
                                        const std::vector<BufferSize>& structureBuffers) {
     if (strategyBuffers.size() > gpu::kStrategySlots)
         throw Error("a strategy asked for " + std::to_string(strategyBuffers.size()) + " buffers of its own; there are " +
                     std::to_string(gpu::kStrategySlots) + " slots (kernels/gpu_layout.h kStrategySlots)");
-    std::vector<BufferSize> sizes = rayBufferSizes(rays, traversalStateBytes);  // slots kBindingRays..kBindingRayCounters
+    std::vector<BufferSize> sizes = rayBufferSizes(rays);  // slots kBindingRays, kBindingHits
     for (std::uint32_t i = 0; i < gpu::kStrategySlots; ++i)  // slots kBindingStrategy..
         sizes.push_back(i < strategyBuffers.size() ? strategyBuffers[i] : BufferSize{"unused strategy slot", 4});
     sizes.insert(sizes.end(), structureBuffers.begin(), structureBuffers.end());
@@ -91,32 +84,33 @@ std::vector<BufferSize> runBufferSizes(std::uint64_t rays, std::uint64_t travers
 
 // The structure's buffers on the device, once the whole run is known to fit.
 std::shared_ptr<const DeviceStructure> uploadStructure(VulkanContext& vk, std::uint64_t rays,
-                                                       std::uint64_t traversalStateBytes,
                                                        const std::vector<BufferData>& structureBuffers,
                                                        const std::vector<BufferSize>& strategyBuffers) {
-    refuseOversizedBuffers(vk.info(), runBufferSizes(rays, traversalStateBytes, strategyBuffers, sizesOf(structureBuffers)));
+    refuseOversizedBuffers(vk.info(), runBufferSizes(rays, strategyBuffers, sizesOf(structureBuffers)));
     return std::make_shared<const DeviceStructure>(vk, structureBuffers);
 }
 
 }  // namespace
 
-GpuBuffers::GpuBuffers(VulkanContext& vk, const std::vector<gpu::Ray>& rays, std::uint64_t traversalStateBytes,
+GpuBuffers::GpuBuffers(VulkanContext& vk, const std::vector<gpu::Ray>& rays,
                        const std::vector<BufferData>& structureBuffers, const std::vector<std::uint8_t>& structureParams,
                        const std::vector<BufferSize>& strategyBuffers)
-    : GpuBuffers(vk, rays, traversalStateBytes,
-                 uploadStructure(vk, rays.size(), traversalStateBytes, structureBuffers, strategyBuffers),
-                 structureParams, strategyBuffers) {}
+    : GpuBuffers(vk, rays, uploadStructure(vk, rays.size(), structureBuffers, strategyBuffers), structureParams,
+                 strategyBuffers) {}
 
-GpuBuffers::GpuBuffers(VulkanContext& vk, const std::vector<gpu::Ray>& rays, std::uint64_t traversalStateBytes,
+GpuBuffers::GpuBuffers(VulkanContext& vk, const std::vector<gpu::Ray>& rays,
                        std::shared_ptr<const DeviceStructure> structure, const std::vector<std::uint8_t>& structureParams,
                        const std::vector<BufferSize>& strategyBuffers)
     : vk_(vk), structure_(std::move(structure)), rayCount_(rays.size()) {
+    static_assert(gpu::kBindingRays == 0 && gpu::kBindingHits == 1 && gpu::kBindingPassCounters == 2 &&
+                      gpu::kBindingStrategy == 3 && gpu::kBindingStrategy + gpu::kStrategySlots == gpu::kBindingStructure,
+                  "the slot order runBufferSizes lists");
     const std::size_t n = rays.size();
-    const std::vector<BufferSize> sizes = runBufferSizes(n, traversalStateBytes, strategyBuffers, structure_->sizes());
+    const std::vector<BufferSize> sizes = runBufferSizes(n, strategyBuffers, structure_->sizes());
     refuseOversizedBuffers(vk.info(), sizes);
     buffers_.resize(gpu::kBindingStructure);
     try {
-        for (std::uint32_t b = gpu::kBindingRays; b <= gpu::kBindingRayCounters; ++b)
+        for (std::uint32_t b : {gpu::kBindingRays, gpu::kBindingHits})
             buffers_[b] = vk.createStorageBuffer(sizes[b].bytes, sizes[b].what);
         buffers_[gpu::kBindingPassCounters] = vk.createStorageBuffer(sizeof(gpu::PassCounters), "the pass counters");
         countersOnHost_ = vk.createHostReadbackBuffer(sizeof(gpu::PassCounters));
@@ -199,11 +193,11 @@ std::vector<gpu::HitRecord> GpuBuffers::downloadHits() {
     return hits;
 }
 
-std::vector<std::uint8_t> GpuBuffers::downloadTraversalStates() {
-    const Buffer& b = buffers_[gpu::kBindingTraversal];
-    std::vector<std::uint8_t> states(b.size);
-    vk_.download(b, states.data(), states.size());
-    return states;
+std::vector<std::uint8_t> GpuBuffers::downloadStrategyBuffer(std::uint32_t i) {
+    const Buffer& b = strategyBuffer(i);
+    std::vector<std::uint8_t> bytes(b.size);
+    vk_.download(b, bytes.data(), bytes.size());
+    return bytes;
 }
 
 }  // namespace rtbench

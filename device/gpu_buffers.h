@@ -32,9 +32,9 @@ struct BufferSize {
     std::uint64_t bytes = 0;
 };
 
-// The per-ray buffers (rays, hit records; multipass: stencil, traversal state of
-// `traversalStateBytes` per ray, hit state, counters; 0: no multipass state).
-std::vector<BufferSize> rayBufferSizes(std::uint64_t rays, std::uint64_t traversalStateBytes);
+// The per-ray buffers every strategy binds: the rays and their hit records (a strategy's own,
+// such as multipass's state, come in its slots).
+std::vector<BufferSize> rayBufferSizes(std::uint64_t rays);
 // Throws rtbench::Error naming the first buffer over the device's maxStorageBufferRange (one
 // binding), or the total over its largest device-local heap; allocates nothing.
 void refuseOversizedBuffers(const DeviceInfo& device, const std::vector<BufferSize>& buffers);
@@ -82,19 +82,17 @@ private:
     std::vector<BufferSize> sizes_;
 };
 
-// The buffers of one run (or one batch of its stream): the common per-ray slots of
-// kernels/gpu_layout.h, the strategy's own (zeroed, at most kStrategySlots, from kBindingStrategy
+// The buffers of one run (or one batch of its stream): the common slots of kernels/gpu_layout.h
+// (rays, hit records, pass counters), the strategy's own (zeroed, at most kStrategySlots, from kBindingStrategy
 // on), then the structure's buffers from kBindingStructure on; and the push constants
 // (StreamParams, then the structure's).
 class GpuBuffers {
 public:
     // Uploads the structure's buffers for this stream alone.
-    GpuBuffers(VulkanContext& vk, const std::vector<gpu::Ray>& rays, std::uint64_t traversalStateBytes,
-               const std::vector<BufferData>& structureBuffers, const std::vector<std::uint8_t>& structureParams,
+    GpuBuffers(VulkanContext& vk, const std::vector<gpu::Ray>& rays, const std::vector<BufferData>& structureBuffers, const std::vector<std::uint8_t>& structureParams,
                const std::vector<BufferSize>& strategyBuffers = {});
     // Binds a structure already on the device (one batch of a stream).
-    GpuBuffers(VulkanContext& vk, const std::vector<gpu::Ray>& rays, std::uint64_t traversalStateBytes,
-               std::shared_ptr<const DeviceStructure> structure, const std::vector<std::uint8_t>& structureParams,
+    GpuBuffers(VulkanContext& vk, const std::vector<gpu::Ray>& rays, std::shared_ptr<const DeviceStructure> structure, const std::vector<std::uint8_t>& structureParams,
                const std::vector<BufferSize>& strategyBuffers = {});
     ~GpuBuffers();
     GpuBuffers(const GpuBuffers&) = delete;
@@ -114,9 +112,8 @@ public:
     const VulkanContext::CounterReadback* passCounters() const { return &counters_; }
     gpu::PassCounters readPassCounters() const;
     std::vector<gpu::HitRecord> downloadHits();
-    // Multipass: the per-ray traversal state saved by the last pass, as bytes (tests compare it
-    // with the CPU's).
-    std::vector<std::uint8_t> downloadTraversalStates();
+    // The whole of the strategy's buffer in slot kBindingStrategy + i, as bytes.
+    std::vector<std::uint8_t> downloadStrategyBuffer(std::uint32_t i);
     // The strategy's buffer in slot kBindingStrategy + i (a 4-byte placeholder when it has none).
     const Buffer& strategyBuffer(std::uint32_t i) const { return buffers_.at(gpu::kBindingStrategy + i); }
     // The pass counters themselves (device-local), for dispatches that zero them first.

@@ -132,7 +132,11 @@ std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunC
     }
     p->width = unsigned(run.getInt("camera.width"));
     p->height = unsigned(run.getInt("camera.height"));
-    refuseOversizedTotal(vk.info(), rayBufferSizes(std::uint64_t(p->width) * p->height, strategy.perRayState ? 16 : 0));
+    const std::uint64_t streamRays = std::uint64_t(p->width) * p->height;
+    std::vector<BufferSize> perRay = rayBufferSizes(streamRays);
+    if (strategy.ownBytesPerRay)
+        perRay.push_back({strategy.name + "'s own per-ray buffers", streamRays * strategy.ownBytesPerRay});
+    refuseOversizedTotal(vk.info(), perRay);
     refuseOversizedRayStream(std::uint64_t(p->width) * p->height);
     p->cameraRays = generatePrimaryRays(camera, p->width, p->height);
     validateRays(p->cameraRays);

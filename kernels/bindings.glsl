@@ -1,5 +1,5 @@
 // Buffers, push constants and specialization constants of every kernel: the common slots of
-// kernels/gpu_layout.h, then the structure's own (structure_layout.glsl, found through the
+// kernels/gpu_layout.h (a strategy declares its own slots' buffers), then the structure's own (structure_layout.glsl, found through the
 // -I methods/<structure> CMake passes when it compiles a kernel for that structure). One set
 // layout per structure, so the host binds one descriptor set for all of its kernels.
 #extension GL_EXT_shader_8bit_storage : require
@@ -30,10 +30,6 @@ layout(constant_id = kSpecDivision) const uint division = kDivisionDouble;
 
 layout(std430, set = 0, binding = kBindingRays) readonly buffer RayBuffer { Ray rays[]; };
 layout(std430, set = 0, binding = kBindingHits) writeonly buffer HitBuffer { HitRecord hits[]; };
-layout(std430, set = 0, binding = kBindingStencil) buffer StencilBuffer { uint8_t stencil[]; };
-layout(std430, set = 0, binding = kBindingTraversal) buffer TraversalBuffer { RtTraversalState traversalStates[]; };
-layout(std430, set = 0, binding = kBindingHitState) buffer HitStateBuffer { RayHitState hitStates[]; };
-layout(std430, set = 0, binding = kBindingRayCounters) buffer RayCounterBuffer { RayCounters rayCounters[]; };
 layout(std430, set = 0, binding = kBindingPassCounters) buffer PassCounterBuffer { PassCounters passCounters; };
 layout(push_constant) uniform PushConstants {
     StreamParams stream;

@@ -25,18 +25,20 @@ using uint64 = std::uint64_t;
 // ---- descriptor set 0 binding slots (all storage buffers) ----
 RTBENCH_CONST kBindingRays = 0;         // Ray[rayCount]
 RTBENCH_CONST kBindingHits = 1;         // HitRecord[rayCount]
-RTBENCH_CONST kBindingStencil = 2;      // uint8_t[rayCount]: multipass ray state (kState*)
-RTBENCH_CONST kBindingTraversal = 3;    // the structure's traversal state [rayCount]: multipass
-RTBENCH_CONST kBindingHitState = 4;     // RayHitState[rayCount]: multipass best hit so far
-RTBENCH_CONST kBindingRayCounters = 5;  // RayCounters[rayCount]: per-ray work (instrumentation)
-RTBENCH_CONST kBindingPassCounters = 6; // PassCounters: oracle query + event counts of a pass
-RTBENCH_CONST kBindingStrategy = 7;     // first of kStrategySlots slots a strategy may fill with its own buffers
-RTBENCH_CONST kStrategySlots = 2;       // (GpuBuffers: zeroed; a slot the strategy leaves empty gets 4 bytes)
+RTBENCH_CONST kBindingPassCounters = 2; // PassCounters: oracle query + event counts of a pass
+RTBENCH_CONST kBindingStrategy = 3;     // first of kStrategySlots slots a strategy may fill with its own buffers
+RTBENCH_CONST kStrategySlots = 6;       // (GpuBuffers: zeroed; a slot the strategy leaves empty gets 4 bytes)
 RTBENCH_CONST kBindingStructure = 9;    // first slot of the structure's own buffers
 
-// Multipass with strategy.control = "device" (methods/multipass): its two strategy slots.
-RTBENCH_CONST kBindingRayLists = kBindingStrategy + 0u;     // uint[4 * rayCount]: lists T0, T1, W0, W1 of ray indices
-RTBENCH_CONST kBindingPassControl = kBindingStrategy + 1u;  // PassControl, then PassLogEntry[kPassLogEntries]
+// Multipass's own slots (methods/multipass, multipassBuffers): the per-ray state Purcell's
+// passes keep between them, then, with strategy.control = "device", the compacted lists and
+// the oracle's block.
+RTBENCH_CONST kBindingStencil = kBindingStrategy + 0u;      // uint8_t[rayCount]: ray state (kState*)
+RTBENCH_CONST kBindingTraversal = kBindingStrategy + 1u;    // the structure's traversal state [rayCount]
+RTBENCH_CONST kBindingHitState = kBindingStrategy + 2u;     // RayHitState[rayCount]: best hit so far
+RTBENCH_CONST kBindingRayCounters = kBindingStrategy + 3u;  // RayCounters[rayCount]: per-ray work (instrumentation)
+RTBENCH_CONST kBindingRayLists = kBindingStrategy + 4u;     // uint[4 * rayCount]: lists T0, T1, W0, W1 of ray indices
+RTBENCH_CONST kBindingPassControl = kBindingStrategy + 5u;  // PassControl, then PassLogEntry[kPassLogEntries]
 RTBENCH_CONST kPassLogEntries = 1024u;  // the pass log is a ring: pass p (from 1) at (p - 1) % kPassLogEntries
 
 // ---- specialization-constant ids ----

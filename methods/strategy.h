@@ -82,8 +82,9 @@ struct StrategyType {
     std::string help;
     std::vector<KeySpec> keys;        // read only when strategy.type is this name
     std::vector<ColumnSpec> columns;  // written only by its runs
-    // Whether it keeps per-ray traversal state on the device (sizes the buffers before allocating).
-    bool perRayState = false;
+    // Device bytes per ray its own buffers take at least (multipass's state), for the runner's
+    // refusal before the structure (and so the exact size) is known; 0: none per ray.
+    std::uint64_t ownBytesPerRay = 0;
     std::string onlyStructure;  // the one structure.type it can trace ("": any)
     // Why a device cannot run it ("" when it can; null: any device that runs rtbench can): the
     // run fails with this before anything is loaded.

@@ -74,8 +74,8 @@ BranchingRun runBranchingBatch(VulkanContext& vk, const Structure& structure, co
                                const TimingOptions& timing, std::uint32_t query, const TraceLaunch& launch,
                                const std::shared_ptr<const DeviceStructure>& shared) {
     BranchingRun run;
-    auto buffers = shared ? std::make_unique<GpuBuffers>(vk, rays, /*traversalStateBytes=*/0, shared, structure.params())
-                          : std::make_unique<GpuBuffers>(vk, rays, /*traversalStateBytes=*/0, structure.buffers(), structure.params());
+    auto buffers = shared ? std::make_unique<GpuBuffers>(vk, rays, shared, structure.params())
+                          : std::make_unique<GpuBuffers>(vk, rays, structure.buffers(), structure.params());
     const std::string kernel = structure.kernelPrefix() + "_" + launch.kernel;
     const std::uint64_t invocations = launch.invocations ? launch.invocations : rays.size();
     const KernelSpec spec = structureKernelSpec(structure, timing.workgroupSize, query, launch.constants);
@@ -112,7 +112,7 @@ BranchingRun runBranching(VulkanContext& vk, const Structure& structure, const s
     } else {
         // Batches of whole workgroups, one after another: the records and every counter are those
         // of one dispatch over the stream (each subgroup has the same lanes); the time adds up.
-        const auto shared = uploadForBatches(vk, rayBufferSizes(rays.size(), 0), structure.buffers());
+        const auto shared = uploadForBatches(vk, rayBufferSizes(rays.size()), structure.buffers());
         run.batches = 0;
         run.timer = traceInBatches(
             rays, batchRays,

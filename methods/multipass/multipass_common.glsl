@@ -4,6 +4,12 @@
 #include "traversal_common.glsl"
 #include "structure.glsl"
 
+// The per-ray state kept between passes, in multipass's own slots (kernels/gpu_layout.h).
+layout(std430, set = 0, binding = kBindingStencil) buffer StencilBuffer { uint8_t stencil[]; };
+layout(std430, set = 0, binding = kBindingTraversal) buffer TraversalBuffer { RtTraversalState traversalStates[]; };
+layout(std430, set = 0, binding = kBindingHitState) buffer HitStateBuffer { RayHitState hitStates[]; };
+layout(std430, set = 0, binding = kBindingRayCounters) buffer RayCounterBuffer { RayCounters rayCounters[]; };
+
 // strategy.control = "device": the passes serve the rays of compacted lists, which the oracle
 // kernel (multipass_oracle.comp) keeps in its control block, instead of the stream's stencil.
 layout(constant_id = kSpecCompact) const uint compact = 0u;

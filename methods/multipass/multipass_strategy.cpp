@@ -38,6 +38,16 @@ struct Pipelines {
 // The device-controlled loop's ray lists: T0, T1, W0, W1, a ray index each per ray.
 std::uint64_t rayListBytes(std::uint64_t rays) { return 4 * sizeof(std::uint32_t) * rays; }
 
+// Multipass's slots among the strategy's (GpuBuffers::strategyBuffer).
+constexpr std::uint32_t kTraversalSlot = gpu::kBindingTraversal - gpu::kBindingStrategy;
+constexpr std::uint32_t kPassControlSlot = gpu::kBindingPassControl - gpu::kBindingStrategy;
+static_assert(gpu::kBindingStencil == gpu::kBindingStrategy && gpu::kBindingTraversal == gpu::kBindingStencil + 1 &&
+                  gpu::kBindingHitState == gpu::kBindingTraversal + 1 &&
+                  gpu::kBindingRayCounters == gpu::kBindingHitState + 1 &&
+                  gpu::kBindingRayLists == gpu::kBindingRayCounters + 1 &&
+                  gpu::kBindingPassControl == gpu::kBindingRayLists + 1,
+              "multipassBuffers lists the slots in order");
+
 // A pass's sums from its PassCounters slots (counts: kCountTraversing..kCountTriangleReads at least).
 PassSums passSums(const std::uint64_t* counts) {
     PassSums sums;
@@ -57,7 +67,7 @@ const char* const kPartNames[kPassKinds + 1] = {"setup", "traverse", "intersect"
 
 // ---- strategy.control = "device" ----
 // The control block and pass log (slot kBindingPassControl) and the two indirect passes.
-const Buffer& controlBuffer(const GpuBuffers& buffers) { return buffers.strategyBuffer(1); }
+const Buffer& controlBuffer(const GpuBuffers& buffers) { return buffers.strategyBuffer(kPassControlSlot); }
 constexpr VkDeviceSize kTraverseGroupsOffset = offsetof(gpu::PassControl, traverseGroups);
 constexpr VkDeviceSize kIntersectGroupsOffset = offsetof(gpu::PassControl, intersectGroups);
 // Oracle iterations recorded per submission: three dispatches each (dispatchAll's chunk).
@@ -324,15 +334,12 @@ MultipassRun runMultipassBatch(VulkanContext& vk, const Structure& structure, co
                                const std::shared_ptr<const DeviceStructure>& shared) {
     MultipassRun run;
     const std::uint64_t cap = multipassPassCap(structure, options);
-    std::vector<BufferSize> own;  // the strategy's slots: with the control on the device, the ray lists and the oracle's block
-    if (options.deviceControl) {
-        if (cap > 0xFFFFFFFFull) throw Error("multipass (device): the pass cap " + std::to_string(cap) + " is over 2^32 - 1");
-        own = {{"multipass ray lists (4 x " + std::to_string(rays.size()) + " rays)", rayListBytes(rays.size())},
-               {"multipass oracle control and pass log", kPassControlBytes}};
-    }
-    const std::uint64_t stateBytes = structure.costs().traversalStateBytes;
-    auto buffers = shared ? std::make_unique<GpuBuffers>(vk, rays, stateBytes, shared, structure.params(), own)
-                          : std::make_unique<GpuBuffers>(vk, rays, stateBytes, structure.buffers(), structure.params(), own);
+    if (options.deviceControl && cap > 0xFFFFFFFFull)
+        throw Error("multipass (device): the pass cap " + std::to_string(cap) + " is over 2^32 - 1");
+    const std::vector<BufferSize> own =
+        multipassBuffers(rays.size(), structure.costs().traversalStateBytes, options.deviceControl);
+    auto buffers = shared ? std::make_unique<GpuBuffers>(vk, rays, shared, structure.params(), own)
+                          : std::make_unique<GpuBuffers>(vk, rays, structure.buffers(), structure.params(), own);
     KernelSpec spec = structureKernelSpec(structure, timing.workgroupSize, query,
                                           {{gpu::kSpecTraverseSteps, options.traverseStepsPerPass},
                                            {gpu::kSpecIntersections, options.intersectionsPerPass},
@@ -348,7 +355,7 @@ MultipassRun runMultipassBatch(VulkanContext& vk, const Structure& structure, co
     auto counted = std::make_unique<Pipelines>(vk, *buffers, structure.kernelPrefix(), spec, options.deviceControl);
     run.counts = runLoop(vk, *buffers, *counted, options, cap);
     run.hits = buffers->downloadHits();
-    run.traversalStates = buffers->downloadTraversalStates();
+    run.traversalStates = downloadTraversalStates(*buffers);
     run.timer = std::make_unique<MultipassTimer>(vk, std::move(buffers), std::move(counted), structure.kernelPrefix(), spec,
                                                  options, cap, run.counts, run.hits);
     return run;
@@ -356,6 +363,22 @@ MultipassRun runMultipassBatch(VulkanContext& vk, const Structure& structure, co
 
 
 }  // namespace
+
+std::vector<BufferSize> multipassBuffers(std::uint64_t rays, std::uint64_t traversalStateBytes, bool deviceControl) {
+    const std::string n = " (" + std::to_string(rays) + " rays)";
+    std::vector<BufferSize> own = {{"ray state" + n, rays},
+                                   {"traversal state" + n, rays * traversalStateBytes},
+                                   {"hit state" + n, rays * sizeof(gpu::RayHitState)},
+                                   {"ray counter" + n, rays * sizeof(gpu::RayCounters)}};
+    if (deviceControl)
+        own.insert(own.end(), {{"multipass ray lists (4 x " + std::to_string(rays) + " rays)", rayListBytes(rays)},
+                               {"multipass oracle control and pass log", kPassControlBytes}});
+    return own;
+}
+
+std::vector<std::uint8_t> downloadTraversalStates(GpuBuffers& buffers) {
+    return buffers.downloadStrategyBuffer(kTraversalSlot);
+}
 
 std::uint64_t multipassBatchRays(const DeviceInfo& device, std::uint64_t traversalStateBytes, std::uint64_t requested,
                                  unsigned workgroupSize) {
@@ -379,12 +402,12 @@ MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const s
         // Rays in batches (each its own buffers and pass loop, the oracle's passes per batch): the
         // per-ray records and events are those of one stream; the passes add up over the batches.
         const std::size_t batches = streamBatches(rays.size(), batchRays).size();
-        std::vector<BufferSize> perRay = rayBufferSizes(rays.size(), structure.costs().traversalStateBytes);
-        if (options.deviceControl) {
-            perRay.push_back({"multipass ray lists", rayListBytes(rays.size())});
-            perRay.push_back({"multipass oracle control and pass log x " + std::to_string(batches) + " batches",
-                              kPassControlBytes * batches});
-        }
+        // Every batch's buffers, the stream's rays together: its own block per batch.
+        std::vector<BufferSize> perRay = rayBufferSizes(rays.size());
+        for (BufferSize& b : multipassBuffers(rays.size(), structure.costs().traversalStateBytes, options.deviceControl))
+            perRay.push_back(b.what == "multipass oracle control and pass log"
+                                 ? BufferSize{b.what + " x " + std::to_string(batches) + " batches", b.bytes * batches}
+                                 : b);
         const auto shared = uploadForBatches(vk, perRay, structure.buffers());
         run.batches = 0;
         run.timer = traceInBatches(
@@ -411,7 +434,8 @@ const StrategyType& multipassStrategyType() {
         StrategyType t;
         t.name = "multipass";
         t.help = "a pass per traverse/intersect step with a ray-state stencil and an oracle (Purcell et al. 2002 §3.2)";
-        t.perRayState = true;
+        for (const BufferSize& b : multipassBuffers(1, /*the smallest traversal state, brute force's:*/ 16, false))
+            t.ownBytesPerRay += b.bytes;
         t.keys = {
             {"strategy.traverse_steps_per_pass", ValueType::Int, "multipass: traversal steps per traverse pass, K (Purcell 2002: 1 in Table 2 and Figs. 7-8; 4 in his loop-unrolling experiment, §4.2)", std::int64_t(1), false, 1, 64},
             {"strategy.intersections_per_pass", ValueType::Int, "multipass: triangle tests per intersect pass, M (Purcell 2002: 1 in Table 2 and Figs. 7-8; 2 in his loop-unrolling experiment, §4.2)", std::int64_t(1), false, 1, 64},

@@ -6,6 +6,7 @@
 #include <array>
 #include <vector>
 
+#include "device/gpu_buffers.h"
 #include "methods/strategy.h"
 #include "multipass_schedule.h"
 
@@ -25,6 +26,14 @@ struct MultipassRun {
     std::uint64_t batchRays = 0;                // rays per batch (multipassBatchRays)
     std::uint64_t batches = 1;                  // batches the stream ran in
 };
+
+// Multipass's own buffers in the strategy slots of kernels/gpu_layout.h (kBindingStencil on), for
+// `rays` rays and a traversal state of `traversalStateBytes` each: the stencil, the traversal
+// state, the hit state, the per-ray counters and, with the control on the device
+// (`deviceControl`), the ray lists and the oracle's control block.
+std::vector<BufferSize> multipassBuffers(std::uint64_t rays, std::uint64_t traversalStateBytes, bool deviceControl);
+// The traversal state the last pass saved, as bytes (tests compare it with the CPU's).
+std::vector<std::uint8_t> downloadTraversalStates(GpuBuffers& buffers);
 
 // Rays per batch: `requested` (strategy.batch_rays) if not 0, else the most rays whose largest
 // per-ray record (the ray, the hit record, the traversal state of `traversalStateBytes`) fits one

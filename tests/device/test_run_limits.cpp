@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "methods/branching/branching_strategy.h"
+#include "methods/multipass/multipass_strategy.h"
 #include "methods/stream_batches.h"
 #include "device/gpu_buffers.h"
 #include "harness/runner.h"
@@ -101,10 +102,18 @@ TEST_F(RunLimits, ScenesAtTheEdgesOfTheRangeRenderAndAgreeWithEmbree) {
 TEST_F(RunLimits, A16384SquaredImageIsRefusedBeforeAnythingIsAllocated) {
     const Row row = runOne(tetrahedronOff(1.0), "[camera]\nwidth = 16384\nheight = 16384\n");
     EXPECT_EQ(row.at("status"), "failed");
-    // 268,435,456 rays of 64 bytes (ray and hit record) and the minimal multipass slots: the total
-    // is refused (a single binding would not be: the stream would run in batches).
-    EXPECT_THAT(row.at("error"), HasSubstr("the run's buffers would take 17179869218 bytes, over "));
+    // 268,435,456 rays of 64 bytes (ray and hit record; branching has no buffers of its own),
+    // 2^34 bytes: the total is refused (a single binding would not be: the stream would run in batches).
+    EXPECT_THAT(row.at("error"), HasSubstr("the run's buffers would take 17179869184 bytes, over "));
     EXPECT_THAT(row.at("error"), HasSubstr("largest device-local heap"));
+}
+
+TEST_F(RunLimits, MultipassCountsItsOwnPerRayBuffersInTheRefusal) {
+    const Row row = runOne(tetrahedronOff(1.0), "[camera]\nwidth = 16384\nheight = 16384\n[strategy]\ntype = \"multipass\"\n");
+    EXPECT_EQ(row.at("status"), "failed");
+    // Each ray also has multipass's stencil byte, a traversal state of 16 bytes at least (brute
+    // force's), a 16-byte hit state and 16 bytes of counters: 113 bytes x 2^28 rays.
+    EXPECT_THAT(row.at("error"), HasSubstr("the run's buffers would take 30333206528 bytes, over "));
 }
 
 TEST_F(RunLimits, ASliverTooLongForMinDimFailsNamingTheResolution) {
@@ -172,7 +181,8 @@ TEST_F(KernelSpecs, AStrategyConstantThatRepeatsACommonIdIsRefused) {
     GridResolutionRule rule;
     rule.minDim = 4;
     const std::unique_ptr<Structure> structure = gridStructure(buildUniformGrid(mesh, rule));
-    GpuBuffers buffers(*vk_, rays, sizeof(gpu::GridTraversalState), structure->buffers(), structure->params());
+    GpuBuffers buffers(*vk_, rays, structure->buffers(), structure->params(),
+                       multipassBuffers(rays.size(), sizeof(gpu::GridTraversalState), false));
     KernelSpec spec;
     spec.strategyConstants = {{gpu::kSpecQuery, gpu::kQueryAny}};
     EXPECT_THAT(errorOf([&] { buffers.createKernel("grid_multipass_setup", spec); }),
@@ -213,10 +223,10 @@ TEST_F(KernelSpecs, BatchesShareOneUploadOfTheStructure) {
         vk_->destroy(pipeline);
         return buffers.downloadHits();
     };
-    GpuBuffers whole(*vk_, rays, 0, structure->buffers(), structure->params());
+    GpuBuffers whole(*vk_, rays, structure->buffers(), structure->params());
     const std::vector<gpu::HitRecord> expected = trace(rays, whole);
     const std::vector<gpu::Ray> first(rays.begin(), rays.begin() + 64), second(rays.begin() + 64, rays.end());
-    GpuBuffers a(*vk_, first, 0, shared, structure->params()), b(*vk_, second, 0, shared, structure->params());
+    GpuBuffers a(*vk_, first, shared, structure->params()), b(*vk_, second, shared, structure->params());
     std::vector<gpu::HitRecord> hits = trace(first, a);
     const std::vector<gpu::HitRecord> rest = trace(second, b);
     hits.insert(hits.end(), rest.begin(), rest.end());

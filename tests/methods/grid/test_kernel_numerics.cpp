@@ -10,6 +10,7 @@
 #include <random>
 
 #include "methods/branching/branching_strategy.h"
+#include "methods/multipass/multipass_strategy.h"
 #include "device/gpu_buffers.h"
 #include "methods/metrics.h"
 #include "structures/camera.h"
@@ -101,7 +102,8 @@ TEST_F(KernelNumerics, SavedDdaStateEqualsTheCpusAfterSetupAndTraversal) {
             rays.push_back({glm::vec4(o, 0.0f), glm::vec4(s(rng), s(rng), s(rng), gpu::kNoHitT)});
         }
         const std::unique_ptr<Structure> structure = gridStructure(grid);
-        GpuBuffers buffers(*vk_, rays, sizeof(gpu::GridTraversalState), structure->buffers(), structure->params());
+        GpuBuffers buffers(*vk_, rays, structure->buffers(), structure->params(),
+                           multipassBuffers(rays.size(), sizeof(gpu::GridTraversalState), false));
         KernelSpec spec;
         spec.strategyConstants = {{gpu::kSpecTraverseSteps, 8}};
         for (const char* kernel : {"grid_multipass_setup", "grid_multipass_traverse"}) {
@@ -109,7 +111,7 @@ TEST_F(KernelNumerics, SavedDdaStateEqualsTheCpusAfterSetupAndTraversal) {
             vk_->dispatch(pipeline, buffers.descriptorSet(pipeline), buffers.pushConstants(), rays.size());
             vk_->destroy(pipeline);
         }
-        const std::vector<std::uint8_t> gpuStates = buffers.downloadTraversalStates();
+        const std::vector<std::uint8_t> gpuStates = downloadTraversalStates(buffers);
         gridref::GridKernels steps = gridKernels(grid);
         steps.traverseStepsPerPass = 8;
         std::uint64_t differing = 0;
