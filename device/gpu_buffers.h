@@ -83,17 +83,17 @@ private:
 };
 
 // The buffers of one run (or one batch of its stream): the common slots of kernels/gpu_layout.h
-// (rays, hit records, pass counters), the strategy's own (zeroed, at most kStrategySlots, from kBindingStrategy
-// on), then the structure's buffers from kBindingStructure on; and the push constants
-// (StreamParams, then the structure's).
+// (rays, hit records, pass counters), the strategy's own (zeroed, at most kStrategySlots, from
+// kBindingStrategy on), then the structure's buffers from kBindingStructure on; and the push
+// constants (StreamParams, then the structure's).
 class GpuBuffers {
 public:
     // Uploads the structure's buffers for this stream alone.
-    GpuBuffers(VulkanContext& vk, const std::vector<gpu::Ray>& rays, const std::vector<BufferData>& structureBuffers, const std::vector<std::uint8_t>& structureParams,
-               const std::vector<BufferSize>& strategyBuffers = {});
+    GpuBuffers(VulkanContext& vk, const std::vector<gpu::Ray>& rays, const std::vector<BufferData>& structureBuffers,
+               const std::vector<std::uint8_t>& structureParams, const std::vector<BufferSize>& strategyBuffers = {});
     // Binds a structure already on the device (one batch of a stream).
-    GpuBuffers(VulkanContext& vk, const std::vector<gpu::Ray>& rays, std::shared_ptr<const DeviceStructure> structure, const std::vector<std::uint8_t>& structureParams,
-               const std::vector<BufferSize>& strategyBuffers = {});
+    GpuBuffers(VulkanContext& vk, const std::vector<gpu::Ray>& rays, std::shared_ptr<const DeviceStructure> structure,
+               const std::vector<std::uint8_t>& structureParams, const std::vector<BufferSize>& strategyBuffers = {});
     ~GpuBuffers();
     GpuBuffers(const GpuBuffers&) = delete;
     GpuBuffers& operator=(const GpuBuffers&) = delete;

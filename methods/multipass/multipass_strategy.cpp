@@ -364,15 +364,19 @@ MultipassRun runMultipassBatch(VulkanContext& vk, const Structure& structure, co
 
 }  // namespace
 
-std::vector<BufferSize> multipassBuffers(std::uint64_t rays, std::uint64_t traversalStateBytes, bool deviceControl) {
+std::vector<BufferSize> multipassBuffers(std::uint64_t rays, std::uint64_t traversalStateBytes, bool deviceControl,
+                                         std::uint64_t batches) {
     const std::string n = " (" + std::to_string(rays) + " rays)";
     std::vector<BufferSize> own = {{"ray state" + n, rays},
                                    {"traversal state" + n, rays * traversalStateBytes},
                                    {"hit state" + n, rays * sizeof(gpu::RayHitState)},
                                    {"ray counter" + n, rays * sizeof(gpu::RayCounters)}};
     if (deviceControl)
-        own.insert(own.end(), {{"multipass ray lists (4 x " + std::to_string(rays) + " rays)", rayListBytes(rays)},
-                               {"multipass oracle control and pass log", kPassControlBytes}});
+        own.insert(own.end(),
+                   {{"multipass ray lists (4 x " + std::to_string(rays) + " rays)", rayListBytes(rays)},
+                    {"multipass oracle control and pass log" +
+                         (batches > 1 ? " x " + std::to_string(batches) + " batches" : std::string()),
+                     kPassControlBytes * batches}});
     return own;
 }
 
@@ -402,12 +406,11 @@ MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const s
         // Rays in batches (each its own buffers and pass loop, the oracle's passes per batch): the
         // per-ray records and events are those of one stream; the passes add up over the batches.
         const std::size_t batches = streamBatches(rays.size(), batchRays).size();
-        // Every batch's buffers, the stream's rays together: its own block per batch.
+        // Every batch's buffers together: the stream's per-ray ones, and an oracle block per batch.
         std::vector<BufferSize> perRay = rayBufferSizes(rays.size());
-        for (BufferSize& b : multipassBuffers(rays.size(), structure.costs().traversalStateBytes, options.deviceControl))
-            perRay.push_back(b.what == "multipass oracle control and pass log"
-                                 ? BufferSize{b.what + " x " + std::to_string(batches) + " batches", b.bytes * batches}
-                                 : b);
+        for (const BufferSize& b :
+             multipassBuffers(rays.size(), structure.costs().traversalStateBytes, options.deviceControl, batches))
+            perRay.push_back(b);
         const auto shared = uploadForBatches(vk, perRay, structure.buffers());
         run.batches = 0;
         run.timer = traceInBatches(

@@ -30,8 +30,10 @@ struct MultipassRun {
 // Multipass's own buffers in the strategy slots of kernels/gpu_layout.h (kBindingStencil on), for
 // `rays` rays and a traversal state of `traversalStateBytes` each: the stencil, the traversal
 // state, the hit state, the per-ray counters and, with the control on the device
-// (`deviceControl`), the ray lists and the oracle's control block.
-std::vector<BufferSize> multipassBuffers(std::uint64_t rays, std::uint64_t traversalStateBytes, bool deviceControl);
+// (`deviceControl`), the ray lists and the oracle's control block (`batches` of them: the sizes of
+// a stream's batches together, each with its own block).
+std::vector<BufferSize> multipassBuffers(std::uint64_t rays, std::uint64_t traversalStateBytes, bool deviceControl,
+                                         std::uint64_t batches = 1);
 // The traversal state the last pass saved, as bytes (tests compare it with the CPU's).
 std::vector<std::uint8_t> downloadTraversalStates(GpuBuffers& buffers);
 
