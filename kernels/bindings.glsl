@@ -1,7 +1,8 @@
 // Buffers, push constants and specialization constants of every kernel: the common slots of
-// kernels/gpu_layout.h (a strategy declares its own slots' buffers), then the structure's own (structure_layout.glsl, found through the
-// -I methods/<structure> CMake passes when it compiles a kernel for that structure). One set
-// layout per structure, so the host binds one descriptor set for all of its kernels.
+// kernels/gpu_layout.h (a strategy declares its own slots' buffers), then the structure's own
+// (structure_layout.glsl, found through the -I methods/<structure> CMake passes when it compiles
+// a kernel for that structure). One set layout per structure, so the host binds one descriptor set
+// for all of its kernels.
 #extension GL_EXT_shader_8bit_storage : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int8 : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require

@@ -408,9 +408,9 @@ MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const s
         const std::size_t batches = streamBatches(rays.size(), batchRays).size();
         // Every batch's buffers together: the stream's per-ray ones, and an oracle block per batch.
         std::vector<BufferSize> perRay = rayBufferSizes(rays.size());
-        for (const BufferSize& b :
-             multipassBuffers(rays.size(), structure.costs().traversalStateBytes, options.deviceControl, batches))
-            perRay.push_back(b);
+        const std::vector<BufferSize> own =
+            multipassBuffers(rays.size(), structure.costs().traversalStateBytes, options.deviceControl, batches);
+        perRay.insert(perRay.end(), own.begin(), own.end());
         const auto shared = uploadForBatches(vk, perRay, structure.buffers());
         run.batches = 0;
         run.timer = traceInBatches(
