@@ -193,6 +193,20 @@ std::vector<gpu::HitRecord> GpuBuffers::downloadHits() {
     return hits;
 }
 
+std::vector<gpu::Ray> GpuBuffers::downloadRays() {
+    std::vector<gpu::Ray> rays(rayCount_);
+    vk_.download(buffers_[gpu::kBindingRays], rays.data(), rays.size() * sizeof(gpu::Ray));
+    return rays;
+}
+
+void GpuBuffers::uploadStrategyBuffer(std::uint32_t i, const void* data, std::uint64_t bytes) {
+    Buffer& b = buffers_.at(gpu::kBindingStrategy + i);
+    if (bytes > b.size)
+        throw Error("uploadStrategyBuffer: " + std::to_string(bytes) + " bytes into strategy slot " + std::to_string(i) +
+                    " of " + std::to_string(b.size));
+    vk_.upload(b, data, bytes);
+}
+
 std::vector<std::uint8_t> GpuBuffers::downloadStrategyBuffer(std::uint32_t i) {
     const Buffer& b = strategyBuffer(i);
     std::vector<std::uint8_t> bytes(b.size);

@@ -112,8 +112,12 @@ public:
     const VulkanContext::CounterReadback* passCounters() const { return &counters_; }
     gpu::PassCounters readPassCounters() const;
     std::vector<gpu::HitRecord> downloadHits();
+    // The rays slot, as the kernels left it (a strategy that writes its queue there: wavefront).
+    std::vector<gpu::Ray> downloadRays();
     // The whole of the strategy's buffer in slot kBindingStrategy + i, as bytes.
     std::vector<std::uint8_t> downloadStrategyBuffer(std::uint32_t i);
+    // `bytes` of `data` into the start of the strategy's buffer in slot kBindingStrategy + i.
+    void uploadStrategyBuffer(std::uint32_t i, const void* data, std::uint64_t bytes);
     // The strategy's buffer in slot kBindingStrategy + i (a 4-byte placeholder when it has none).
     const Buffer& strategyBuffer(std::uint32_t i) const { return buffers_.at(gpu::kBindingStrategy + i); }
     // The pass counters themselves (device-local), for dispatches that zero them first.

@@ -142,7 +142,7 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("kernel_ms_min", K::Timing, "ms", "GPU time, fastest repetition");
         add("kernel_ms_max", K::Timing, "ms", "GPU time, slowest repetition");
         spread("kernel", "GPU time");
-        add("kernel_mrays_s", K::Timing, "Mrays/s", "rays / median GPU time");
+        add("kernel_mrays_s", K::Timing, "Mrays/s", "rays / median GPU time (the rays of every generation for a strategy that traces the whole path: whole_path_rays)");
         for (const char* mode : {"embree1", "embree16"}) {
             const std::string m = mode;
             add(m + "_ms_median", K::Timing, "ms", "Embree " + m + " on the same rays, median");
@@ -151,6 +151,10 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
             spread(m, "Embree " + m);
             add(m + "_mrays_s", K::Timing, "Mrays/s", "rays / Embree's median time");
         }
+        add("embree_rays", K::Count, "rays",
+            "rays Embree traced per repetition: the batch's, or beside a strategy that traces the whole path (wavefront, "
+            "path_megakernel) every generation's, as the kernel did");
+        s.back().since = 19;
         add("embree_threads", K::Context, "threads", "TBB threads Embree ran on");
         add("embree_isa", K::Context, "", "Embree's native packet width (its ISA path)");
         add("embree_build_ms", K::Timing, "ms", "Embree BVH build time");
@@ -330,7 +334,7 @@ const char* columnValueType(const ColumnSpec& column) {
     if (column.name == "cpu_counts_match") return "integer";  // 1 or 0
     static const std::set<std::string> countedUnits = {"rays", "triangles", "bytes", "passes", "cells", "references", "nodes",
                                                        "leaves", "levels", "voxels", "tests", "steps", "pixels", "threads", "lights", "materials",
-                                                       "repetitions", "rounds"};
+                                                       "repetitions", "rounds", "generations"};
     const std::string& n = column.name;
     const bool averaged = n.find("_mean") != std::string::npos || (n.find("_per_") != std::string::npos && !n.ends_with("_max"));
     return countedUnits.count(column.unit) && !averaged ? "integer" : "number";

@@ -53,20 +53,33 @@ namespace fs = std::filesystem;
 namespace {
 
 // The methods a run's rounds time: the kernel (its KernelTimer) and Embree rtcIntersect1 and
-// rtcIntersect16 (any hit: rtcOccluded1 and 16) on the same rays; the single rays' hits go to
-// `embreeHits`.
+// rtcIntersect16 (any hit: rtcOccluded1 and 16) on the same rays (every generation of the path, for
+// a strategy that traces it whole); the single rays' hits of the batch go to `embreeHits`, the
+// rays each repetition traced to `embreeRays`.
 std::vector<TimedMethod> timedMethods(KernelTimer& kernel, EmbreeReference& embree, const RayBatch& batch,
-                                      std::vector<gpu::HitRecord>& embreeHits, std::vector<gpu::HitRecord>& scratch) {
+                                      std::vector<gpu::HitRecord>& embreeHits, std::vector<gpu::HitRecord>& scratch,
+                                      std::uint64_t& embreeRays) {
     std::vector<TimedMethod> methods;
     methods.push_back({"kernel", [&kernel](int warmups, int repetitions) { return kernel.time(warmups, repetitions); }});
     for (EmbreeMode mode : {EmbreeMode::Intersect1, EmbreeMode::Intersect16})
         methods.push_back({mode == EmbreeMode::Intersect1 ? "embree1" : "embree16",
-                           [&embree, &batch, &embreeHits, &scratch, mode](int warmups, int repetitions) {
+                           [&embree, &batch, &embreeHits, &scratch, &embreeRays, mode](int warmups, int repetitions) {
+                               // What the kernel traced: the batch, or (RayBatch::path) every generation of its path,
+                               // those before the batch as closest-hit queries.
+                               auto trace = [&](std::vector<gpu::HitRecord>& hits) {
+                                   double ms = 0.0;
+                                   embreeRays = batch.rays.size();
+                                   if (batch.path)
+                                       for (std::size_t g = 0; g + 1 < batch.path->generations.size(); ++g) {
+                                           ms += embree.trace(*batch.path->generations[g].rays, mode, scratch, gpu::kQueryClosest);
+                                           embreeRays += batch.path->generations[g].rays->size();
+                                       }
+                                   return ms + embree.trace(batch.rays, mode, hits, batch.query);
+                               };
                                TimedBatch timed;
-                               for (int i = 0; i < warmups; ++i) timed.warmupMs += embree.trace(batch.rays, mode, scratch, batch.query);
+                               for (int i = 0; i < warmups; ++i) timed.warmupMs += trace(scratch);
                                for (int i = 0; i < repetitions; ++i)
-                                   timed.ms.push_back(embree.trace(batch.rays, mode, mode == EmbreeMode::Intersect1 ? embreeHits : scratch,
-                                                                   batch.query));
+                                   timed.ms.push_back(trace(mode == EmbreeMode::Intersect1 ? embreeHits : scratch));
                                return timed;
                            }});
     return methods;
@@ -88,6 +101,7 @@ struct RunInProgress {
     RayBatch tiled;  // camera.tile: the batch in tile order, as the method traced it
     StrategyRun method;
     std::vector<gpu::HitRecord> embreeHits, scratch;  // written by the Embree batches
+    std::uint64_t embreeRays = 0;                     // the rays each of them traced
     std::unique_ptr<Rounds> rounds;
 };
 
@@ -158,6 +172,8 @@ std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunC
     p->workload = rayKind.make(inputs, row);
     if (const std::string query = run.getString("rays.query"); query != "own")
         p->workload.batch.query = query == "any" ? gpu::kQueryAny : gpu::kQueryClosest;
+    if (strategy.tracesPath)  // the whole path on the device: the generations before the batch and the passes
+        p->workload.batch.path = std::make_shared<const BatchPath>(batchPath(p->workload, p->cameraRays, mesh));
     const RayBatch& batch = p->workload.batch;
     const std::vector<gpu::Ray>& rays = batch.rays;
     validateRays(rays);
@@ -180,6 +196,8 @@ std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunC
     // camera.tile (Purcell §5.3): the method traces the rays tile by tile; its records come back
     // in the batch's order. Embree traces them row by row.
     const unsigned tile = run.has("camera.tile") ? unsigned(run.getInt("camera.tile")) : 0u;  // camera rays only
+    if (tile && strategy.tracesPath)
+        throw Error("camera.tile: strategy.type = " + strategy.name + " traces the camera rays in the order they are made");
     const std::vector<std::uint32_t> order = tileOrder(p->width, p->height, tile);
     if (!order.empty()) p->tiled = inTileOrder(batch, order);
     p->method = strategy.run(vk, structure, order.empty() ? batch : p->tiled, run, timing, row);
@@ -192,7 +210,7 @@ std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunC
     // Time: the kernel, uninstrumented, and Embree on the same rays, in rounds.
     EmbreeReference& embree = embreeFor(run, scene, caches, row);
     KernelTimer& kernel = *p->method.timer;
-    p->rounds = std::make_unique<Rounds>(timedMethods(kernel, embree, batch, p->embreeHits, p->scratch),
+    p->rounds = std::make_unique<Rounds>(timedMethods(kernel, embree, batch, p->embreeHits, p->scratch, p->embreeRays),
                                          [&kernel] { return kernel.timeHostLoops(); }, roundsOptions(run), caches.started);
     return p;
 }
@@ -209,7 +227,8 @@ void finishRun(RunInProgress& p, const std::string& folder, Caches& caches, Row&
     const unsigned width = p.width, height = p.height;
     const std::vector<gpu::HitRecord>& embreeHits = p.embreeHits;
     samples = p.rounds->result().samples;
-    writeTimingResults(run, vk, rays.size(), p.rounds->result(), p.started, row);
+    writeTimingResults(run, vk, workload.batch.path ? workload.batch.path->rays() : rays.size(), p.rounds->result(), p.started, row);
+    row["embree_rays"] = std::to_string(p.embreeRays);
     method.timer->checkHits();
 
     // The run's image from the batch's hits `hits`: the rays' own hits shaded on `shadedOn` (camera

@@ -25,7 +25,13 @@ layout(constant_id = kSpecLatticeOriginX) const float latticeOriginX = 0.0;
 layout(constant_id = kSpecLatticeOriginY) const float latticeOriginY = 0.0;
 layout(constant_id = kSpecLatticeOriginZ) const float latticeOriginZ = 0.0;
 layout(constant_id = kSpecLatticeStep) const float latticeStep = 0.0;
+#ifdef RT_QUERY_PER_TRACE
+// A kernel that asks different rays different queries (the path megakernel: closest hits before
+// the batch) sets it before each rtTrace, its own kSpecQuery constant naming the batch's.
+uint query = kQueryClosest;
+#else
 layout(constant_id = kSpecQuery) const uint query = kQueryClosest;
+#endif
 layout(constant_id = kSpecNativeDivision) const uint nativeDivision = 0u;
 layout(constant_id = kSpecDivision) const uint division = kDivisionDouble;
 

@@ -41,6 +41,18 @@ RTBENCH_CONST kBindingRayLists = kBindingStrategy + 4u;     // uint[4 * rayCount
 RTBENCH_CONST kBindingPassControl = kBindingStrategy + 5u;  // PassControl, then PassLogEntry[kPassLogEntries]
 RTBENCH_CONST kPassLogEntries = 1024u;  // the pass log is a ring: pass p (from 1) at (p - 1) % kPassLogEntries
 
+// The slots of the strategies that trace a whole path from the camera rays (methods/whole_path.h:
+// the wavefront, Laine, Karras & Aila 2013's queues, and the path megakernel). The wavefront's
+// queue is the common rays and hits slots; the megakernel writes each path's batch ray to the
+// made slots and its record to the hits slot, by path.
+RTBENCH_CONST kBindingPathControl = kBindingStrategy + 0u;  // WholePathControl, then uint[workgroups of slots] (wavefront)
+RTBENCH_CONST kBindingPathCamera = kBindingStrategy + 1u;   // Ray[camera rays]: generation 0, copied into the queue
+RTBENCH_CONST kBindingPathQueue = kBindingStrategy + 2u;    // uvec4[queue]: each queued ray's parent, path, weight bits (wavefront)
+RTBENCH_CONST kBindingPathMade = kBindingStrategy + 3u;     // Ray[slots]: the ray made in each slot (megakernel: each path's batch ray)
+RTBENCH_CONST kBindingPathMadeInfo = kBindingStrategy + 4u; // uvec4[slots]: made (1 or 0), parent, path, weight bits
+RTBENCH_CONST kBindingPathTriangles = kBindingStrategy + 5u;// Triangle[triangles]: the vertices the shading pass reads
+RTBENCH_CONST kPathMaxPasses = 64u;  // shading passes of one path (reflection.iteration, path.bounce: at most 64)
+
 // ---- specialization-constant ids ----
 RTBENCH_CONST kSpecWorkgroupSize = 0;    // local_size_x of every kernel (default 64)
 RTBENCH_CONST kSpecInstrument = 1;       // 1: count work and bytes; 0: timing runs
@@ -135,7 +147,7 @@ RTBENCH_CONST kCountTriangleReads = 5;  // triangle-list entries read, each with
 RTBENCH_CONST kCountActiveLanes = 6;    // branching, persistent, megakernel: sum of active lanes over subgroup ballots
 RTBENCH_CONST kCountLaneSlots = 7;      // the same: sum of subgroup size over subgroup ballots
 RTBENCH_CONST kCountRaysFetched = 8;   // persistent threads: the ray-fetch counter (rays handed out, overshoot included)
-RTBENCH_CONST kCountRaysTraced = 9;    // persistent threads: rays whose record a lane wrote
+RTBENCH_CONST kCountRaysTraced = 9;    // persistent threads: rays whose record a lane wrote; path megakernel: rays traced
 RTBENCH_CONST kCountRunsTraverse = 10; // megakernel: subgroup executions of the traverse state
 RTBENCH_CONST kCountRunsIntersect = 11;// megakernel: subgroup executions of the intersect state
 RTBENCH_CONST kCountSlots = 12;
@@ -234,6 +246,23 @@ struct PassLogEntry {
                       //          w: rays the pass was dispatched for (its input list; setup: the stream)
 };
 
+// A whole path's passes and state on the device (methods/whole_path.h). The wavefront hands it on
+// between its kernels: the queue of the generation being traced, the slots its shading pass fills
+// (queue rays x fan-out). All but `passes`, `material` and `limits.xyz` are the wavefront's,
+// written on the device (wavefront_setup.comp, wavefront_scan.comp); the megakernel reads the rest.
+struct WholePathControl {
+    uvec4 traceGroups;  // byte 0: the trace over the queue: workgroups x, y, z (VkDispatchIndirectCommand)
+    uvec4 slotGroups;   // byte 16: the shading and compaction over the queue's slots, the same
+    uvec4 queue;        // byte 32: x = rays in the queue, y = its generation (0: the camera rays),
+                        //          z = its slots (rays x the next pass's fan-out; 0 after the last)
+    uvec4 compactGroups;// byte 48: the compaction over the slots just shaded: its workgroups (the shading's
+                        //          grid), w = those slots
+    uvec4 limits;       // byte 64: x = queue capacity, y = slot capacity, z = passes, w = 1 when a
+                        //          generation outgrew a capacity (its slots are not shaded: the run fails)
+    Material material;  // byte 80: every surface's (the wavefront traces scenes of one material)
+    ShadingParams passes[kPathMaxPasses];  // byte 128: passes[g] makes generation g + 1 from generation g
+};
+
 // The driver's ray query (methods/ray_query/kernels/ray_query.comp): binds kBindingRays and
 // kBindingHits only; its push constants.
 struct RayQueryParams {
@@ -257,6 +286,7 @@ static_assert(sizeof(Material) == 48);
 static_assert(sizeof(PassCounters) == 96);
 static_assert(sizeof(PassControl) == 80);
 static_assert(sizeof(PassLogEntry) == 64);
+static_assert(sizeof(WholePathControl) == 128 + 48 * kPathMaxPasses && offsetof(WholePathControl, passes) == 128);
 static_assert(sizeof(RayQueryParams) == 32 && offsetof(RayQueryParams, topLevel) == 16);
 static_assert(offsetof(PassControl, listCounts) == 32 && offsetof(PassControl, current) == 48 &&
               offsetof(PassControl, status) == 64 && offsetof(PassLogEntry, kindLists) == 48);

@@ -1,7 +1,9 @@
-// A batch of rays as a workload (harness/workload.h) hands it to a method: the rays, and the query
-// they ask of the scene. The method knows no ray type; the query is all it needs of one.
+// A batch of rays as a workload (workloads/workload.h) hands it to a method: the rays, and the query
+// they ask of the scene. The method knows no ray type; the query is all it needs of one (and, for
+// a strategy that traces the whole path, the path: the rays before the batch and the passes).
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -9,9 +11,41 @@
 
 namespace rtbench {
 
+// One generation of the path a batch ends, as the CPU made it (workloads/workload.h Generation):
+// each ray, its hit by the run's structure, the ray of the generation before it came from, its
+// path (the key of its random numbers) and weight. The camera rays have no parents, paths or
+// weights (ray i: parent i, path i, weight 1); the batch has no hits (the method's to find).
+struct PathGeneration {
+    const std::vector<gpu::Ray>* rays = nullptr;
+    const std::vector<gpu::HitRecord>* hits = nullptr;
+    const std::vector<std::uint32_t>* parents = nullptr;
+    const std::vector<std::uint32_t>* paths = nullptr;
+    const std::vector<float>* weights = nullptr;
+};
+
+// How the batch came to be, for a strategy that traces the whole path on the device from the camera
+// rays (StrategyType::tracesPath: the wavefront): the generations and the shading passes between.
+struct BatchPath {
+    std::vector<PathGeneration> generations;  // 0: the camera rays; back(): the batch
+    std::vector<gpu::ShadingParams> passes;   // passes[g] made generation g + 1 from generation g
+    std::vector<gpu::Triangle> triangles;     // the traced scene's vertices, as the passes read them
+    gpu::Material material{};                 // every surface's
+    // Why the passes read more than one material or any light ("" when they do not): the
+    // wavefront binds one material and no light.
+    std::string notUniform;
+    // Rays in all the generations: what a strategy tracing the whole path traces.
+    std::uint64_t rays() const {
+        std::uint64_t n = 0;
+        for (const PathGeneration& g : generations) n += g.rays->size();
+        return n;
+    }
+};
+
 struct RayBatch {
     std::vector<gpu::Ray> rays;
     std::uint32_t query = gpu::kQueryClosest;  // gpu::kQuery*: closest hit or any hit
+    // Set by the runner for a strategy that traces the whole path (null for the others).
+    std::shared_ptr<const BatchPath> path;
 };
 
 // The query's name, as the rays.query column and the messages write it.

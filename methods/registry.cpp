@@ -11,7 +11,9 @@
 #include "methods/persistent/persistent_strategy.h"
 #include "methods/plain/plain_strategy.h"
 #include "methods/ray_query/driver_structure.h"
+#include "methods/path_megakernel/path_megakernel_strategy.h"
 #include "methods/ray_query/ray_query_strategy.h"
+#include "methods/wavefront/wavefront_strategy.h"
 #include "structures/error.h"
 
 namespace rtbench {
@@ -26,7 +28,8 @@ const std::vector<const StrategyType*>& strategyTypes() {
     static const std::vector<const StrategyType*> types = {&branchingStrategyType(), &multipassStrategyType(),
                                                                  &persistentStrategyType(), &megakernelStrategyType(),
                                                                  &rayQueryStrategyType(), &plainStrategyType(),
-                                                                 &cpuStrategyType()};
+                                                                 &cpuStrategyType(), &wavefrontStrategyType(),
+                                                                 &pathMegakernelStrategyType()};
     return types;
 }
 

@@ -86,6 +86,10 @@ struct StrategyType {
     // refusal before the structure (and so the exact size) is known; 0: none per ray.
     std::uint64_t ownBytesPerRay = 0;
     std::string onlyStructure;  // the one structure.type it can trace ("": any)
+    // Traces the whole path from the camera rays on the device (the wavefront): the runner hands it
+    // RayBatch::path, and its time covers every generation and the shading passes between, so
+    // Embree traces the rays of every generation too and the rates count them all.
+    bool tracesPath = false;
     // Why a device cannot run it ("" when it can; null: any device that runs rtbench can): the
     // run fails with this before anything is loaded.
     std::string (*refusal)(const DeviceInfo& device) = nullptr;

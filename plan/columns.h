@@ -69,7 +69,10 @@ struct ColumnSpec {
 //  16  + Purcell 2002 Fig. 9's texture cache (cache.* keys, cache_* columns).
 //  17  + the instruction estimate (instructions_*), tiled rendering (camera.tile).
 //  18  + intersection.division (double, as every run before it divided, or integer: no double).
-constexpr int kSchemaVersion = 18;
+//  19  + the wavefront (strategy.type = wavefront, wavefront_*, kernel_ms_trace, _shade, _queue);
+//        a strategy that traces the whole path times Embree on every generation's rays, and its
+//        rates count them all.
+constexpr int kSchemaVersion = 19;
 
 // The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".
 std::string paramColumn(const std::string& key);

@@ -82,6 +82,25 @@ Workload followGenerations(const WorkloadInputs& in, Row& row, const std::vector
     return w;
 }
 
+BatchPath batchPath(const Workload& w, const std::vector<gpu::Ray>& cameraRays, const TriangleMesh& scene) {
+    BatchPath path;
+    if (w.fromCamera()) {
+        path.generations.push_back({&w.batch.rays});
+    } else {
+        path.generations.push_back({&cameraRays, &w.cameraHits});
+        for (const Generation& g : w.between) path.generations.push_back({&g.rays, &g.hits, &g.parents, &g.paths, &g.weights});
+        path.generations.push_back({&w.batch.rays, nullptr, &w.parents, &w.paths, &w.weights});
+    }
+    path.passes = w.shading;
+    path.triangles = floatTriangles(scene);
+    path.material = w.surfaces->materials.at(0);
+    if (w.surfaces->materials.size() > 1 || !w.surfaces->materialOf.empty())
+        path.notUniform = "surfaces have materials of their own";
+    else if (!w.surfaces->lights.empty())
+        path.notUniform = "shading passes read lights";
+    return path;
+}
+
 std::string checkShadingOnDevice(VulkanContext& vk, unsigned workgroupSize, const TriangleMesh& scene,
                                  const std::vector<gpu::Ray>& cameraRays, const Workload& w, Row& row) {
     const std::vector<gpu::Triangle> triangles = floatTriangles(scene);  // once for every pass

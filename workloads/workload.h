@@ -73,6 +73,10 @@ struct Workload {
     std::uint32_t ancestor(std::uint32_t ray, std::size_t g) const;
 };
 
+// The path `workload` traced to its batch, for a strategy that traces it whole on the device
+// (RayBatch::path): it points into `workload` and `cameraRays`, which must outlive it.
+BatchPath batchPath(const Workload& workload, const std::vector<gpu::Ray>& cameraRays, const TriangleMesh& scene);
+
 // Rays of `hits` that hit something.
 std::uint64_t countHits(const std::vector<gpu::HitRecord>& hits);
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "methods/ray_batch.h"
 #include "methods/structure.h"
 
 namespace rtbench {
@@ -29,5 +30,12 @@ LaneCounts operator+(const LaneCounts& a, const LaneCounts& b);
 LaneCounts branchingLaneCounts(const Structure& structure, const std::vector<gpu::Ray>& rays,
                                unsigned subgroupSize, std::uint64_t iterationLimit = 0,
                                std::uint32_t query = gpu::kQueryClosest);
+
+// The path megakernel's ballots (methods/path_megakernel): a lane per camera ray of `path`, tracing
+// its camera ray, then each path its hit starts (the first pass's slots in turn) generation by
+// generation until the path ends, at one rtTrace call site; the batch's rays ask `batchQuery`.
+// The path's generations must be in the order of their paths (as the CPU makes them).
+LaneCounts pathLaneCounts(const Structure& structure, const BatchPath& path, std::uint32_t batchQuery,
+                          unsigned subgroupSize, std::uint64_t iterationLimit = 0);
 
 }  // namespace rtbench

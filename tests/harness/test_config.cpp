@@ -90,8 +90,8 @@ TEST_F(Config, OutOfRange) {
 }
 
 TEST_F(Config, ValueNotInTheAllowedSet) {
-    EXPECT_EQ(errorOf(kMinimal + "[strategy]\ntype = \"wavefront\"\n"),
-              path_ + ":6: key 'strategy.type': 'wavefront' is not allowed (allowed: branching, multipass, persistent, megakernel, ray_query, plain, cpu)");
+    EXPECT_EQ(errorOf(kMinimal + "[strategy]\ntype = \"ray_sorting\"\n"),
+              path_ + ":6: key 'strategy.type': 'ray_sorting' is not allowed (allowed: branching, multipass, persistent, megakernel, ray_query, plain, cpu, wavefront, path_megakernel)");
 }
 
 TEST_F(Config, MissingRequiredKey) {

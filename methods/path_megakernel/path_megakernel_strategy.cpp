@@ -1,0 +1,175 @@
+#include "path_megakernel_strategy.h"
+
+#include <cstring>
+
+#include "methods/branching/branching_strategy.h"
+#include "methods/branching/lane_counts.h"
+#include "methods/metrics.h"
+#include "methods/whole_path.h"
+#include "plan/warnings.h"
+#include "structures/error.h"
+
+namespace rtbench {
+
+namespace {
+
+constexpr std::uint32_t kMadeInfo = gpu::kBindingPathMadeInfo - gpu::kBindingStrategy;
+constexpr std::uint32_t kMade = gpu::kBindingPathMade - gpu::kBindingStrategy;
+
+// What the kernel left at each path: its batch ray and record, and whether it reached the batch.
+struct PathEnds {
+    std::vector<gpu::Ray> rays;
+    std::vector<gpu::HitRecord> hits;
+    std::vector<std::uint32_t> made, weightBits;
+};
+
+PathEnds downloadPathEnds(GpuBuffers& buffers, std::uint64_t paths) {
+    PathEnds e;
+    e.hits = buffers.downloadHits();
+    e.hits.resize(paths);
+    const std::vector<std::uint8_t> rays = buffers.downloadStrategyBuffer(kMade);
+    const std::vector<std::uint8_t> info = buffers.downloadStrategyBuffer(kMadeInfo);
+    e.rays.resize(paths);
+    std::memcpy(e.rays.data(), rays.data(), paths * sizeof(gpu::Ray));
+    for (std::uint64_t p = 0; p < paths; ++p) {
+        std::uint32_t entry[4];
+        std::memcpy(entry, info.data() + 16 * p, 16);
+        e.made.push_back(entry[0]);
+        e.weightBits.push_back(entry[3]);
+    }
+    return e;
+}
+
+// The batch as the kernel left it, in the batch's order (its rays come in the order of their
+// paths), and how it differs from the CPU's batch ("" when it does not): the paths that reached
+// it, each ray's bits and weight.
+std::string batchMismatch(const PathEnds& e, const PathGeneration& cpu, std::vector<gpu::HitRecord>& hits) {
+    std::uint64_t reached = 0;
+    for (std::uint32_t m : e.made) reached += m != 0;
+    hits.assign(cpu.rays->size(), gpu::HitRecord{});
+    std::uint64_t differing = 0;
+    std::string first;
+    for (std::size_t b = 0; b < cpu.rays->size(); ++b) {
+        const std::uint32_t p = cpu.paths ? (*cpu.paths)[b] : std::uint32_t(b);
+        const float weight = cpu.weights ? (*cpu.weights)[b] : 1.0f;
+        std::uint32_t weightBits;
+        std::memcpy(&weightBits, &weight, 4);
+        const char* what = p >= e.made.size() || !e.made[p]                               ? "path that never reached the batch"
+                           : std::memcmp(&e.rays[p], &(*cpu.rays)[b], sizeof(gpu::Ray)) ? "ray"
+                           : e.weightBits[p] != weightBits                              ? "weight"
+                                                                                         : nullptr;
+        if (p < e.hits.size()) hits[b] = e.hits[p];
+        if (what && differing++ == 0) first = "ray " + std::to_string(b) + "'s " + what;
+    }
+    if (reached != cpu.rays->size())
+        return "batch: " + std::to_string(reached) + " paths reached it on the device, " + std::to_string(cpu.rays->size()) +
+               " on the CPU";
+    if (!differing) return "";
+    return "batch (" + std::to_string(differing) + " of " + std::to_string(cpu.rays->size()) + " rays; first: " + first + ")";
+}
+
+class PathMegakernelTimer : public KernelTimer {
+public:
+    PathMegakernelTimer(VulkanContext& vk, std::unique_ptr<GpuBuffers> buffers, ComputePipeline timed,
+                        std::uint64_t cameraRays, std::uint64_t paths, std::vector<gpu::HitRecord> counted)
+        : vk_(vk), buffers_(std::move(buffers)), timed_(timed), cameraRays_(cameraRays), paths_(paths),
+          counted_(std::move(counted)) {}
+    ~PathMegakernelTimer() override { vk_.destroy(timed_); }
+    TimedBatch time(int warmups, int repetitions) override {
+        const std::vector<VulkanContext::DispatchCall> calls(
+            std::size_t(warmups + repetitions),
+            {&timed_, buffers_->descriptorSet(timed_), buffers_->pushConstants(), cameraRays_});
+        return splitWarmups(vk_.dispatchAll(calls), warmups);
+    }
+    void checkHits() override {
+        const PathEnds e = downloadPathEnds(*buffers_, paths_);
+        expectSameHits(e.hits, counted_, "path megakernel");
+    }
+
+private:
+    VulkanContext& vk_;
+    std::unique_ptr<GpuBuffers> buffers_;
+    ComputePipeline timed_;
+    std::uint64_t cameraRays_, paths_;
+    std::vector<gpu::HitRecord> counted_;  // by path
+};
+
+StrategyRun runPathMegakernelStrategy(VulkanContext& vk, const Structure& structure, const RayBatch& batch,
+                                      const RunConfig&, const TimingOptions& timing, Row& row) {
+    const BatchPath& path = traceablePath(batch, "path_megakernel");
+    for (std::size_t g = 1; g < path.passes.size(); ++g)
+        if (path.passes[g].pass.z != 1)
+            throw Error("strategy.type = path_megakernel follows one ray per hit after the first pass, and pass " +
+                        std::to_string(g + 1) + " makes " + std::to_string(path.passes[g].pass.z));
+    if (timing.workgroupSize % vk.info().subgroupSize)
+        throw Error("strategy.workgroup_size " + std::to_string(timing.workgroupSize) + " is not a multiple of the subgroup size " +
+                    std::to_string(vk.info().subgroupSize));
+    const std::uint64_t cameraRays = path.generations.front().rays->size();
+    std::vector<std::uint32_t> fanOuts;
+    for (const gpu::ShadingParams& p : path.passes) fanOuts.push_back(p.pass.z);
+    const std::uint64_t paths = wholePathCapacity(cameraRays, fanOuts).queue;  // fan-out 1 after the first pass
+    auto buffers = uploadWholePath(vk, structure, path, paths, {0, 0, paths}, 0, std::uint32_t(paths));
+    const std::string kernel = structure.kernelPrefix() + "_path_megakernel";
+    KernelSpec spec = structureKernelSpec(structure, timing.workgroupSize, batch.query, {});
+    ComputePipeline counted = buffers->createKernel(kernel, spec);
+    vk.dispatch(counted, buffers->descriptorSet(counted), buffers->pushConstants(), cameraRays, buffers->passCounters());
+    vk.destroy(counted);
+    const gpu::PassCounters counters = buffers->readPassCounters();
+    const PathEnds ends = downloadPathEnds(*buffers, paths);
+
+    StrategyRun run;
+    std::vector<gpu::HitRecord> hits;
+    const std::string mismatch = batchMismatch(ends, path.generations.back(), hits);
+    writeWholePathColumns(path, row);
+    const std::uint64_t traced = counters.counts[gpu::kCountRaysTraced];
+    row["path_megakernel_rays_traced"] = std::to_string(traced);
+    const std::uint64_t activeLanes = counters.counts[gpu::kCountActiveLanes], laneSlots = counters.counts[gpu::kCountLaneSlots];
+    run.metrics = branchingMetrics(hits, activeLanes, laneSlots, structure.costs());
+    run.cpuMismatches = recordMismatches(hits, structure.trace(batch.rays, batch.query));
+    const LaneCounts lanes = pathLaneCounts(structure, path, batch.query, vk.info().subgroupSize, loopIterationBudget(vk.info()));
+    row["lanes_model_active"] = std::to_string(lanes.activeLanes);
+    row["lanes_model_slots"] = std::to_string(lanes.laneSlots);
+    const LaneVerdict verdict = judgeLaneCounts(vk.info(), activeLanes, laneSlots, lanes.activeLanes, lanes.laneSlots);
+    run.countsCompared = vk.info().lockStepSubgroups;
+    if (!verdict.warning.empty()) addWarning(row, verdict.warning);
+    run.countsMismatch = !mismatch.empty() ? mismatch + " differs"
+                         : traced != path.rays()
+                             ? "rays traced (" + std::to_string(traced) + " on the device, " + std::to_string(path.rays()) + " on the path) differ"
+                             : verdict.mismatch;
+    run.truncatedRays = lanes.raysInLongSubgroups;
+    row["rays_cut_short"] = std::to_string(run.truncatedRays);
+    row["stream_batches"] = "1";
+    if (run.truncatedRays)
+        run.truncatedWhy = loopLimitWhy(vk.info(), lanes.maxSubgroupIterations, run.truncatedRays) +
+                           ": a camera ray's whole path runs in one invocation (the wavefront traces a generation per dispatch)";
+    spec.instrument = false;
+    const ComputePipeline timed = buffers->createKernel(kernel, spec);
+    run.timer = std::make_unique<PathMegakernelTimer>(vk, std::move(buffers), timed, cameraRays, paths, ends.hits);
+    run.hits = std::move(hits);
+    return run;
+}
+
+}  // namespace
+
+const StrategyType& pathMegakernelStrategyType() {
+    static const StrategyType type = [] {
+        StrategyType t;
+        t.name = "path_megakernel";
+        t.help = "the whole path in one kernel: each invocation traces its camera ray and every path its hit starts, shading "
+                 "between the traces (Laine, Karras & Aila 2013's megakernel, the wavefront's peer)";
+        t.tracesPath = true;
+        // The camera rays' copy, a batch ray and its flags (one path per camera ray).
+        t.ownBytesPerRay = sizeof(gpu::Ray) + sizeof(gpu::Ray) + 16;
+        t.columns = wholeTraversalColumns();
+        t.columns.insert(t.columns.end(), wholePathColumns().begin(), wholePathColumns().end());
+        ColumnSpec traced{"path_megakernel_rays_traced", ColumnKind::Count, "rays",
+                          "path_megakernel: rays the kernel traced, counted on the device (must equal whole_path_rays)"};
+        traced.since = 19;
+        t.columns.push_back(traced);
+        t.run = runPathMegakernelStrategy;
+        return t;
+    }();
+    return type;
+}
+
+}  // namespace rtbench
