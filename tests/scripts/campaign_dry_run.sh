@@ -8,7 +8,7 @@ bin=$(realpath "$1")
 work=$(realpath -m "$2")
 cd "$(dirname "$0")/../.."
 rm -rf "$work" && mkdir -p "$work/out"
-configs=(${CONFIGS:-bunny structures purcell2002 stability accuracy raytypes})
+configs=(${CONFIGS:-bunny structures purcell2002 stability accuracy raytypes wavefront})
 OUT="$work/out" BIN="$bin" CONFIGS="${configs[*]}" bash scripts/gpu_campaign.sh dry-run
 cat "$work/out/campaign.log"
 bash scripts/gpu_campaign.sh unpack "$work/out/campaign.tar.xz" "$work/results" > /dev/null
