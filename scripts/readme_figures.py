@@ -545,6 +545,40 @@ def strategies() -> list:
     return out + [""]
 
 
+def wavefront() -> list:
+    runs, context = load("wavefront")
+    ok = runs[runs.status == "ok"].copy()
+    ok["structure"] = structure_names(ok.structure_type)
+    ok["k"] = [int(r.reflection_iteration) if r.rays_type == "reflection" else int(r.path_bounce) if r.rays_type == "path"
+               else 0 for r in ok.itertuples()]
+    out = ["### `results/wavefront/`: whole paths on the device (issue 18)", "", provenance("wavefront", runs, context), "",
+           "Full table: [`results/wavefront/tables.md`](results/wavefront/tables.md). A path from the camera rays to its "
+           "deepest generation k (reflection iteration or path bounce), every generation traced on the device with no "
+           "host round trip: the wavefront (a kernel per stage over stable, compacted queues) and the path megakernel "
+           "(one invocation per camera ray's whole path); host: branching's runs of each generation as a batch of its "
+           "own, their medians summed (the shading and the host's round trips untimed). Each ratio is of two runs' "
+           "medians (no interval). × Embree: over Embree rtcIntersect1 on the same rays of every generation, in the "
+           "same run.", "",
+           "| scene | rays | k | structure | rays traced | host ms | wavefront ms | megakernel ms | megakernel ÷ wavefront | "
+           "wavefront × Embree | lane util. (wavefront batch / megakernel) |", "|---|---|---|---|---|---|---|---|---|---|---|"]
+    whole = ok[ok.strategy_type.isin(["wavefront", "path_megakernel"]) & (ok.rays_type != "primary")]
+    for (scene, kind, structure), g in whole.groupby(["scene", "rays_type", "structure"]):
+        k = g.k.max()
+        w = g[(g.k == k) & (g.strategy_type == "wavefront")]
+        m = g[(g.k == k) & (g.strategy_type == "path_megakernel")]
+        b = ok[(ok.strategy_type == "branching") & (ok.scene == scene) & (ok.structure == structure) &
+               (((ok.rays_type == kind) & (ok.k <= k)) | (ok.rays_type == "primary"))]
+        if w.empty or m.empty or len(b) != k + 1:
+            continue
+        w, m = w.iloc[0], m.iloc[0]
+        out.append(f"| {scene} | {kind} | {k} | {structure} | {count(w.whole_path_rays)} | {num(b.kernel_ms_median.sum())} | "
+                   f"{num(w.kernel_ms_median)} | {num(m.kernel_ms_median)} | {num(m.kernel_ms_median / w.kernel_ms_median, 2)} | "
+                   f"{num(w.kernel_ms_median / w.embree1_ms_median, 2)} | {num(w.simd_lane_utilisation)} / "
+                   f"{num(m.simd_lane_utilisation)} |")
+    out += [""] + charts("wavefront", {"wavefront": "GPU time per ray traced against the generations of the path"})
+    return out + [""]
+
+
 def division() -> list:
     runs, context = load("division")
     ok = runs[runs.status == "ok"].copy()
@@ -657,7 +691,7 @@ def section() -> str:
            "medians with 95% bootstrap intervals of the repetitions of one run (an interval says nothing of the spread "
            "between runs in separate processes); a speed claim is a ratio measured in the same run. Counts (passes, "
            "bytes, work, rays wrong) are the same on every machine with the same device; timings are this machine's.", ""]
-    for part in (bunny, structures, purcell2002, stability, accuracy, raytypes, strategies, division, christen2005, golden, h200):
+    for part in (bunny, structures, purcell2002, stability, accuracy, raytypes, strategies, wavefront, division, christen2005, golden, h200):
         out += part()
     while out and out[-1] == "":
         out.pop()

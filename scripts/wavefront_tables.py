@@ -118,24 +118,35 @@ def main() -> int:
 
     panels = sorted({(r.scene, r.rays_type, r.structure) for r in whole.itertuples() if r.rays_type != "primary"})
     if panels:
-        fig, axes = plt.subplots(1, len(panels), figsize=(3.6 * len(panels), 3.6), squeeze=False, sharey=True)
-        for ax, (scene, kind, structure) in zip(axes[0], panels):
+        cols = min(3, len(panels))
+        rows = (len(panels) + cols - 1) // cols
+        fig, axes = plt.subplots(rows, cols, figsize=(4.4 * cols, 3.4 * rows), squeeze=False)
+        for ax in axes.flat[len(panels):]:
+            ax.axis("off")
+        hp_all = host_paths(runs)
+        for ax, (scene, kind, structure) in zip(axes.flat, panels):
             of = whole[(whole.scene == scene) & (whole.structure == structure) &
                        ((whole.rays_type == kind) | (whole.rays_type == "primary"))]
             for strategy, colour, marker in (("wavefront", "C0", "o"), ("path_megakernel", "C1", "s")):
                 s = of[of.strategy_type == strategy].sort_values("generation")
                 ax.plot(s.generation, 1e6 * s.kernel_ms_median / s.whole_path_rays, marker=marker, color=colour,
                         label=strategy.replace("_", " "))
-            hp = host_paths(runs)
-            hp = hp[(hp.scene == scene) & (hp.structure == structure) & (hp.rays_type == kind)].sort_values("generation")
+            # The host's path: the camera rays' branching run, then the sums up to each generation.
+            camera = runs[(runs.strategy_type == "branching") & (runs.scene == scene) & (runs.structure == structure) &
+                          (runs.rays_type == "primary")]
+            hp = hp_all[(hp_all.scene == scene) & (hp_all.structure == structure) & (hp_all.rays_type == kind)]
+            hp = pd.concat([pd.DataFrame({"generation": [0], "rays": camera.rays.values[:1], "ms": camera.kernel_ms_median.values[:1],
+                                          "embree_ms": camera.embree1_ms_median.values[:1]}), hp]).sort_values("generation")
             ax.plot(hp.generation, 1e6 * hp.ms / hp.rays, marker="^", color="C2", label="host: branching per generation")
             ax.plot(hp.generation, 1e6 * hp.embree_ms / hp.rays, linestyle="--", color="grey", label="Embree, 1 thread")
             ax.set_xlabel(f"{kind} generation k (0: camera rays)")
+            ax.set_ylabel("ns per ray traced")
+            ax.set_ylim(bottom=0)
             ax.set_title(f"{scene}, {kind}, {structure}", fontsize=9)
             ax.set_xticks(sorted(of.generation.unique()))
-        axes[0][0].set_ylabel("ns per ray traced (the whole path)")
-        axes[0][-1].legend(fontsize=7)
-        fig.suptitle(f"Whole paths on {device}, {size} camera rays ({commit_text(context)})", fontsize=9)
+        axes.flat[0].legend(fontsize=7)
+        fig.suptitle(f"Whole paths on {device}, {size} camera rays: GPU time of the path over the rays it traced "
+                     f"({commit_text(context)})", fontsize=9)
         fig.tight_layout()
         for ext in ("png", "svg"):
             fig.savefig(folder / f"wavefront.{ext}", dpi=110)
