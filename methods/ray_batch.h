@@ -24,14 +24,15 @@ struct PathGeneration {
 };
 
 // How the batch came to be, for a strategy that traces the whole path on the device from the camera
-// rays (StrategyType::tracesPath: the wavefront): the generations and the shading passes between.
+// rays (StrategyType::tracesPath: the wavefront, the path megakernel): the generations and the
+// shading passes between.
 struct BatchPath {
     std::vector<PathGeneration> generations;  // 0: the camera rays; back(): the batch
     std::vector<gpu::ShadingParams> passes;   // passes[g] made generation g + 1 from generation g
     std::vector<gpu::Triangle> triangles;     // the traced scene's vertices, as the passes read them
     gpu::Material material{};                 // every surface's
     // Why the passes read more than one material or any light ("" when they do not): the
-    // wavefront binds one material and no light.
+    // whole-path strategies bind one material and no light (methods/whole_path.h).
     std::string notUniform;
     // Rays in all the generations: what a strategy tracing the whole path traces.
     std::uint64_t rays() const {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "methods/branching/branching_strategy.h"
 #include "structures/error.h"
 
 namespace rtbench {
@@ -56,18 +57,19 @@ std::unique_ptr<GpuBuffers> uploadWholePath(VulkanContext& vk, const Structure& 
     return buffers;
 }
 
-const std::vector<ColumnSpec>& wholePathColumns() {
-    static const std::vector<ColumnSpec> columns = [] {
-        std::vector<ColumnSpec> c = {
-            {"whole_path_generations", ColumnKind::Count, "generations",
-             "wavefront, path_megakernel: generations traced on the device, the camera rays' and the batch's included"},
-            {"whole_path_rays", ColumnKind::Count, "rays",
-             "wavefront, path_megakernel: rays traced over those generations: what the kernel time covers, what Embree traces "
-             "beside it and the rates count"}};
-        for (ColumnSpec& col : c) col.since = 19;
-        return c;
-    }();
-    return columns;
+std::vector<ColumnSpec> wholePathStrategyColumns(std::vector<ColumnSpec> own) {
+    std::vector<ColumnSpec> c = wholeTraversalColumns();
+    own.insert(own.begin(), {
+        {"whole_path_generations", ColumnKind::Count, "generations",
+         "wavefront, path_megakernel: generations traced on the device, the camera rays' and the batch's included"},
+        {"whole_path_rays", ColumnKind::Count, "rays",
+         "wavefront, path_megakernel: rays traced over those generations: what the kernel time covers, what Embree traces "
+         "beside it and the rates count"}});
+    for (ColumnSpec& col : own) {
+        col.since = 19;
+        c.push_back(col);
+    }
+    return c;
 }
 
 void writeWholePathColumns(const BatchPath& path, Row& row) {

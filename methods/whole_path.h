@@ -41,8 +41,10 @@ std::unique_ptr<GpuBuffers> uploadWholePath(VulkanContext& vk, const Structure& 
                                             std::uint64_t streamRays, const WholePathSizes& sizes,
                                             std::uint32_t queueCapacity, std::uint32_t slotCapacity);
 
-// whole_path_generations and whole_path_rays, which both write.
-const std::vector<ColumnSpec>& wholePathColumns();
+// A whole-path strategy's columns: the whole-traversal kernels' (rays_cut_short, the lane model's,
+// stream_batches), whole_path_generations and whole_path_rays, which both write
+// (writeWholePathColumns), then its `own` (results schema 19).
+std::vector<ColumnSpec> wholePathStrategyColumns(std::vector<ColumnSpec> own);
 void writeWholePathColumns(const BatchPath& path, Row& row);
 
 }  // namespace rtbench

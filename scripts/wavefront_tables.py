@@ -16,7 +16,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import pandas as pd
 
-from rtbench_results import commit_text, fmt, open_results, structure_names, wrong_rays, write_tables
+from rtbench_results import commit_text, failed_rows, fmt, open_results, structure_names, wrong_rays, write_tables
 
 
 def generation(run) -> int:
@@ -109,11 +109,7 @@ def main() -> int:
                      f"{'' if m is None else fmt(m.kernel_ms_median / m.embree1_ms_median, 2)} | "
                      f"{'' if w is None else fmt(w.simd_lane_utilisation)} / {'' if m is None else fmt(m.simd_lane_utilisation)} | "
                      f"{int(g.wrong.sum())} |")
-    if len(failed):
-        lines += ["", "Failed runs (a run that cannot be trusted is a failed row with the reason):", "",
-                  "| run | structure | strategy | why |", "|---|---|---|---|"]
-        for r in failed.itertuples():
-            lines.append(f"| {r.run} | {r.structure_type} | {r.strategy_type} | {str(r.error).replace('|', '/')} |")
+    lines += failed_rows(failed, "structure", lambda r: r.structure_type)
     write_tables(folder, lines)
 
     panels = sorted({(r.scene, r.rays_type, r.structure) for r in whole.itertuples() if r.rays_type != "primary"})

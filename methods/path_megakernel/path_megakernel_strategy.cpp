@@ -160,12 +160,9 @@ const StrategyType& pathMegakernelStrategyType() {
         t.tracesPath = true;
         // The camera rays' copy, a batch ray and its flags (one path per camera ray).
         t.ownBytesPerRay = sizeof(gpu::Ray) + sizeof(gpu::Ray) + 16;
-        t.columns = wholeTraversalColumns();
-        t.columns.insert(t.columns.end(), wholePathColumns().begin(), wholePathColumns().end());
-        ColumnSpec traced{"path_megakernel_rays_traced", ColumnKind::Count, "rays",
-                          "path_megakernel: rays the kernel traced, counted on the device (must equal whole_path_rays)"};
-        traced.since = 19;
-        t.columns.push_back(traced);
+        t.columns = wholePathStrategyColumns({{"path_megakernel_rays_traced", ColumnKind::Count, "rays",
+                                               "path_megakernel: rays the kernel traced, counted on the device (must equal "
+                                               "whole_path_rays)"}});
         t.run = runPathMegakernelStrategy;
         return t;
     }();

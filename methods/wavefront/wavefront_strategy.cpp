@@ -254,16 +254,11 @@ const StrategyType& wavefrontStrategyType() {
         t.tracesPath = true;
         // The camera rays' copy, a queue entry, a made ray and its flags (fan-out 1).
         t.ownBytesPerRay = sizeof(gpu::Ray) + 16 + sizeof(gpu::Ray) + 16;
-        t.columns = wholeTraversalColumns();
-        t.columns.insert(t.columns.end(), wholePathColumns().begin(), wholePathColumns().end());
-        for (ColumnSpec c : std::vector<ColumnSpec>{
-                 {"wavefront_queue_capacity", K::Count, "rays", "wavefront: rays its queue holds (the camera rays times the passes' fan-outs)"},
-                 {"kernel_ms_trace", K::Timing, "ms", "wavefront: median GPU time of its trace stages per repetition"},
-                 {"kernel_ms_shade", K::Timing, "ms", "wavefront: median GPU time of its shading stages per repetition"},
-                 {"kernel_ms_queue", K::Timing, "ms", "wavefront: median GPU time of its setup, scans and compactions per repetition"}}) {
-            c.since = 19;
-            t.columns.push_back(c);
-        }
+        t.columns = wholePathStrategyColumns({
+            {"wavefront_queue_capacity", K::Count, "rays", "wavefront: rays its queue holds (the camera rays times the passes' fan-outs)"},
+            {"kernel_ms_trace", K::Timing, "ms", "wavefront: median GPU time of its trace stages per repetition"},
+            {"kernel_ms_shade", K::Timing, "ms", "wavefront: median GPU time of its shading stages per repetition"},
+            {"kernel_ms_queue", K::Timing, "ms", "wavefront: median GPU time of its setup, scans and compactions per repetition"}});
         t.run = runWavefrontStrategy;
         return t;
     }();

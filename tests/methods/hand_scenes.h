@@ -38,6 +38,15 @@ inline TriangleMesh meshOf(const std::vector<Tri>& tris) {
     return m;
 }
 
+// Two parallel mirrors, a floor y = 0 (triangles 0, 1) and a ceiling y = 4 (2, 3), both over
+// x, z in [-8, 8] (tests/workloads/test_reflection_rays.cpp derives their iterations by hand).
+inline TriangleMesh parallelMirrors() {
+    return meshOf({{glm::vec3(-8, 0, -8), glm::vec3(8, 0, -8), glm::vec3(-8, 0, 8)},
+                   {glm::vec3(8, 0, -8), glm::vec3(8, 0, 8), glm::vec3(-8, 0, 8)},
+                   {glm::vec3(-8, 4, -8), glm::vec3(8, 4, -8), glm::vec3(-8, 4, 8)},
+                   {glm::vec3(8, 4, -8), glm::vec3(8, 4, 8), glm::vec3(-8, 4, 8)}});
+}
+
 inline gpu::Ray ray(glm::vec3 o, glm::vec3 d, float tMin = 0.0f, float tMax = gpu::kNoHitT) {
     return {glm::vec4(o, tMin), glm::vec4(d, tMax)};
 }

@@ -44,14 +44,6 @@ TEST(WholePathCapacity, TheQueueHoldsTheLargestGenerationAndTheSlotsTheLargestPa
     EXPECT_THAT(errorOf([] { wholePathCapacity(1u << 20, {1u << 12, 2}); }), HasSubstr("32-bit ray indices"));
 }
 
-// The floor y = 0 and the ceiling y = 4 of tests/workloads/test_reflection_rays.cpp.
-TriangleMesh parallelMirrors() {
-    return meshOf({{glm::vec3(-8, 0, -8), glm::vec3(8, 0, -8), glm::vec3(-8, 0, 8)},
-                   {glm::vec3(8, 0, -8), glm::vec3(8, 0, 8), glm::vec3(-8, 0, 8)},
-                   {glm::vec3(-8, 4, -8), glm::vec3(8, 4, -8), glm::vec3(-8, 4, 8)},
-                   {glm::vec3(8, 4, -8), glm::vec3(8, 4, 8), glm::vec3(-8, 4, 8)}});
-}
-
 using WavefrontKernels = VulkanTest;
 
 // A whole-path strategy's instrumented run of `w` (its StrategyRun), the path as the runner hands it.
@@ -159,26 +151,35 @@ TEST_F(WavefrontKernels, ADiffusePathOfTwoRaysPerHitInsideABoxIsTheCpusGeneratio
     }
 }
 
+// The parallel mirrors' reflection iteration 2 on brute force, made afresh for each tampering.
+struct MirrorsIteration2 {
+    TriangleMesh mesh = parallelMirrors();
+    std::vector<gpu::Ray> camera = {ray({0, 2, 0}, {1, -1, 0}), ray({-1, 1, -1}, {0, 1, 0}), ray({0, 2, 0}, {1, 0, 0})};
+    std::unique_ptr<Structure> s;
+    RunConfig run;
+    explicit MirrorsIteration2(const DeviceInfo& device) : s(bruteOf(mesh, device)) {
+        run.values["reflection.iteration"] = std::int64_t(2);
+    }
+    Workload make(Row& row) {
+        return reflectionRayType().make({run, mesh, camera, *s, glm::vec3(0, 1, 0), [](glm::vec3 p) { return p; }}, row);
+    }
+};
+
 // The generation check can disagree: a path whose generation 1 the CPU made otherwise than the
 // device (its rays swapped, a parent changed, a weight changed) fails the run naming generation 1,
 // and the batch's records are judged all the same.
 TEST_F(WavefrontKernels, AGenerationThatIsNotTheDevicesIsNamed) {
-    const TriangleMesh mesh = parallelMirrors();
-    const std::vector<gpu::Ray> camera = {ray({0, 2, 0}, {1, -1, 0}), ray({-1, 1, -1}, {0, 1, 0}), ray({0, 2, 0}, {1, 0, 0})};
-    const std::unique_ptr<Structure> s = bruteOf(mesh, vk_->info());
-    RunConfig run;
-    run.values["reflection.iteration"] = std::int64_t(2);
-    const WorkloadInputs inputs{run, mesh, camera, *s, glm::vec3(0, 1, 0), [](glm::vec3 p) { return p; }};
+    MirrorsIteration2 m(vk_->info());
     for (int tamper = 0; tamper < 3; ++tamper) {
         SCOPED_TRACE(tamper);
         Row row;
-        Workload w = reflectionRayType().make(inputs, row);
+        Workload w = m.make(row);
         ASSERT_EQ(w.between.size(), 1u);
         Generation& g = w.between[0];
         if (tamper == 0) std::swap(g.rays[0], g.rays[1]);
         if (tamper == 1) g.parents[1] = 2;
         if (tamper == 2) g.weights[0] = 0.5f;
-        const StrategyRun r = runWholePath(wavefrontStrategyType(), *vk_, *s, w, camera, mesh, row);
+        const StrategyRun r = runWholePath(wavefrontStrategyType(), *vk_, *m.s, w, m.camera, m.mesh, row);
         EXPECT_THAT(r.countsMismatch, HasSubstr(tamper == 0 ? "generation 1 (2 of 2 rays" : "generation 1 (1 of 2 rays"));
         EXPECT_THAT(r.countsMismatch, HasSubstr(tamper == 0 ? "ray 0's ray" : tamper == 1 ? "ray 1's parent" : "ray 0's weight"));
     }
@@ -187,21 +188,16 @@ TEST_F(WavefrontKernels, AGenerationThatIsNotTheDevicesIsNamed) {
 // The megakernel keeps no generation but the batch: a batch that is not the device's (a ray
 // changed, a weight changed, a path the device did not follow to the end) fails it by name.
 TEST_F(WavefrontKernels, APathMegakernelBatchThatIsNotTheDevicesIsNamed) {
-    const TriangleMesh mesh = parallelMirrors();
-    const std::vector<gpu::Ray> camera = {ray({0, 2, 0}, {1, -1, 0}), ray({-1, 1, -1}, {0, 1, 0}), ray({0, 2, 0}, {1, 0, 0})};
-    const std::unique_ptr<Structure> s = bruteOf(mesh, vk_->info());
-    RunConfig run;
-    run.values["reflection.iteration"] = std::int64_t(2);
-    const WorkloadInputs inputs{run, mesh, camera, *s, glm::vec3(0, 1, 0), [](glm::vec3 p) { return p; }};
+    MirrorsIteration2 m(vk_->info());
     for (int tamper = 0; tamper < 3; ++tamper) {
         SCOPED_TRACE(tamper);
         Row row;
-        Workload w = reflectionRayType().make(inputs, row);
+        Workload w = m.make(row);
         ASSERT_EQ(w.batch.rays.size(), 2u);
         if (tamper == 0) w.batch.rays[1].originTMin.x += 1.0f;
         if (tamper == 1) w.weights[0] = 0.5f;
         if (tamper == 2) w.paths[1] = 2;  // camera ray 2 misses: its path never reaches the batch
-        const StrategyRun r = runWholePath(pathMegakernelStrategyType(), *vk_, *s, w, camera, mesh, row);
+        const StrategyRun r = runWholePath(pathMegakernelStrategyType(), *vk_, *m.s, w, m.camera, m.mesh, row);
         EXPECT_THAT(r.countsMismatch, HasSubstr("batch (1 of 2 rays; first: "));
         EXPECT_THAT(r.countsMismatch, HasSubstr(tamper == 0 ? "ray 1's ray" : tamper == 1 ? "ray 0's weight" : "ray 1's path that never reached"));
     }
