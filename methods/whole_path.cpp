@@ -32,6 +32,12 @@ WholePathCapacity wholePathCapacity(std::uint64_t cameraRays, const std::vector<
     return c;
 }
 
+WholePathCapacity wholePathCapacity(const BatchPath& path) {
+    std::vector<std::uint32_t> fanOuts;
+    for (const gpu::ShadingParams& p : path.passes) fanOuts.push_back(p.pass.z);
+    return wholePathCapacity(path.generations.front().rays->size(), fanOuts);
+}
+
 std::unique_ptr<GpuBuffers> uploadWholePath(VulkanContext& vk, const Structure& structure, const BatchPath& path,
                                             std::uint64_t streamRays, const WholePathSizes& sizes,
                                             std::uint32_t queueCapacity, std::uint32_t slotCapacity) {

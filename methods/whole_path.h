@@ -27,6 +27,8 @@ struct WholePathCapacity {
     std::uint64_t queue = 0, slots = 0;
 };
 WholePathCapacity wholePathCapacity(std::uint64_t cameraRays, const std::vector<std::uint32_t>& fanOuts);
+// The same for `path`: its camera rays and its passes' fan-outs.
+WholePathCapacity wholePathCapacity(const BatchPath& path);
 
 // The sizes of a whole path's buffers in the kBindingPath* slots, in order: the control block
 // (with `groupSums` 4-byte entries after it), the camera rays, `queue` queue entries, `slots` made

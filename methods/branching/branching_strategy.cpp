@@ -158,14 +158,19 @@ std::string loopLimitWhy(const DeviceInfo& device, std::uint64_t iterations, std
 
 StrategyRun judgeWholeTraversal(VulkanContext& vk, const Structure& structure, const RayBatch& batch,
                                 BranchingRun&& kernel, Row& row) {
-    const std::vector<gpu::Ray>& rays = batch.rays;
-    StrategyRun run;
-    run.metrics = branchingMetrics(kernel.hits, kernel.activeLanes, kernel.laneSlots, structure.costs());
-    run.cpuMismatches = recordMismatches(kernel.hits, structure.trace(rays, batch.query));
     // A device that ends long loops (llvmpipe) leaves the rays of such a subgroup unfinished, their
     // records wrong without a sign: the lane model knows each subgroup's loop iterations exactly.
     const LaneCounts lanes =
-        branchingLaneCounts(structure, rays, vk.info().subgroupSize, loopIterationBudget(vk.info()), batch.query);
+        branchingLaneCounts(structure, batch.rays, vk.info().subgroupSize, loopIterationBudget(vk.info()), batch.query);
+    return judgeWholeTraversal(vk, structure, batch, std::move(kernel), lanes,
+                               "; multipass (a few iterations per pass), a finer grid or the BVH stay within it", row);
+}
+
+StrategyRun judgeWholeTraversal(VulkanContext& vk, const Structure& structure, const RayBatch& batch,
+                                BranchingRun&& kernel, const LaneCounts& lanes, const std::string& longLoops, Row& row) {
+    StrategyRun run;
+    run.metrics = branchingMetrics(kernel.hits, kernel.activeLanes, kernel.laneSlots, structure.costs());
+    run.cpuMismatches = recordMismatches(kernel.hits, structure.trace(batch.rays, batch.query));
     row["lanes_model_active"] = std::to_string(lanes.activeLanes);
     row["lanes_model_slots"] = std::to_string(lanes.laneSlots);
     const LaneVerdict verdict =
@@ -177,8 +182,7 @@ StrategyRun judgeWholeTraversal(VulkanContext& vk, const Structure& structure, c
     row["rays_cut_short"] = std::to_string(run.truncatedRays);
     row["stream_batches"] = std::to_string(kernel.batches);
     if (run.truncatedRays)
-        run.truncatedWhy = loopLimitWhy(vk.info(), lanes.maxSubgroupIterations, run.truncatedRays) +
-                           "; multipass (a few iterations per pass), a finer grid or the BVH stay within it";
+        run.truncatedWhy = loopLimitWhy(vk.info(), lanes.maxSubgroupIterations, run.truncatedRays) + longLoops;
     run.hits = std::move(kernel.hits);
     run.timer = std::move(kernel.timer);
     return run;

@@ -2,6 +2,7 @@
 // methods/branching/branching.comp over the whole ray stream, each invocation running the structure's
 // whole traversal.
 #pragma once
+#include "methods/branching/lane_counts.h"
 #include "methods/strategy.h"
 
 namespace rtbench {
@@ -67,6 +68,11 @@ std::string loopLimitWhy(const DeviceInfo& device, std::uint64_t iterations, std
 // columns of wholeTraversalColumns() to `row`.
 StrategyRun judgeWholeTraversal(VulkanContext& vk, const Structure& structure, const RayBatch& batch,
                                 BranchingRun&& kernel, Row& row);
+// The same against the counts of another lane model, `model` (a kernel whose lanes each trace
+// several rays: the path megakernel, pathLaneCounts); `longLoops` follows loopLimitWhy's text in
+// the message of a run cut short.
+StrategyRun judgeWholeTraversal(VulkanContext& vk, const Structure& structure, const RayBatch& batch,
+                                BranchingRun&& kernel, const LaneCounts& model, const std::string& longLoops, Row& row);
 // rays_cut_short, stream_batches and the lane model's lanes_model_*: what judgeWholeTraversal writes.
 const std::vector<ColumnSpec>& wholeTraversalColumns();
 // stream_batches: BranchingRun::batches, for every strategy that runs through runBranching.

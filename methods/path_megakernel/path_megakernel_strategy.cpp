@@ -3,10 +3,8 @@
 #include <cstring>
 
 #include "methods/branching/branching_strategy.h"
-#include "methods/branching/lane_counts.h"
 #include "methods/metrics.h"
 #include "methods/whole_path.h"
-#include "plan/warnings.h"
 #include "structures/error.h"
 
 namespace rtbench {
@@ -105,9 +103,7 @@ StrategyRun runPathMegakernelStrategy(VulkanContext& vk, const Structure& struct
         throw Error("strategy.workgroup_size " + std::to_string(timing.workgroupSize) + " is not a multiple of the subgroup size " +
                     std::to_string(vk.info().subgroupSize));
     const std::uint64_t cameraRays = path.generations.front().rays->size();
-    std::vector<std::uint32_t> fanOuts;
-    for (const gpu::ShadingParams& p : path.passes) fanOuts.push_back(p.pass.z);
-    const std::uint64_t paths = wholePathCapacity(cameraRays, fanOuts).queue;  // fan-out 1 after the first pass
+    const std::uint64_t paths = wholePathCapacity(path).queue;  // fan-out 1 after the first pass
     auto buffers = uploadWholePath(vk, structure, path, paths, {0, 0, paths}, 0, std::uint32_t(paths));
     const std::string kernel = structure.kernelPrefix() + "_path_megakernel";
     KernelSpec spec = structureKernelSpec(structure, timing.workgroupSize, batch.query, {});
@@ -116,36 +112,28 @@ StrategyRun runPathMegakernelStrategy(VulkanContext& vk, const Structure& struct
     vk.destroy(counted);
     const gpu::PassCounters counters = buffers->readPassCounters();
     const PathEnds ends = downloadPathEnds(*buffers, paths);
-
-    StrategyRun run;
-    std::vector<gpu::HitRecord> hits;
-    const std::string mismatch = batchMismatch(ends, path.generations.back(), hits);
     writeWholePathColumns(path, row);
     const std::uint64_t traced = counters.counts[gpu::kCountRaysTraced];
     row["path_megakernel_rays_traced"] = std::to_string(traced);
-    const std::uint64_t activeLanes = counters.counts[gpu::kCountActiveLanes], laneSlots = counters.counts[gpu::kCountLaneSlots];
-    run.metrics = branchingMetrics(hits, activeLanes, laneSlots, structure.costs());
-    run.cpuMismatches = recordMismatches(hits, structure.trace(batch.rays, batch.query));
-    const LaneCounts lanes = pathLaneCounts(structure, path, batch.query, vk.info().subgroupSize, loopIterationBudget(vk.info()));
-    row["lanes_model_active"] = std::to_string(lanes.activeLanes);
-    row["lanes_model_slots"] = std::to_string(lanes.laneSlots);
-    const LaneVerdict verdict = judgeLaneCounts(vk.info(), activeLanes, laneSlots, lanes.activeLanes, lanes.laneSlots);
-    run.countsCompared = vk.info().lockStepSubgroups;
-    if (!verdict.warning.empty()) addWarning(row, verdict.warning);
-    run.countsMismatch = !mismatch.empty() ? mismatch + " differs"
-                         : traced != path.rays()
-                             ? "rays traced (" + std::to_string(traced) + " on the device, " + std::to_string(path.rays()) + " on the path) differ"
-                             : verdict.mismatch;
-    run.truncatedRays = lanes.raysInLongSubgroups;
-    row["rays_cut_short"] = std::to_string(run.truncatedRays);
-    row["stream_batches"] = "1";
-    if (run.truncatedRays)
-        run.truncatedWhy = loopLimitWhy(vk.info(), lanes.maxSubgroupIterations, run.truncatedRays) +
-                           ": a camera ray's whole path runs in one invocation (the wavefront traces a generation per dispatch)";
+
+    // Judged as a whole-traversal kernel's run: its batch records, in the batch's order, and its
+    // ballots against the lane model of its own schedule.
+    BranchingRun batchRun;
+    const std::string mismatch = batchMismatch(ends, path.generations.back(), batchRun.hits);
+    batchRun.activeLanes = counters.counts[gpu::kCountActiveLanes];
+    batchRun.laneSlots = counters.counts[gpu::kCountLaneSlots];
     spec.instrument = false;
     const ComputePipeline timed = buffers->createKernel(kernel, spec);
-    run.timer = std::make_unique<PathMegakernelTimer>(vk, std::move(buffers), timed, cameraRays, paths, ends.hits);
-    run.hits = std::move(hits);
+    batchRun.timer = std::make_unique<PathMegakernelTimer>(vk, std::move(buffers), timed, cameraRays, paths, ends.hits);
+    const LaneCounts lanes = pathLaneCounts(structure, path, batch.query, vk.info().subgroupSize, loopIterationBudget(vk.info()));
+    StrategyRun run = judgeWholeTraversal(vk, structure, batch, std::move(batchRun), lanes,
+                                          ": a camera ray's whole path runs in one invocation (the wavefront traces a "
+                                          "generation per dispatch)",
+                                          row);
+    if (traced != path.rays())
+        run.countsMismatch = "rays traced (" + std::to_string(traced) + " on the device, " + std::to_string(path.rays()) +
+                             " on the path) differ";
+    if (!mismatch.empty()) run.countsMismatch = mismatch + " differs";
     return run;
 }
 

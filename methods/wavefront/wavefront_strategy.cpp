@@ -27,9 +27,7 @@ public:
     WavefrontRun(VulkanContext& vk, const Structure& structure, const BatchPath& path, std::uint32_t query,
                  unsigned workgroupSize)
         : vk_(vk), structure_(structure), path_(path), query_(query), workgroupSize_(workgroupSize) {
-        std::vector<std::uint32_t> fanOuts;
-        for (const gpu::ShadingParams& p : path.passes) fanOuts.push_back(p.pass.z);
-        capacity_ = wholePathCapacity(path.generations.front().rays->size(), fanOuts);
+        capacity_ = wholePathCapacity(path);
         // The shading grid's workgroups at its largest (wavefront_common.glsl wfGroupsFor).
         const auto [groupsX, groupsY] = workgroupGrid((std::max<std::uint64_t>(capacity_.slots, 1) + workgroupSize - 1) / workgroupSize,
                                                       vk.info().maxWorkGroupCountX);
