@@ -14,13 +14,23 @@ GridTraversalState mpSave(RtDda s, uint listPos) {
     return ts;
 }
 
-RtDda mpRestore(Ray ray, GridTraversalState ts) {
+// The saved voxel and its boundary distances, without the direction's step and spacing: all the
+// intersect pass needs (its voxel's list and exit), with none of the three divisions.
+RtDda mpRestorePosition(GridTraversalState ts) {
     RtDda s;
+    s.cell = ivec3(int(ts.cellList.x), int(ts.cellList.y), int(ts.cellList.z));
+    s.stepDir = ivec3(0);
+    s.tMaxAxis = vec3(ts.tMaxAxisLeave);
+    s.tDelta = vec3(0.0f);
+    s.tLeave = ts.tMaxAxisLeave.w;
+    return s;
+}
+
+// The whole walk's state: the saved position, and the step and spacing from the direction.
+RtDda mpRestore(Ray ray, GridTraversalState ts) {
+    RtDda s = mpRestorePosition(ts);
     vec3 d = vec3(ray.directionTMax);
     rtDdaDirection(d, rtInverseDirection(d), s);
-    s.tMaxAxis = vec3(ts.tMaxAxisLeave);
-    s.tLeave = ts.tMaxAxisLeave.w;
-    s.cell = ivec3(int(ts.cellList.x), int(ts.cellList.y), int(ts.cellList.z));
     return s;
 }
 
@@ -92,7 +102,7 @@ uint mpTriangleAt(uint position) { return triangleList[position]; }
 
 // Intersect pass: up to intersectionsPerPass triangles of the current voxel.
 uint mpIntersect(Ray ray, RT_INOUT(GridTraversalState) ts, RT_INOUT(RayHitState) hit, RT_INOUT(MpEvents) e) {
-    RtDda s = mpRestore(ray, ts);
+    RtDda s = mpRestorePosition(ts);
     uint listPos = ts.cellList.w;
     e.structureReads += 1u;  // where the voxel's list ends
     uint listEnd = cellOffsets[rtCellIndex(s.cell) + 1u];

@@ -164,6 +164,28 @@ TEST_F(MultipassDeviceControl, ChoosesAsTheHostLoopForEveryUnrollAndSchedule) {
     }
 }
 
+// Each subgroup claims its rays' list entries by ballot (multipass_common.glsl mpAppend). Every
+// workgroup shape must file each active ray once: one invocation, one subgroup, a partial last
+// subgroup (on a device of 8 or 16 lanes), several full ones. The same sequence, events, hits and
+// final traversal states as the host's loop, whose passes use no lists.
+TEST_F(MultipassDeviceControl, EveryWorkgroupShapeFilesEachRayOnce) {
+    const std::vector<gpu::Ray> rays = hand::sceneBRays();
+    const MultipassOptions o = onDevice(0.2, 4, 2);
+    MultipassOptions host = o;
+    host.deviceControl = false;
+    for (const auto& s : hand::sceneBStructures()) {
+        const MultipassRun hostRun = run(*s, rays, host);
+        for (unsigned workgroup : {1u, 8u, 20u, 64u, 256u}) {
+            SCOPED_TRACE(s->kernelPrefix() + " workgroup " + std::to_string(workgroup));
+            const MultipassRun device = runMultipass(*vk_, *s, rays, o, {workgroup, 0, 1});
+            EXPECT_EQ(device.counts.sequence, hostRun.counts.sequence);
+            EXPECT_TRUE(device.counts == simulateMultipass(*s, rays, o).counts);
+            EXPECT_EQ(recordMismatches(device.hits, hostRun.hits), 0u);
+            EXPECT_EQ(device.traversalStates, hostRun.traversalStates);
+        }
+    }
+}
+
 // Timed repetitions rerun the oracle kernel's loop uninstrumented; their hits must equal the
 // instrumented run's (the timer checks), and the oracle's own time is a part of its own.
 TEST_F(MultipassDeviceControl, TimedRepetitionsRunTheSameLoop) {
