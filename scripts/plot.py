@@ -934,6 +934,14 @@ FLOAT_BITS = {"intersection_vertex_bits": 32}  # a value apart (float vertices),
 EMBREE_BLIND = ("structure_", "strategy_", "intersection_test")  # keys Embree's runs do not depend on
 
 
+def embree_traced_path(data):
+    """Per row: True where Embree traced every generation of the path beside a whole-path strategy
+    (results schema 19: whole_path_rays set), not only the batch the run's other methods trace."""
+    if "whole_path_rays" not in data:
+        return pd.Series(False, index=data.index)
+    return pd.to_numeric(data.whole_path_rays, errors="coerce").fillna(0) > 0
+
+
 def runs_count(n: int) -> str:
     return f"{n} run" if n == 1 else f"{n} runs"
 
@@ -1067,7 +1075,8 @@ def by_key(runs, classes, key, followers, device, folder, written, failed=None):
             vary.append(first)
     combo = text.loc[data.index, vary].apply(tuple, axis=1) if vary else pd.Series([()] * len(data), data.index)
     frame = data.assign(_x=position, _method=method, _combo=combo, _ppm=wrong_ppm_of(data),
-                        _embree_ppm=wrong_ppm_of(data, "embree_exact_"), _simplified=simplified(data))
+                        _embree_ppm=wrong_ppm_of(data, "embree_exact_"), _simplified=simplified(data),
+                        _embree_path=embree_traced_path(data))
     # A series needs two values of the key; the rest are not drawn (and counted in the caption).
     counts = frame.groupby((["scene"] if faceted else []) + ["_method", "_combo"])._x.transform("nunique")
     dropped = frame[counts < 2]
@@ -1093,6 +1102,7 @@ def by_key(runs, classes, key, followers, device, folder, written, failed=None):
 
     caption_lines = []
     kernel_what, embree_what = set(), set()
+    embree_paths = set()  # what Embree's drawn series traced: False the batch, True whole paths
     rows = len(facets)
     caption_guess = 7
     height = 3.3 * rows + 1.0 + 0.17 * caption_guess
@@ -1102,7 +1112,11 @@ def by_key(runs, classes, key, followers, device, folder, written, failed=None):
     for row, (scene, group) in enumerate(facets):
         left, right = fig.add_subplot(grid[row, 0]), fig.add_subplot(grid[row, 1])
         series = [(m, c) for m in methods for c in combos if ((group._method == m) & (group._combo == c)).any()]
-        ecombos = sorted({tuple(c[i] for i in embree_keys) for c in group._combo})
+        # Embree's own series: by the keys its runs depend on, and by what it traced (the batch, or
+        # beside a whole-path strategy every generation of the path: a longer time, not comparable).
+        ekey = pd.Series([tuple(c[i] for i in embree_keys) + (bool(w),) for c, w in zip(group._combo, group._embree_path)],
+                         index=group.index)
+        ecombos = sorted(set(ekey))
         n = len(series) + len(ecombos)
         times, ppms = [], []
         for i, (m, c) in enumerate(series):
@@ -1131,7 +1145,7 @@ def by_key(runs, classes, key, followers, device, folder, written, failed=None):
             anchor(left, list(g._x) * 3, list(y) + list(low) + list(high))
             anchor(right, g._x, g._ppm)
         for j, ec in enumerate(ecombos):
-            g = group[group._combo.map(lambda c: tuple(c[i] for i in embree_keys)) == ec]
+            g = group[ekey == ec]
             g = g.drop_duplicates(["_x", "_combo", *LOOK_AT] if "camera_look_at_x" in g else ["_x", "_combo"])
             if g._x.nunique() < 2 or "embree1_ms_median" not in g:
                 continue
@@ -1141,13 +1155,15 @@ def by_key(runs, classes, key, followers, device, folder, written, failed=None):
             y, lo, hi = at.embree1_ms_median.median(), at._low.min(), at._high.max()
             ls = LINESTYLES[j % len(LINESTYLES)] if not pooled else "-"
             tr_left, tr_right = dodge(left, len(series) + j, n), dodge(right, len(series) + j, n)
+            emarker = "D" if ec[-1] else "s"
+            embree_paths |= {ec[-1]}
             left.errorbar(y.index, y, yerr=np.vstack([(y - lo).clip(lower=0).fillna(0), (hi - y).clip(lower=0).fillna(0)]),
-                          fmt="s", ms=4, color="k", elinewidth=0.8, capsize=2, transform=tr_left)
+                          fmt=emarker, ms=4, color="k", elinewidth=0.8, capsize=2, transform=tr_left)
             ppm = at._embree_ppm.median()
             for xs, ys in series_segments(y.index, y.values, key):
                 left.plot(xs, ys, ls=ls, color="k", lw=1.0 if not pooled else 0.7, alpha=1.0 if not pooled else 0.5,
                           transform=tr_left)
-            right.scatter(ppm.index, ppm, marker="s", s=16, color="k", transform=tr_right)
+            right.scatter(ppm.index, ppm, marker=emarker, s=16, color="k", transform=tr_right)
             times += list(y) + list(lo) + list(hi)
             ppms += list(ppm)
             anchor(left, list(y.index) * 3, list(y) + list(lo) + list(hi))
@@ -1182,7 +1198,12 @@ def by_key(runs, classes, key, followers, device, folder, written, failed=None):
         handles.append((Line2D([], [], ls="none"), "marker, line: other swept keys"))
         handles += [(Line2D([], [], color="0.3", marker=by_label[n][0], ls=by_label[n][1]), textwrap.fill(n, 44))
                     for n in names]
-    handles.append((Line2D([], [], color="k", marker="s", ls="-"), "Embree rtcIntersect1 (CPU, the same rays)"))
+    if False in embree_paths or not embree_paths:
+        handles.append((Line2D([], [], color="k", marker="s", ls="-"), "Embree rtcIntersect1 (CPU, the same rays)"))
+    if True in embree_paths:
+        handles.append((Line2D([], [], color="k", marker="D", ls="-"),
+                        textwrap.fill("Embree beside a whole-path strategy: every generation of the path "
+                                      "(embree_rays; CPU)", 44)))
     if any_simplified:
         handles.append((Line2D([], [], color="0.3", marker="o", mfc="none", ls="none"),
                         "hollow: simplified scene (wrong = missed or false hit only)"))
@@ -1190,7 +1211,10 @@ def by_key(runs, classes, key, followers, device, folder, written, failed=None):
     # The caption: what the bars are and what is not drawn.
     caption_lines.append("Error bars, kernel: " + ("; ".join(sorted(kernel_what)) or "none (no interval columns)")
                          + ". Embree: the median of the runs at a value (each times Embree on its rays), bars from the "
-                         + "lowest to the highest end of their " + ("; ".join(sorted(embree_what)) or "(none)") + ".")
+                         + "lowest to the highest end of their " + ("; ".join(sorted(embree_what)) or "(none)") + "."
+                         + (" Diamonds: the runs of whole-path strategies, where Embree traced every generation of the "
+                            "path" + (", apart from the runs where it traced the batch alone (squares)."
+                                      if False in embree_paths else ".") if True in embree_paths else ""))
     caption_lines.append("Points of one value are set side by side (a few points apart). Time: lines join a series' "
                          "medians; rays wrong: points only (a ray or two wrong at one value is no trend between values).")
     if pooled:

@@ -213,6 +213,33 @@ class ByKeyCharts(unittest.TestCase):
         self.assertIn("min-max of the repetitions", " ".join(t.get_text() for t in fig.texts))
 
 
+class EmbreeBesideWholePaths(unittest.TestCase):
+    """Beside a whole-path strategy (wavefront, path_megakernel) Embree traces every generation of the
+    path, beside branching only the batch: two Embree series, never one median over both kinds."""
+
+    def test_embree_gets_a_series_per_kind_of_run(self):
+        with tempfile.TemporaryDirectory(prefix="test_plot.") as tmp:
+            settings = [{"structure_leaf_size": leaf, "strategy_type": strategy}
+                        for strategy in ("branching", "wavefront") for leaf in (2, 4, 8)]
+            frame = make_runs(settings, ["structure_leaf_size", "strategy_type"])
+            whole = frame.strategy_type == "wavefront"
+            frame["whole_path_rays"] = np.where(whole, 3 * frame.rays, np.nan)
+            frame.loc[whole, ["embree1_ms_median", "embree1_ms_min", "embree1_ms_max"]] = [15.0, 14.0, 16.0]
+            charts = Charts(write_folder(Path(tmp), "paths", frame))
+            self.assertEqual(charts.rc, 0, charts.stderr)
+            fig = charts.figures["by_structure_leaf_size"]
+            time = data_axes(fig)[0]
+            black = [line for line in time.get_lines()  # Embree's lines through its medians (not the bars' caps)
+                     if matplotlib.colors.to_hex(line.get_color()) == "#000000" and line.get_linestyle() != "None"]
+            levels = sorted({round(float(y), 6) for line in black for y in line.get_ydata()})
+            self.assertEqual(levels, [5.0, 15.0])  # not 10, the median over both kinds
+            legend = " ".join(" ".join(t.get_text().split()) for ax in fig.axes
+                              for t in (ax.get_legend().get_texts() if ax.get_legend() else []))
+            self.assertIn("Embree rtcIntersect1 (CPU, the same rays)", legend)
+            self.assertIn("every generation of the path", legend)
+            self.assertIn("Diamonds", " ".join(t.get_text() for t in fig.texts))
+
+
 class ErrorBars(unittest.TestCase):
     def setUp(self):
         self.tmp = tempfile.TemporaryDirectory(prefix="test_plot.")
