@@ -1156,7 +1156,7 @@ def by_key(runs, classes, key, followers, device, folder, written, failed=None):
             ls = LINESTYLES[j % len(LINESTYLES)] if not pooled else "-"
             tr_left, tr_right = dodge(left, len(series) + j, n), dodge(right, len(series) + j, n)
             emarker = "D" if ec[-1] else "s"
-            embree_paths |= {ec[-1]}
+            embree_paths.add(ec[-1])
             left.errorbar(y.index, y, yerr=np.vstack([(y - lo).clip(lower=0).fillna(0), (hi - y).clip(lower=0).fillna(0)]),
                           fmt=emarker, ms=4, color="k", elinewidth=0.8, capsize=2, transform=tr_left)
             ppm = at._embree_ppm.median()
@@ -1209,12 +1209,14 @@ def by_key(runs, classes, key, followers, device, folder, written, failed=None):
                         "hollow: simplified scene (wrong = missed or false hit only)"))
     legend_beside(fig, legend_ax, handles, fontsize=7)
     # The caption: what the bars are and what is not drawn.
+    paths_note = ""
+    if True in embree_paths:
+        paths_note = " Diamonds: the runs of whole-path strategies, where Embree traced every generation of the path"
+        paths_note += ", apart from the runs where it traced the batch alone (squares)." if False in embree_paths else "."
     caption_lines.append("Error bars, kernel: " + ("; ".join(sorted(kernel_what)) or "none (no interval columns)")
                          + ". Embree: the median of the runs at a value (each times Embree on its rays), bars from the "
                          + "lowest to the highest end of their " + ("; ".join(sorted(embree_what)) or "(none)") + "."
-                         + (" Diamonds: the runs of whole-path strategies, where Embree traced every generation of the "
-                            "path" + (", apart from the runs where it traced the batch alone (squares)."
-                                      if False in embree_paths else ".") if True in embree_paths else ""))
+                         + paths_note)
     caption_lines.append("Points of one value are set side by side (a few points apart). Time: lines join a series' "
                          "medians; rays wrong: points only (a ray or two wrong at one value is no trend between values).")
     if pooled:

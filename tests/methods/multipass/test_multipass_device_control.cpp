@@ -175,11 +175,12 @@ TEST_F(MultipassDeviceControl, EveryWorkgroupShapeFilesEachRayOnce) {
     host.deviceControl = false;
     for (const auto& s : hand::sceneBStructures()) {
         const MultipassRun hostRun = run(*s, rays, host);
+        const MultipassCounts simulated = simulateMultipass(*s, rays, o).counts;
         for (unsigned workgroup : {1u, 8u, 20u, 64u, 256u}) {
             SCOPED_TRACE(s->kernelPrefix() + " workgroup " + std::to_string(workgroup));
             const MultipassRun device = runMultipass(*vk_, *s, rays, o, {workgroup, 0, 1});
             EXPECT_EQ(device.counts.sequence, hostRun.counts.sequence);
-            EXPECT_TRUE(device.counts == simulateMultipass(*s, rays, o).counts);
+            EXPECT_TRUE(device.counts == simulated);
             EXPECT_EQ(recordMismatches(device.hits, hostRun.hits), 0u);
             EXPECT_EQ(device.traversalStates, hostRun.traversalStates);
         }
