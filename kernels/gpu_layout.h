@@ -76,6 +76,7 @@ RTBENCH_CONST kSpecMaxGroupsX = 18;      // multipass oracle kernel: maxComputeW
 RTBENCH_CONST kSpecOracleAllRays = 19;   // multipass oracle kernel: 1 = the threshold's basis is the stream's rays (oracle_basis = all)
 RTBENCH_CONST kSpecNativeDivision = 20;  // 1: rtDivide is the device's own division (OpFDiv, 2.5 ULP allowed): strategy plain
 RTBENCH_CONST kSpecDivision = 21;        // kDivision*: how rtDivide rounds exactly (intersection.division)
+RTBENCH_CONST kSpecListPartitions = 22;  // multipass, control on the device: partitions of each ray list (1..kMaxListPartitions)
 
 // ---- megakernel schedules (methods/megakernel/megakernel.comp; Parker et al. 2013 §5.1-5.2) ----
 RTBENCH_CONST kScheduleSwitch = 0;          // each lane runs its own state: the subgroup runs every state present, one after another
@@ -224,19 +225,30 @@ struct PassCounters {
     uint64 counts[kCountSlots];  // byte 0 + 8 * kCount*
 };
 
+RTBENCH_CONST kMaxListPartitions = 8;
+
+// A list's length, alone in its 64-byte cache line: the passes' appends update two lengths with
+// atomics while every invocation reads PassControl's first line, so on a CPU device (lavapipe)
+// sharing a line would send it from core to core on every append (false sharing).
+struct ListCount {
+    uint count;     // byte 0: entries in the list
+    uint pad[15];   // byte 4
+};
+
 // Multipass with the oracle on the device: what the oracle kernel keeps between passes. All
 // zeros is the state before the setup pass. Lists: 0, 1 hold traversing rays, 2, 3 waiting ones;
 // a pass reads the current list of its state and files the rays it leaves active in the other
 // list of that pair (its own state) or appends them to the current list of the other state.
+// Bytes 0-63 are written by the oracle kernel only (read by every pass); the lengths follow.
 struct PassControl {
     uvec4 traverseGroups;   // byte 0: the next traverse pass's workgroups x, y, z (VkDispatchIndirectCommand), w unused
     uvec4 intersectGroups;  // byte 16: the same for the next intersect pass; the pass not chosen gets 0 groups
-    uint listCounts[4];     // byte 32: entries in lists 0..3
-    uvec4 current;          // byte 48: x, y: the current traversing and waiting list (0 or 1 of each pair);
+    uvec4 current;          // byte 32: x, y: the current traversing and waiting list (0 or 1 of each pair);
                             //          z: the last pass's kPass*; w: passes run before it
-    uvec4 status;           // byte 64: x: the naive schedule's phase (kPass*); y: 1 when the loop has ended;
+    uvec4 status;           // byte 48: x: the naive schedule's phase (kPass*); y: 1 when the loop has ended;
                             //          z: 1 when it ended at the pass cap; w: 1 when a list held more rays
                             //          than the stream (a kernel bug: the loop ends, the run fails)
+    ListCount lists[4 * kMaxListPartitions];  // byte 64 + 64 * (kMaxListPartitions * l + p): the length of partition p of list l
 };
 
 // One pass of the device-controlled loop, logged by the oracle after it.
@@ -284,12 +296,13 @@ static_assert(sizeof(RayCounters) == 16);
 static_assert(sizeof(ShadingParams) == 48);
 static_assert(sizeof(Material) == 48);
 static_assert(sizeof(PassCounters) == 96);
-static_assert(sizeof(PassControl) == 80);
+static_assert(sizeof(ListCount) == 64);
+static_assert(sizeof(PassControl) == 64 + 4 * kMaxListPartitions * 64);
 static_assert(sizeof(PassLogEntry) == 64);
 static_assert(sizeof(WholePathControl) == 128 + 48 * kPathMaxPasses && offsetof(WholePathControl, passes) == 128);
 static_assert(sizeof(RayQueryParams) == 32 && offsetof(RayQueryParams, topLevel) == 16);
-static_assert(offsetof(PassControl, listCounts) == 32 && offsetof(PassControl, current) == 48 &&
-              offsetof(PassControl, status) == 64 && offsetof(PassLogEntry, kindLists) == 48);
+static_assert(offsetof(PassControl, current) == 32 && offsetof(PassControl, status) == 48 &&
+              offsetof(PassControl, lists) == 64 && offsetof(PassLogEntry, kindLists) == 48);
 }  // namespace rtbench::gpu
 #else
 const float kNoHitT = 3.402823466e38;

@@ -72,7 +72,9 @@ struct ColumnSpec {
 //  19  + the wavefront (strategy.type = wavefront, wavefront_*, kernel_ms_trace, _shade, _queue);
 //        a strategy that traces the whole path times Embree on every generation's rays, and its
 //        rates count them all.
-constexpr int kSchemaVersion = 19;
+//  20  + strategy.list_partitions (multipass with the control on the device: each ray list in
+//        partitions, 2 by default; before, one).
+constexpr int kSchemaVersion = 20;
 
 // The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".
 std::string paramColumn(const std::string& key);

@@ -13,6 +13,7 @@ layout(std430, set = 0, binding = kBindingRayCounters) buffer RayCounterBuffer {
 // strategy.control = "device": the passes serve the rays of compacted lists, which the oracle
 // kernel (multipass_oracle.comp) keeps in its control block, instead of the stream's stencil.
 layout(constant_id = kSpecCompact) const uint compact = 0u;
+layout(constant_id = kSpecListPartitions) const uint listPartitions = 1u;
 layout(std430, set = 0, binding = kBindingRayLists) buffer RayListBuffer { uint rayLists[]; };
 layout(std430, set = 0, binding = kBindingPassControl) buffer PassControlBuffer {
     PassControl control;
@@ -27,16 +28,31 @@ uint mpOtherList(uint state) { return state == kStateTraversing ? 1u - control.c
 
 // The ray this invocation serves in a pass over the rays in `state`, or kNoRay: with the stencil,
 // its own ray when the ray's state byte says `state` (the stencil test, Purcell's early fragment
-// kill); compacted, the entry of the state's current list.
+// kill); compacted, the entry of the state's current list, its partitions read in order.
 uint mpServedRay(uint state) {
     uint slot = rtRayIndex();
     if (compact == 0u) return slot < rtRayCount() && uint(stencil[slot]) == state ? slot : kNoRay;
     uint list = mpCurrentList(state);
-    return slot < control.listCounts[list] ? rayLists[list * rtRayCount() + slot] : kNoRay;
+    for (uint p = 0u; p < listPartitions; ++p) {
+        uint n = control.lists[list * kMaxListPartitions + p].count;
+        if (slot < n) return rayLists[(list * listPartitions + p) * rtRayCount() + slot];
+        slot -= n;
+    }
+    return kNoRay;
+}
+
+// The partition of a list this workgroup appends to: the dispatch's workgroups in listPartitions
+// equal runs, one per partition (strategy.list_partitions). Workgroups that run side by side (on
+// lavapipe, each worker thread takes a contiguous run of them) then append to different lengths,
+// and the next pass, reading the partitions in order, hands each run the rays the same run filed.
+uint mpPartition() {
+    uint64_t group = uint64_t(gl_WorkGroupID.x + gl_WorkGroupID.y * gl_NumWorkGroups.x);
+    uint64_t groups = uint64_t(gl_NumWorkGroups.x * gl_NumWorkGroups.y);
+    return uint(group * uint64_t(listPartitions) / groups);
 }
 
 // Stream compaction by subgroup ballot: the subgroup's rays that `want` take consecutive entries of
-// `list`, claimed with one atomic per subgroup. The ballot, the election and the broadcast must see
+// the workgroup's partition of `list`, claimed with one atomic per subgroup. The ballot, the election and the broadcast must see
 // the same active lanes (the lanes reconverge after `if (subgroupElect())`, which Vulkan does not
 // promise without VK_KHR_shader_maximal_reconvergence): a device that broke it would file rays on
 // top of each other, and the run would fail (hits against branching's, the lists' overflow check).
@@ -45,10 +61,11 @@ void mpAppend(uint list, bool want, uint rayIndex) {
     uint n = subgroupBallotBitCount(ballot);
     if (n == 0u) return;
     uint base = 0u;
-    if (subgroupElect()) base = atomicAdd(control.listCounts[list], n);
+    uint p = mpPartition();
+    if (subgroupElect()) base = atomicAdd(control.lists[list * kMaxListPartitions + p].count, n);
     base = subgroupBroadcastFirst(base);
     uint entry = base + subgroupBallotExclusiveBitCount(ballot);
-    if (want && entry < rtRayCount()) rayLists[list * rtRayCount() + entry] = rayIndex;  // else: overflow, the oracle ends the loop
+    if (want && entry < rtRayCount()) rayLists[(list * listPartitions + p) * rtRayCount() + entry] = rayIndex;  // else: overflow, the oracle ends the loop
 }
 
 // Compacted: files a ray the pass over `passState` leaves active. A ray still in the pass's state

@@ -22,23 +22,33 @@ uvec4 mpGroupsFor(uint rays) {
     return uvec4((groups + y - 1u) / y, y, 1u, 0u);
 }
 
+// The rays on list l: its partitions' lengths.
+uint mpListLength(uint l) {
+    uint n = 0u;
+    for (uint p = 0u; p < listPartitions; ++p) n += control.lists[l * kMaxListPartitions + p].count;
+    return n;
+}
+
+void mpClearList(uint l) {
+    for (uint p = 0u; p < listPartitions; ++p) control.lists[l * kMaxListPartitions + p].count = 0u;
+}
+
 void main() {
     if (gl_GlobalInvocationID.x != 0u || gl_GlobalInvocationID.y != 0u) return;
     if (control.status.y != 0u) return;  // the loop has ended: iterations recorded after it do nothing
     uint last = control.current.z;
     uint passes = control.current.w + 1u;  // the last pass included
     uint t = control.current.x, w = control.current.y;
-    uint dispatched = last == kPassTraverse ? control.listCounts[t]
-                    : last == kPassIntersect ? control.listCounts[2u + w] : rtRayCount();
+    uint dispatched = last == kPassTraverse ? mpListLength(t) : last == kPassIntersect ? mpListLength(2u + w) : rtRayCount();
     // The last pass read its state's current list and filled the other one of the pair.
     if (last == kPassTraverse) {
-        control.listCounts[t] = 0u;
+        mpClearList(t);
         t = 1u - t;
     } else if (last == kPassIntersect) {
-        control.listCounts[2u + w] = 0u;
+        mpClearList(2u + w);
         w = 1u - w;
     }
-    uint traversing = control.listCounts[t], waiting = control.listCounts[2u + w];
+    uint traversing = mpListLength(t), waiting = mpListLength(2u + w);
     PassLogEntry entry;
     for (uint i = 0u; i < 6u; ++i) {
         entry.sums[i] = passCounters.counts[i];

@@ -33,6 +33,10 @@ struct MultipassOptions {
     // every pass walks the whole stream through the stencil; true ("device"), the oracle runs on
     // the device and each pass serves a compacted list of its rays (multipass_oracle.comp).
     bool deviceControl = false;
+    // strategy.list_partitions, with the control on the device: each ray list in this many
+    // partitions (1..kMaxListPartitions), each with its own length; a pass's workgroups append to
+    // them in equal runs (multipass_common.glsl mpPartition).
+    unsigned listPartitions = 2;
 };
 
 // floor(threshold * 2^31), the oracle's threshold as the shared decision (multipass_oracle.glsl)

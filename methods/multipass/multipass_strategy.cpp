@@ -35,9 +35,6 @@ struct Pipelines {
     }
 };
 
-// The device-controlled loop's ray lists: T0, T1, W0, W1, a ray index each per ray.
-std::uint64_t rayListBytes(std::uint64_t rays) { return 4 * sizeof(std::uint32_t) * rays; }
-
 // Multipass's slots among the strategy's (GpuBuffers::strategyBuffer).
 constexpr std::uint32_t kTraversalSlot = gpu::kBindingTraversal - gpu::kBindingStrategy;
 constexpr std::uint32_t kPassControlSlot = gpu::kBindingPassControl - gpu::kBindingStrategy;
@@ -233,6 +230,7 @@ MultipassOptions multipassOptions(const RunConfig& run) {
     o.maxPasses = std::uint64_t(run.getInt("strategy.max_passes"));
     o.batchRays = std::uint64_t(run.getInt("strategy.batch_rays"));
     o.deviceControl = run.getString("strategy.control") == "device";
+    if (o.deviceControl) o.listPartitions = unsigned(run.getInt("strategy.list_partitions"));
     return o;
 }
 
@@ -337,7 +335,7 @@ MultipassRun runMultipassBatch(VulkanContext& vk, const Structure& structure, co
     if (options.deviceControl && cap > 0xFFFFFFFFull)
         throw Error("multipass (device): the pass cap " + std::to_string(cap) + " is over 2^32 - 1");
     const std::vector<BufferSize> own =
-        multipassBuffers(rays.size(), structure.costs().traversalStateBytes, options.deviceControl);
+        multipassBuffers(rays.size(), structure.costs().traversalStateBytes, options.deviceControl, options.listPartitions);
     auto buffers = shared ? std::make_unique<GpuBuffers>(vk, rays, shared, structure.params(), own)
                           : std::make_unique<GpuBuffers>(vk, rays, structure.buffers(), structure.params(), own);
     KernelSpec spec = structureKernelSpec(structure, timing.workgroupSize, query,
@@ -351,7 +349,8 @@ MultipassRun runMultipassBatch(VulkanContext& vk, const Structure& structure, co
                                        {gpu::kSpecNaive, options.scheduling == "naive" ? 1u : 0u},
                                        {gpu::kSpecPassCap, std::uint32_t(cap)},
                                        {gpu::kSpecMaxGroupsX, vk.info().maxWorkGroupCountX},
-                                       {gpu::kSpecOracleAllRays, options.oracleBasis == "all" ? 1u : 0u}});
+                                       {gpu::kSpecOracleAllRays, options.oracleBasis == "all" ? 1u : 0u},
+                                       {gpu::kSpecListPartitions, options.listPartitions}});
     auto counted = std::make_unique<Pipelines>(vk, *buffers, structure.kernelPrefix(), spec, options.deviceControl);
     run.counts = runLoop(vk, *buffers, *counted, options, cap);
     run.hits = buffers->downloadHits();
@@ -364,8 +363,12 @@ MultipassRun runMultipassBatch(VulkanContext& vk, const Structure& structure, co
 
 }  // namespace
 
+std::uint64_t multipassListBytes(std::uint64_t rays, unsigned partitions) {
+    return 4 * std::uint64_t(partitions) * sizeof(std::uint32_t) * rays;
+}
+
 std::vector<BufferSize> multipassBuffers(std::uint64_t rays, std::uint64_t traversalStateBytes, bool deviceControl,
-                                         std::uint64_t batches) {
+                                         unsigned listPartitions, std::uint64_t batches) {
     const std::string n = " (" + std::to_string(rays) + " rays)";
     std::vector<BufferSize> own = {{"ray state" + n, rays},
                                    {"traversal state" + n, rays * traversalStateBytes},
@@ -373,7 +376,8 @@ std::vector<BufferSize> multipassBuffers(std::uint64_t rays, std::uint64_t trave
                                    {"ray counter" + n, rays * sizeof(gpu::RayCounters)}};
     if (deviceControl)
         own.insert(own.end(),
-                   {{"multipass ray lists (4 x " + std::to_string(rays) + " rays)", rayListBytes(rays)},
+                   {{"multipass ray lists (4 x " + std::to_string(listPartitions) + " x " + std::to_string(rays) + " rays)",
+                     multipassListBytes(rays, listPartitions)},
                     {"multipass oracle control and pass log" +
                          (batches > 1 ? " x " + std::to_string(batches) + " batches" : std::string()),
                      kPassControlBytes * batches}});
@@ -385,12 +389,13 @@ std::vector<std::uint8_t> downloadTraversalStates(GpuBuffers& buffers) {
 }
 
 std::uint64_t multipassBatchRays(const DeviceInfo& device, std::uint64_t traversalStateBytes, std::uint64_t requested,
-                                 unsigned workgroupSize) {
+                                 unsigned workgroupSize, std::uint64_t listBytesPerRay) {
     if (requested) return requested;
     // The largest per-ray record of the batch's bindings (rayBufferSizes): the ray, the hit record,
-    // or the structure's traversal state (the BVH's: 144 bytes with its stack).
-    return raysPerBinding(device, std::max<std::uint64_t>({sizeof(gpu::Ray), sizeof(gpu::HitRecord), traversalStateBytes}),
-                          workgroupSize);
+    // the structure's traversal state (the BVH's: 144 bytes with its stack) or the ray lists.
+    return raysPerBinding(
+        device, std::max<std::uint64_t>({sizeof(gpu::Ray), sizeof(gpu::HitRecord), traversalStateBytes, listBytesPerRay}),
+        workgroupSize);
 }
 
 MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
@@ -398,7 +403,8 @@ MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const s
     if (options.traverseStepsPerPass < 1 || options.intersectionsPerPass < 1)
         throw Error("multipass: traverse_steps_per_pass and intersections_per_pass must be at least 1");
     const std::uint64_t batchRays =
-        multipassBatchRays(vk.info(), structure.costs().traversalStateBytes, options.batchRays, timing.workgroupSize);
+        multipassBatchRays(vk.info(), structure.costs().traversalStateBytes, options.batchRays, timing.workgroupSize,
+                           options.deviceControl ? multipassListBytes(1, options.listPartitions) : 0);
     MultipassRun run;
     if (batchRays >= rays.size()) {
         run = runMultipassBatch(vk, structure, rays, options, timing, query, nullptr);
@@ -409,7 +415,8 @@ MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const s
         // Every batch's buffers together: the stream's per-ray ones, and an oracle block per batch.
         std::vector<BufferSize> perRay = rayBufferSizes(rays.size());
         const std::vector<BufferSize> own =
-            multipassBuffers(rays.size(), structure.costs().traversalStateBytes, options.deviceControl, batches);
+            multipassBuffers(rays.size(), structure.costs().traversalStateBytes, options.deviceControl,
+                             options.listPartitions, batches);
         perRay.insert(perRay.end(), own.begin(), own.end());
         const auto shared = uploadForBatches(vk, perRay, structure.buffers());
         run.batches = 0;
@@ -448,12 +455,14 @@ const StrategyType& multipassStrategyType() {
             {"strategy.oracle_basis", ValueType::String, "multipass: what the oracle's waiting fraction is of: active (traversing + waiting rays, Purcell 2002 §3.2's \"percentage of rays requiring intersection vs. traversal\") or all (every ray of the stream, finished ones included: another reading of his and Christen 2005 §5.5's \"20% of the rays\")", std::string("active"), false, -1e300, 1e300, {"active", "all"}, {"strategy.scheduling=oracle"}},
             {"strategy.max_passes", ValueType::Int, "multipass: pass cap (0: derived from the structure); reaching it fails the run", std::int64_t(0), false, 0, 1e9},
             {"strategy.control", ValueType::String, "multipass: who runs the oracle. host: the CPU reads the ray-state counts back after every pass and each pass walks the whole stream through the stencil (Purcell's and Christen's loop); device: an oracle kernel chooses the next pass and writes its indirect dispatch, and each pass serves a compacted list of its rays, with no host round trip per pass", std::string("host"), false, -1e300, 1e300, {"host", "device"}},
+            {"strategy.list_partitions", ValueType::Int, "multipass with strategy.control = device: partitions of each compacted ray list, each with its own length and room for every ray. A pass's workgroups append to them in equal runs (the first 1/n of the dispatch's workgroups to partition 0, and so on), and the next pass reads them in order, so workgroups that run side by side append to different lengths and, pass after pass, serve disjoint sets of rays; lavapipe hands each of its worker threads such a run. 1: one list per state, every append on one atomic", std::int64_t(2), false, 1, double(gpu::kMaxListPartitions), {}, {"strategy.control=device"}},
             {"strategy.batch_rays", ValueType::Int, "multipass: rays per batch, each its own pass loop (0: as many as one binding holds, maxStorageBufferRange over the largest per-ray record)", std::int64_t(0), false, 0, 1e12},
         };
         for (KeySpec& k : t.keys) {
             if (k.name == "strategy.batch_rays") k.since = 12;
             if (k.name == "strategy.control") k.since = 13;
             if (k.name == "strategy.oracle_basis") k.since = 14;
+            if (k.name == "strategy.list_partitions") k.since = 20;
         }
         t.columns = {
             {"passes_setup", K::Count, "passes", "multipass setup passes"},

@@ -30,18 +30,21 @@ struct MultipassRun {
 // Multipass's own buffers in the strategy slots of kernels/gpu_layout.h (kBindingStencil on), for
 // `rays` rays and a traversal state of `traversalStateBytes` each: the stencil, the traversal
 // state, the hit state, the per-ray counters and, with the control on the device
-// (`deviceControl`), the ray lists and the oracle's control block (`batches` of them: the sizes of
-// a stream's batches together, each with its own block).
+// (`deviceControl`), the ray lists (`listPartitions` each) and the oracle's control block
+// (`batches` of them: the sizes of a stream's batches together, each with its own block).
 std::vector<BufferSize> multipassBuffers(std::uint64_t rays, std::uint64_t traversalStateBytes, bool deviceControl,
-                                         std::uint64_t batches = 1);
+                                         unsigned listPartitions = 1, std::uint64_t batches = 1);
+// The device-controlled loop's ray lists for `rays` rays: T0, T1, W0, W1, each in `partitions`
+// partitions that can each hold every ray, a ray index per entry.
+std::uint64_t multipassListBytes(std::uint64_t rays, unsigned partitions);
 // The traversal state the last pass saved, as bytes (tests compare it with the CPU's).
 std::vector<std::uint8_t> downloadTraversalStates(GpuBuffers& buffers);
 
 // Rays per batch: `requested` (strategy.batch_rays) if not 0, else the most rays whose largest
-// per-ray record (the ray, the hit record, the traversal state of `traversalStateBytes`) fits one
-// binding (maxStorageBufferRange), a multiple of the workgroup size.
+// per-ray record (the ray, the hit record, the traversal state of `traversalStateBytes`, the ray
+// lists' `listBytesPerRay`) fits one binding (maxStorageBufferRange), a multiple of the workgroup size.
 std::uint64_t multipassBatchRays(const DeviceInfo& device, std::uint64_t traversalStateBytes, std::uint64_t requested,
-                                 unsigned workgroupSize);
+                                 unsigned workgroupSize, std::uint64_t listBytesPerRay = 0);
 
 // One instrumented run (the oracle reads the ray-state counts after every pass), then the
 // warm-ups and timed repetitions `timing` asks for (none: the timer does them later), replaying

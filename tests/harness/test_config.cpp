@@ -210,7 +210,7 @@ TEST_F(Config, UnknownKeyInASweep) {
     EXPECT_EQ(errorOf(kMinimal + "[[sweep]]\nstrategy.kk = [1, 2]\n"),
               path_ + ":6: unknown key 'strategy.kk' (allowed in [strategy]: type, workgroup_size, "
                       "traverse_steps_per_pass, intersections_per_pass, suppress_finished_reads, scheduling, "
-                      "oracle_threshold, oracle_basis, max_passes, control, batch_rays, persistent_workgroups, rays_per_fetch, schedule, threads)");
+                      "oracle_threshold, oracle_basis, max_passes, control, list_partitions, batch_rays, persistent_workgroups, rays_per_fetch, schedule, threads)");
 }
 
 }  // namespace

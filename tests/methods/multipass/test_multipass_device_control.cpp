@@ -187,6 +187,33 @@ TEST_F(MultipassDeviceControl, EveryWorkgroupShapeFilesEachRayOnce) {
     }
 }
 
+// Each list in partitions (strategy.list_partitions), a workgroup run appending to each
+// (multipass_common.glsl mpPartition), the next pass reading them in order (mpServedRay): one, the
+// default two, three (runs that do not divide the workgroups evenly) and eight, with one
+// invocation a workgroup (a partition per workgroup run of a few) and 64. Every ray filed once:
+// the host loop's sequence, events, hits and final traversal states, and the simulator's counts.
+TEST_F(MultipassDeviceControl, EveryListPartitioningFilesEachRayOnce) {
+    const std::vector<gpu::Ray> rays = hand::sceneBRays();
+    MultipassOptions o = onDevice(0.2, 4, 2);
+    MultipassOptions host = o;
+    host.deviceControl = false;
+    for (const auto& s : hand::sceneBStructures()) {
+        const MultipassRun hostRun = run(*s, rays, host);
+        const MultipassCounts simulated = simulateMultipass(*s, rays, o).counts;
+        for (unsigned partitions : {1u, 2u, 3u, unsigned(gpu::kMaxListPartitions)})
+            for (unsigned workgroup : {1u, 64u}) {
+                SCOPED_TRACE(s->kernelPrefix() + " " + std::to_string(partitions) + " partitions, workgroup " +
+                             std::to_string(workgroup));
+                o.listPartitions = partitions;
+                const MultipassRun device = runMultipass(*vk_, *s, rays, o, {workgroup, 0, 1});
+                EXPECT_EQ(device.counts.sequence, hostRun.counts.sequence);
+                EXPECT_TRUE(device.counts == simulated);
+                EXPECT_EQ(recordMismatches(device.hits, hostRun.hits), 0u);
+                EXPECT_EQ(device.traversalStates, hostRun.traversalStates);
+            }
+    }
+}
+
 // Timed repetitions rerun the oracle kernel's loop uninstrumented; their hits must equal the
 // instrumented run's (the timer checks), and the oracle's own time is a part of its own.
 TEST_F(MultipassDeviceControl, TimedRepetitionsRunTheSameLoop) {

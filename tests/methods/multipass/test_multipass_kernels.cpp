@@ -179,6 +179,11 @@ TEST(MultipassBatches, TheLargestPerRayRecordSetsTheBatch) {
     EXPECT_EQ(multipassBatchRays(device, 144, 0, 64), 932032u);
     EXPECT_EQ(multipassBatchRays(device, 16, 0, 64), 4194304u);  // the 32-byte ray and hit records bind first
     EXPECT_EQ(multipassBatchRays(device, 144, 1000, 64), 1000u);
+    // The control on the device: four lists of a 4-byte entry per ray in each partition. Eight
+    // partitions make 128 bytes a ray, over the grid's 32-byte state: 1,048,576 rays.
+    EXPECT_EQ(multipassListBytes(1, 8), 128u);
+    EXPECT_EQ(multipassBatchRays(device, 32, 0, 64, multipassListBytes(1, 8)), 1048576u);
+    EXPECT_EQ(multipassBatchRays(device, 32, 0, 64, multipassListBytes(1, 2)), 4194304u);  // 32 bytes: as the state
 }
 
 TEST_F(MultipassKernels, CountsAreDeterministic) {
