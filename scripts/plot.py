@@ -31,9 +31,11 @@ from rtbench_results import AXES, VECTOR_KEYS, christen_iterations, load, method
 COLORS = {"branching": "tab:blue", "multipass": "tab:orange", "Embree rtcIntersect1": "tab:green", "cpu": "tab:red"}
 BYTES = [("bytes_stencil", "stencil"), ("bytes_state", "state variables"), ("bytes_stack", "node stack"),
          ("bytes_voxel", "voxel data"), ("bytes_node", "BVH nodes"), ("bytes_triangle_list", "triangle lists"),
-         ("bytes_vertices", "triangle vertices"), ("bytes_output", "output")]
+         ("bytes_vertices", "triangle vertices"), ("bytes_output", "output"),
+         ("bytes_compaction", "ray lists (oracle on the device)")]
 KERNELS = [("kernel_ms_setup", "setup"), ("kernel_ms_traverse", "traverse"), ("kernel_ms_intersect", "intersect"),
            ("kernel_ms_write", "write")]
+ORACLE = ("kernel_ms_oracle", "oracle (on the device)")  # a part of kernel_ms_median where the oracle runs on the device
 
 
 class PlotError(Exception):
@@ -792,7 +794,8 @@ def kernel_time(runs, device, folder, written):
     labels = run_labels(chosen, ["scene"], keys)
     if len(set(labels)) < len(labels):  # runs alike in every key: their run numbers
         labels = [f"{label}\nrun {int(r.run):03d}" for label, r in zip(labels, chosen.itertuples())]
-    stacked_bars(ax, labels, chosen, KERNELS)
+    parts = KERNELS + ([ORACLE] if ORACLE[0] in chosen and chosen[ORACLE[0]].fillna(0).any() else [])
+    stacked_bars(ax, labels, chosen, parts)
     ax.set_ylabel("GPU time per frame (ms, median)")
     shown = f", the first 12 of {total} runs" if total > 12 else ""
     ax.set_title(f"Multipass GPU time by kernel, {size(chosen)}{shown}\n{device}")

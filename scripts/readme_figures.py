@@ -576,7 +576,14 @@ def multipass_device() -> list:
         out.append(f"| {r.sweep} | {partitions} | {num(kernel[r.run].median())} | "
                    f"{num(ratio.median(), 3) if r.strategy_type != 'branching' else ''} | "
                    f"{span(ratio.min(), ratio.max()) if r.strategy_type != 'branching' else ''} |")
-    out += [""] + charts(name, {"kernel_time": "multipass GPU time by kernel"})
+    multipass = ok[ok.strategy_type == "multipass"]
+    if "strategy_list_partitions" in multipass and multipass.strategy_list_partitions.nunique() == 2:
+        one, more = (multipass.sort_values("strategy_list_partitions").iloc[i] for i in (0, 1))
+        ratio = kernel[more.run] / kernel[one.run]
+        out += ["", f"Multipass with {count(more.strategy_list_partitions)} list partitions over {count(one.strategy_list_partitions)}, "
+                f"round by round: median {num(ratio.median(), 3)}, range {span(ratio.min(), ratio.max())}."]
+    out += [""] + charts(name, {"kernel_time": "multipass GPU time by kernel",
+                                "bandwidth_by_category": "bytes by data type, the ray lists included"})
     return out + [""]
 
 

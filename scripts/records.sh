@@ -1,6 +1,6 @@
 #!/bin/bash
 # Runs the configs of record and makes their charts and tables: results/bunny, results/structures,
-# results/purcell2002, results/stability, results/accuracy, results/raytypes, results/strategies, results/division, results/christen2005, results/wavefront (or under OUT, e.g. results/nvidia-h200 on a GPU machine; DEVICE picks the
+# results/purcell2002, results/stability, results/accuracy, results/raytypes, results/strategies, results/multipass_device, results/division, results/christen2005, results/wavefront (or under OUT, e.g. results/nvidia-h200 on a GPU machine; DEVICE picks the
 # Vulkan device by a name substring).
 #   scripts/records.sh [OUT] [DEVICE]        (about 35 minutes on 2 cores with lavapipe)
 # Environment:
@@ -10,7 +10,7 @@
 #                         draws the charts and tables here
 set -euo pipefail
 cd "$(dirname "$0")/.."
-configs=(bunny structures purcell2002 stability accuracy raytypes strategies division christen2005 wavefront)
+configs=(bunny structures purcell2002 stability accuracy raytypes strategies multipass_device division christen2005 wavefront)
 bin=${RTBENCH_BIN:-build/rtbench}
 
 charts() {
@@ -49,4 +49,4 @@ for config in "${configs[@]}"; do
   echo "== $config: $(( $(date +%s) - start )) s"
 done
 [ "${CHARTS:-1}" = 0 ] || charts "$out"
-echo "== done: $out/{bunny,structures,purcell2002,stability,accuracy,raytypes,strategies,division,christen2005,wavefront}"
+echo "== done: $out/{bunny,structures,purcell2002,stability,accuracy,raytypes,strategies,multipass_device,division,christen2005,wavefront}"

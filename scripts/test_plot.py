@@ -344,6 +344,24 @@ class NamedCharts(unittest.TestCase):
         for d in (8, 16, 32, 64):
             self.assertTrue(any(f"min_dim={d}" in label for label in labels), labels)
 
+    def test_device_control_adds_the_oracle_and_the_ray_lists(self):
+        # Multipass with the oracle on the device: its time is a part of kernel_ms_median, and its
+        # list entries (bytes_compaction) a part of bytes_total; the host-control run has neither.
+        settings = [{"structure_type": "uniform_grid", "strategy_type": "multipass"} for _ in range(2)]
+        runs = make_runs(settings, [])
+        runs.insert(len(PARAMETERS), "strategy_control", ["host", "device"])  # a key column, before `run`
+        runs = runs.assign(kernel_ms_setup=1.0, kernel_ms_traverse=2.0, kernel_ms_intersect=3.0, kernel_ms_write=0.5,
+                           kernel_ms_oracle=[np.nan, 0.25], bytes_compaction=[np.nan, 5e6])
+        charts = Charts(write_folder(self.root, "device", runs))
+        time_ax = data_axes(charts.figures["kernel_time"])[0]
+        self.assertIn("oracle (on the device)", [t.get_text() for t in time_ax.get_legend().get_texts()])
+        tops = sorted(p.get_y() + p.get_height() for p in time_ax.containers[-1])
+        self.assertEqual(tops, [6.5, 6.75])  # the host run's four passes; the device run's and its oracle
+        bytes_ax = data_axes(charts.figures["bandwidth_by_category"])[0]
+        self.assertIn("ray lists (oracle on the device)", [t.get_text() for t in bytes_ax.get_legend().get_texts()])
+        heights = [p.get_height() for p in bytes_ax.containers[-1]]
+        self.assertEqual(sorted(heights), [0.0, 5.0])  # MB: only the device run's bar has lists
+
     def test_failure_map_draws_markers_and_keeps_legends_off_the_data(self):
         settings = [{"scene_translate": f"[{d} {d} {d}]", "intersection_test": test}
                     for d in (0, 1, 100, 10000) for test in ("moller_trumbore", "watertight")]
