@@ -52,10 +52,11 @@ uint mpPartition() {
 }
 
 // Stream compaction by subgroup ballot: the subgroup's rays that `want` take consecutive entries of
-// the workgroup's partition of `list`, claimed with one atomic per subgroup. The ballot, the election and the broadcast must see
-// the same active lanes (the lanes reconverge after `if (subgroupElect())`, which Vulkan does not
-// promise without VK_KHR_shader_maximal_reconvergence): a device that broke it would file rays on
-// top of each other, and the run would fail (hits against branching's, the lists' overflow check).
+// the workgroup's partition of `list`, claimed with one atomic per subgroup. The ballot, the
+// election and the broadcast must see the same active lanes (the lanes reconverge after
+// `if (subgroupElect())`, which Vulkan does not promise without
+// VK_KHR_shader_maximal_reconvergence): a device that broke it would file rays on top of each
+// other, and the run would fail (hits against branching's, the lists' overflow check).
 void mpAppend(uint list, bool want, uint rayIndex) {
     uvec4 ballot = subgroupBallot(want);
     uint n = subgroupBallotBitCount(ballot);
@@ -65,7 +66,8 @@ void mpAppend(uint list, bool want, uint rayIndex) {
     if (subgroupElect()) base = atomicAdd(control.lists[list * kMaxListPartitions + p].count, n);
     base = subgroupBroadcastFirst(base);
     uint entry = base + subgroupBallotExclusiveBitCount(ballot);
-    if (want && entry < rtRayCount()) rayLists[(list * listPartitions + p) * rtRayCount() + entry] = rayIndex;  // else: overflow, the oracle ends the loop
+    // else: overflow, the oracle ends the loop
+    if (want && entry < rtRayCount()) rayLists[(list * listPartitions + p) * rtRayCount() + entry] = rayIndex;
 }
 
 // Compacted: files a ray the pass over `passState` leaves active. A ray still in the pass's state
