@@ -555,14 +555,14 @@ def multipass_device() -> list:
     ok = runs[runs.status == "ok"].copy()
     samples = pd.read_csv(folder_of(name) / "samples.csv", dtype={"run": str})
     kernel = samples[samples.method == "kernel"].pivot_table(index="round", columns="run", values="ms")
-    branching = ok[ok.strategy_type == "branching"]
+    branching, multipass = ok[ok.strategy_type == "branching"], ok[ok.strategy_type == "multipass"]
     if branching.empty or branching.iloc[0].run not in kernel:
         return []
     base = kernel[branching.iloc[0].run]
     out = [f"### `results/{name}/`: GPU-resident multipass against branching (issue 18)", "", provenance(name, runs, context),
            "", f"The bunny at {size(ok.iloc[0])}, grid min_dim {count(ok.iloc[0].structure_min_dim)}; multipass with K = "
-           f"{count(ok[ok.strategy_type == 'multipass'].strategy_traverse_steps_per_pass.max())}, M = "
-           f"{count(ok[ok.strategy_type == 'multipass'].strategy_intersections_per_pass.max())} and its oracle on the "
+           f"{count(multipass.strategy_traverse_steps_per_pass.max())}, M = "
+           f"{count(multipass.strategy_intersections_per_pass.max())} and its oracle on the "
            "device (compacted ray lists). The runs were timed in interleaved rounds, one repetition of each per round: "
            "× branching is each round's ratio of the two times, its median and range over the "
            f"{len(base)} rounds. Issue 18 asks for multipass within 4× of branching's time.", "",
@@ -576,7 +576,6 @@ def multipass_device() -> list:
         out.append(f"| {r.sweep} | {partitions} | {num(kernel[r.run].median())} | "
                    f"{num(ratio.median(), 3) if r.strategy_type != 'branching' else ''} | "
                    f"{span(ratio.min(), ratio.max()) if r.strategy_type != 'branching' else ''} |")
-    multipass = ok[ok.strategy_type == "multipass"]
     if "strategy_list_partitions" in multipass and multipass.strategy_list_partitions.nunique() == 2:
         one, more = (multipass.sort_values("strategy_list_partitions").iloc[i] for i in (0, 1))
         ratio = kernel[more.run] / kernel[one.run]

@@ -22,6 +22,11 @@ layout(std430, set = 0, binding = kBindingPassControl) buffer PassControlBuffer 
 
 const uint kNoRay = 0xFFFFFFFFu;
 
+// Partition p of ray list l (strategy.list_partitions): its length in the control block, and its
+// entry i. Macros, not functions, so that the SPIR-V (and the instruction estimate) is as written out.
+#define MP_LIST_LENGTH(l, p) control.lists[(l) * kMaxListPartitions + (p)].count
+#define MP_LIST_ENTRY(l, p, i) rayLists[((l) * listPartitions + (p)) * rtRayCount() + (i)]
+
 // The list a pass over rays in `state` reads, and the other list of its pair.
 uint mpCurrentList(uint state) { return state == kStateTraversing ? control.current.x : 2u + control.current.y; }
 uint mpOtherList(uint state) { return state == kStateTraversing ? 1u - control.current.x : 3u - control.current.y; }
@@ -34,8 +39,8 @@ uint mpServedRay(uint state) {
     if (compact == 0u) return slot < rtRayCount() && uint(stencil[slot]) == state ? slot : kNoRay;
     uint list = mpCurrentList(state);
     for (uint p = 0u; p < listPartitions; ++p) {
-        uint n = control.lists[list * kMaxListPartitions + p].count;
-        if (slot < n) return rayLists[(list * listPartitions + p) * rtRayCount() + slot];
+        uint n = MP_LIST_LENGTH(list, p);
+        if (slot < n) return MP_LIST_ENTRY(list, p, slot);
         slot -= n;
     }
     return kNoRay;
@@ -63,11 +68,11 @@ void mpAppend(uint list, bool want, uint rayIndex) {
     if (n == 0u) return;
     uint base = 0u;
     uint p = mpPartition();
-    if (subgroupElect()) base = atomicAdd(control.lists[list * kMaxListPartitions + p].count, n);
+    if (subgroupElect()) base = atomicAdd(MP_LIST_LENGTH(list, p), n);
     base = subgroupBroadcastFirst(base);
     uint entry = base + subgroupBallotExclusiveBitCount(ballot);
     // else: overflow, the oracle ends the loop
-    if (want && entry < rtRayCount()) rayLists[(list * listPartitions + p) * rtRayCount() + entry] = rayIndex;
+    if (want && entry < rtRayCount()) MP_LIST_ENTRY(list, p, entry) = rayIndex;
 }
 
 // Compacted: files a ray the pass over `passState` leaves active. A ray still in the pass's state

@@ -25,12 +25,12 @@ uvec4 mpGroupsFor(uint rays) {
 // The rays on list l: its partitions' lengths.
 uint mpListLength(uint l) {
     uint n = 0u;
-    for (uint p = 0u; p < listPartitions; ++p) n += control.lists[l * kMaxListPartitions + p].count;
+    for (uint p = 0u; p < listPartitions; ++p) n += MP_LIST_LENGTH(l, p);
     return n;
 }
 
 void mpClearList(uint l) {
-    for (uint p = 0u; p < listPartitions; ++p) control.lists[l * kMaxListPartitions + p].count = 0u;
+    for (uint p = 0u; p < listPartitions; ++p) MP_LIST_LENGTH(l, p) = 0u;
 }
 
 void main() {

@@ -164,54 +164,46 @@ TEST_F(MultipassDeviceControl, ChoosesAsTheHostLoopForEveryUnrollAndSchedule) {
     }
 }
 
-// Each subgroup claims its rays' list entries by ballot (multipass_common.glsl mpAppend). Every
-// workgroup shape must file each active ray once: one invocation, one subgroup, a partial last
-// subgroup (on a device of 8 or 16 lanes), several full ones. The same sequence, events, hits and
-// final traversal states as the host's loop, whose passes use no lists.
-TEST_F(MultipassDeviceControl, EveryWorkgroupShapeFilesEachRayOnce) {
-    const std::vector<gpu::Ray> rays = hand::sceneBRays();
-    const MultipassOptions o = onDevice(0.2, 4, 2);
-    MultipassOptions host = o;
-    host.deviceControl = false;
-    for (const auto& s : hand::sceneBStructures()) {
-        const MultipassRun hostRun = run(*s, rays, host);
-        const MultipassCounts simulated = simulateMultipass(*s, rays, o).counts;
-        for (unsigned workgroup : {1u, 8u, 20u, 64u, 256u}) {
-            SCOPED_TRACE(s->kernelPrefix() + " workgroup " + std::to_string(workgroup));
-            const MultipassRun device = runMultipass(*vk_, *s, rays, o, {workgroup, 0, 1});
-            EXPECT_EQ(device.counts.sequence, hostRun.counts.sequence);
-            EXPECT_TRUE(device.counts == simulated);
-            EXPECT_EQ(recordMismatches(device.hits, hostRun.hits), 0u);
-            EXPECT_EQ(device.traversalStates, hostRun.traversalStates);
-        }
-    }
-}
-
-// Each list in partitions (strategy.list_partitions), a workgroup run appending to each
-// (multipass_common.glsl mpPartition), the next pass reading them in order (mpServedRay): one, the
-// default two, three (runs that do not divide the workgroups evenly) and eight, with one
-// invocation a workgroup (a partition per workgroup run of a few) and 64. Every ray filed once:
-// the host loop's sequence, events, hits and final traversal states, and the simulator's counts.
-TEST_F(MultipassDeviceControl, EveryListPartitioningFilesEachRayOnce) {
+// Runs scene B's grid and BVH with the control on the device (K = 4, M = 2) at every number of
+// list partitions and workgroup size given: each run must file every active ray once, so give the
+// host loop's sequence, events, hits and final traversal states (its passes use no lists), and
+// the simulator's counts.
+void expectEachRayFiledOnce(VulkanContext& vk, std::initializer_list<unsigned> partitionCounts,
+                            std::initializer_list<unsigned> workgroups) {
     const std::vector<gpu::Ray> rays = hand::sceneBRays();
     MultipassOptions o = onDevice(0.2, 4, 2);
     MultipassOptions host = o;
     host.deviceControl = false;
     for (const auto& s : hand::sceneBStructures()) {
-        const MultipassRun hostRun = run(*s, rays, host);
+        const MultipassRun hostRun = runMultipass(vk, *s, rays, host, {64, 0, 1});
         const MultipassCounts simulated = simulateMultipass(*s, rays, o).counts;
-        for (unsigned partitions : {1u, 2u, 3u, unsigned(gpu::kMaxListPartitions)})
-            for (unsigned workgroup : {1u, 64u}) {
+        for (unsigned partitions : partitionCounts)
+            for (unsigned workgroup : workgroups) {
                 SCOPED_TRACE(s->kernelPrefix() + " " + std::to_string(partitions) + " partitions, workgroup " +
                              std::to_string(workgroup));
                 o.listPartitions = partitions;
-                const MultipassRun device = runMultipass(*vk_, *s, rays, o, {workgroup, 0, 1});
+                const MultipassRun device = runMultipass(vk, *s, rays, o, {workgroup, 0, 1});
                 EXPECT_EQ(device.counts.sequence, hostRun.counts.sequence);
                 EXPECT_TRUE(device.counts == simulated);
                 EXPECT_EQ(recordMismatches(device.hits, hostRun.hits), 0u);
                 EXPECT_EQ(device.traversalStates, hostRun.traversalStates);
             }
     }
+}
+
+// Each subgroup claims its rays' list entries by ballot (multipass_common.glsl mpAppend). Every
+// workgroup shape must file each active ray once: one invocation, one subgroup, a partial last
+// subgroup (on a device of 8 or 16 lanes), several full ones; the default two list partitions.
+TEST_F(MultipassDeviceControl, EveryWorkgroupShapeFilesEachRayOnce) {
+    expectEachRayFiledOnce(*vk_, {MultipassOptions{}.listPartitions}, {1u, 8u, 20u, 64u, 256u});
+}
+
+// Each list in partitions (strategy.list_partitions), a workgroup run appending to each
+// (multipass_common.glsl mpPartition), the next pass reading them in order (mpServedRay): one, the
+// default two, three (runs that do not divide the workgroups evenly) and eight, with one
+// invocation a workgroup (a partition per workgroup run of a few) and 64.
+TEST_F(MultipassDeviceControl, EveryListPartitioningFilesEachRayOnce) {
+    expectEachRayFiledOnce(*vk_, {1u, 2u, 3u, unsigned(gpu::kMaxListPartitions)}, {1u, 64u});
 }
 
 // Timed repetitions rerun the oracle kernel's loop uninstrumented; their hits must equal the
