@@ -112,6 +112,9 @@ GpuBuffers::GpuBuffers(VulkanContext& vk, const std::vector<gpu::Ray>& rays,
     try {
         for (std::uint32_t b : {gpu::kBindingRays, gpu::kBindingHits})
             buffers_[b] = vk.createStorageBuffer(sizes[b].bytes, sizes[b].what);
+        // Zero records until a kernel writes them: a whole-path kernel leaves the records of paths
+        // that end early unwritten, and the checks read every record.
+        vk.fill(buffers_[gpu::kBindingHits], 0);
         buffers_[gpu::kBindingPassCounters] = vk.createStorageBuffer(sizeof(gpu::PassCounters), "the pass counters");
         countersOnHost_ = vk.createHostReadbackBuffer(sizeof(gpu::PassCounters));
         std::memset(countersOnHost_.mapped, 0, sizeof(gpu::PassCounters));  // zeros until a read-back

@@ -215,7 +215,7 @@ std::vector<DeviceInfo> VulkanContext::listDevices() {
     return infos;
 }
 
-VulkanContext::VulkanContext(const std::string& deviceChoice, bool validation) {
+VulkanContext::VulkanContext(const std::string& deviceChoice, bool validation) : poisonNewBuffers_(validation) {
     instance_ = createInstance(validation, &messages_, &messenger_);
 
     // Device choice: a name substring, or auto = discrete GPU > CPU (lavapipe) > the first.
@@ -375,10 +375,19 @@ void checkBindingSize(const DeviceInfo& device, const std::string& what, std::ui
 
 Buffer VulkanContext::createStorageBuffer(VkDeviceSize size, const std::string& what) {
     checkBindingSize(info_, what, size);
-    return createBuffer(size,
-                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
-                            VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
-                        VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0);
+    Buffer b = createBuffer(size,
+                            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_SRC_BIT |
+                                VK_BUFFER_USAGE_TRANSFER_DST_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT,
+                            VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, 0);
+    if (poisonNewBuffers_) {
+        try {
+            fill(b, kPoisonWord);
+        } catch (...) {
+            destroy(b);
+            throw;
+        }
+    }
+    return b;
 }
 
 Buffer VulkanContext::createHostReadbackBuffer(VkDeviceSize size) {

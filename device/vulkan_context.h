@@ -81,9 +81,15 @@ struct ComputePipeline {
 
 class VulkanContext {
 public:
+    // What a validated context's new storage buffers hold until written: every float a NaN, every
+    // uint 0xFFFFFFFF (no ray, primitive or slot index).
+    static constexpr std::uint32_t kPoisonWord = 0xFFFFFFFFu;
+
     // deviceChoice: "auto" (a discrete GPU if any, else lavapipe/CPU, else the first) or a
     // case-insensitive substring of the device name. validation: enable
-    // VK_LAYER_KHRONOS_validation and collect what it reports (see validationMessages()).
+    // VK_LAYER_KHRONOS_validation and collect what it reports (see validationMessages()), and
+    // poison every new storage buffer (kPoisonWord in each 4 bytes) so that a kernel or a check
+    // reading memory nothing wrote finds NaNs and out-of-range indices, not whatever was there.
     VulkanContext(const std::string& deviceChoice, bool validation);
     ~VulkanContext();
     VulkanContext(const VulkanContext&) = delete;
@@ -94,7 +100,8 @@ public:
     const DeviceInfo& info() const { return info_; }
 
     // A storage buffer in DEVICE_LOCAL memory (uploaded through a staging buffer when that
-    // memory is not host-visible). Throws when size exceeds maxStorageBufferRange.
+    // memory is not host-visible), poisoned when validating. Throws when size exceeds
+    // maxStorageBufferRange.
     Buffer createStorageBuffer(VkDeviceSize size, const std::string& what);
     // A small buffer in HOST_VISIBLE | HOST_COHERENT memory that copies land in (the host reads
     // counters the kernels summed in a device-local buffer: CounterReadback).
@@ -184,6 +191,7 @@ private:
     DeviceInfo info_;
     std::uint32_t timestampValidBits_ = 0;
     std::vector<std::string> messages_;
+    bool poisonNewBuffers_ = false;  // the validation mode's fill of new storage buffers
 };
 
 }  // namespace rtbench

@@ -164,7 +164,7 @@ const std::vector<KeySpec>& configSchema() {
         add({"baseline.embree_config", ValueType::String, "Embree device config string, e.g. \"isa=avx2\" (keys isa, max_isa, threads, start_threads, set_affinity, verbose)", std::string(""), false, -1e300, 1e300, {}, {}, checkEmbreeConfig});
         add({"accuracy.exact_rays", ValueType::Int, "rays checked against the exact reference (CGAL, exact arithmetic): an even stride over the image from ray 0; 0 = every ray", std::int64_t(1048576), false, 0, 4294967295.0});
         add({"device.name", ValueType::String, "\"auto\" (discrete GPU, else lavapipe) or a substring of the device name", std::string("auto")});
-        add({"device.validation", ValueType::Bool, "enable the Vulkan validation layer (a run fails on any message)", false});
+        add({"device.validation", ValueType::Bool, "enable the Vulkan validation layer (a run fails on any message) and fill each new device buffer with NaNs, so that a read of memory nothing wrote fails every time", false});
         add({"output.images", ValueType::Bool, "write PNGs (needs OpenImageIO; else hit records are kept)", true});
         {
             KeySpec exr{"output.exr", ValueType::Bool, "also write each run's shaded image as <run>-shaded.exr: the shades in float (a hit's |cos| between normal and ray, or the batch image's value; a miss 0), one channel Y, through OpenImageIO's OpenEXR writer", false};

@@ -68,7 +68,7 @@ int main(int argc, char** argv) {
     std::string deviceOverride;
     bool validationOverride = false;
     run->add_option("-d,--device", deviceOverride, "Vulkan device: auto or a name substring (overrides device.name)");
-    run->add_flag("--validation", validationOverride, "enable the Vulkan validation layer; a run fails on any message");
+    run->add_flag("--validation", validationOverride, "enable the Vulkan validation layer (a run fails on any message) and fill new device buffers with NaNs");
     run->add_flag("-q,--quiet", options.quiet, "print only the summary table");
     run->add_flag("-f,--force", options.force, "re-run runs whose rows (same run, config hash, commit) already exist");
     std::string runEmbreeConfig;

@@ -69,7 +69,7 @@ std::string batchMismatch(const PathEnds& e, const PathGeneration& cpu, std::vec
 class PathMegakernelTimer : public KernelTimer {
 public:
     PathMegakernelTimer(VulkanContext& vk, std::unique_ptr<GpuBuffers> buffers, ComputePipeline timed,
-                        std::uint64_t cameraRays, std::uint64_t paths, std::vector<gpu::HitRecord> counted)
+                        std::uint64_t cameraRays, std::uint64_t paths, PathEnds counted)
         : vk_(vk), buffers_(std::move(buffers)), timed_(timed), cameraRays_(cameraRays), paths_(paths),
           counted_(std::move(counted)) {}
     ~PathMegakernelTimer() override { vk_.destroy(timed_); }
@@ -79,9 +79,16 @@ public:
             {&timed_, buffers_->descriptorSet(timed_), buffers_->pushConstants(), cameraRays_});
         return splitWarmups(vk_.dispatchAll(calls), warmups);
     }
+    // The paths that reached the batch, then their records: a path that stopped short in the
+    // timed run would keep the instrumented run's record.
     void checkHits() override {
         const PathEnds e = downloadPathEnds(*buffers_, paths_);
-        expectSameHits(e.hits, counted_, "path megakernel");
+        for (std::uint64_t p = 0; p < paths_; ++p)
+            if ((e.made[p] != 0) != (counted_.made[p] != 0))
+                throw Error("path megakernel: path " + std::to_string(p) + " reached the batch in the " +
+                            (e.made[p] ? "timed run but not in the instrumented one" : "instrumented run but not in the timed one") +
+                            ": the kernel gives different results on the same input");
+        expectSameHits(e.hits, counted_.hits, "path megakernel");
     }
 
 private:
@@ -89,7 +96,7 @@ private:
     std::unique_ptr<GpuBuffers> buffers_;
     ComputePipeline timed_;
     std::uint64_t cameraRays_, paths_;
-    std::vector<gpu::HitRecord> counted_;  // by path
+    PathEnds counted_;  // the instrumented run's, by path
 };
 
 StrategyRun runPathMegakernelStrategy(VulkanContext& vk, const Structure& structure, const RayBatch& batch,
@@ -124,7 +131,7 @@ StrategyRun runPathMegakernelStrategy(VulkanContext& vk, const Structure& struct
     batchRun.laneSlots = counters.counts[gpu::kCountLaneSlots];
     spec.instrument = false;
     const ComputePipeline timed = buffers->createKernel(kernel, spec);
-    batchRun.timer = std::make_unique<PathMegakernelTimer>(vk, std::move(buffers), timed, cameraRays, paths, ends.hits);
+    batchRun.timer = std::make_unique<PathMegakernelTimer>(vk, std::move(buffers), timed, cameraRays, paths, ends);
     const LaneCounts lanes = pathLaneCounts(structure, path, batch.query, vk.info().subgroupSize, loopIterationBudget(vk.info()));
     StrategyRun run = judgeWholeTraversal(vk, structure, batch, std::move(batchRun), lanes,
                                           ": a camera ray's whole path runs in one invocation (the wavefront traces a "

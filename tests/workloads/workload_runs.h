@@ -16,7 +16,7 @@ protected:
     ExperimentResult run(const std::string& body) {
         const std::string path = dir_.write("runs.toml", "[experiment]\nname = \"runs\"\noutput = \"" + dir_.file("out") +
                                                              "\"\nrepetitions = 1\nwarmups = 0\nrounds = 1\n[device]\nname = \"" +
-                                                             testDeviceName() + "\"\n" + body);
+                                                             testDeviceName() + "\"\nvalidation = true\n" + body);
         RunnerOptions options;
         options.quiet = true;
         return runExperiment(loadExperiment(path), options);
