@@ -37,6 +37,7 @@
 #include "path_check.h"
 #include "run_inputs.h"
 #include "run_metrics.h"
+#include "run_verdict.h"
 #include "statistics.h"
 #include "timing_rounds.h"
 #include "output_folder.h"
@@ -229,7 +230,7 @@ void finishRun(RunInProgress& p, const std::string& folder, Caches& caches, Row&
     samples = p.rounds->result().samples;
     writeTimingResults(run, vk, workload.batch.path ? workload.batch.path->rays() : rays.size(), p.rounds->result(), p.started, row);
     row["embree_rays"] = std::to_string(p.embreeRays);
-    method.timer->checkHits();
+    checkTimedRecords(method, p.shadingMismatch, rays.size());
 
     // The run's image from the batch's hits `hits`: the rays' own hits shaded on `shadedOn` (camera
     // rays, reflections, ...), or the camera hits changed by the batch's (shadow rays, ...); where
@@ -296,17 +297,8 @@ void finishRun(RunInProgress& p, const std::string& folder, Caches& caches, Row&
     if (vk.validationMessages().size() != p.messagesBefore)
         throw Error("the Vulkan validation layer reported: " + vk.validationMessages()[p.messagesBefore]);
     // The row is complete; a kernel that disagrees with its CPU reference fails it all the same.
-    if (!p.shadingMismatch.empty()) throw Error(p.shadingMismatch);
-    if (method.truncatedRays) throw Error(method.truncatedWhy);
-    if (method.cpuMismatches)
-        throw Error("the kernel's hit records differ from the CPU reference's on " + std::to_string(method.cpuMismatches) +
-                    " of " + std::to_string(rays.size()) + " rays");
-    if (!method.countsMismatch.empty())
-        throw Error("the kernel's " + method.countsMismatch + " from the CPU reference's");
-    if (method.branchingMismatches)
-        throw Error("the multipass hit records differ from the branching caster's on " +
-                    std::to_string(method.branchingMismatches) + " of " + std::to_string(rays.size()) + " rays");
-    if (!method.modelMismatch.empty()) throw Error(method.modelMismatch);
+    const std::string failure = instrumentedRunFailure(method, p.shadingMismatch, rays.size());
+    if (!failure.empty()) throw Error(failure);
 }
 
 // One run, whole: prepared, timed round after round, finished.

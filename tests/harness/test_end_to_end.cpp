@@ -178,6 +178,11 @@ TEST_F(EndToEnd, PersistentThreadsCutShortFailTheRunAndSaySo) {
     if (testDeviceName() == "llvmpipe") {
         EXPECT_EQ(row.at("status"), "failed");  // measured: cut on every run so far
     }
+    // Whatever of it failed first, the error says that the driver is known to get it wrong.
+    if (row.at("status") == "failed" &&
+        VulkanContext(testDeviceName(), false).info().driver.find("llvmpipe Mesa 22.") != std::string::npos) {
+        EXPECT_THAT(row.at("error"), HasSubstr("(Mesa 22.3's llvmpipe loses rays of the persistent kernel"));
+    }
 }
 
 // A scene source that is not there would fail every run of it: the command fails, naming the
