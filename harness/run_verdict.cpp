@@ -27,7 +27,7 @@ std::string instrumentedRunFailure(const StrategyRun& method, const std::string&
 void checkTimedRecords(const StrategyRun& method, const std::string& shadingMismatch, std::uint64_t rays) {
     try {
         method.timer->checkHits();
-    } catch (const Error& timed) {
+    } catch (const Error&) {
         const std::string earlier = instrumentedRunFailure(method, shadingMismatch, rays);
         if (earlier.empty()) throw;
         throw Error(earlier + "; the timed run's records differ from the instrumented run's too");
