@@ -231,7 +231,7 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         s.back().since = 14;
         add("bytes_stencil", K::Count, "bytes", "ray-state byte reads and writes");
         add("bytes_state", K::Count, "bytes", "per-ray state saved and restored");
-        add("bytes_stack", K::Count, "bytes", "multipass: per-ray node stack saved and restored (BVH)");
+        add("bytes_stack", K::Count, "bytes", "multipass: node-stack entries pushed and popped, 4 bytes each (BVH; its stack stays in memory)");
         add("bytes_compaction", K::Count, "bytes", "multipass with strategy.control = device: compacted ray-list entries read and appended, 4 bytes each");
         s.back().since = 13;
         add("bytes_triangle_list", K::Count, "bytes", "triangle-list entries read");

@@ -145,13 +145,15 @@ RTBENCH_CONST kCountUsefulRays = 2;     // rays whose state the kernel serves (d
 RTBENCH_CONST kCountStencilWrites = 3;  // ray-state bytes written (state changed)
 RTBENCH_CONST kCountStructureReads = 4; // structure records read (grid: cell offsets; BVH: nodes)
 RTBENCH_CONST kCountTriangleReads = 5;  // triangle-list entries read, each with its vertices
-RTBENCH_CONST kCountActiveLanes = 6;    // branching, persistent, megakernel: sum of active lanes over subgroup ballots
-RTBENCH_CONST kCountLaneSlots = 7;      // the same: sum of subgroup size over subgroup ballots
-RTBENCH_CONST kCountRaysFetched = 8;   // persistent threads: the ray-fetch counter (rays handed out, overshoot included)
-RTBENCH_CONST kCountRaysTraced = 9;    // persistent threads: rays whose record a lane wrote; path megakernel: rays traced
-RTBENCH_CONST kCountRunsTraverse = 10; // megakernel: subgroup executions of the traverse state
-RTBENCH_CONST kCountRunsIntersect = 11;// megakernel: subgroup executions of the intersect state
-RTBENCH_CONST kCountSlots = 12;
+RTBENCH_CONST kCountStackEntries = 6;   // node-stack entries pushed or popped in memory (multipass on a BVH)
+RTBENCH_CONST kCountActiveLanes = 7;    // branching, persistent, megakernel: sum of active lanes over subgroup ballots
+RTBENCH_CONST kCountLaneSlots = 8;      // the same: sum of subgroup size over subgroup ballots
+RTBENCH_CONST kCountRaysFetched = 9;   // persistent threads: the ray-fetch counter (rays handed out, overshoot included)
+RTBENCH_CONST kCountRaysTraced = 10;   // persistent threads: rays whose record a lane wrote; path megakernel: rays traced
+RTBENCH_CONST kCountRunsTraverse = 11; // megakernel: subgroup executions of the traverse state
+RTBENCH_CONST kCountRunsIntersect = 12;// megakernel: subgroup executions of the intersect state
+RTBENCH_CONST kCountSlots = 13;
+RTBENCH_CONST kPassLogSums = 8;         // the PassCounters slots a pass log entry keeps: kCountTraversing..kCountStackEntries and one more
 
 // A ray as generated once on the host and traced by every method (Embree included).
 struct Ray {
@@ -253,8 +255,8 @@ struct PassControl {
 
 // One pass of the device-controlled loop, logged by the oracle after it.
 struct PassLogEntry {
-    uint64 sums[6];   // byte 0: PassCounters slots kCountTraversing..kCountTriangleReads (instrumented runs)
-    uvec4 kindLists;  // byte 48: x: kPass*; y, z: rays on the current traversing and waiting lists after it;
+    uint64 sums[kPassLogSums];  // byte 0: PassCounters slots 0..kPassLogSums - 1 (instrumented runs)
+    uvec4 kindLists;  // byte 64: x: kPass*; y, z: rays on the current traversing and waiting lists after it;
                       //          w: rays the pass was dispatched for (its input list; setup: the stream)
 };
 
@@ -295,14 +297,14 @@ static_assert(sizeof(RayHitState) == 16);
 static_assert(sizeof(RayCounters) == 16);
 static_assert(sizeof(ShadingParams) == 48);
 static_assert(sizeof(Material) == 48);
-static_assert(sizeof(PassCounters) == 96);
+static_assert(sizeof(PassCounters) == 104);
 static_assert(sizeof(ListCount) == 64);
 static_assert(sizeof(PassControl) == 64 + 4 * kMaxListPartitions * 64);
-static_assert(sizeof(PassLogEntry) == 64);
+static_assert(sizeof(PassLogEntry) == 80 && kCountStackEntries < kPassLogSums);
 static_assert(sizeof(WholePathControl) == 128 + 48 * kPathMaxPasses && offsetof(WholePathControl, passes) == 128);
 static_assert(sizeof(RayQueryParams) == 32 && offsetof(RayQueryParams, topLevel) == 16);
 static_assert(offsetof(PassControl, current) == 32 && offsetof(PassControl, status) == 48 &&
-              offsetof(PassControl, lists) == 64 && offsetof(PassLogEntry, kindLists) == 48);
+              offsetof(PassControl, lists) == 64 && offsetof(PassLogEntry, kindLists) == 64);
 }  // namespace rtbench::gpu
 #else
 const float kNoHitT = 3.402823466e38;

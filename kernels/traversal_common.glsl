@@ -107,6 +107,7 @@ struct MpEvents {
     uint visited;        // voxels entered
     uint tested;         // ray-triangle tests
     uint steps;          // traversal step attempts
+    uint stackEntries;   // node-stack entries pushed or popped in memory (BVH)
     uint sink;           // xor of discarded reads: keeps the compiler from removing them
 };
 
@@ -117,6 +118,7 @@ MpEvents mpNoEvents() {
     e.visited = 0u;
     e.tested = 0u;
     e.steps = 0u;
+    e.stackEntries = 0u;
     e.sink = 0u;
     return e;
 }

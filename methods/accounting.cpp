@@ -55,14 +55,15 @@ ArchitectureMetrics multipassMetrics(const std::vector<gpu::HitRecord>& hits, co
     // The per-ray state each pass moves (Purcell's state textures): setup reads the ray and
     // writes traversal and hit state; traverse reads the ray, traversal and hit state and writes
     // the traversal state; intersect also writes the hit state; write reads the hit state. The
-    // traversal state's node stack (BVH) is its own category.
-    const std::uint64_t s = costs.traversalStateBytes - costs.stackBytes, stack = costs.stackBytes;
+    // traversal state's node stack (BVH) stays in memory, its own category: the entries pushed
+    // and popped.
+    const std::uint64_t s = costs.traversalStateBytes - costs.stackBytes;
     const std::uint64_t setup = bytes::kRay + s + bytes::kHitState;
     const std::uint64_t traverse = bytes::kRay + s + bytes::kHitState + s;
     const std::uint64_t intersect = traverse + bytes::kHitState;
     m.bytes.state = rays * setup + counts.usefulTraverse * traverse + counts.usefulIntersect * intersect +
                     rays * bytes::kHitState;
-    m.bytes.stack = rays * stack + (counts.usefulTraverse + counts.usefulIntersect) * 2 * stack;
+    m.bytes.stack = counts.stackEntries * bytes::kStackEntry;
     return m;
 }
 

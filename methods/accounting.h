@@ -21,6 +21,7 @@ constexpr std::uint64_t kHitState = sizeof(gpu::RayHitState);  // 16
 constexpr std::uint64_t kOutput = 16;                        // t, primitive, u, v of the hit record
 constexpr std::uint64_t kBranchingState = kRay;              // read the ray once (the rest lives in registers)
 constexpr std::uint64_t kListEntry = 4;                      // a ray index in a compacted list
+constexpr std::uint64_t kStackEntry = 4;                     // a node reference on a saved stack (BVH)
 }  // namespace bytes
 
 struct Bandwidth {

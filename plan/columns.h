@@ -74,7 +74,10 @@ struct ColumnSpec {
 //        rates count them all.
 //  20  + strategy.list_partitions (multipass with the control on the device: each ray list in
 //        partitions, 2 by default; before, one).
-constexpr int kSchemaVersion = 20;
+//  21  bytes_stack of multipass on a BVH counts the stack entries pushed and popped (its stack
+//        stays in memory; before, every pass that served a ray moved the whole 128-byte stack,
+//        and setup wrote it).
+constexpr int kSchemaVersion = 21;
 
 // The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".
 std::string paramColumn(const std::string& key);

@@ -107,12 +107,32 @@ HitRecord rtTrace(Ray ray) {
 
 // ---- multipass (Purcell et al. 2002 §3.2 on a BVH): traverse passes take walk steps until a
 // leaf is reached (state waiting), intersect passes test its triangles and pop.
+//
+// The saved stack stays in memory: a pass moves the 16-byte walk state (ts.walk) and reads or
+// writes only the stack entries it pops or pushes (e.stackEntries counts them), as a GPU kernel
+// keeps a stack in memory. In the multipass kernels MP_STATE_RECORD is the served ray's record
+// in the traversal-state buffer (methods/multipass/multipass_common.glsl), which ts.walk alone is
+// loaded from and saved to (MP_LOAD_STATE, MP_SAVE_STATE): copying the whole 144-byte record in
+// and out made llvmpipe's traverse passes several times slower (docs/method.md). Compiled as C++, ts is that record
+// already, and BvhKernels's accessors (bvh_reference.h) report each entry to the memory trace.
+#ifndef MP_STACK_READ
+#ifdef MP_STATE_RECORD
+#define MP_STACK_READ(ts, i) MP_STATE_RECORD.stack[i]
+#define MP_STACK_WRITE(ts, i, v) MP_STATE_RECORD.stack[i] = (v)
+#define MP_LOAD_STATE(ts, ray) ts.walk = traversalStates[ray].walk
+#define MP_SAVE_STATE(ts, ray) traversalStates[ray].walk = ts.walk
+#else  // kernels without a saved state compile the functions below but never call them
+#define MP_STACK_READ(ts, i) ts.stack[i]
+#define MP_STACK_WRITE(ts, i, v) ts.stack[i] = (v)
+#endif
+#endif
 
 // Continues with the reference on top of the saved stack: traversing, or done when it is empty.
-uint mpBvhPop(RT_INOUT(BvhTraversalState) ts, RayHitState hit) {
+uint mpBvhPop(RT_INOUT(BvhTraversalState) ts, RayHitState hit, RT_INOUT(MpEvents) e) {
     if (ts.walk.y == 0u) return mpDoneState(hit);
     ts.walk.y -= 1u;
-    ts.walk.x = ts.stack[ts.walk.y];
+    ts.walk.x = MP_STACK_READ(ts, ts.walk.y);
+    e.stackEntries += 1u;
     return kStateTraversing;
 }
 
@@ -121,8 +141,7 @@ uint mpSetup(Ray ray, RT_OUT(BvhTraversalState) ts, RT_OUT(RayHitState) hit, RT_
     hit.primitive = kNoHit;
     hit.u = 0.0f;
     hit.v = 0.0f;
-    ts.walk = uvec4(0u);  // the root, an empty stack
-    for (uint i = 0u; i < kBvhStackSize; ++i) ts.stack[i] = 0u;
+    ts.walk = uvec4(0u);  // the root, an empty stack (an entry is read only after a push wrote it)
     return rtBvhEnter(ray) ? kStateTraversing : kStateMissedBox;
 }
 
@@ -151,11 +170,12 @@ uint mpTraverse(Ray ray, RT_INOUT(BvhTraversalState) ts, RayHitState hit, RT_INO
                     state = mpDoneState(hit);  // cannot happen: see rtTrace
                 } else {
                     if (entered == 2u) {
-                        ts.stack[ts.walk.y] = second;
+                        MP_STACK_WRITE(ts, ts.walk.y, second);
                         ts.walk.y += 1u;
+                        e.stackEntries += 1u;
                     }
                     if (entered > 0u) ts.walk.x = first;
-                    else state = mpBvhPop(ts, hit);
+                    else state = mpBvhPop(ts, hit, e);
                 }
             }
         } else if (suppressFinishedReads == 0u) {
@@ -181,7 +201,7 @@ uint mpIntersect(Ray ray, RT_INOUT(BvhTraversalState) ts, RT_INOUT(RayHitState) 
     uint listPos = ts.walk.z;
     uint state = kStateWaiting;
     if (mpIntersectRange(ray, listPos, ts.walk.w, hit, e))
-        state = rtQueryDone(hit.primitive) ? kStateDoneHit : mpBvhPop(ts, hit);
+        state = rtQueryDone(hit.primitive) ? kStateDoneHit : mpBvhPop(ts, hit, e);
     ts.walk.z = listPos;
     return state;
 }

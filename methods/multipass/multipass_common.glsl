@@ -2,13 +2,22 @@
 // exit of rays in other states, Purcell's early fragment kill), saving the new state, and counting.
 #include "bindings.glsl"
 #include "traversal_common.glsl"
-#include "structure.glsl"
-
 // The per-ray state kept between passes, in multipass's own slots (kernels/gpu_layout.h).
 layout(std430, set = 0, binding = kBindingStencil) buffer StencilBuffer { uint8_t stencil[]; };
 layout(std430, set = 0, binding = kBindingTraversal) buffer TraversalBuffer { RtTraversalState traversalStates[]; };
 layout(std430, set = 0, binding = kBindingHitState) buffer HitStateBuffer { RayHitState hitStates[]; };
 layout(std430, set = 0, binding = kBindingRayCounters) buffer RayCounterBuffer { RayCounters rayCounters[]; };
+
+// The ray this invocation serves; a structure may keep part of its saved state in memory and
+// address it there (the BVH's stack: methods/bvh/bvh_traversal.glsl).
+uint mpStateRay = 0u;
+#define MP_STATE_RECORD traversalStates[mpStateRay]
+#include "structure.glsl"
+// A structure that keeps none of its state in memory moves the whole record.
+#ifndef MP_LOAD_STATE
+#define MP_LOAD_STATE(ts, ray) ts = traversalStates[ray]
+#define MP_SAVE_STATE(ts, ray) traversalStates[ray] = ts
+#endif
 
 // strategy.control = "device": the passes serve the rays of compacted lists, which the oracle
 // kernel (multipass_oracle.comp) keeps in its control block, instead of the stream's stencil.
@@ -99,6 +108,7 @@ void mpReport(uint rayIndex, uint oldState, uint newState, MpEvents e) {
         rtCount(kCountStencilWrites, newState != oldState ? 1u : 0u);
         rtCount(kCountStructureReads, e.structureReads);
         rtCount(kCountTriangleReads, e.triangleReads);
+        rtCount(kCountStackEntries, e.stackEntries);
         RayCounters c = rayCounters[rayIndex];
         c.cellsVisited += e.visited;
         c.trianglesTested += e.tested;

@@ -7,10 +7,12 @@ void main() {
     uint rayIndex = mpServedRay(kStateWaiting);
     if (rayIndex == kNoRay) return;
     MpEvents e = mpNoEvents();
-    RtTraversalState ts = traversalStates[rayIndex];
+    mpStateRay = rayIndex;
+    RtTraversalState ts;
+    MP_LOAD_STATE(ts, rayIndex);
     RayHitState hit = hitStates[rayIndex];
     uint state = mpIntersect(rays[rayIndex], ts, hit, e);
-    traversalStates[rayIndex] = ts;
+    MP_SAVE_STATE(ts, rayIndex);
     hitStates[rayIndex] = hit;
     if (state != kStateWaiting) stencil[rayIndex] = uint8_t(state);
     mpReport(rayIndex, kStateWaiting, state, e);

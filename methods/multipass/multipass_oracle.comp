@@ -50,7 +50,7 @@ void main() {
     }
     uint traversing = mpListLength(t), waiting = mpListLength(2u + w);
     PassLogEntry entry;
-    for (uint i = 0u; i < 6u; ++i) {
+    for (uint i = 0u; i < kPassLogSums; ++i) {
         entry.sums[i] = passCounters.counts[i];
         passCounters.counts[i] = uint64_t(0);
     }

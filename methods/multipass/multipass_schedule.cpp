@@ -48,6 +48,7 @@ MultipassCounts& MultipassCounts::operator+=(const MultipassCounts& batch) {
     for (int k = 0; k < kPassKinds; ++k) passes[std::size_t(k)] += batch.passes[std::size_t(k)];
     usefulTraverse += batch.usefulTraverse, usefulIntersect += batch.usefulIntersect;
     stencilWrites += batch.stencilWrites, structureReads += batch.structureReads, triangleReads += batch.triangleReads;
+    stackEntries += batch.stackEntries;
     sequence.insert(sequence.end(), batch.sequence.begin(), batch.sequence.end());
     streamSlots += batch.streamSlots;
     wholeStreamSlots += batch.wholeStreamSlots;
@@ -74,6 +75,7 @@ MultipassCounts runPassLoop(const MultipassOptions& options, std::uint64_t cap, 
         counts.stencilWrites += sums.stencilWrites;
         counts.structureReads += sums.structureReads;
         counts.triangleReads += sums.triangleReads;
+        counts.stackEntries += sums.stackEntries;
         return sums;
     };
     PassSums sums = run(PassKind::Setup);

@@ -68,9 +68,11 @@ struct PassSums {
     std::uint64_t traversing = 0, waiting = 0;  // served rays in each active state after the pass
     std::uint64_t useful = 0;                   // rays served
     std::uint64_t stencilWrites = 0, structureReads = 0, triangleReads = 0;
+    std::uint64_t stackEntries = 0;  // node-stack entries pushed or popped (BVH)
     PassSums& operator+=(const PassSums& o) {
         traversing += o.traversing, waiting += o.waiting, useful += o.useful;
         stencilWrites += o.stencilWrites, structureReads += o.structureReads, triangleReads += o.triangleReads;
+        stackEntries += o.stackEntries;
         return *this;
     }
 };
@@ -83,6 +85,7 @@ struct MultipassCounts {
     std::uint64_t stencilWrites = 0;  // all passes
     std::uint64_t structureReads = 0;  // grid: cell offsets; BVH: nodes
     std::uint64_t triangleReads = 0;
+    std::uint64_t stackEntries = 0;  // node-stack entries pushed or popped (BVH), all passes
     std::vector<PassKind> sequence;   // every pass in order (setup first, write last)
     // The ray slots the traverse and intersect passes walk: each such pass times the rays of its
     // stream (its batch's, when the stream runs in batches). Purcell's SIMD efficiency divides the

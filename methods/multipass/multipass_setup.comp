@@ -12,8 +12,9 @@ void main() {
     RtTraversalState ts;
     RayHitState hit;
     if (instrument != 0u) rayCounters[rayIndex] = RayCounters(0u, 0u, 0u, 0u);
+    mpStateRay = rayIndex;
     uint state = mpSetup(rays[rayIndex], ts, hit, e);
-    traversalStates[rayIndex] = ts;
+    MP_SAVE_STATE(ts, rayIndex);
     hitStates[rayIndex] = hit;
     stencil[rayIndex] = uint8_t(state);
     mpReport(rayIndex, 0xFFu, state, e);

@@ -51,18 +51,12 @@ MultipassResult simulateMultipassOver(Kernels base, const std::vector<gpu::Ray>&
     std::vector<gpu::RayCounters> counters(n, gpu::RayCounters{0, 0, 0, 0});
     MultipassResult result;
     result.hits.resize(n);
-    // The traversal state's node stack (BVH: its tail) is a bandwidth category of its own.
-    const std::uint64_t stackBytes = Kernels::kTraversalStackBytes;
+    // The traversal state each pass moves whole; a node stack (BVH: its tail) stays in memory, and
+    // the kernels' accessors report the entries a pass pushes or pops (bvh_reference.h).
+    const std::uint64_t movedBytes = sizeof(State) - Kernels::kTraversalStackBytes;
     auto moveTraversal = [&](std::size_t i, bool write) {
-        const auto* bytes = reinterpret_cast<const std::uint8_t*>(&traversal[i]);
-        const std::uint64_t own = sizeof(State) - stackBytes;
-        if (write) {
-            trace->write(MemoryKind::State, bytes, own);
-            trace->write(MemoryKind::Stack, bytes + own, stackBytes);
-        } else {
-            trace->read(MemoryKind::State, bytes, own);
-            trace->read(MemoryKind::Stack, bytes + own, stackBytes);
-        }
+        if (write) trace->write(MemoryKind::State, &traversal[i], movedBytes);
+        else trace->read(MemoryKind::State, &traversal[i], movedBytes);
     };
     std::optional<MemoryTrace::Scope> kernelReads;  // the kernels' own, through TracedArray
     if (trace) {
@@ -110,6 +104,7 @@ MultipassResult simulateMultipassOver(Kernels base, const std::vector<gpu::Ray>&
         sums.stencilWrites += state != oldState;
         sums.structureReads += e.structureReads;
         sums.triangleReads += e.triangleReads;
+        sums.stackEntries += e.stackEntries;
         counters[i].cellsVisited += e.visited;
         counters[i].trianglesTested += e.tested;
         counters[i].traversalSteps += e.steps;

@@ -45,7 +45,7 @@ static_assert(gpu::kBindingStencil == gpu::kBindingStrategy && gpu::kBindingTrav
                   gpu::kBindingPassControl == gpu::kBindingRayLists + 1,
               "multipassBuffers lists the slots in order");
 
-// A pass's sums from its PassCounters slots (counts: kCountTraversing..kCountTriangleReads at least).
+// A pass's sums from its PassCounters slots (counts: kCountTraversing..kCountStackEntries at least).
 PassSums passSums(const std::uint64_t* counts) {
     PassSums sums;
     sums.traversing = counts[gpu::kCountTraversing];
@@ -54,6 +54,7 @@ PassSums passSums(const std::uint64_t* counts) {
     sums.stencilWrites = counts[gpu::kCountStencilWrites];
     sums.structureReads = counts[gpu::kCountStructureReads];
     sums.triangleReads = counts[gpu::kCountTriangleReads];
+    sums.stackEntries = counts[gpu::kCountStackEntries];
     return sums;
 }
 

@@ -8,9 +8,11 @@ void main() {
     uint rayIndex = mpServedRay(kStateTraversing);
     if (rayIndex == kNoRay) return;
     MpEvents e = mpNoEvents();
-    RtTraversalState ts = traversalStates[rayIndex];
+    mpStateRay = rayIndex;
+    RtTraversalState ts;
+    MP_LOAD_STATE(ts, rayIndex);
     uint state = mpTraverse(rays[rayIndex], ts, hitStates[rayIndex], e);
-    traversalStates[rayIndex] = ts;
+    MP_SAVE_STATE(ts, rayIndex);
     if (state != kStateTraversing) stencil[rayIndex] = uint8_t(state);
     mpReport(rayIndex, kStateTraversing, state, e);
     mpFile(kStateTraversing, state, rayIndex);
