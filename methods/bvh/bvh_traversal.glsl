@@ -112,11 +112,18 @@ HitRecord rtTrace(Ray ray) {
 // writes only the stack entries it pops or pushes (e.stackEntries counts them), as a GPU kernel
 // keeps a stack in memory. In the multipass kernels MP_STATE_RECORD is the served ray's record
 // in the traversal-state buffer (methods/multipass/multipass_common.glsl), which ts.walk alone is
-// loaded from and saved to (MP_LOAD_STATE, MP_SAVE_STATE): copying the whole 144-byte record in
-// and out made llvmpipe's traverse passes several times slower (docs/method.md). Compiled as C++, ts is that record
-// already, and BvhKernels's accessors (bvh_reference.h) report each entry to the memory trace.
+// loaded from and saved to (MP_LOAD_STATE, MP_SAVE_STATE); the megakernel, which keeps the state
+// in registers, defines MP_PRIVATE_STACK: the stack is an array of the invocation's own, as the
+// branching walk's, outside the state it passes to mpTraverse and mpIntersect. Copying the whole
+// 144-byte state in and out of every call instead made llvmpipe several times slower
+// (docs/method.md). Compiled as C++, ts is the simulator's record, and BvhKernels's accessors
+// (bvh_reference.h) report each entry to the memory trace.
 #ifndef MP_STACK_READ
-#ifdef MP_STATE_RECORD
+#ifdef MP_PRIVATE_STACK
+uint mpPrivateStack[kBvhStackSize];
+#define MP_STACK_READ(ts, i) mpPrivateStack[i]
+#define MP_STACK_WRITE(ts, i, v) mpPrivateStack[i] = (v)
+#elif defined(MP_STATE_RECORD)
 #define MP_STACK_READ(ts, i) MP_STATE_RECORD.stack[i]
 #define MP_STACK_WRITE(ts, i, v) MP_STATE_RECORD.stack[i] = (v)
 #define MP_LOAD_STATE(ts, ray) ts.walk = traversalStates[ray].walk

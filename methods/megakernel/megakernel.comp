@@ -9,6 +9,7 @@
 #extension GL_GOOGLE_include_directive : require
 #include "bindings.glsl"
 #include "traversal_common.glsl"
+#define MP_PRIVATE_STACK  // a structure's stack in an array of its own (methods/bvh/bvh_traversal.glsl)
 #include "structure.glsl"
 
 layout(constant_id = kSpecSchedule) const uint schedule = kScheduleIntersectFirst;
