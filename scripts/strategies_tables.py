@@ -101,14 +101,15 @@ def main() -> int:
                         xytext=(0, 3), textcoords="offset points", color="grey")
             ax.set_yscale("log")
             ax.set_xlim(0, 1.05)
-            ax.set_xlabel("SIMD efficiency (Purcell: the stream's rays doing useful work per step)")
+            ax.set_xlabel("SIMD efficiency (Purcell):\nthe stream's rays doing useful work per step")
             ax.set_ylabel("GPU ms (median, 95% interval)")
             ax.set_title(f"{', '.join(sorted(g.scene.unique()))}, {structure}, {size}", fontsize=9)
-        axes[0][-1].legend(fontsize=7, loc="center left")
+        # Beside the last panel, not over it: the points crowd the low SIMD efficiencies.
+        axes[0][-1].legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0)
         fig.suptitle(f"Execution strategies on {device} ({commit_text(context)})", fontsize=9)
         fig.tight_layout()
         for ext in ("png", "svg"):
-            fig.savefig(folder / f"strategies.{ext}", dpi=110)
+            fig.savefig(folder / f"strategies.{ext}", dpi=110, bbox_inches="tight")
         plt.close(fig)
     print(folder / "tables.md")
     return 0
