@@ -117,6 +117,7 @@ def save(fig, folder: Path, name: str, written: list, rect=None):
     fig.tight_layout(rect=rect)
     fit_titles(fig)
     fig.tight_layout(rect=rect)
+    clear_legends_of_bars(fig)
     for _ in range(3):
         if fig._suptitle is None or not fig._suptitle.get_text():
             break
@@ -139,7 +140,21 @@ def stacked_bars(ax, labels, frame, columns, scale=1.0):
         values = (frame[column].fillna(0) * scale).tolist()
         ax.bar(labels, values, bottom=bottom, label=name)
         bottom = [b + v for b, v in zip(bottom, values)]
-    ax.legend(fontsize=8, loc="best")
+    ax.legend(fontsize=8, loc="upper left", ncol=1 if len(columns) < 4 else 2)
+    ax.bar_top = max(bottom, default=0.0)  # save() raises the axis so that the bars end below the legend
+
+
+def clear_legends_of_bars(fig):
+    """Each stacked-bar axes' y axis raised so that its tallest bar ends below its legend (upper
+    left): "best" found no free corner once a bar reached the top on either side."""
+    renderer = fig.canvas.get_renderer()
+    for ax in fig.axes:
+        top, legend = getattr(ax, "bar_top", 0.0), ax.get_legend()
+        if top <= 0 or legend is None or ax.get_yscale() != "linear":
+            continue
+        below = legend.get_window_extent(renderer).transformed(ax.transAxes.inverted()).y0 - 0.03
+        if below > 0.2:
+            ax.set_ylim(0, top / below)
 
 
 def size_of(run) -> str:

@@ -18,7 +18,7 @@ from pathlib import Path
 import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rtbench_results import CHRISTEN_SCENES, commit_text, division_names, masking_share, method_name, read_runs, scene_name, structure_names, whitted_frames, wrong_rays  # noqa: E402
+from rtbench_results import CHRISTEN_SCENES, commit_text, division_names, masking_share, method_name, read_runs, round_ratios, round_times, scene_name, structure_names, whitted_frames, wrong_rays  # noqa: E402
 from purcell_tables import PURCELL_TABLE_2  # noqa: E402  (his Table 2, the paper's numbers)
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -522,20 +522,24 @@ def strategies() -> list:
                                          (" on device" if r.strategy_control == "device" else "") +
                                          f" K={count(r.strategy_traverse_steps_per_pass)} M={count(r.strategy_intersections_per_pass)}"
                                          if r.strategy_type == "multipass" else "") for r in ok.itertuples()]
-    branching = ok[ok.strategy_type == "branching"].set_index("structure").kernel_ms_median
+    branching = ok[ok.strategy_type == "branching"].set_index("structure").run
+    ratios = {r.run: round_ratios(folder_of("strategies"), r.run, branching.get(r.structure)) for r in ok.itertuples()}
     failed = runs[runs.status != "ok"]
     out = ["### `results/strategies/`: execution strategies (issue 18)", "", provenance("strategies", runs, context), "",
            "Full table: [`results/strategies/tables.md`](results/strategies/tables.md). The bunny at "
-           f"{size(ok.iloc[0]) if len(ok) else '?'}; × branching is two runs' medians (no interval). SIMD eff.: Purcell's "
+           f"{size(ok.iloc[0]) if len(ok) else '?'}; the runs were timed in interleaved rounds, one repetition of each per "
+           "round: × branching is each round's ratio of the strategy's time to branching's, their median and range. "
+           "SIMD eff.: Purcell's "
            "measure for every strategy (the stream's rays doing useful work per step, misses included; a whole-traversal "
            "kernel run in lock step one step or test at a time); lane util.: lanes that take a step over lanes (ballots).", "",
-           "| structure | strategy | GPU ms | × branching | SIMD eff. (Purcell) | lane util. | state executions (megakernel) |",
-           "|---|---|---|---|---|---|---|"]
+           "| structure | strategy | GPU ms | × branching | its range | SIMD eff. (Purcell) | lane util. | "
+           "state executions (megakernel) |", "|---|---|---|---|---|---|---|---|"]
     for r in ok.sort_values(["structure", "strategy"]).itertuples():
         executions = "" if r.strategy_type != "megakernel" else \
             f"{count(r.megakernel_runs_traverse)} + {count(r.megakernel_runs_intersect)}"
         out.append(f"| {r.structure} | {r.strategy} | {num(r.kernel_ms_median)} | "
-                   f"{num(r.kernel_ms_median / branching.get(r.structure, float('nan')), 2)} | "
+                   f"{num(ratios[r.run].median(), 2)} | "
+                   f"{'' if r.strategy_type == 'branching' else span(ratios[r.run].min(), ratios[r.run].max())} | "
                    f"{'' if pd.isna(r.simd_efficiency_purcell) else num(r.simd_efficiency_purcell)} | "
                    f"{'' if pd.isna(r.simd_lane_utilisation) else num(r.simd_lane_utilisation)} | {executions} |")
     if len(failed):
@@ -553,32 +557,33 @@ def multipass_device() -> list:
         return []
     runs, context = load(name)
     ok = runs[runs.status == "ok"].copy()
-    samples = pd.read_csv(folder_of(name) / "samples.csv", dtype={"run": str})
-    kernel = samples[samples.method == "kernel"].pivot_table(index="round", columns="run", values="ms")
     branching, multipass = ok[ok.strategy_type == "branching"], ok[ok.strategy_type == "multipass"]
-    if branching.empty or branching.iloc[0].run not in kernel:
+    if branching.empty:
         return []
-    base = kernel[branching.iloc[0].run]
+    base = branching.iloc[0].run
+    rounds = len(round_ratios(folder_of(name), base, base))
+    if not rounds:
+        return []
     out = [f"### `results/{name}/`: GPU-resident multipass against branching (issue 18)", "", provenance(name, runs, context),
            "", f"The bunny at {size(ok.iloc[0])}, grid min_dim {count(ok.iloc[0].structure_min_dim)}; multipass with K = "
            f"{count(multipass.strategy_traverse_steps_per_pass.max())}, M = "
            f"{count(multipass.strategy_intersections_per_pass.max())} and its oracle on the "
            "device (compacted ray lists). The runs were timed in interleaved rounds, one repetition of each per round: "
            "× branching is each round's ratio of the two times, its median and range over the "
-           f"{len(base)} rounds. Issue 18 asks for multipass within 4× of branching's time.", "",
+           f"{rounds} rounds. Issue 18 asks for multipass within 4× of branching's time.", "",
            "| run | list partitions | GPU ms (median of rounds) | × branching: median | range |", "|---|---|---|---|---|"]
     for r in ok.itertuples():
-        if r.run not in kernel:
+        ratio = round_ratios(folder_of(name), r.run, base)
+        if not len(ratio):
             continue
-        ratio = kernel[r.run] / base
         partitions = "" if r.strategy_type != "multipass" else "1" if pd.isna(getattr(r, "strategy_list_partitions", None)) \
             else count(r.strategy_list_partitions)  # before schema 20: one list per state
-        out.append(f"| {r.sweep} | {partitions} | {num(kernel[r.run].median())} | "
+        out.append(f"| {r.sweep} | {partitions} | {num(round_times(folder_of(name), r.run).median())} | "
                    f"{num(ratio.median(), 3) if r.strategy_type != 'branching' else ''} | "
                    f"{span(ratio.min(), ratio.max()) if r.strategy_type != 'branching' else ''} |")
     if "strategy_list_partitions" in multipass and multipass.strategy_list_partitions.nunique() == 2:
         one, more = (multipass.sort_values("strategy_list_partitions").iloc[i] for i in (0, 1))
-        ratio = kernel[more.run] / kernel[one.run]
+        ratio = round_ratios(folder_of(name), more.run, one.run)
         out += ["", f"Multipass with {count(more.strategy_list_partitions)} list partitions over {count(one.strategy_list_partitions)}, "
                 f"round by round: median {num(ratio.median(), 3)}, range {span(ratio.min(), ratio.max())}."]
     out += [""] + charts(name, {"kernel_time": "multipass GPU time by kernel",

@@ -137,6 +137,25 @@ def read_runs(folder: Path) -> pd.DataFrame:
     return split_simd_measures(split_vector_cells(runs))
 
 
+def round_times(folder: Path, run: str, method: str = "kernel") -> pd.Series:
+    """One run's time in each timing round (ms; `method` as samples.csv names it, the median where a
+    round holds several repetitions), indexed by round. Empty where the folder has no samples.csv or
+    it lacks the run."""
+    path = Path(folder) / "samples.csv"
+    if not path.exists():
+        return pd.Series(dtype=float)
+    samples = pd.read_csv(path, dtype={"run": str})
+    samples = samples[(samples.method == method) & (samples.run == str(run))]
+    return samples.groupby("round").ms.median()
+
+
+def round_ratios(folder: Path, numerator: str, denominator: str, method: str = "kernel") -> pd.Series:
+    """Two runs' times divided round by round (numerator run over denominator run), indexed by round.
+    Runs timed in interleaved rounds (experiment.order = "interleaved") saw the same machine in round
+    r, so the ratios' spread is the comparison's own. Empty where either run has no rounds."""
+    return (round_times(folder, numerator, method) / round_times(folder, denominator, method)).dropna()
+
+
 def with_vector_text(runs: pd.DataFrame) -> pd.DataFrame:
     """Adds a text column "[x y z]" per 3-vector key (before its _x column), as the config writes the
     value: the charts treat the key as one swept value, not three."""

@@ -16,7 +16,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import pandas as pd
 
-from rtbench_results import commit_text, fmt, open_results, structure_names, wrong_rays
+from rtbench_results import commit_text, fmt, open_results, round_ratios, structure_names, wrong_rays
 
 
 def strategy(run) -> str:
@@ -41,17 +41,32 @@ def main() -> int:
     runs["structure"] = structure_names(runs.structure_type)
     runs["strategy"] = [strategy(r) for r in runs.itertuples()]
     runs["wrong"] = wrong_rays(runs)
-    branching = runs[runs.strategy_type == "branching"].set_index(["scene", "structure"]).kernel_ms_median
-    runs["vs_branching"] = [r.kernel_ms_median / branching.get((r.scene, r.structure), float("nan"))
-                            for r in runs.itertuples()]
+    # x branching: round by round where samples.csv has both runs' rounds, else the ratio of medians.
+    branching = runs[runs.strategy_type == "branching"].set_index(["scene", "structure"])
+    runs["vs_branching"], runs["vs_branching_low"], runs["vs_branching_high"] = float("nan"), float("nan"), float("nan")
+    for i, r in runs.iterrows():
+        if (r.scene, r.structure) not in branching.index:
+            continue
+        base = branching.loc[(r.scene, r.structure)]
+        ratios = round_ratios(folder, r.run, base.run)
+        if len(ratios):
+            runs.loc[i, ["vs_branching", "vs_branching_low", "vs_branching_high"]] = \
+                [ratios.median(), ratios.min(), ratios.max()]
+        else:
+            runs.loc[i, "vs_branching"] = r.kernel_ms_median / base.kernel_ms_median
+    by_round = runs.vs_branching_low.notna().any()
     size = f"{int(runs.camera_width.iloc[0])}x{int(runs.camera_height.iloc[0])}" if len(runs) else "-"
 
     lines = [f"# Execution strategies — {device}, {context.get('cpu', '?')}", "",
              f"Command: `{context.get('command', '?')}` at commit {commit_text(context)}, "
              f"{context.get('date_utc', '?')}; {size} rays per run. {len(runs)} runs ok, {len(failed)} failed.",
-             "GPU ms: the kernel's median over the timed repetitions (its 95% interval); × branching: that median over "
-             "the branching kernel's on the same scene and structure (two runs of one sweep, so no interval: read it "
-             "to a first digit when either run has a timing warning); × Embree: that median over Embree rtcIntersect1's on the "
+             "GPU ms: the kernel's median over the timed repetitions (its 95% interval); × branching: " +
+             ("the kernel's time over the branching kernel's on the same scene and structure, round by round (one "
+              "repetition of each run per round in interleaved rounds, so round r of both saw the same machine): the "
+              "median of the rounds' ratios and their range; " if by_round else
+              "that median over the branching kernel's on the same scene and structure (two runs of one sweep, so no "
+              "interval: read it to a first digit when either run has a timing warning); ") +
+             "× Embree: that median over Embree rtcIntersect1's on the "
              "identical rays in the same run (above 1: slower than one CPU thread). SIMD eff. (Purcell): Purcell 2002 Table 2's "
              "measure on one definition for every strategy, the stream's rays doing useful work per step, misses included "
              "(multipass: rays served over rays × traverse and intersect passes, whatever the control; a whole-traversal "
@@ -60,15 +75,16 @@ def main() -> int:
              "runs on the device and each pass serves a compacted list (strategy.control = device). Executions: the megakernel's subgroup state executions (traverse + intersect; OptiX Fig. 6's "
              "measure, summed over subgroups); passes: multipass dispatches. Wrong: rays the exact reference "
              "contradicts.", ""]
-    lines += ["| scene | structure | strategy | GPU ms | 95% interval | × branching | × Embree | SIMD eff. (Purcell) | "
+    lines += ["| scene | structure | strategy | GPU ms | 95% interval | × branching | its range | × Embree | SIMD eff. (Purcell) | "
               "lane util. | executions (trav + isect) | passes | bytes/ray | wrong | timing warning |",
-              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in runs.sort_values(["scene", "structure", "strategy_type", "strategy"]).itertuples():
         executions = "" if pd.isna(r.megakernel_runs_traverse) else \
             f"{int(r.megakernel_runs_traverse):,} + {int(r.megakernel_runs_intersect):,}"
         passes = "" if r.strategy_type != "multipass" else f"{int(r.passes_total):,}"
         lines.append(f"| {r.scene} | {r.structure} | {r.strategy} | {fmt(r.kernel_ms_median, 1)} | "
                      f"[{fmt(r.kernel_ms_ci_low, 1)}, {fmt(r.kernel_ms_ci_high, 1)}] | {fmt(r.vs_branching, 2)} | "
+                     f"{'' if pd.isna(r.vs_branching_low) or r.strategy_type == 'branching' else f'{fmt(r.vs_branching_low, 2)}–{fmt(r.vs_branching_high, 2)}'} | "
                      f"{fmt(r.kernel_ms_median / r.embree1_ms_median, 2)} | {fmt(r.simd_efficiency_purcell)} | "
                      f"{fmt(r.simd_lane_utilisation)} | {executions} | "
                      f"{passes} | {fmt(r.bytes_per_ray, 0)} | {int(r.wrong)} | "

@@ -362,6 +362,24 @@ class NamedCharts(unittest.TestCase):
         heights = [p.get_height() for p in bytes_ax.containers[-1]]
         self.assertEqual(sorted(heights), [0.0, 5.0])  # MB: only the device run's bar has lists
 
+    def test_stacked_bar_legends_stay_off_the_bars(self):
+        # Bars of nearly one height leave no free corner: the legend sits above the tallest bar.
+        settings = [{"structure_type": "uniform_grid", "strategy_type": "multipass"} for _ in range(3)]
+        runs = make_runs(settings, [])
+        runs.insert(len(PARAMETERS), "strategy_control", ["host", "device", "device"])
+        runs.insert(len(PARAMETERS), "strategy_list_partitions", [np.nan, 1, 2])
+        runs = runs.assign(kernel_ms_setup=1.0, kernel_ms_traverse=2.0, kernel_ms_intersect=3.0, kernel_ms_write=0.5,
+                           kernel_ms_oracle=[np.nan, 0.25, 0.25], bytes_compaction=[np.nan, 5e6, 5e6])
+        charts = Charts(write_folder(self.root, "legends", runs))
+        for name in ("kernel_time", "bandwidth_by_category"):
+            ax = data_axes(charts.figures[name])[0]
+            renderer = ax.figure.canvas.get_renderer()
+            legend = ax.get_legend().get_window_extent(renderer)
+            bars = [p.get_window_extent(renderer) for container in ax.containers for p in container if p.get_height() > 0]
+            self.assertTrue(bars)
+            for bar in bars:
+                self.assertFalse(bar.overlaps(legend), f"{name}: a bar under the legend")
+
     def test_failure_map_draws_markers_and_keeps_legends_off_the_data(self):
         settings = [{"scene_translate": f"[{d} {d} {d}]", "intersection_test": test}
                     for d in (0, 1, 100, 10000) for test in ("moller_trumbore", "watertight")]
@@ -445,6 +463,22 @@ class ReadRuns(unittest.TestCase):
         self.assertEqual(list(runs.iloc[0][:3]), [1e6, -2.0, 0.5])
         self.assertTrue(runs.camera_look_at_z.isna().all())
         self.assertEqual(list(runs.run), ["000", "001"])
+
+    def test_round_ratios_pair_the_rounds_of_two_runs(self):
+        # Run 001 over run 000 round by round: round 0 holds two repetitions of each (their medians,
+        # 7 and 2), round 1 one; run 002 has no round 1 and method embree1 is not the kernel.
+        (self.folder / "samples.csv").write_text(
+            "run,config_hash,method,round,repetition,ms,t_s\n"
+            "000,a,kernel,0,0,1.0,0\n000,a,kernel,0,1,3.0,0\n001,b,kernel,0,0,6.0,0\n001,b,kernel,0,1,8.0,0\n"
+            "000,a,kernel,1,0,4.0,0\n001,b,kernel,1,0,10.0,0\n000,a,embree1,1,0,100.0,0\n002,c,kernel,0,0,5.0,0\n")
+        ratios = rtbench_results.round_ratios(self.folder, "001", "000")
+        self.assertEqual(list(ratios.index), [0, 1])
+        self.assertEqual(list(ratios), [3.5, 2.5])
+        self.assertEqual(list(rtbench_results.round_ratios(self.folder, "002", "000")), [2.5], "rounds both runs have")
+        self.assertEqual(list(rtbench_results.round_times(self.folder, "000", "embree1")), [100.0])
+        self.assertTrue(rtbench_results.round_ratios(self.folder, "003", "000").empty, "a run without samples")
+        (self.folder / "samples.csv").unlink()
+        self.assertTrue(rtbench_results.round_ratios(self.folder, "001", "000").empty, "a folder without samples.csv")
 
 
 if __name__ == "__main__":
