@@ -2,7 +2,7 @@
 # Runs the configs of record and makes their charts and tables: results/bunny, results/structures,
 # results/purcell2002, results/stability, results/accuracy, results/raytypes, results/strategies, results/multipass_device, results/division, results/christen2005, results/wavefront (or under OUT, e.g. results/nvidia-h200 on a GPU machine; DEVICE picks the
 # Vulkan device by a name substring).
-#   scripts/records.sh [OUT] [DEVICE]        (about 35 minutes on 2 cores with lavapipe)
+#   scripts/records.sh [OUT] [DEVICE]        (about 85 minutes on 2 cores with lavapipe; purcell2002 alone 41)
 # Environment:
 #   RTBENCH_BIN=path      the rtbench binary (default build/rtbench)
 #   EMBREE_CONFIG=isa=avx2  Embree device config for every run (where its default ISA crashes)
