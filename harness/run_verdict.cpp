@@ -20,7 +20,6 @@ std::string instrumentedRunFailure(const StrategyRun& method, const std::string&
               std::to_string(method.branchingMismatches) + " of " + std::to_string(rays) + " rays";
     else if (!method.modelMismatch.empty())
         why = method.modelMismatch;
-    if (!why.empty() && !method.faultNote.empty()) why += " (" + method.faultNote + ")";
     return why;
 }
 

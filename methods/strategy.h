@@ -75,9 +75,6 @@ struct StrategyRun {
     // count against DeviceInfo::loopIterationLimit), and why; fails the run first.
     std::uint64_t truncatedRays = 0;
     std::string truncatedWhy;
-    // A known fault of this device with this strategy, added to the run's failure when it fails
-    // (persistent threads on Mesa 22.3's llvmpipe); "" when none.
-    std::string faultNote;
 };
 
 struct StrategyType {

@@ -77,7 +77,9 @@ struct ColumnSpec {
 //  21  bytes_stack of multipass on a BVH counts the stack entries pushed and popped (its stack
 //        stays in memory; before, every pass that served a ray moved the whole 128-byte stack,
 //        and setup wrote it).
-constexpr int kSchemaVersion = 21;
+//  22  + persistent_max_fetches (persistent threads: the fetches a subgroup may make, bounded under
+//        llvmpipe's loop limit; before, a subgroup fetched until the stream was done).
+constexpr int kSchemaVersion = 22;
 
 // The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".
 std::string paramColumn(const std::string& key);

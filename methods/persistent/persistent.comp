@@ -3,6 +3,9 @@
 // at a time until the stream is done; each lane runs its ray's whole traversal (rtTrace), as the
 // branching kernel does. A batch is rays [base, base + raysPerFetch), run as raysPerFetch /
 // subgroup-size rounds of consecutive rays, so its subgroup ballots are the branching kernel's.
+// llvmpipe ends an invocation after 65,535 loop iterations, all loops together, and runs a
+// workgroup's subgroups one after another, so one subgroup could take most of the stream: there a
+// subgroup makes at most maxFetches fetches (persistentMaxFetches keeps it under the limit).
 #version 450
 #extension GL_GOOGLE_include_directive : require
 
@@ -10,11 +13,12 @@
 #include "trace_whole.glsl"
 
 layout(constant_id = kSpecRaysPerFetch) const uint raysPerFetch = 32u;
+layout(constant_id = kSpecMaxFetches) const uint maxFetches = 0u;  // 0: until the stream is done
 
 void main() {
     const uint rayCount = rtRayCount();
     bool fetching = true;
-    while (fetching) {
+    for (uint fetches = 0u; fetching && (maxFetches == 0u || fetches < maxFetches); ++fetches) {
         // One fetch per subgroup: the elected lane takes the next batch; every lane sees its base.
         uint base = 0u;
         if (gl_SubgroupInvocationID == 0u)
