@@ -125,10 +125,12 @@ TEST(PersistentCounts, TheFetchCounterEndsWhereEverySubgroupFoundNone) {
 // The fetch bound by hand: llvmpipe's budget of 65,535 - 64 iterations over fetches of one round
 // whose walks take at most 142 trips: 2 x 142 + 4 = 288 for the round, 2 for the round and fetch
 // loops, 290 a fetch, and one more for the last fetch that finds none: (65,471 - 1) / 290 = 225.
-// Two rounds: 578 a fetch, 113. No budget, no bound; walks too long for one fetch still get one.
+// Two rounds: 578 a fetch, 113. A budget of exactly 225 fetches of 290 leaves none for the last
+// fetch: 224. No budget, no bound; walks too long for one fetch still get one.
 TEST(PersistentCounts, TheFetchBoundKeepsASubgroupUnderTheLoopLimit) {
     EXPECT_EQ(persistentMaxFetches(65471, 142, 1), 225u);
     EXPECT_EQ(persistentMaxFetches(65471, 142, 2), 113u);
+    EXPECT_EQ(persistentMaxFetches(225 * 290, 142, 1), 224u);
     EXPECT_EQ(persistentMaxFetches(0, 142, 1), 0u);
     EXPECT_EQ(persistentMaxFetches(65471, 70000, 1), 1u);
     EXPECT_EQ(persistentMaxFetches(65471, 32732, 1), 1u);  // 65,470 a fetch: one, and the last
