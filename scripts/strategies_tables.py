@@ -41,14 +41,16 @@ def main() -> int:
     runs["structure"] = structure_names(runs.structure_type)
     runs["strategy"] = [strategy(r) for r in runs.itertuples()]
     runs["wrong"] = wrong_rays(runs)
-    # x branching: round by round where samples.csv has both runs' rounds, else the ratio of medians.
+    # x branching: round by round where the runs were timed in interleaved rounds (samples.csv has
+    # both runs' rounds), else the ratio of medians.
+    interleaved = "experiment_order" in runs and (runs.experiment_order == "interleaved").all()
     branching = runs[runs.strategy_type == "branching"].set_index(["scene", "structure"])
     runs["vs_branching"], runs["vs_branching_low"], runs["vs_branching_high"] = float("nan"), float("nan"), float("nan")
     for i, r in runs.iterrows():
         if (r.scene, r.structure) not in branching.index:
             continue
         base = branching.loc[(r.scene, r.structure)]
-        ratios = round_ratios(folder, r.run, base.run)
+        ratios = round_ratios(folder, r.run, base.run) if interleaved else pd.Series(dtype=float)
         if len(ratios):
             runs.loc[i, ["vs_branching", "vs_branching_low", "vs_branching_high"]] = \
                 [ratios.median(), ratios.min(), ratios.max()]
