@@ -63,12 +63,11 @@ TEST_F(PersistentKernel, TracesEveryRayOnceForAnyGridAndBatch) {
     }
 }
 
-
 // The bound at its worst: one ray repeated, so every batch walks as long as the longest and a
 // subgroup at its bound runs next to llvmpipe's limit. One workgroup, whose first subgroup takes
 // its bound's worth of batches before the next starts: bounded, every record comes back whole (an
 // iteration a fetch the bound forgot would cut the last batches short); unbounded, that subgroup
-// takes all eight subgroups' batches, about eight times the limit, and records come back cut.
+// takes all eight subgroups' batches, several times the limit, and records come back cut.
 TEST_F(PersistentKernel, TheFetchBoundHoldsWhenEveryBatchWalksTheLongest) {
     if (vk_->info().loopIterationLimit == 0) GTEST_SKIP() << "this device has no loop limit to bound under";
     const TriangleMesh mesh = christenSceneB();
@@ -90,7 +89,7 @@ TEST_F(PersistentKernel, TheFetchBoundHoldsWhenEveryBatchWalksTheLongest) {
     const std::vector<gpu::Ray> rays((64 / sg) * maxFetches * sg, candidates[longest]);  // every subgroup's bound
     const std::vector<gpu::HitRecord> cpu = traceGridReference(grid, rays);
     for (const std::uint64_t bound : {maxFetches, std::uint64_t(0)}) {
-        SCOPED_TRACE("bound " + std::to_string(bound) + ", walks of " + std::to_string(walk) + " iterations");
+        SCOPED_TRACE("bound " + std::to_string(bound) + ", walks of " + std::to_string(walk) + " loop trips");
         TraceLaunch launch;
         launch.kernel = "persistent";
         launch.invocations = 64;
@@ -105,6 +104,7 @@ TEST_F(PersistentKernel, TheFetchBoundHoldsWhenEveryBatchWalksTheLongest) {
         }
     }
 }
+
 }  // namespace
 }  // namespace rtbench
 
