@@ -18,7 +18,7 @@ from pathlib import Path
 import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rtbench_results import CHRISTEN_SCENES, commit_text, division_names, masking_share, method_name, read_runs, round_ratios, round_times, scene_name, structure_names, whitted_frames, wrong_rays  # noqa: E402
+from rtbench_results import CHRISTEN_SCENES, commit_text, division_names, masking_share, method_name, read_runs, read_samples, round_ratios, round_times, scene_name, structure_names, whitted_frames, wrong_rays  # noqa: E402
 from purcell_tables import PURCELL_TABLE_2  # noqa: E402  (his Table 2, the paper's numbers)
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -523,7 +523,8 @@ def strategies() -> list:
                                          f" K={count(r.strategy_traverse_steps_per_pass)} M={count(r.strategy_intersections_per_pass)}"
                                          if r.strategy_type == "multipass" else "") for r in ok.itertuples()]
     branching = ok[ok.strategy_type == "branching"].set_index("structure").run
-    ratios = {r.run: round_ratios(folder_of("strategies"), r.run, branching.get(r.structure)) for r in ok.itertuples()}
+    samples = read_samples(folder_of("strategies"))
+    ratios = {r.run: round_ratios(samples, r.run, branching.get(r.structure)) for r in ok.itertuples()}
     failed = runs[runs.status != "ok"]
     out = ["### `results/strategies/`: execution strategies (issue 18)", "", provenance("strategies", runs, context), "",
            "Full table: [`results/strategies/tables.md`](results/strategies/tables.md). The bunny at "
@@ -561,7 +562,8 @@ def multipass_device() -> list:
     if branching.empty:
         return []
     base = branching.iloc[0].run
-    rounds = len(round_ratios(folder_of(name), base, base))
+    samples = read_samples(folder_of(name))
+    rounds = len(round_times(samples, base))
     if not rounds:
         return []
     out = [f"### `results/{name}/`: GPU-resident multipass against branching (issue 18)", "", provenance(name, runs, context),
@@ -573,17 +575,17 @@ def multipass_device() -> list:
            f"{rounds} rounds. Issue 18 asks for multipass within 4× of branching's time.", "",
            "| run | list partitions | GPU ms (median of rounds) | × branching: median | range |", "|---|---|---|---|---|"]
     for r in ok.itertuples():
-        ratio = round_ratios(folder_of(name), r.run, base)
+        ratio = round_ratios(samples, r.run, base)
         if not len(ratio):
             continue
         partitions = "" if r.strategy_type != "multipass" else "1" if pd.isna(getattr(r, "strategy_list_partitions", None)) \
             else count(r.strategy_list_partitions)  # before schema 20: one list per state
-        out.append(f"| {r.sweep} | {partitions} | {num(round_times(folder_of(name), r.run).median())} | "
+        out.append(f"| {r.sweep} | {partitions} | {num(round_times(samples, r.run).median())} | "
                    f"{num(ratio.median(), 3) if r.strategy_type != 'branching' else ''} | "
                    f"{span(ratio.min(), ratio.max()) if r.strategy_type != 'branching' else ''} |")
     if "strategy_list_partitions" in multipass and multipass.strategy_list_partitions.nunique() == 2:
         one, more = (multipass.sort_values("strategy_list_partitions").iloc[i] for i in (0, 1))
-        ratio = round_ratios(folder_of(name), more.run, one.run)
+        ratio = round_ratios(samples, more.run, one.run)
         out += ["", f"Multipass with {count(more.strategy_list_partitions)} list partitions over {count(one.strategy_list_partitions)}, "
                 f"round by round: median {num(ratio.median(), 3)}, range {span(ratio.min(), ratio.max())}."]
     out += [""] + charts(name, {"kernel_time": "multipass GPU time by kernel",

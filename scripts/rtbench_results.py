@@ -137,23 +137,27 @@ def read_runs(folder: Path) -> pd.DataFrame:
     return split_simd_measures(split_vector_cells(runs))
 
 
-def round_times(folder: Path, run: str, method: str = "kernel") -> pd.Series:
-    """One run's time in each timing round (ms; `method` as samples.csv names it, the median where a
-    round holds several repetitions), indexed by round. Empty where the folder has no samples.csv or
-    it lacks the run."""
+def read_samples(folder: Path) -> pd.DataFrame:
+    """A folder's samples.csv (every timed repetition: run, method, round, ms, ...), read once for
+    round_times and round_ratios; no rows where the folder has none."""
     path = Path(folder) / "samples.csv"
     if not path.exists():
-        return pd.Series(dtype=float)
-    samples = pd.read_csv(path, dtype={"run": str})
-    samples = samples[(samples.method == method) & (samples.run == str(run))]
-    return samples.groupby("round").ms.median()
+        return pd.DataFrame(columns=["run", "method", "round", "ms"])
+    return pd.read_csv(path, dtype={"run": str})
 
 
-def round_ratios(folder: Path, numerator: str, denominator: str, method: str = "kernel") -> pd.Series:
+def round_times(samples: pd.DataFrame, run: str, method: str = "kernel") -> pd.Series:
+    """One run's time in each timing round (ms; `method` as samples.csv names it, the median where a
+    round holds several repetitions), indexed by round. Empty where the samples lack the run."""
+    of_run = samples[(samples.method == method) & (samples.run == str(run))]
+    return of_run.groupby("round").ms.median().astype(float)
+
+
+def round_ratios(samples: pd.DataFrame, numerator: str, denominator: str, method: str = "kernel") -> pd.Series:
     """Two runs' times divided round by round (numerator run over denominator run), indexed by round.
     Runs timed in interleaved rounds (experiment.order = "interleaved") saw the same machine in round
     r, so the ratios' spread is the comparison's own. Empty where either run has no rounds."""
-    return (round_times(folder, numerator, method) / round_times(folder, denominator, method)).dropna()
+    return (round_times(samples, numerator, method) / round_times(samples, denominator, method)).dropna()
 
 
 def with_vector_text(runs: pd.DataFrame) -> pd.DataFrame:

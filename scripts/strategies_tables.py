@@ -16,7 +16,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import pandas as pd
 
-from rtbench_results import commit_text, fmt, open_results, round_ratios, structure_names, wrong_rays
+from rtbench_results import commit_text, fmt, open_results, read_samples, round_ratios, structure_names, wrong_rays
 
 
 def strategy(run) -> str:
@@ -44,13 +44,14 @@ def main() -> int:
     # x branching: round by round where the runs were timed in interleaved rounds (samples.csv has
     # both runs' rounds), else the ratio of medians.
     interleaved = "experiment_order" in runs and (runs.experiment_order == "interleaved").all()
+    samples = read_samples(folder)
     branching = runs[runs.strategy_type == "branching"].set_index(["scene", "structure"])
     runs["vs_branching"], runs["vs_branching_low"], runs["vs_branching_high"] = float("nan"), float("nan"), float("nan")
     for i, r in runs.iterrows():
         if (r.scene, r.structure) not in branching.index:
             continue
         base = branching.loc[(r.scene, r.structure)]
-        ratios = round_ratios(folder, r.run, base.run) if interleaved else pd.Series(dtype=float)
+        ratios = round_ratios(samples, r.run, base.run) if interleaved else pd.Series(dtype=float)
         if len(ratios):
             runs.loc[i, ["vs_branching", "vs_branching_low", "vs_branching_high"]] = \
                 [ratios.median(), ratios.min(), ratios.max()]

@@ -471,14 +471,16 @@ class ReadRuns(unittest.TestCase):
             "run,config_hash,method,round,repetition,ms,t_s\n"
             "000,a,kernel,0,0,1.0,0\n000,a,kernel,0,1,3.0,0\n001,b,kernel,0,0,6.0,0\n001,b,kernel,0,1,8.0,0\n"
             "000,a,kernel,1,0,4.0,0\n001,b,kernel,1,0,10.0,0\n000,a,embree1,1,0,100.0,0\n002,c,kernel,0,0,5.0,0\n")
-        ratios = rtbench_results.round_ratios(self.folder, "001", "000")
+        samples = rtbench_results.read_samples(self.folder)
+        ratios = rtbench_results.round_ratios(samples, "001", "000")
         self.assertEqual(list(ratios.index), [0, 1])
         self.assertEqual(list(ratios), [3.5, 2.5])
-        self.assertEqual(list(rtbench_results.round_ratios(self.folder, "002", "000")), [2.5], "rounds both runs have")
-        self.assertEqual(list(rtbench_results.round_times(self.folder, "000", "embree1")), [100.0])
-        self.assertTrue(rtbench_results.round_ratios(self.folder, "003", "000").empty, "a run without samples")
+        self.assertEqual(list(rtbench_results.round_ratios(samples, "002", "000")), [2.5], "rounds both runs have")
+        self.assertEqual(list(rtbench_results.round_times(samples, "000", "embree1")), [100.0])
+        self.assertTrue(rtbench_results.round_ratios(samples, "003", "000").empty, "a run without samples")
         (self.folder / "samples.csv").unlink()
-        self.assertTrue(rtbench_results.round_ratios(self.folder, "001", "000").empty, "a folder without samples.csv")
+        samples = rtbench_results.read_samples(self.folder)
+        self.assertTrue(rtbench_results.round_ratios(samples, "001", "000").empty, "a folder without samples.csv")
 
 
 if __name__ == "__main__":
