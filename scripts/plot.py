@@ -1,11 +1,14 @@
 #!/usr/bin/python3
 """Charts for an rtbench results folder: PNG and SVG next to runs.csv.
 
-usage: scripts/plot.py RESULTS_DIR      (or: build/rtbench plot RESULTS_DIR)
+usage: scripts/plot.py [-v] RESULTS_DIR      (or: build/rtbench plot [-v] RESULTS_DIR)
 Besides the charts of the configs of record, one chart per swept key (by_<key>: time and rays
 wrong against the key's values, coloured by method, one row per scene). A chart the folder's runs
-cannot make is skipped with one line on stderr: "rtbench plot: DIR: skipped CHART: why". Uses
-Debian's python3-matplotlib and python3-pandas only.
+do not call for (a paper's chart of another experiment) is counted in one line; -v names each with
+its reason: "rtbench plot: DIR: skipped CHART: why". A chart that fails while it is drawn is left
+out with its reason, "rtbench plot: DIR: could not draw CHART: why", and the others are still
+drawn. Exit 0 when any chart was written, 1 when none was. Uses Debian's python3-matplotlib and
+python3-pandas only.
 """
 import errno
 import json
@@ -73,9 +76,16 @@ def write_atomically(fig, target: Path, ext: str):
         raise
 
 
+VERBOSE = False  # -v: name every chart the runs do not call for
+SKIPPED = []  # charts the runs do not call for, this invocation
+FAILED = []  # charts that failed while drawn, this invocation
+
+
 def skip(folder: Path, name: str, reason: str):
-    """A chart the runs cannot make: one line on stderr naming it and why."""
-    print(f"rtbench plot: {folder}: skipped {name}: {reason}", file=sys.stderr)
+    """A chart the runs do not call for: counted, and with -v one line on stderr naming it and why."""
+    SKIPPED.append(name)
+    if VERBOSE:
+        print(f"rtbench plot: {folder}: skipped {name}: {reason}", file=sys.stderr)
 
 
 def fit_text(text, width: float, renderer):
@@ -177,6 +187,12 @@ def pareto(points):
             front.append((x, y))
             best = y
     return sorted(front)
+
+
+def any_hit(frame):
+    """True per run whose rays ask whether anything is hit (query = any: shadow, ambient occlusion),
+    not where: such a run has no hit distance (folders from before the column: closest)."""
+    return frame["query"].eq("any") if "query" in frame else pd.Series(False, frame.index)
 
 
 def wrong_ppm(frame, prefix="exact_"):
@@ -342,12 +358,14 @@ def speed_vs_accuracy(runs, device, folder, written):
     or wrong triangle), another over simplified scenes (other triangles: wrong = hit/miss only)."""
     if "exact_rays" not in runs:  # a folder from before the exact reference
         return skip(folder, "speed_vs_accuracy", "no exact_rays column (a folder from before the exact reference)")
-    runs = runs.assign(size=[size_of(r) for r in runs.itertuples()])
-    panels = []  # (scene, size): a panel per image size, as their speeds and counts differ
+    runs = runs.assign(size=[size_of(r) for r in runs.itertuples()], any_hit=any_hit(runs))
+    panels = []  # (scene, size, any-hit): a panel per image size and query, as their speeds and counts differ
     for scene in sorted(runs.scene.unique()):
         of_scene = runs[runs.scene == scene]
         for name in sorted(of_scene["size"].unique(), key=lambda n: -np.prod([int(v) for v in n.split("x")])):
-            panels.append((scene, name, of_scene[of_scene["size"] == name]))
+            of_size = of_scene[of_scene["size"] == name]
+            for query in sorted(of_size.any_hit.unique()):
+                panels.append((scene, name + (", any-hit rays" if query else ""), of_size[of_size.any_hit == query]))
     fig, axes = plt.subplots(len(panels), 2, figsize=(15, 4.4 * len(panels)), squeeze=False)
     for (left, right), (scene, name, of_scene) in zip(axes, panels):
         points = {False: [], True: []}  # simplified or not: the front of each
@@ -384,10 +402,21 @@ def speed_vs_accuracy(runs, device, folder, written):
                 left.plot([p[0] for p in front], [p[1] for p in front], style, marker="x", lw=1, label=label,
                           **({"color": "tab:purple"} if simplified_ else {}))
         all_ppm = [p[1] for p in points[False] + points[True]] + list(embree_ppm)
-        wrong_ppm_axis(left, all_ppm, "rays wrong vs exact (per million; log above 1)")
-        log_axis(right, list(of_scene.exact_distance_error_mean) + list(embree.embree_exact_distance_error_mean))
-        right.set_ylabel("mean |t - t_exact| / t_exact (log)")
-        for ax in (left, right):
+        any_hit_panel = bool(of_scene.any_hit.all())
+        wrong_ppm_axis(left, all_ppm, "rays whose hit/miss differs from exact (per million; log above 1)" if any_hit_panel
+                       else "rays wrong vs exact (per million; log above 1)")
+        distances = finite(list(of_scene.exact_distance_error_mean) + list(embree.embree_exact_distance_error_mean))
+        if any_hit_panel or distances.empty:  # any-hit rays report whether, not where: no distance to compare
+            right.cla()
+            right.set_axis_off()
+            right.text(0.0, 0.5, "any-hit rays: accuracy is hit/miss agreement with the exact reference (left);\n"
+                       "they return no hit distance, so there is none to compare" if any_hit_panel else
+                       "no hit distance was compared in these runs", transform=right.transAxes, fontsize=8, color="0.3",
+                       va="center")
+        else:
+            log_axis(right, distances)
+            right.set_ylabel("mean |t - t_exact| / t_exact (log)")
+        for ax in (left, right) if right.axison else (left,):
             ax.set_xscale("log")
             ax.set_xlabel("speed (Mrays/s, log scale)")
             ax.set_title(f"{scene}, {name} ({len(of_scene)} run{'s' if len(of_scene) != 1 else ''})", fontsize=9)
@@ -1343,18 +1372,26 @@ def missing_column(error):
 
 
 def draw(name, folder, chart, *args):
-    """One chart; one that needs a column the folder lacks is skipped, saying which."""
+    """One chart; one that needs a column the folder lacks is skipped, saying which; one that fails
+    is left out with its reason (the others are still drawn). A chart that cannot be written where
+    it belongs (PlotError, OSError: a link, a full disk) stops them all."""
     try:
         chart(*args)
-    except (KeyError, AttributeError) as e:
-        column = missing_column(e)
-        if column is None:
-            raise
+    except (PlotError, OSError):
+        raise
+    except Exception as e:  # noqa: BLE001: any failure of one chart is that chart's, said and survived
         plt.close("all")
-        skip(folder, name, f"runs.csv has no {column} column")
+        column = missing_column(e) if isinstance(e, (KeyError, AttributeError)) else None
+        if column is not None:
+            return skip(folder, name, f"runs.csv has no {column} column")
+        FAILED.append(name)
+        reason = " ".join(str(e).split()) or "no message"
+        print(f"rtbench plot: {folder}: could not draw {name}: {type(e).__name__}: {reason}", file=sys.stderr)
 
 
 def run(folder: Path) -> int:
+    SKIPPED.clear()
+    FAILED.clear()
     check_folder(folder)
     try:
         runs, failed, _, device = load(folder)
@@ -1377,15 +1414,29 @@ def run(folder: Path) -> int:
         draw(chart.__name__, folder, chart, runs, device, folder, written)
     draw("failure_map", folder, failure_map, runs, failed, device, folder, written)
     by_key_charts(everything, failed, device, folder, written)
-    print(f"{folder}: wrote {', '.join(written)} (.png, .svg)")
+    if written:
+        print(f"{folder}: wrote {len(written)} chart(s): {', '.join(written)} (.png, .svg)")
+    if SKIPPED and not VERBOSE:
+        print(f"{folder}: {len(SKIPPED)} chart(s) not called for by these runs (-v names them)")
+    if FAILED:
+        print(f"{folder}: {len(FAILED)} chart(s) could not be drawn: {', '.join(FAILED)} (reasons above)", file=sys.stderr)
+    if not written:
+        raise PlotError(f"{folder}: no chart could be drawn from these runs" + ("" if VERBOSE else " (-v says why of each)"))
     return 0
 
 
 def main() -> int:
-    if len(sys.argv) != 2:
+    return main_with(sys.argv[1:])
+
+
+def main_with(args) -> int:
+    global VERBOSE
+    VERBOSE = bool(args) and args[0] in ("-v", "--verbose")
+    args = args[VERBOSE:]
+    if len(args) != 1 or args[0].startswith("-"):
         print(__doc__)
         return 2
-    folder = Path(sys.argv[1])
+    folder = Path(args[0])
     try:
         return run(folder)
     except PlotError as e:

@@ -104,8 +104,9 @@ class Charts:
     """plot.run on a folder with plot.save wrapped: the figures drawn (by chart name) after they were
     laid out and written, and what plot.py said on stdout and stderr."""
 
-    def __init__(self, folder: Path):
+    def __init__(self, folder: Path, verbose=True):
         self.figures, original = {}, plot.save
+        plot.VERBOSE = verbose
 
         def keep(fig, folder_, name, written, rect=None):
             original(fig, folder_, name, written, rect)
@@ -181,7 +182,7 @@ class ByKeyCharts(unittest.TestCase):
     def test_every_chart_is_written_or_says_why_it_is_not(self):
         charts = Charts(self.folder)
         self.assertEqual(charts.rc, 0)
-        written = set(re.search(r"wrote (.*) \(\.png", charts.stdout).group(1).split(", "))
+        written = set(re.search(r"wrote \d+ chart\(s\): (.*) \(\.png", charts.stdout).group(1).split(", "))
         lines = charts.stderr.splitlines()
         pattern = re.compile(rf"^rtbench plot: {re.escape(str(self.folder))}: skipped (\S+): (.+)$")
         for line in lines:
@@ -481,6 +482,79 @@ class ReadRuns(unittest.TestCase):
         (self.folder / "samples.csv").unlink()
         samples = rtbench_results.read_samples(self.folder)
         self.assertTrue(rtbench_results.round_ratios(samples, "001", "000").empty, "a folder without samples.csv")
+
+
+class ChartsSurvive(unittest.TestCase):
+    """One chart's failure is that chart's: the others are drawn, the failure is named with its reason,
+    and plot exits 0 when it wrote any chart; the charts a folder does not call for are one line
+    unless -v; any-hit rays (no hit distance) draw no distance axis."""
+
+    def setUp(self):
+        self.tmp = tempfile.TemporaryDirectory(prefix="test_plot.")
+        self.root = Path(self.tmp.name)
+        # A shadow-ray sweep (any-hit: no distance error) over grid resolutions and the BVH.
+        settings = [{"structure_type": "uniform_grid", "structure_min_dim": d, "query": "any"} for d in (8, 16, 32, 64, 128)]
+        settings.append({"structure_type": "bvh", "query": "any"})
+        frame = make_runs(settings, ["structure_type", "structure_min_dim"])
+        for column in ("exact_distance_error_mean", "embree_exact_distance_error_mean"):
+            frame[column] = np.nan
+        frame["rays_type"] = "shadow"
+        self.folder = write_folder(self.root, "shadow", frame)
+
+    def tearDown(self):
+        self.tmp.cleanup()
+
+    def test_any_hit_rays_draw_speed_against_hit_miss_agreement_and_no_distance_axis(self):
+        charts = Charts(self.folder)
+        self.assertEqual(charts.rc, 0, charts.stderr)
+        self.assertNotIn("could not draw", charts.stderr)
+        left, right = charts.figures["speed_vs_accuracy"].axes[:2]
+        self.assertIn("hit/miss", left.get_ylabel())
+        self.assertFalse(right.axison, "no distance axis for rays that return no distance")
+        self.assertIn("any-hit rays", " ".join(t.get_text() for t in right.texts))
+        self.assertIn("any-hit rays", left.get_title())
+
+    def test_a_chart_that_fails_is_named_and_the_others_are_drawn(self):
+        original = plot.speed_vs_accuracy
+
+        def broken(*args):
+            raise ValueError("Data has no positive values, and therefore can not be log-scaled.")
+        broken.__name__ = "speed_vs_accuracy"
+        plot.speed_vs_accuracy = broken
+        try:
+            charts = Charts(self.folder, verbose=False)
+        finally:
+            plot.speed_vs_accuracy = original
+        self.assertEqual(charts.rc, 0, charts.stderr)
+        self.assertIn(f"rtbench plot: {self.folder}: could not draw speed_vs_accuracy: ValueError: Data has no "
+                      "positive values", charts.stderr)
+        self.assertIn("1 chart(s) could not be drawn: speed_vs_accuracy", charts.stderr)
+        self.assertNotIn("speed_vs_accuracy", charts.figures)
+        self.assertIn("by_structure_min_dim", charts.figures)
+
+    def test_charts_not_called_for_are_one_line_unless_verbose(self):
+        quiet = Charts(self.folder, verbose=False)
+        self.assertNotIn("skipped", quiet.stderr)
+        self.assertRegex(quiet.stdout, r"\d+ chart\(s\) not called for by these runs \(-v names them\)")
+        loud = Charts(self.folder, verbose=True)
+        self.assertIn(f"rtbench plot: {self.folder}: skipped passes_vs_threshold: ", loud.stderr)
+        self.assertNotIn("not called for", loud.stdout)
+
+    def test_no_chart_written_is_exit_1_saying_so(self):
+        original = plot.save
+
+        def refuse(*args, **kwargs):
+            raise RuntimeError("cannot lay out")
+        plot.save = refuse
+        err = io.StringIO()
+        try:
+            with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
+                rc = plot.main_with([str(self.folder)])
+        finally:
+            plot.save = original
+        self.assertEqual(rc, 1)
+        self.assertIn("could not draw speed_vs_accuracy: RuntimeError: cannot lay out", err.getvalue())
+        self.assertIn(f"rtbench plot: {self.folder}: no chart could be drawn from these runs", err.getvalue())
 
 
 if __name__ == "__main__":
