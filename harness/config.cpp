@@ -77,6 +77,19 @@ void refuseControlCharacters(const std::string& at, const std::string& v) {
 
 }  // namespace
 
+std::string keyTypeText(const KeySpec& key) {
+    std::string text = typeName(key.type);
+    const bool numeric = key.type != ValueType::String && key.type != ValueType::Bool;
+    const bool integer = key.type == ValueType::Int || key.type == ValueType::Int3;
+    auto bound = [&](double v) { return integer ? std::to_string(std::int64_t(v)) : formatValue(ConfigValue(v)); };
+    if (numeric && (key.min > -1e300 || key.max < 1e300))
+        text += (key.type == ValueType::Int3 || key.type == ValueType::Float3 ? ", each in [" : " in [") +
+                (key.min > -1e300 ? bound(key.min) : std::string("-inf")) + ", " +
+                (key.max < 1e300 ? bound(key.max) : std::string("inf")) + "]";
+    if (!key.choices.empty()) text += ": one of " + join(key.choices);
+    return text;
+}
+
 const std::vector<KeySpec>& configSchema() {
     static const std::vector<KeySpec> schema = [] {
         std::vector<KeySpec> s;

@@ -15,6 +15,8 @@ namespace rtbench {
 const std::vector<KeySpec>& configSchema();
 // The spec of one key of configSchema(); throws naming the key when there is none.
 const KeySpec& keySpec(const std::string& name);
+// What a key takes, for `rtbench keys`: "an integer in [1, 1000]", "a string: one of a, b", ...
+std::string keyTypeText(const KeySpec& key);
 
 struct ExperimentPlan {
     std::string configPath;

@@ -6,7 +6,9 @@
 
 #include <cerrno>
 #include <cstdlib>
+#include <cstdio>
 #include <filesystem>
+#include <iomanip>
 #include <iostream>
 #include <sstream>
 
@@ -17,6 +19,7 @@
 #include "harness/images.h"
 #include "harness/plan_view.h"
 #include "harness/runner.h"
+#include "harness/version.h"
 #include "device/vulkan_context.h"
 #include "structures/error.h"
 #include "structures/mesh_io.h"
@@ -54,11 +57,35 @@ std::string findPlotScript() {
     throw rtbench::Error("scripts/plot.py not found (looked at " + tried + ")");
 }
 
+// `rtbench meshes`: each scene source with its triangle count and bounding size, to choose by; a
+// mesh that does not load says why on its line.
+void printMeshes(std::ostream& out) {
+    auto line = [&](const std::string& source, auto load) {
+        char text[160];
+        try {
+            const rtbench::TriangleMesh mesh = load();
+            const glm::vec3 extent = mesh.bounds().extent();
+            std::snprintf(text, sizeof text, "%10zu  %9.3g x %9.3g x %9.3g", mesh.triangles.size(),
+                          double(extent.x), double(extent.y), double(extent.z));
+        } catch (const std::exception& e) {
+            out << std::left << std::setw(34) << source << "  does not load: " << e.what() << "\n";
+            return;
+        }
+        out << std::left << std::setw(34) << source << text << "\n";
+    };
+    out << std::left << std::setw(34) << "scene.source" << " triangles  bounding size (x by y by z)\n";
+    for (const std::string& name : rtbench::proceduralSceneNames())
+        line("procedural:" + name, [&] { return rtbench::proceduralScene(name); });
+    for (const std::string& name : rtbench::cgalMeshNames())
+        line("cgal:" + name, [&] { return rtbench::readCgalMesh(name); });
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"rtbench: GPU ray tracing strategies (Purcell 2002, Christen 2005) measured against Embree"};
     app.require_subcommand(1);
+    app.set_version_flag("--version", rtbench::versionText(), "print the version, the commit it was built from and the build type");
 
     std::string configPath;
     rtbench::RunnerOptions options;
@@ -87,7 +114,7 @@ int main(int argc, char** argv) {
     std::string planOutput;
     planCommand->add_option("-o,--output", planOutput, "output folder (overrides experiment.output), where earlier rows are looked for");
 
-    CLI::App* meshes = app.add_subcommand("meshes", "List the cgal:NAME meshes (Debian's libcgal-demo) and procedural:NAME scenes");
+    CLI::App* meshes = app.add_subcommand("meshes", "List the procedural:NAME scenes and cgal:NAME meshes (Debian's libcgal-demo) with their triangles and bounding sizes");
 
     std::string mergeFolder;
     CLI::App* merge = app.add_subcommand("merge", "Join the runs.shard-*.csv of a results folder into runs.csv, checking none is missing or doubled");
@@ -107,6 +134,8 @@ int main(int argc, char** argv) {
     std::string plotFolder;
     CLI::App* plot = app.add_subcommand("plot", "Write PNG and SVG charts next to a results folder's runs.csv (scripts/plot.py)");
     plot->add_option("results_dir", plotFolder, "results folder")->required();
+    bool plotVerbose = false;
+    plot->add_flag("-v,--verbose", plotVerbose, "also name each chart these runs do not call for, and why");
 
     std::string checkFolder;
     rtbench::CheckOptions checkOptions;
@@ -169,6 +198,9 @@ int main(int argc, char** argv) {
             const rtbench::ExperimentResult result = rtbench::runExperiment(plan, options);
             std::cout << "\n" << rtbench::summaryTable(result.rows);
             if (result.reused) std::cout << "(" << result.reused << " run(s) kept from an earlier invocation; --force re-runs them)\n";
+            if (result.warned && options.quiet)
+                std::cout << result.warned << " run(s) with a warning (columns warnings, timing_warning: a timing warning means "
+                          << "the run's timings are not results of record); without -q each is said as it runs\n";
             // The files that are there now, by name.
             namespace fs = std::filesystem;
             std::string files;
@@ -196,8 +228,7 @@ int main(int argc, char** argv) {
             return 0;
         }
         if (*meshes) {
-            for (const std::string& name : rtbench::cgalMeshNames()) std::cout << "cgal:" << name << "\n";
-            for (const std::string& name : rtbench::proceduralSceneNames()) std::cout << "procedural:" << name << "\n";
+            printMeshes(std::cout);
             return 0;
         }
         if (*devices) {
@@ -236,7 +267,10 @@ int main(int argc, char** argv) {
             std::error_code ec;
             if (std::filesystem::is_symlink(std::filesystem::symlink_status(plotFolder, ec)))
                 throw rtbench::Error(plotFolder + ": the results folder is a symlink; give the folder it points to");
-            return runProgram({"/usr/bin/python3", findPlotScript(), plotFolder}) == 0 ? 0 : 1;
+            std::vector<std::string> argv{"/usr/bin/python3", findPlotScript()};
+            if (plotVerbose) argv.push_back("-v");
+            argv.push_back(plotFolder);
+            return runProgram(argv) == 0 ? 0 : 1;
         }
         if (*compare) {
             const rtbench::CompareResult result = rtbench::compareFolders(compareA, compareB, compareOptions);
@@ -250,8 +284,8 @@ int main(int argc, char** argv) {
         if (*keys) {
             for (const rtbench::KeySpec& k : rtbench::configSchema())
                 std::cout << k.name << (k.required ? " (required)" : "")
-                          << (k.defaultValue ? " = " + rtbench::formatValue(*k.defaultValue) : std::string()) << "\n    "
-                          << k.help << "\n";
+                          << (k.defaultValue ? " = " + rtbench::formatValue(*k.defaultValue) : std::string()) << "  ("
+                          << rtbench::keyTypeText(k) << ")\n    " << k.help << "\n";
             return 0;
         }
     } catch (const std::exception& e) {

@@ -38,6 +38,22 @@ std::vector<const RunConfig*> filterRuns(const ExperimentPlan& plan, const std::
     return kept;
 }
 
+namespace {
+
+// The rays a run traces, as far as the plan knows them: the camera rays of primary rays; for the
+// later generations (their batch is the rays that continue from the hits) a bound, "<= N".
+std::string tracedRays(const RunConfig& run, std::uint64_t cameraRays) {
+    const std::string type = run.has("rays.type") ? run.getString("rays.type") : "primary";
+    std::uint64_t perCameraRay = 1;
+    if (type == "path") perCameraRay = std::uint64_t(run.getInt("path.samples"));
+    if (type == "ao") perCameraRay = std::uint64_t(run.getInt("ao.samples"));
+    if (type == "primary") return " " + std::to_string(cameraRays);
+    if (type == "whitted") return "~" + std::to_string(cameraRays);  // lights and both branches: no bound here
+    return "<= " + std::to_string(cameraRays * perCameraRay);
+}
+
+}  // namespace
+
 std::string describePlan(const ExperimentPlan& plan, const RunnerOptions& options, const std::vector<std::string>& filters) {
     if (plan.runs.empty()) throw Error(plan.configPath + ": the plan has no runs");
     const RunConfig& first = plan.runs.front();
@@ -68,14 +84,17 @@ std::string describePlan(const ExperimentPlan& plan, const RunnerOptions& option
         for (const std::string& k : swept) out << " " << k;
         out << "\n";
     }
-    out << std::left << std::setw(5) << "run" << std::right << std::setw(10) << "rays" << std::setw(16) << "earlier wall s"
+    out << std::left << std::setw(5) << "run" << std::right << std::setw(12) << "rays" << std::setw(16) << "earlier wall s"
         << "  " << std::left << "parameters\n";
     double known = 0.0;
     std::size_t knownRuns = 0;
     std::uint64_t rays = 0;
+    bool bounded = false;  // a run of rays after the first hit: its batch is known only as a bound
     for (const RunConfig* run : runs) {
         const std::uint64_t r = std::uint64_t(run->getInt("camera.width")) * std::uint64_t(run->getInt("camera.height"));
         rays += r;
+        const std::string traced = tracedRays(*run, r);
+        bounded = bounded || traced[0] != ' ';
         const auto it = earlier.find(runNumber(*run) + "|" + run->hash());
         std::string took = "-";
         if (it != earlier.end()) {
@@ -83,10 +102,13 @@ std::string describePlan(const ExperimentPlan& plan, const RunnerOptions& option
             ++knownRuns;
             took = formatNumber(it->second, 4);
         }
-        out << std::left << std::setw(5) << runNumber(*run) << std::right << std::setw(10) << r << std::setw(16) << took << "  "
+        out << std::left << std::setw(5) << runNumber(*run) << std::right << std::setw(12) << traced << std::setw(16) << took << "  "
             << std::left << run->label() << "\n";
     }
-    out << runs.size() << " run(s), " << rays << " rays in all; ";
+    if (bounded)
+        out << "(<= N: rays after the first hit, at most N, as the batch holds only the rays that continue; ~N: "
+               "Whitted rays, N camera rays, then as many as the hits' materials and lights make)\n";
+    out << runs.size() << " run(s), " << rays << " camera rays in all; ";
     if (knownRuns == 0)
         out << "no earlier row of these runs in " << csv << " to estimate their time from\n";
     else

@@ -12,6 +12,8 @@
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <iomanip>
@@ -30,6 +32,7 @@
 #include "embree_reference.h"
 #include "exact_reference.h"
 #include "images.h"
+#include "interrupt_note.h"
 #include "methods/registry.h"
 #include "methods/tile_order.h"
 #include "methods/triangle_store.h"
@@ -449,12 +452,21 @@ std::string runNumber(const RunConfig& run) {
     return index;
 }
 
+std::string consoleNumber(const std::string& cell) {
+    char* end = nullptr;
+    const double value = std::strtod(cell.c_str(), &end);
+    if (cell.empty() || *end != '\0' || !std::isfinite(value)) return cell;
+    char text[32];
+    std::snprintf(text, sizeof text, std::fabs(value) >= 100.0 ? "%.0f" : "%.3g", value);
+    return text;
+}
+
 std::string summaryTable(const std::vector<Row>& rows) {
     // Speed (with the ratio's 95% interval) and the exact accuracy; the swept parameters last, whole.
     std::ostringstream out;
     auto get = [](const Row& r, const char* key) {
         auto it = r.find(key);
-        return it == r.end() || it->second.empty() ? std::string("-") : it->second;
+        return it == r.end() || it->second.empty() ? std::string("-") : consoleNumber(it->second);
     };
     out << std::left << std::setw(5) << "run" << std::right << std::setw(13) << "kernel Mr/s" << std::setw(14)
         << "Embree1 Mr/s" << std::setw(10) << "ratio" << std::setw(22) << "ratio 95% interval" << std::setw(12)
@@ -465,7 +477,8 @@ std::string summaryTable(const std::vector<Row>& rows) {
         out << std::left << std::setw(5) << get(r, "run") << std::right << std::setw(13) << get(r, "kernel_mrays_s")
             << std::setw(14) << get(r, "embree1_mrays_s") << std::setw(10) << get(r, "speed_ratio_vs_embree1") << std::setw(22)
             << interval << std::setw(12) << get(r, "exact_wrong_ppm") << std::setw(9) << get(r, "status") << "  " << std::left
-            << get(r, "label") << (get(r, "timing_warning") == "-" ? "" : " [timing_warning]") << "\n";
+            << get(r, "label") << (get(r, "timing_warning") == "-" ? "" : " [timing_warning]")
+            << (get(r, "warnings") == "-" ? "" : " [warning]") << "\n";
     }
     for (const Row& r : rows)
         if (get(r, "status") == "failed") out << "run " << get(r, "run") << " failed: " << get(r, "error") << "\n";
@@ -659,6 +672,9 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
     auto since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
     double executedSeconds = 0.0;
     int executed = 0;
+    int rowsWritten = int(std::count(kept.begin(), kept.end(), true));
+    if (!options.commandLine.empty())  // a sweep the user started (not check's re-run into a folder of its own)
+        setInterruptNote(interruptNote(rowsWritten, int(mine.size()), csvPath, options.commandLine));
     // A run's row is complete (ok, or failed with `error`): said on the console, then its samples
     // and its row appended. The samples come first: an interrupt between them leaves samples
     // without a row, which a resume sets aside, never a row without its samples.
@@ -674,17 +690,22 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
         row["wall_s"] = formatNumber(seconds, 4);
         if (!options.quiet) {
             if (row["status"] == "ok")
-                std::cout << " " << row["kernel_mrays_s"] << " Mrays/s (Embree " << row["embree1_mrays_s"]
-                          << "), hit/miss agreement " << row["hit_miss_agreement"] << ", " << row["wall_s"] << " s\n";
+                std::cout << " " << consoleNumber(row["kernel_mrays_s"]) << " Mrays/s (Embree " << consoleNumber(row["embree1_mrays_s"])
+                          << "), hit/miss agreement " << row["hit_miss_agreement"] << ", " << consoleNumber(row["wall_s"]) << " s\n";
             else
                 std::cout << " FAILED: " << row["error"] << "\n";
         }
-        if (!row["warnings"].empty()) std::cerr << "[rtbench] run " << row["run"] << " warning: " << row["warnings"] << "\n";
-        if (!row["timing_warning"].empty())
+        result.warned += !row["warnings"].empty() || !row["timing_warning"].empty();
+        if (!row["warnings"].empty() && !options.quiet)
+            std::cerr << "[rtbench] run " << row["run"] << " warning: " << row["warnings"] << "\n";
+        if (!row["timing_warning"].empty() && !options.quiet)
             std::cerr << "[rtbench] run " << row["run"] << " timing warning: " << row["timing_warning"]
                       << " (not a timing of record)\n";
         appendCsvRows(samplesPath, sampleColumns(), sampleRows(row, samples));
         appendCsvRow(csvPath, columns, row);  // an interrupt loses nothing done
+        ++rowsWritten;
+        if (!options.commandLine.empty())
+            setInterruptNote(interruptNote(rowsWritten, int(mine.size()), csvPath, options.commandLine));
     };
     // Progress: runs done, elapsed, and an estimate for the rest from the runs executed so far.
     auto progress = [&](const char* what, std::size_t k) {
@@ -770,6 +791,7 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
     result.rows = rows;
     writeCsv(csvPath, columns, result.rows);  // in plan order
     writeJson(contextPath, contextJson(plan, options, caches, started, true));
+    if (!options.commandLine.empty()) setInterruptNote("");
     return result;
 }
 

@@ -34,6 +34,7 @@ struct ExperimentResult {
     std::vector<Row> rows;  // as written to runs.csv
     int failed = 0;
     int reused = 0;  // rows kept from an earlier invocation (resumption)
+    int warned = 0;  // runs with a warning or a timing warning (each said on stderr unless quiet)
 };
 
 ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& options);
@@ -61,7 +62,10 @@ Row identityRow(const RunConfig& run, const std::string& commit, const std::stri
 // rows' device. Returns the merged rows.
 std::vector<Row> mergeShards(const std::string& folder, const std::string& missingReason = "");
 
-// The short table printed after a run (Mrays/s kernel vs Embree, agreement).
+// A number for the console: 3 significant digits (whole numbers from 100 on); other text as it is.
+std::string consoleNumber(const std::string& cell);
+
+// The short table printed after a run (Mrays/s kernel vs Embree, agreement), numbers by consoleNumber.
 std::string summaryTable(const std::vector<Row>& rows);
 
 }  // namespace rtbench

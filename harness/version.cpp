@@ -26,6 +26,10 @@ std::string utcNow() {
     return buf;
 }
 
+std::string versionText() {
+    return std::string("rtbench ") + RTBENCH_VERSION + " (commit " + RTBENCH_GIT_COMMIT + ", build " + RTBENCH_BUILD_NAME + ")";
+}
+
 std::string hostName() {
     char buf[256] = {};
     gethostname(buf, sizeof buf - 1);

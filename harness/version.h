@@ -7,4 +7,5 @@ std::string gitCommit();    // short hash of the source tree at configure time
 std::string cpuModel();     // /proc/cpuinfo "model name"
 std::string utcNow();       // ISO 8601
 std::string hostName();
+std::string versionText();  // "rtbench 0.1 (commit abc1234, build Release)"
 }  // namespace rtbench

@@ -136,13 +136,29 @@ TEST_F(RunLimits, AFlatSceneGetsOneCellAcrossItsPlane) {
 
 TEST_F(RunLimits, TrianglesDegenerateInFloatAreCountedAndReported) {
     // At x = 1e5 float's spacing is 1/128: the second triangle's vertices 0.001 apart coincide.
-    ::testing::internal::CaptureStderr();
-    const Row row = runOne("OFF\n6 2 0\n0 0 0\n1 0 0\n0 1 0\n100000 0 0\n100000.001 0 0\n100000 0.001 0\n3 0 1 2\n3 3 4 5\n",
-                           "[camera]\nwidth = 8\nheight = 8\nposition = [0.2, 0.2, 2]\nlook_at = [0.2, 0.2, 0]\n");
-    const std::string err = ::testing::internal::GetCapturedStderr();
-    EXPECT_EQ(row.at("scene_degenerate"), "1");
-    EXPECT_EQ(row.at("warnings"), "1 of 2 triangles are degenerate (zero area in float) and are never hit");
-    EXPECT_THAT(err, HasSubstr("warning: 1 of 2 triangles are degenerate (zero area in float) and are never hit"));
+    // Said on stderr as the run ends; quiet (-q), only counted (main prints the count).
+    dir_.write("scene.off", "OFF\n6 2 0\n0 0 0\n1 0 0\n0 1 0\n100000 0 0\n100000.001 0 0\n100000 0.001 0\n3 0 1 2\n3 3 4 5\n");
+    const std::string body = "[scene]\nsource = \"scene.off\"\n[output]\nimages = false\n[camera]\nwidth = 8\nheight = 8\n"
+                             "position = [0.2, 0.2, 2]\nlook_at = [0.2, 0.2, 0]\n";
+    for (const bool quiet : {false, true}) {
+        RunnerOptions options = quietRunnerOptions();
+        options.quiet = quiet;
+        options.force = true;
+        ::testing::internal::CaptureStderr();
+        ::testing::internal::CaptureStdout();
+        const ExperimentResult result = runTestConfig(dir_, "limits", body, options);
+        const std::string err = ::testing::internal::GetCapturedStderr();
+        ::testing::internal::GetCapturedStdout();
+        ASSERT_EQ(result.rows.size(), 1u);
+        const Row& row = result.rows[0];
+        EXPECT_EQ(row.at("scene_degenerate"), "1");
+        EXPECT_EQ(row.at("warnings"), "1 of 2 triangles are degenerate (zero area in float) and are never hit");
+        EXPECT_EQ(result.warned, 1);
+        if (quiet)
+            EXPECT_THAT(err, Not(HasSubstr("warning"))) << "quiet: counted, not said";
+        else
+            EXPECT_THAT(err, HasSubstr("warning: 1 of 2 triangles are degenerate (zero area in float) and are never hit"));
+    }
 }
 
 TEST(HitChecks, ANanDistanceIsNamedAsAnOutOfRangeInputNotNondeterminism) {

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "harness/columns.h"
+#include "harness/interrupt_note.h"
 #include "harness/config.h"
 #include "harness/output_folder.h"
 #include "harness/runner.h"
@@ -152,6 +153,30 @@ TEST(Columns, TheCsvHeaderIsEveryConfigKeyThenEveryMetric) {
     EXPECT_EQ(columns.back(), "wall_s");
     EXPECT_EQ(std::set<std::string>(columns.begin(), columns.end()).size(),
               columns.size());  // no duplicates
+}
+
+
+// The console's figures: 3 significant digits (0.0185 Mrays/s, not 0.0185003), whole numbers from
+// 100 on (6801, not 6.8e+03); text and empty cells as they are.
+TEST(Console, FiguresHaveThreeSignificantDigits) {
+    EXPECT_EQ(rtbench::consoleNumber("0.0185003"), "0.0185");
+    EXPECT_EQ(rtbench::consoleNumber("3.8791"), "3.88");
+    EXPECT_EQ(rtbench::consoleNumber("22.1632"), "22.2");
+    EXPECT_EQ(rtbench::consoleNumber("6801.4"), "6801");
+    EXPECT_EQ(rtbench::consoleNumber("-0.5"), "-0.5");
+    EXPECT_EQ(rtbench::consoleNumber("0"), "0");
+    EXPECT_EQ(rtbench::consoleNumber("1.5e-07"), "1.5e-07");
+    EXPECT_EQ(rtbench::consoleNumber("ok"), "ok");
+    EXPECT_EQ(rtbench::consoleNumber(""), "");
+    EXPECT_EQ(rtbench::consoleNumber("3.5x"), "3.5x");
+}
+
+// What a sweep interrupted by a signal says: how many rows are kept, where, and the command that
+// resumes, without --force (which would run the kept rows again).
+TEST(Console, TheInterruptNoteNamesTheKeptRowsAndTheResumeCommand) {
+    const std::string note = rtbench::interruptNote(3, 17, "out/k/runs.csv", "build/rtbench run --force -q k.toml -f");
+    EXPECT_THAT(note, ::testing::HasSubstr("interrupted: 3 of 17 run(s) have their rows in out/k/runs.csv"));
+    EXPECT_THAT(note, ::testing::HasSubstr("\n  build/rtbench run -q k.toml\n"));
 }
 
 }  // namespace

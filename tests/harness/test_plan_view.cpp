@@ -49,7 +49,7 @@ TEST(Plan, ASweepWithASkipRuleAndFilters) {
     EXPECT_THAT(table, HasSubstr("swept keys: strategy.type structure.min_dim"));
     EXPECT_THAT(table, HasSubstr("grid:structure.min_dim=16 strategy.type=branching"));
     EXPECT_THAT(table, Not(HasSubstr("strategy.type=multipass")));
-    EXPECT_THAT(table, HasSubstr("3 run(s), 600 rays in all; no earlier row"));
+    EXPECT_THAT(table, HasSubstr("3 run(s), 600 camera rays in all; no earlier row"));
 }
 
 TEST(Plan, NearestNamesPutThoseContainingTheQueryFirst) {
@@ -59,6 +59,24 @@ TEST(Plan, NearestNamesPutThoseContainingTheQueryFirst) {
     EXPECT_EQ(nearest[0], "ChineseDragon-10kv");
     EXPECT_EQ(nearest[1], "dragknob");  // edit distance 3
     EXPECT_EQ(nearestNames("bunny", names, 1), std::vector<std::string>{"bunny00"});
+}
+
+
+// The rays column says what the plan knows: the camera rays of primary rays; for rays after the
+// first hit, a bound (the batch holds only the rays that continue): the camera rays, times the
+// samples per hit of path and ambient-occlusion rays; Whitted's, "~" the camera rays.
+TEST(Plan, TheRaysColumnBoundsTheGenerationsAfterTheFirstHit) {
+    TempDir dir;
+    const ExperimentPlan plan = loadExperiment(dir.write("r.toml", "[experiment]\nname = \"r\"\noutput = \"" + dir.file("out") +
+        "\"\n[scene]\nsource = \"procedural:christen_b\"\n[camera]\nwidth = 16\nheight = 12\n[rays]\n"
+        "type = [\"primary\", \"shadow\", \"path\", \"ao\", \"whitted\"]\n[path]\nsamples = 2\n[ao]\nsamples = 3\n"));
+    const std::string table = describePlan(plan, {}, {});
+    EXPECT_THAT(table, ::testing::ContainsRegex("000 +192 +- +rays.type=primary"));
+    EXPECT_THAT(table, ::testing::ContainsRegex("001 +<= 192 +- +rays.type=shadow"));
+    EXPECT_THAT(table, ::testing::ContainsRegex("002 +<= 384 +- +rays.type=path"));
+    EXPECT_THAT(table, ::testing::ContainsRegex("003 +<= 576 +- +rays.type=ao"));
+    EXPECT_THAT(table, ::testing::ContainsRegex("004 +~192 +- +rays.type=whitted"));
+    EXPECT_THAT(table, HasSubstr("5 run(s), 960 camera rays in all"));
 }
 
 }  // namespace
