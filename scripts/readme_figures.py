@@ -1,17 +1,19 @@
 #!/usr/bin/python3
-"""The README's "Results of record" section, written from results/ (never typed): each folder's
-machine, device and command from its context.json, its tables and findings from its runs.csv,
-its charts. The section sits between the two markers below in README.md.
+"""The results of record, written from results/ (never typed): results/README.md whole (each
+folder's machine, device and command from its context.json, its tables and findings from its
+runs.csv, its charts) and the README's table of headline results (between the two markers below
+in README.md), a row per folder, declared by its section where its figures are computed.
 
-usage: /usr/bin/python3 scripts/readme_figures.py            rewrite the section in README.md
-       /usr/bin/python3 scripts/readme_figures.py --check    exit 1 (with a diff) when it differs, or
+usage: /usr/bin/python3 scripts/readme_figures.py            rewrite results/README.md and the README's table
+       /usr/bin/python3 scripts/readme_figures.py --check    exit 1 (with a diff) when either differs, or
                                                              when the README's first config is not
                                                              configs/first.toml
-       /usr/bin/python3 scripts/readme_figures.py --print    print the section
-       --readme PATH                                         another README (the test's altered copy)
+       /usr/bin/python3 scripts/readme_figures.py --print    print results/README.md
+       --readme PATH, --results PATH                         other files (the test's altered copies)
 """
 import difflib
 import json
+import re
 import sys
 from pathlib import Path
 
@@ -22,8 +24,8 @@ from rtbench_results import CHRISTEN_SCENES, commit_text, division_names, maskin
 from purcell_tables import PURCELL_TABLE_2  # noqa: E402  (his Table 2, the paper's numbers)
 
 ROOT = Path(__file__).resolve().parent.parent
-BEGIN = "<!-- results: begin (scripts/readme_figures.py writes this section from results/; do not edit) -->"
-END = "<!-- results: end -->"
+BEGIN = "<!-- headline results: begin (scripts/readme_figures.py writes this table from results/; do not edit) -->"
+END = "<!-- headline results: end -->"
 
 
 def num(value, digits=3) -> str:
@@ -111,6 +113,19 @@ def provenance(name: str, runs, context) -> str:
     return " ".join(lines)
 
 
+# The README's headline table, a row per folder: declared by each section where its figures are
+# computed (headline()), in the order the sections run.
+HEADLINES = {}
+
+
+def headline(name: str, question: str, text: str, context):
+    """The README's row of results/<name>/: the question it answers, its headline figures, and where
+    they were recorded (device, date)."""
+    device = context["devices"][0].get("name", "?") if context.get("devices") else "?"
+    HEADLINES[name] = (question, text, f"{device.split(' (')[0]} on {context.get('cpu', '?')}, "
+                                       f"{str(context.get('date_utc', '?'))[:10]}")
+
+
 def charts(name: str, captions: dict) -> list:
     """Markdown images of the charts that exist, in the order given."""
     return [f"![{caption}](results/{name}/{chart}.png)" for chart, caption in captions.items()
@@ -132,6 +147,10 @@ def bunny() -> list:
                            ("Embree `rtcIntersect16`", "embree16", "embree16_mrays_s")]:
         out.append(f"| {label} | {num(r[m + '_ms_median'])} {interval(r[m + '_ms_ci_low'], r[m + '_ms_ci_high'])} | "
                    f"{num(r[m + '_ms_cv'], 2)} | {num(r[rate])} |")
+    headline("bunny", "How fast and how exact is the default experiment?",
+             f"{r.strategy_type} kernel, {r.method}, {size(r)}: **{num(r.speed_ratio_vs_embree1)}×** Embree rtcIntersect1's speed "
+             f"{interval(r.speed_ratio_ci_low, r.speed_ratio_ci_high)}; {num(r.exact_wrong_ppm)} rays wrong per million "
+             f"(Embree {num(r.embree_exact_wrong_ppm)})", context)
     out += ["",
             f"- Speed against Embree `rtcIntersect1` on the same rays, in the same run: **{num(r.speed_ratio_vs_embree1)}** "
             f"(95% interval {interval(r.speed_ratio_ci_low, r.speed_ratio_ci_high)}).",
@@ -168,6 +187,7 @@ def structures() -> list:
            f"{size(ok.iloc[0])} (median [95% interval]; "
            f"the fastest in bold, × Embree `rtcIntersect1` in the same run):", ""]
     columns = ["grid 32", "grid 64", "grid 128", "bvh", "brute force"]
+    fastest = {}  # strategy -> structure -> scenes where it is the fastest
     for strategy in ["branching", "multipass"]:
         part = ok[ok.strategy_type == strategy]
         out += [f"{strategy}:", "", "| scene (triangles) | " + " | ".join(columns) + " | auto's choice |",
@@ -175,6 +195,7 @@ def structures() -> list:
         for scene, group in sorted(part.groupby("scene"), key=lambda g: g[1].scene_triangles.iloc[0]):
             plain = group[group.structure_type != "auto"]
             best = plain.kernel_ms_median.min()
+            fastest.setdefault(strategy, {}).setdefault(plain[plain.kernel_ms_median == best].method.iloc[0], []).append(scene)
             cells = []
             for column in columns:
                 row = plain[plain.method == column]
@@ -194,6 +215,10 @@ def structures() -> list:
             choice = auto.auto_choice.iloc[0] if not auto.empty else "—"
             out.append(f"| {scene} ({count(group.scene_triangles.iloc[0])}) | " + " | ".join(cells) + f" | {choice} |")
         out.append("")
+    headline("structures", "Which acceleration structure does a scene need?",
+             "the fastest by median GPU time at " + size(ok.iloc[0]) + ": " + "; ".join(
+                 f"{strategy}: " + ", ".join(f"{structure} on {', '.join(scenes)}" for structure, scenes in by.items())
+                 for strategy, by in fastest.items()), context)
     # auto against its chosen candidate's own run: the same work, timed apart.
     pairs = []
     candidates = ok[(ok.structure_type.isin(["bvh", "brute_force"])) |
@@ -278,6 +303,11 @@ def purcell2002() -> list:
                              m.passes_total.iloc[0] - 2, m.passes_lower_bound.iloc[0],
                              m.multipass_live_ms_median.iloc[0] / m.kernel_ms_median.iloc[0]))
         if slow:
+            headline("purcell2002", "Multipass or branching (Purcell et al. 2002)?",
+                     f"multipass is {num(min(x[0] for x in slow), 2)}–{num(max(x[0] for x in slow), 2)}× slower than branching "
+                     f"at {size(arch.iloc[0])}, with {num(min(x[2] / x[3] for x in slow), 2)}–{num(max(x[2] / x[3] for x in slow), 2)}× "
+                     f"Purcell's lower bound in passes and {num(min(x[1] for x in slow), 2)}–{num(max(x[1] for x in slow), 2)}× "
+                     "the bytes", context)
             out += ["",
                     f"- Multipass needs {num(min(s[2] / s[3] for s in slow), 2)}–{num(max(s[2] / s[3] for s in slow), 2)}× "
                     f"Purcell's lower bound in traverse + intersect passes, moves {num(min(s[1] for s in slow), 2)}–"
@@ -395,6 +425,10 @@ def stability() -> list:
         out.append(f"| {scene} | {sweep} | {count(g.exact_rays.max())} | {count(mt)} | {count(wt)} | "
                    f"{count(g.embree_wrong.max())} |")
     failed = runs[runs.status != "ok"]
+    headline("stability", "Where do methods fail (scenes moved and scaled)?",
+             f"most rays wrong in one run: Möller–Trumbore {count(ok[ok.intersection_test == 'moller_trumbore'].wrong.max())}, "
+             f"watertight {count(ok[ok.intersection_test == 'watertight'].wrong.max())}, Embree {count(ok.embree_wrong.max())}; "
+             f"{len(failed)} runs refused, each saying why", context)
     if len(failed):
         out += ["", f"- {len(failed)} runs were refused, each naming why: {reasons(failed.error)}."]
     out.append("")
@@ -421,8 +455,12 @@ def accuracy() -> list:
                 out.append(f"| {scene} | {r.method} | {r.intersection_test} | {bits} | {kept} | {num(r.kernel_mrays_s)} | "
                            f"{num(r.speed_ratio_vs_embree1, 2)} | {num(r.exact_wrong_ppm)} |")
     out.append("")
+    summary = []
     for scene, g in ok.groupby("scene"):
         full = g[g.scene_simplify_ratio.isna() & (g.intersection_vertex_bits == 32)]
+        summary.append(f"{scene}: " + ", ".join(f"{test} {span(t.exact_wrong_ppm.min(), t.exact_wrong_ppm.max())}"
+                                                for test, t in full.groupby("intersection_test")) +
+                       f", Embree {span(full.embree_exact_wrong_ppm.min(), full.embree_exact_wrong_ppm.max())}")
         line = f"- {scene}, float vertices, all triangles: " + "; ".join(
             f"{test} {span(t.exact_wrong_ppm.min(), t.exact_wrong_ppm.max())} wrong per million"
             for test, t in full.groupby("intersection_test")) + \
@@ -438,6 +476,8 @@ def accuracy() -> list:
                            f"({num(100 * r.scene_simplify_ratio)}% kept) are the fewest with at most 0.1% wrong pixels "
                            f"({num(r.exact_wrong_ppm)} per million).")
     out.append("")
+    headline("accuracy", "How exact is each ray–triangle test?", "rays wrong per million, full scenes: " + "; ".join(summary),
+             context)
     out += charts("accuracy", {"speed_vs_accuracy": "speed against accuracy, per scene",
                                "vertex_precision": "accuracy against vertex bandwidth",
                                "simplification": "accuracy and speed against triangles kept"})
@@ -526,7 +566,7 @@ def strategies() -> list:
     samples = read_samples(folder_of("strategies"))
     ratios = {r.run: round_ratios(samples, r.run, branching.get(r.structure)) for r in ok.itertuples()}
     failed = runs[runs.status != "ok"]
-    out = ["### `results/strategies/`: execution strategies (issue 18)", "", provenance("strategies", runs, context), "",
+    out = ["### `results/strategies/`: execution strategies", "", provenance("strategies", runs, context), "",
            "Full table: [`results/strategies/tables.md`](results/strategies/tables.md). The bunny at "
            f"{size(ok.iloc[0]) if len(ok) else '?'}; the runs were timed in interleaved rounds, one repetition of each per "
            "round: × branching is each round's ratio of the strategy's time to branching's, their median and range. "
@@ -535,6 +575,14 @@ def strategies() -> list:
            "kernel run in lock step one step or test at a time); lane util.: lanes that take a step over lanes (ballots).", "",
            "| structure | strategy | GPU ms | × branching | its range | SIMD eff. (Purcell) | lane util. | "
            "state executions (megakernel) |", "|---|---|---|---|---|---|---|---|"]
+    per_structure = {}
+    for r in ok[ok.strategy_type != "branching"].itertuples():
+        if len(ratios[r.run]):
+            per_structure.setdefault(r.structure, []).append((ratios[r.run].median(), r.strategy))
+    headline("strategies", "Which execution strategy, against one branching kernel?",
+             "time × branching's, round by round (median): " + "; ".join(
+                 f"{structure}: {min(v)[1]} {num(min(v)[0], 2)} to {max(v)[1]} {num(max(v)[0], 2)}"
+                 for structure, v in sorted(per_structure.items())), context)
     for r in ok.sort_values(["structure", "strategy"]).itertuples():
         executions = "" if r.strategy_type != "megakernel" else \
             f"{count(r.megakernel_runs_traverse)} + {count(r.megakernel_runs_intersect)}"
@@ -551,7 +599,7 @@ def strategies() -> list:
 
 
 def multipass_device() -> list:
-    """Issue 18's "multipass within 4x of branching", as the ratio of each round's two times: the
+    """Multipass within 4x of branching (the aim), as the ratio of each round's two times: the
     runs were timed in interleaved rounds, so round r of every run saw the same machine."""
     name = "multipass_device"
     if not (folder_of(name) / "samples.csv").exists():
@@ -566,14 +614,20 @@ def multipass_device() -> list:
     rounds = len(round_times(samples, base))
     if not rounds:
         return []
-    out = [f"### `results/{name}/`: GPU-resident multipass against branching (issue 18)", "", provenance(name, runs, context),
+    out = [f"### `results/{name}/`: GPU-resident multipass against branching", "", provenance(name, runs, context),
            "", f"The bunny at {size(ok.iloc[0])}, grid min_dim {count(ok.iloc[0].structure_min_dim)}; multipass with K = "
            f"{count(multipass.strategy_traverse_steps_per_pass.max())}, M = "
            f"{count(multipass.strategy_intersections_per_pass.max())} and its oracle on the "
            "device (compacted ray lists). The runs were timed in interleaved rounds, one repetition of each per round: "
            "× branching is each round's ratio of the two times, its median and range over the "
-           f"{rounds} rounds. Issue 18 asks for multipass within 4× of branching's time.", "",
+           f"{rounds} rounds. The aim: multipass within 4× of branching's time.", "",
            "| run | list partitions | GPU ms (median of rounds) | × branching: median | range |", "|---|---|---|---|---|"]
+    device_ratios = [round_ratios(samples, r.run, base).median() for r in multipass.itertuples()]
+    device_ratios = [x for x in device_ratios if pd.notna(x)]
+    if device_ratios:
+        headline(name, "Multipass with its oracle on the device: how close to branching?",
+                 f"{span(min(device_ratios), max(device_ratios))}× branching's time (median of {rounds} interleaved rounds)",
+                 context)
     for r in ok.itertuples():
         ratio = round_ratios(samples, r.run, base)
         if not len(ratio):
@@ -599,7 +653,7 @@ def wavefront() -> list:
     ok["structure"] = structure_names(ok.structure_type)
     ok["k"] = [int(r.reflection_iteration) if r.rays_type == "reflection" else int(r.path_bounce) if r.rays_type == "path"
                else 0 for r in ok.itertuples()]
-    out = ["### `results/wavefront/`: whole paths on the device (issue 18)", "", provenance("wavefront", runs, context), "",
+    out = ["### `results/wavefront/`: whole paths on the device", "", provenance("wavefront", runs, context), "",
            "Full table: [`results/wavefront/tables.md`](results/wavefront/tables.md). A path from the camera rays to its "
            "deepest generation k (reflection iteration or path bounce), every generation traced on the device with no "
            "host round trip: the wavefront (a kernel per stage over stable, compacted queues) and the path megakernel "
@@ -610,6 +664,7 @@ def wavefront() -> list:
            "| scene | rays | k | structure | rays traced | host ms | wavefront ms | megakernel ms | megakernel ÷ wavefront | "
            "wavefront × Embree | lane util. (wavefront batch / megakernel) |", "|---|---|---|---|---|---|---|---|---|---|---|"]
     whole = ok[ok.strategy_type.isin(["wavefront", "path_megakernel"]) & (ok.rays_type != "primary")]
+    over = []  # megakernel / wavefront, per row
     for (scene, kind, structure), g in whole.groupby(["scene", "rays_type", "structure"]):
         k = g.k.max()
         w = g[(g.k == k) & (g.strategy_type == "wavefront")]
@@ -619,10 +674,14 @@ def wavefront() -> list:
         if w.empty or m.empty or len(b) != k + 1:
             continue
         w, m = w.iloc[0], m.iloc[0]
+        over.append(m.kernel_ms_median / w.kernel_ms_median)
         out.append(f"| {scene} | {kind} | {k} | {structure} | {count(w.whole_path_rays)} | {num(b.kernel_ms_median.sum())} | "
                    f"{num(w.kernel_ms_median)} | {num(m.kernel_ms_median)} | {num(m.kernel_ms_median / w.kernel_ms_median, 2)} | "
                    f"{num(w.kernel_ms_median / w.embree1_ms_median, 2)} | {num(w.simd_lane_utilisation)} / "
                    f"{num(m.simd_lane_utilisation)} |")
+    if over:
+        headline("wavefront", "Whole paths on the device: wavefront or one megakernel?",
+                 f"the path megakernel takes {span(min(over), max(over))}× the wavefront's time (two runs' medians)", context)
     out += [""] + charts("wavefront", {"wavefront": "GPU time per ray traced against the generations of the path"})
     return out + [""]
 
@@ -634,7 +693,7 @@ def division() -> list:
     ok["kernel"] = ["plain" if t == "plain" else d for t, d in zip(ok.strategy_type, division_names(ok))]
     by_kernel = ok.set_index(["structure", "rays", "kernel"])
     ratio = by_kernel.speed_ratio_vs_embree1
-    out = ["### `results/division/`: what bit-exact division costs (issue 18 §2)", "", provenance("division", runs, context),
+    out = ["### `results/division/`: what bit-exact division costs", "", provenance("division", runs, context),
            "", "Full table: [`results/division/tables.md`](results/division/tables.md). The bunny, the branching kernel "
            "dividing exactly through 32-bit integer products (`intersection.division = \"integer\"`: no double on the "
            "common path) or a double quotient (`\"double\"`, the default), and its plain twin dividing as the device does "
@@ -651,6 +710,13 @@ def division() -> list:
         flagged = " †" if "timing_warning" in r and isinstance(r.timing_warning, str) and r.timing_warning else ""
         return f"{num(r.speed_ratio_vs_embree1)} {interval(r.speed_ratio_ci_low, r.speed_ratio_ci_high)}{flagged}"
 
+    over_plain = [ratio.get((st, n, "integer"), float("nan")) / ratio.get((st, n, "plain"), float("nan"))
+                  for (st, n), _ in ok.groupby(["structure", "rays"])]
+    over_plain = [x for x in over_plain if pd.notna(x)]
+    if over_plain:
+        headline("division", "What does bit-exact division cost?",
+                 f"exact integer division runs at {span(min(over_plain), max(over_plain))}× the speed of its plain twin "
+                 "(device division; ratios of Embree ratios)", context)
     for (structure, rays), _ in ok.groupby(["structure", "rays"]):
         get = lambda kernel: ratio.get((structure, rays, kernel), float("nan"))
         out.append(f"| {structure} | {count(rays)} | {cell(structure, rays, 'integer')} | {cell(structure, rays, 'double')} | "
@@ -687,6 +753,8 @@ def christen2005() -> list:
             r = g.loc[g.kernel_ms_median.idxmin()]
             best.append(f"{scene} {method} at {count(r.grid_res_x)}³ ({num(r.kernel_ms_median)} ms)")
         out += ["", "- **Fig. 6.9**, the fastest grid (10³–60³): " + "; ".join(best) + "."]
+        headline("christen2005", "Christen 2005's benchmarks: the fastest grid",
+                 "; ".join(b.rsplit(" (", 1)[0] for b in best), context)
     masked = ok[(ok.strategy_type == "multipass") & ok.sweep.isin(["fig6_8", "fig6_11"])]
     if "kernel_ms_stencil_pass" in masked and masked.kernel_ms_stencil_pass.notna().any():
         masked = masked[masked.kernel_ms_stencil_pass.notna()]
@@ -731,19 +799,44 @@ def h200() -> list:
             "[`results/nvidia-h200/README.md`](results/nvidia-h200/README.md) has the details.", ""]
 
 
-def section() -> str:
-    out = [BEGIN, "",
-           "Written by `scripts/readme_figures.py` from the folders in `results/` (the test `scripts.readme_figures` "
-           "fails when this section differs from what it writes): every figure below comes from a `runs.csv`, and "
-           "each folder names the machine, device, command and commit its `context.json` records. Timings are "
-           "medians with 95% bootstrap intervals of the repetitions of one run (an interval says nothing of the spread "
-           "between runs in separate processes); a speed claim is a ratio measured in the same run. Counts (passes, "
-           "bytes, work, rays wrong) are the same on every machine with the same device; timings are this machine's.", ""]
+def results_page() -> str:
+    """results/README.md: every folder's section, its links relative to results/."""
+    HEADLINES.clear()
+    out = ["# Results of record", "",
+           "<!-- Written by scripts/readme_figures.py from the folders here; the test scripts.readme_figures fails when "
+           "this file differs from what it writes. Do not edit. -->", "",
+           "Every figure below comes from a `runs.csv` in this folder, and each folder names the machine, device, "
+           "command and commit its `context.json` records. Timings are medians with 95% bootstrap intervals of the "
+           "repetitions of one run (an interval says nothing of the spread between runs in separate processes); a speed "
+           "claim is a ratio measured in the same run. Counts (passes, bytes, work, rays wrong) are the same on every "
+           "machine with the same device; timings are that machine's.", ""]
     for part in (bunny, structures, purcell2002, stability, accuracy, raytypes, strategies, multipass_device, wavefront, division, christen2005, golden, h200):
-        out += part()
+        lines = part()
+        if lines:
+            ANCHORS[re.search(r"`results/([^/`]+)/`", lines[0]).group(1)] = anchor(lines[0].lstrip("# "))
+        out += lines
     while out and out[-1] == "":
         out.pop()
-    return "\n".join(out) + "\n\n" + END
+    text = "\n".join(out) + "\n"
+    return text.replace("](results/", "](").replace("### `results/", "## `results/")
+
+
+ANCHORS = {}  # folder -> its heading's anchor in results/README.md
+
+
+def anchor(heading: str) -> str:
+    """A Markdown heading's anchor as GitHub makes it: lower case, punctuation dropped, spaces to hyphens."""
+    return re.sub(r"[^\w\- ]", "", heading.lower()).replace(" ", "-")
+
+
+def headline_table() -> str:
+    """The README's table: a row per folder, from HEADLINES (results_page() fills it)."""
+    out = [BEGIN, "",
+           "| results | question | headline (medians; intervals and noise flags on the full page) | recorded on |",
+           "|---|---|---|---|"]
+    for name, (question, text, where) in HEADLINES.items():
+        out.append(f"| [`{name}/`](results/README.md#{ANCHORS.get(name, '')}) | {question} | {text} | {where} |")
+    return "\n".join(out + ["", END])
 
 
 def first_config_differs(text: str) -> bool:
@@ -752,29 +845,37 @@ def first_config_differs(text: str) -> bool:
     return f"```toml\n{config}```" not in text
 
 
+def differs(path: Path, committed: str, new: str) -> bool:
+    """Whether the committed text differs from what is written now (the diff printed)."""
+    if committed == new:
+        return False
+    sys.stdout.writelines(difflib.unified_diff(committed.splitlines(True), new.splitlines(True),
+                                               f"{path} (committed)", "scripts/readme_figures.py (from results/)"))
+    print(f"\n{path} differs from results/: run /usr/bin/python3 scripts/readme_figures.py", file=sys.stderr)
+    return True
+
+
 def main(argv) -> int:
     readme = Path(argv[argv.index("--readme") + 1]) if "--readme" in argv else ROOT / "README.md"
+    results = Path(argv[argv.index("--results") + 1]) if "--results" in argv else ROOT / "results" / "README.md"
     text = readme.read_text()
-    new = section()
+    page = results_page()
     if "--print" in argv:
-        print(new)
+        print(page, end="")
         return 0
+    table = headline_table()
     if BEGIN not in text or END not in text:
-        print(f"{readme}: no results section (the markers {BEGIN} ... {END})", file=sys.stderr)
+        print(f"{readme}: no headline table (the markers {BEGIN} ... {END})", file=sys.stderr)
         return 1
     start, end = text.index(BEGIN), text.index(END) + len(END)
     if "--check" in argv:
         if first_config_differs(text):
             print(f"{readme}: its ```toml block is not configs/first.toml", file=sys.stderr)
             return 1
-        if text[start:end] == new:
-            return 0
-        sys.stdout.writelines(difflib.unified_diff(text[start:end].splitlines(True), new.splitlines(True),
-                                                   "README.md (committed)", "scripts/readme_figures.py (from results/)"))
-        print("\nREADME.md's results section differs from results/: run /usr/bin/python3 scripts/readme_figures.py",
-              file=sys.stderr)
-        return 1
-    readme.write_text(text[:start] + new + text[end:])
+        committed_page = results.read_text() if results.exists() else ""
+        return 1 if differs(readme, text[start:end], table) | differs(results, committed_page, page) else 0
+    readme.write_text(text[:start] + table + text[end:])
+    results.write_text(page)
     return 0
 
 
