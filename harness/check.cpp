@@ -84,8 +84,17 @@ ExperimentPlan recordedPlan(const Json& context, const std::string& contextPath)
     if (context.contains("config_dir") &&
         fs::is_directory(contextString(context, contextPath, "config_dir")))
         configDir = contextString(context, contextPath, "config_dir");
+    // The command line's --set of the recorded run, applied over its config text as then.
+    std::vector<std::string> settings;
+    if (context.contains("settings")) {
+        if (!context["settings"].is_array()) throw Error(contextPath + ": \"settings\" is not a list of strings");
+        for (const Json& s : context["settings"]) {
+            if (!s.is_string()) throw Error(contextPath + ": \"settings\" is not a list of strings");
+            settings.push_back(s.get<std::string>());
+        }
+    }
     ExperimentPlan plan = loadExperimentText(contextString(context, contextPath, "config_text"),
-                                             configPath, configDir);
+                                             configPath, configDir, settings);
     // The command line's overrides of the recorded run (-d, --validation, --embree-config).
     if (context.contains("overrides")) {
         std::map<std::string, std::string> overrides;

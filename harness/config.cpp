@@ -18,6 +18,7 @@
 #include "output_folder.h"
 #include "structures/error.h"
 #include "structures/input_file.h"
+#include "structures/mesh_io.h"
 
 namespace rtbench {
 
@@ -50,6 +51,7 @@ std::vector<std::string> vertexBitsChoices() {
 }
 
 std::string where(const std::string& file, const toml::source_region& src) {
+    if (src.path && src.path->rfind("--set ", 0) == 0) return *src.path;  // a command-line setting
     if (src.begin.line == 0) return file;
     return file + ":" + std::to_string(src.begin.line);
 }
@@ -205,6 +207,19 @@ const KeySpec& keySpec(const std::string& name) {
 
 namespace {
 
+// "; did you mean 'X'?" for the candidate nearest `name` when it is a likely typo of it (an edit
+// distance of at most a third of its length, at least 1); "" when none is that near.
+std::string didYouMean(const std::string& name, const std::vector<std::string>& candidates, const std::string& prefix = "") {
+    const std::string* best = nullptr;
+    std::size_t bestDistance = std::max<std::size_t>(1, name.size() / 3) + 1;
+    for (const std::string& c : candidates)
+        if (const std::size_t d = editDistance(name, c); d < bestDistance) {
+            best = &c;
+            bestDistance = d;
+        }
+    return best ? "; did you mean '" + prefix + *best + "'?" : "";
+}
+
 // Converts one TOML node (scalar or 3-array) to a value of the spec's type, or throws.
 // `location` replaces the node's own (a value parsed out of a skip rule's text).
 ConfigValue convert(const std::string& file, const KeySpec& spec, const toml::node& node,
@@ -241,7 +256,7 @@ ConfigValue convert(const std::string& file, const KeySpec& spec, const toml::no
             refuseControlCharacters(at, v);
             if (!spec.choices.empty() &&
                 std::find(spec.choices.begin(), spec.choices.end(), v) == spec.choices.end())
-                throw Error(at + "'" + v + "' is not allowed (allowed: " + join(spec.choices) + ")");
+                throw Error(at + "'" + v + "' is not allowed (allowed: " + join(spec.choices) + ")" + didYouMean(v, spec.choices));
             if (spec.check) {
                 try {
                     spec.check(v);
@@ -350,18 +365,60 @@ bool isSweep(const KeySpec& spec, const toml::node& node) {
     return true;
 }
 
-}  // namespace
-
-ExperimentPlan loadExperiment(const std::string& path) {
-    const std::string text = readInputFile(path, kMaxConfigBytes, "config file");
-    return loadExperimentText(text, path, std::filesystem::absolute(path).parent_path().string());
+// One --set "section.key=value": the key checked against the schema (nearest names suggested), the
+// value read as TOML (a list sweeps), or as a plain string where it is no TOML value (cgal:bunny00).
+// The value's node, kept in `tables`, names "--set SETTING" as its source in every later error.
+std::pair<std::string, const toml::node*> parseSetting(const std::string& setting, std::vector<toml::table>& tables,
+                                                         const std::vector<KeySpec>& schema) {
+    const std::string origin = "--set " + setting;
+    const std::size_t eq = setting.find('=');
+    if (eq == std::string::npos || eq == 0)
+        throw Error(origin + ": expected section.key=value, e.g. --set structure.min_dim=[16,32]");
+    const std::string key = setting.substr(0, eq), value = setting.substr(eq + 1);
+    if (std::none_of(schema.begin(), schema.end(), [&](const KeySpec& k) { return k.name == key; })) {
+        std::vector<std::string> names;
+        for (const KeySpec& k : schema) names.push_back(k.name);
+        throw Error(origin + ": unknown key '" + key + "' (nearest: " + join(nearestNames(key, names, 3)) +
+                    "; rtbench keys lists them)");
+    }
+    toml::table parsed;
+    try {
+        parsed = toml::parse("v = " + value, origin);
+    } catch (const toml::parse_error&) {
+    }
+    if (parsed.size() != 1 || !parsed.contains("v")) {  // no single TOML value: the text itself, as a string
+        std::ostringstream quoted;
+        quoted << toml::table{{"v", value}};
+        parsed = toml::parse(quoted.str(), origin);
+    }
+    tables.push_back(std::move(parsed));
+    return {key, tables.back().get("v")};
 }
 
-ExperimentPlan loadExperimentText(const std::string& configText, const std::string& path, const std::string& configDir) {
+// The keys set together with `key` (its KeySpec::group), itself included.
+std::vector<std::string> groupOf(const std::vector<KeySpec>& schema, const std::string& key) {
+    const KeySpec& spec = *std::find_if(schema.begin(), schema.end(), [&](const KeySpec& k) { return k.name == key; });
+    if (spec.group.empty()) return {key};
+    std::vector<std::string> keys;
+    for (const KeySpec& k : schema)
+        if (k.group == spec.group) keys.push_back(k.name);
+    return keys;
+}
+
+}  // namespace
+
+ExperimentPlan loadExperiment(const std::string& path, const std::vector<std::string>& settings) {
+    const std::string text = readInputFile(path, kMaxConfigBytes, "config file");
+    return loadExperimentText(text, path, std::filesystem::absolute(path).parent_path().string(), settings);
+}
+
+ExperimentPlan loadExperimentText(const std::string& configText, const std::string& path, const std::string& configDir,
+                                  const std::vector<std::string>& settings) {
     ExperimentPlan plan;
     plan.configPath = path;
     plan.configText = configText;
     plan.configDir = configDir;
+    plan.settings = settings;
 
     toml::table root;
     try {
@@ -379,6 +436,11 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
         sections[section].push_back(k.name.substr(k.name.find('.') + 1));
     }
     using Given = std::map<std::string, const toml::node*>;
+    // Every error of the file is reported at once (each file:line: key), not one per attempt.
+    std::vector<std::string> errors;
+    auto note = [&](const std::string& error) {
+        if (std::find(errors.begin(), errors.end(), error) == errors.end()) errors.push_back(error);
+    };
 
     // Unknown sections and keys are errors: a typo must not silently fall back to a default.
     auto readSection = [&](const toml::key& sectionKey, const toml::node& sectionNode, Given& given) {
@@ -392,9 +454,11 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
         for (auto&& [key, node] : *table) {
             const std::string name(key.str());
             const auto& allowed = sections[section];
-            if (std::find(allowed.begin(), allowed.end(), name) == allowed.end())
-                throw Error(where(path, key.source()) + ": unknown key '" + section + "." + name + "' (allowed in [" +
-                            section + "]: " + join(allowed) + ")");
+            if (std::find(allowed.begin(), allowed.end(), name) == allowed.end()) {
+                note(where(path, key.source()) + ": unknown key '" + section + "." + name + "' (allowed in [" + section +
+                     "]: " + join(allowed) + ")" + didYouMean(name, allowed, section + "."));
+                continue;
+            }
             given[section + "." + name] = &node;
         }
     };
@@ -409,7 +473,11 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
     std::vector<Sweep> sweeps;
     for (auto&& [sectionKey, sectionNode] : root) {
         if (sectionKey.str() != "sweep") {
-            readSection(sectionKey, sectionNode, base);
+            try {
+                readSection(sectionKey, sectionNode, base);
+            } catch (const Error& e) {
+                note(e.what());
+            }
             continue;
         }
         const toml::array* list = sectionNode.as_array();
@@ -434,7 +502,12 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
                         sweep.skip.push_back(parseSkipRule(path, where(path, rule.source()), rule.as_string()->get(), schema));
                     }
                                 } else {
-                    readSection(key, node, sweep.overrides);
+                    try {
+                        readSection(key, node, sweep.overrides);
+                    } catch (const Error& e) {
+                        note(e.what());
+                        continue;
+                    }
                     for (const KeySpec& spec : schema)
                         if (!spec.sweepable && sweep.overrides.count(spec.name))
                             throw Error(where(path, sweep.overrides[spec.name]->source()) + ": key '" + spec.name +
@@ -445,6 +518,17 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
         }
     }
     if (sweeps.empty()) sweeps.push_back(Sweep{});
+    // --set: each replaces its key (and the other keys of its group) in the base and every sweep.
+    std::vector<toml::table> settingTables;
+    settingTables.reserve(settings.size());  // the nodes stay where Given points
+    for (const std::string& setting : settings) {
+        const auto [key, node] = parseSetting(setting, settingTables, schema);
+        for (const std::string& k : groupOf(schema, key)) {
+            base.erase(k);
+            for (Sweep& sweep : sweeps) sweep.overrides.erase(k);
+        }
+        base[key] = node;
+    }
 
     // Alternative keys by group (KeySpec::group), in schema order.
     std::map<std::string, std::vector<std::string>> groups;
@@ -471,14 +555,14 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
             for (const std::string& k : keys)
                 if (given.count(k)) inGroup.push_back(k);
             if (inGroup.size() > 1)
-                throw Error(where(path, given[inGroup[1]]->source()) + ": keys " + join(inGroup, " and ") +
-                            " both set the " + group + "; give exactly one");
+                note(where(path, given[inGroup[1]]->source()) + ": keys " + join(inGroup, " and ") + " both set the " +
+                     group + "; give exactly one");
             if (!inGroup.empty()) groupsGiven.insert(group);
         }
 
         // Each key: a single value, a default, or a list of values (an axis of the sweep).
         std::vector<std::pair<std::string, std::vector<ConfigValue>>> axes;
-        for (const KeySpec& spec : schema) {
+        for (const KeySpec& spec : schema) try {
             auto it = given.find(spec.name);
             std::vector<ConfigValue> values;
             if (it == given.end()) {
@@ -504,7 +588,10 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
                 values.push_back(convert(path, spec, *it->second));
             }
             if (!values.empty()) axes.emplace_back(spec.name, std::move(values));
+        } catch (const Error& e) {
+            note(e.what());
         }
+        if (!errors.empty()) continue;  // no runs from keys that are wrong (the errors are reported below)
 
         // Cartesian product, the last axis varying fastest; keys a run does not read are dropped.
         std::vector<std::string> swept;
@@ -558,6 +645,9 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
                 throw Error(sweep.skip[k].at + ": key 'sweep.skip': the rule \"" + sweep.skip[k].text +
                             "\" matches no run of this sweep (a typo, or a value the sweep never takes?)");
     }
+    if (errors.size() == 1) throw Error(errors.front());
+    if (!errors.empty())
+        throw Error(std::to_string(errors.size()) + " errors in " + path + ":\n  " + join(errors, "\n  "));
     if (!unread.empty()) {
         const auto& [key, node] = *unread.begin();
         const KeySpec& spec = keySpec(key);

@@ -26,14 +26,20 @@ struct ExperimentPlan {
     // Keys the command line set in every run (-d, --validation, --embree-config), as formatValue
     // writes them: recorded in context.json, so `rtbench check` re-runs what ran.
     std::map<std::string, std::string> overrides;
+    // The command line's --set "section.key=value" (value as TOML: a list sweeps), applied over the
+    // file's sections and sweeps: recorded in context.json beside the config text.
+    std::vector<std::string> settings;
 };
 
 // Parses and validates a config file; throws rtbench::Error with file:line: key: message.
 // The sections give base values; each [[sweep]] table (optional `name`, then sections of its own)
 // overrides them, and the plan is the union of the sweeps' cartesian products, without duplicates.
-ExperimentPlan loadExperiment(const std::string& path);
+// `settings` ("section.key=value", the command line's --set) replace the key wherever the file
+// sets it, base or [[sweep]], and are checked as the file's keys are (errors name the --set).
+ExperimentPlan loadExperiment(const std::string& path, const std::vector<std::string>& settings = {});
 // The same for config text that names `path` in its errors and resolves scenes against configDir.
-ExperimentPlan loadExperimentText(const std::string& configText, const std::string& path, const std::string& configDir);
+ExperimentPlan loadExperimentText(const std::string& configText, const std::string& path, const std::string& configDir,
+                                  const std::vector<std::string>& settings = {});
 
 // Sets baseline.embree_config of every run (the command line's --embree-config, e.g. "isa=avx2"
 // where Embree's default ISA choice crashes); throws naming the option if the string is invalid.

@@ -105,12 +105,20 @@ int main(int argc, char** argv) {
     run->add_option("--shard", shard, "run only every N-th run, starting at i (0 <= i < N), e.g. 2/3; join with `rtbench merge`");
     bool dryRun = false;
     run->add_flag("--dry-run", dryRun, "print the plan (as `rtbench plan`) and run nothing");
+    std::vector<std::string> settings;
+    const char* setHelp = "set a config key over the file, e.g. --set structure.min_dim=[16,32] (TOML; a list sweeps); "
+                          "checked as in the file, recorded in context.json and in each run's identity; repeatable";
+    run->add_option("--set", settings, setHelp)->allow_extra_args(false);
+    const char* filterHelp = "only runs with key=value (e.g. structure.type=bvh), or whose label holds this text; repeatable";
+    run->add_option("--filter", options.filters, std::string(filterHelp) + "; the other runs' rows stay as they are")
+        ->allow_extra_args(false);
 
     std::string planConfig;
     std::vector<std::string> planFilters;
     CLI::App* planCommand = app.add_subcommand("plan", "Print every run of a config with its swept parameters and what an earlier row of it took, without running");
     planCommand->add_option("config", planConfig, "experiment config (TOML)")->required();
-    planCommand->add_option("--filter", planFilters, "only runs with key=value (e.g. structure.type=bvh), or whose label holds this text; repeatable");
+    planCommand->add_option("--filter", planFilters, filterHelp)->allow_extra_args(false);
+    planCommand->add_option("--set", settings, setHelp)->allow_extra_args(false);
     std::string planOutput;
     planCommand->add_option("-o,--output", planOutput, "output folder (overrides experiment.output), where earlier rows are looked for");
 
@@ -186,13 +194,13 @@ int main(int argc, char** argv) {
                 options.shardIndex = i;
                 options.shardCount = n;
             }
-            rtbench::ExperimentPlan plan = rtbench::loadExperiment(configPath);
+            rtbench::ExperimentPlan plan = rtbench::loadExperiment(configPath, settings);
             if (!runEmbreeConfig.empty()) rtbench::overrideEmbreeConfig(plan, runEmbreeConfig);
             // The effective device and validation are the run's parameters (and identity).
             if (!deviceOverride.empty()) rtbench::overrideKey(plan, "device.name", deviceOverride, "-d");
             if (validationOverride) rtbench::overrideKey(plan, "device.validation", true, "--validation");
             if (dryRun) {
-                std::cout << rtbench::describePlan(plan, options, {});
+                std::cout << rtbench::describePlan(plan, options, options.filters);
                 return 0;
             }
             const rtbench::ExperimentResult result = rtbench::runExperiment(plan, options);
@@ -224,7 +232,7 @@ int main(int argc, char** argv) {
         if (*planCommand) {
             rtbench::RunnerOptions planOptions;
             planOptions.outputOverride = planOutput;
-            std::cout << rtbench::describePlan(rtbench::loadExperiment(planConfig), planOptions, planFilters);
+            std::cout << rtbench::describePlan(rtbench::loadExperiment(planConfig, settings), planOptions, planFilters);
             return 0;
         }
         if (*meshes) {

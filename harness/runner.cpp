@@ -38,6 +38,7 @@
 #include "methods/triangle_store.h"
 #include "noise_guard.h"
 #include "path_check.h"
+#include "plan_view.h"
 #include "run_inputs.h"
 #include "run_metrics.h"
 #include "run_verdict.h"
@@ -325,6 +326,7 @@ Json contextJson(const ExperimentPlan& plan, const RunnerOptions& options, const
     j["config_dir"] = plan.configDir;
     j["overrides"] = Json::object();  // the command line's -d, --validation, --embree-config
     for (const auto& [key, value] : plan.overrides) j["overrides"][key] = value;
+    if (!plan.settings.empty()) j["settings"] = plan.settings;  // the command line's --set, applied over config_text
     j["shard"] = options.shardCount > 1 ? std::to_string(options.shardIndex) + "/" + std::to_string(options.shardCount) : "";
     j["schema_version"] = kSchemaVersion;
     j["git_commit"] = gitCommit();
@@ -418,6 +420,17 @@ std::string readResumable(const std::string& folder, const std::string& path, co
 
 // Every scene.source the runs name exists (structures/scene_description.h checkSceneSource);
 // else an error naming the config, the key, the source and its runs.
+// "file:line" of the first line of the config text that gives `value` as a quoted string, else
+// the file alone (a value from --set, or written another way).
+std::string whereInConfig(const ExperimentPlan& plan, const std::string& value) {
+    std::istringstream lines(plan.configText);
+    std::string line;
+    for (int n = 1; std::getline(lines, line); ++n)
+        if (line.find("\"" + value + "\"") != std::string::npos || line.find("'" + value + "'") != std::string::npos)
+            return plan.configPath + ":" + std::to_string(n);
+    return plan.configPath;
+}
+
 void checkSceneSources(const ExperimentPlan& plan, const std::vector<const RunConfig*>& runs) {
     std::map<std::string, std::vector<std::string>> bySource;
     for (const RunConfig* run : runs) bySource[run->getString("scene.source")].push_back(runNumber(*run));
@@ -428,7 +441,7 @@ void checkSceneSources(const ExperimentPlan& plan, const std::vector<const RunCo
             std::string which;
             for (std::size_t i = 0; i < numbers.size() && i < 6; ++i) which += (i ? ", " : "") + numbers[i];
             if (numbers.size() > 6) which += ", ... (" + std::to_string(numbers.size()) + " runs)";
-            throw Error(plan.configPath + ": key 'scene.source' = \"" + source + "\" (run " + which + "): " + e.what() +
+            throw Error(whereInConfig(plan, source) + ": key 'scene.source' = \"" + source + "\" (run " + which + "): " + e.what() +
                         "; nothing was run");
         }
     }
@@ -486,6 +499,13 @@ std::string summaryTable(const std::vector<Row>& rows) {
 }
 
 namespace {
+// Rows of two lists by run number (this invocation's and those --filter carried over).
+std::vector<Row> inRunOrder(std::vector<Row> rows, const std::vector<Row>& more) {
+    rows.insert(rows.end(), more.begin(), more.end());
+    std::stable_sort(rows.begin(), rows.end(), [](const Row& a, const Row& b) { return a.at("run") < b.at("run"); });
+    return rows;
+}
+
 std::string shardSuffix(const RunnerOptions& options) {
     if (options.shardCount <= 1) return "";
     return ".shard-" + std::to_string(options.shardIndex) + "-of-" + std::to_string(options.shardCount);
@@ -507,11 +527,15 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
     result.folder = experimentFolder(output, first.getString("experiment.name"));
     // What would fail every run fails the command before any folder is made: a device that is not
     // there (its name and driver are part of each run's identity) or a scene source that is not.
+    std::set<const RunConfig*> selected;  // --filter's
+    for (const RunConfig* run : filterRuns(plan, options.filters)) selected.insert(run);
     std::vector<const RunConfig*> mine;
     for (const RunConfig& run : plan.runs)
         if (run.index % options.shardCount == options.shardIndex &&
-            (options.onlyRuns.empty() || options.onlyRuns.count(runNumber(run))))
+            (options.onlyRuns.empty() || options.onlyRuns.count(runNumber(run))) && selected.count(&run))
             mine.push_back(&run);
+    if (mine.empty() && !options.filters.empty())
+        throw Error(plan.configPath + ": no run matches --filter (rtbench plan --filter shows what each selects)");
     Caches caches;
     for (const RunConfig* run : mine) deviceFor(*run, caches);
     checkSceneSources(plan, mine);
@@ -598,6 +622,15 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
     for (const RunConfig& run : plan.runs) planned.insert(runNumber(run) + "|" + run.hash());
     std::map<std::string, const Row*> planRow;  // run -> this invocation's row of it
     for (const Row& row : rows) planRow[row.at("run")] = &row;
+    // --filter: the earlier rows of the plan's runs it leaves out stand as they are (not re-run,
+    // not set aside), with their samples.
+    std::vector<Row> carried;
+    if (!options.filters.empty())
+        for (const Row& row : earlierRows)
+            if (planned.count(row.at("run") + "|" + row.at("config_hash")) && !planRow.count(row.at("run"))) {
+                carried.push_back(row);
+                keptEarlier.insert(&row);
+            }
     // Why each earlier row is not kept, first reason first.
     std::map<std::string, std::size_t> why;
     for (const Row& row : earlierRows)
@@ -657,7 +690,7 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
         std::vector<Row> keptRows;
         for (std::size_t k = 0; k < mine.size(); ++k)
             if (kept[k]) keptRows.push_back(rows[k]);
-        writeCsv(csvPath, columns, keptRows);
+        writeCsv(csvPath, columns, inRunOrder(keptRows, carried));
         writeCsv(samplesPath, sampleColumns(), keptSamples);  // the kept runs' samples first
     }
     if (!options.quiet)
@@ -708,11 +741,33 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
             setInterruptNote(interruptNote(rowsWritten, int(mine.size()), csvPath, options.commandLine));
     };
     // Progress: runs done, elapsed, and an estimate for the rest from the runs executed so far.
+    // The time left: an earlier row's wall_s for each run still to run that has one (a --force
+    // re-run, another commit), the mean of the runs run so far for the others; unknown before any.
+    std::map<std::string, double> earlierWall;  // run|config_hash -> wall_s
+    for (const Row& row : earlierRows) {
+        const auto it = row.find("wall_s");
+        char* end = nullptr;
+        const double s = it == row.end() ? 0.0 : std::strtod(it->second.c_str(), &end);
+        if (it != row.end() && !it->second.empty() && *end == '\0' && s >= 0.0) earlierWall[row.at("run") + "|" + row.at("config_hash")] = s;
+    }
+    auto secondsLeft = [&](std::size_t from) {
+        double known = 0.0;
+        std::size_t unknown = 0;
+        for (std::size_t j = from; j < mine.size(); ++j) {
+            if (kept[j]) continue;
+            const auto it = earlierWall.find(runNumber(*mine[j]) + "|" + mine[j]->hash());
+            if (it != earlierWall.end()) known += it->second;
+            else ++unknown;
+        }
+        if (unknown == 0) return known;
+        return executed > 0 ? known + executedSeconds / executed * double(unknown) : -1.0;
+    };
     auto progress = [&](const char* what, std::size_t k) {
         if (options.quiet) return;
         std::cout << "[" << what << " " << k + 1 << "/" << mine.size() << ", " << std::fixed << std::setprecision(0)
                   << since(experimentStart) << " s";
-        if (executed > 0 && std::string(what) == "run") std::cout << ", ~" << executedSeconds / executed * double(mine.size() - k) << " s left";
+        const double left = std::string(what) == "run" ? secondsLeft(k) : -1.0;
+        if (left >= 0.0) std::cout << ", ~" << left << " s left";
         std::cout << "] " << mine[k]->label() << " ..." << std::defaultfloat << std::flush;
     };
     for (std::size_t k = 0; k < mine.size(); ++k)
@@ -789,8 +844,14 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
         }
     }
     result.rows = rows;
-    writeCsv(csvPath, columns, result.rows);  // in plan order
-    writeJson(contextPath, contextJson(plan, options, caches, started, true));
+    const std::vector<Row> written = inRunOrder(rows, carried);
+    writeCsv(csvPath, columns, written);  // in plan order
+    // Complete when every planned run of this file has its row (--filter may leave some without).
+    const std::size_t plannedHere = std::size_t(std::count_if(plan.runs.begin(), plan.runs.end(), [&](const RunConfig& run) {
+        return run.index % options.shardCount == options.shardIndex;
+    }));
+    const bool complete = options.filters.empty() || written.size() == plannedHere;
+    writeJson(contextPath, contextJson(plan, options, caches, started, complete));
     if (!options.commandLine.empty()) setInterruptNote("");
     return result;
 }

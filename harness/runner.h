@@ -27,6 +27,9 @@ struct RunnerOptions {
     unsigned shardIndex = 0, shardCount = 1;
     // Run only these run numbers ("007"); empty: all (rtbench check re-runs what was recorded).
     std::set<std::string> onlyRuns;
+    // --filter: run only the runs matching every filter (plan_view.h filterRuns); the rows an
+    // earlier invocation wrote for the plan's other runs stay in runs.csv as they are.
+    std::vector<std::string> filters;
 };
 
 struct ExperimentResult {

@@ -27,6 +27,7 @@ struct ShardFiles {
 
 std::string contextField(const Json& context, const fs::path& path, const char* key) {
     const auto it = context.find(key);
+    if (it == context.end() && std::string(key) == "settings") return "[]";  // written only when --set was given
     if (it == context.end()) throw Error(path.string() + ": no \"" + key + "\" field");
     return it->is_string() ? it->get<std::string>() : it->dump();
 }
@@ -59,13 +60,14 @@ std::vector<Row> mergeShards(const std::string& folder, const std::string& missi
     // The shards must be parts of one experiment: the same config text, overrides, plan and commit.
     const ShardFiles& reference = shards.begin()->second;
     for (const auto& [shard, files] : shards)
-        for (const char* key : {"config_text", "overrides", "plan", "git_commit"}) {
+        for (const char* key : {"config_text", "overrides", "settings", "plan", "git_commit"}) {
             const std::string a = contextField(reference.json, reference.context, key),
                               b = contextField(files.json, files.context, key);
             if (a != b) {
                 const std::string what = std::string(key) == "git_commit" ? "were run at other commits (" + a + " and " + b + ")"
                                          : std::string(key) == "plan" ? "have other plans"
                                          : std::string(key) == "overrides" ? "were run with other command-line overrides (" + a + " and " + b + ")"
+                                         : std::string(key) == "settings" ? "were run with other --set (" + a + " and " + b + ")"
                                                                            : "were run from other config texts: the plans differ";
                 throw Error(folder + ": " + reference.context.filename().string() + " and " +
                             files.context.filename().string() + " " + what + "; they cannot be merged");

@@ -31,7 +31,50 @@ import pandas as pd  # noqa: E402
 from matplotlib import ticker, transforms  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 from rtbench_results import AXES, VECTOR_KEYS, christen_iterations, load, method_name, scene_name, wrong_rays  # noqa: E402
-COLORS = {"branching": "tab:blue", "multipass": "tab:orange", "Embree rtcIntersect1": "tab:green", "cpu": "tab:red"}
+# One palette for every chart: a colour family per acceleration structure (shades for its
+# resolutions, in numeric order), a colour per strategy apart from all of them, Embree in black.
+# A colour means the same thing in every file.
+STRUCTURE_CMAPS = {"grid": "Blues", "grid conservative": "GnBu", "bvh": "Reds", "brute force": "Greys",
+                   "auto": "Purples", "ray_query": "RdPu"}
+STRATEGY_COLORS = {"branching": "#1b9e77", "multipass": "#d95f02", "megakernel": "#e6ab02", "persistent": "#66a61e",
+                   "wavefront": "#17becf", "path_megakernel": "#bcbd22", "plain": "#fb9a99", "cpu": "#b15928",
+                   "ray_query": "#e7298a"}
+EMBREE_COLOR = "k"
+COLORS = dict(STRATEGY_COLORS, **{"Embree rtcIntersect1": EMBREE_COLOR})
+
+
+def structure_family(method: str) -> str:
+    """The structure a method name ("grid 64", "grid 32 conservative", "auto (bvh)") belongs to."""
+    if method.startswith("brute"):
+        return "brute force"
+    first = method.split(" ")[0]
+    return "grid conservative" if first == "grid" and "conservative" in method else first
+
+
+def natural_key(text: str):
+    """Text with its numbers compared as numbers: "min_dim=8" before "min_dim=16"."""
+    return [(0, float(part), "") if re.fullmatch(r"-?\d+(?:\.\d+)?", part) else (1, 0.0, part)
+            for part in re.split(r"(-?\d+(?:\.\d+)?)", text) if part]
+
+
+def method_sort_key(method: str):
+    """Methods in a reader's order: grids by resolution (8 before 16), then bvh, brute force, auto."""
+    family = structure_family(method)
+    numbers = [int(n) for n in re.findall(r"\d+", method)]
+    rank = list(STRUCTURE_CMAPS).index(family) if family in STRUCTURE_CMAPS else len(STRUCTURE_CMAPS)
+    return (rank, numbers, method)
+
+
+def method_colors(methods) -> dict:
+    """A colour per method: its structure's family, a shade per member (darker: finer), none shared."""
+    colors = {m: STRATEGY_COLORS[m] for m in methods if m in STRATEGY_COLORS and m not in STRUCTURE_CMAPS}  # by strategy
+    ordered = sorted(set(methods) - set(colors), key=method_sort_key)
+    for family in dict.fromkeys(structure_family(m) for m in ordered):
+        members = [m for m in ordered if structure_family(m) == family]
+        cmap = matplotlib.colormaps[STRUCTURE_CMAPS.get(family, "Greys")]
+        for i, m in enumerate(members):
+            colors[m] = matplotlib.colors.to_hex(cmap(0.7 if len(members) == 1 else 0.4 + 0.55 * i / (len(members) - 1)))
+    return colors
 BYTES = [("bytes_stencil", "stencil"), ("bytes_state", "state variables"), ("bytes_stack", "node stack"),
          ("bytes_voxel", "voxel data"), ("bytes_node", "BVH nodes"), ("bytes_triangle_list", "triangle lists"),
          ("bytes_vertices", "triangle vertices"), ("bytes_output", "output"),
@@ -228,12 +271,17 @@ def wrong_ppm_axis(ax, values, label=None):
 
 
 def log_axis(ax, values, axis="y"):
-    """A log axis over the positive values; all zero: 0 to 1 with a note."""
+    """A log axis over the positive values when they span a factor of 10 or more; a narrower span on a
+    linear axis from 0 (a log axis would blow 0.3% up to its height); all zero: 0 to 1 with a note."""
     values = finite(values)
     positive = values[values > 0]
     if positive.empty:
         if axis == "y":
             all_zero_axis(ax, "all zero" if not values.empty else "no values")
+        return
+    if positive.max() < 10 * positive.min() and (values >= 0).all():
+        (ax.set_yscale if axis == "y" else ax.set_xscale)("linear")
+        (ax.set_ylim if axis == "y" else ax.set_xlim)(0, 1.15 * positive.max())
         return
     (ax.set_yscale if axis == "y" else ax.set_xscale)("log")
     if len(positive) < len(values) and axis == "y":
@@ -272,8 +320,7 @@ def method_label(run) -> str:
 
 # Markers per scene variant, (Moller-Trumbore, watertight).
 VARIANT_MARKERS = {"": ("o", "^"), "packed": ("D", "d"), "simplified": ("v", "<")}
-KIND_COLORS = {"grid": "tab:blue", "grid conservative": "tab:cyan", "bvh": "tab:red", "brute": "tab:gray",
-               "auto": "tab:purple"}
+KIND_COLORS = {kind: method_colors([kind])[kind] for kind in ("grid", "grid conservative", "bvh", "brute", "auto")}
 
 
 # Config key columns: every column before `run` (harness/columns.cpp writes the config schema's keys
@@ -415,7 +462,7 @@ def speed_vs_accuracy(runs, device, folder, written):
                        va="center")
         else:
             log_axis(right, distances)
-            right.set_ylabel("mean |t - t_exact| / t_exact (log)")
+            right.set_ylabel("mean |t - t_exact| / t_exact" + (" (log)" if right.get_yscale() == "log" else ""))
         for ax in (left, right) if right.axison else (left,):
             ax.set_xscale("log")
             ax.set_xlabel("speed (Mrays/s, log scale)")
@@ -434,7 +481,7 @@ def reduced_lines(runs, how):
     for scene in sorted(runs.scene.unique()):
         of_scene = runs[runs.scene == scene]
         reduced = of_scene[of_scene.variant == how]
-        for method in sorted(reduced.method.unique()):
+        for method in sorted(reduced.method.unique(), key=method_sort_key):
             yield scene, method, of_scene[(of_scene.method == method) & of_scene.variant.isin(["", how])]
 
 
@@ -846,11 +893,9 @@ def kernel_time(runs, device, folder, written):
     save(fig, folder, "kernel_time", written)
 
 
-STRUCTURE_COLORS = {"grid": "tab:blue", "bvh": "tab:red", "brute force": "tab:gray", "auto": "tab:purple"}
-
-
-def method_color(method: str) -> str:
-    return STRUCTURE_COLORS.get(method.split(" ")[0] if not method.startswith("brute") else "brute force", "k")
+def method_color(method: str, among=None) -> str:
+    """The method's colour (method_colors), among the methods of its chart when given."""
+    return method_colors(list(among or []) + [method])[method]
 
 
 def with_methods(runs):
@@ -863,15 +908,24 @@ def with_methods(runs):
 def grouped_bars(ax, frame, value, scenes, methods, log=True):
     """Bars of `value` per scene (groups) and method (bars), with the method's colour."""
     width = 0.8 / max(len(methods), 1)
+    prefix = {"kernel_ms_median": "kernel_ms", "speed_ratio_vs_embree1": "speed_ratio"}.get(value)  # its interval's columns
     for i, method in enumerate(methods):
-        xs, ys = [], []
+        xs, ys, lows, highs = [], [], [], []
         for j, scene in enumerate(scenes):
             row = frame[(frame.scene == scene) & (frame.method_kind == method)]
             if not row.empty:
                 xs.append(j + (i - (len(methods) - 1) / 2) * width)
                 ys.append(row[value].iloc[0])
-        shade = 0.35 + 0.65 * (i + 1) / len(methods) if method.startswith("grid") else 1.0
-        ax.bar(xs, ys, width, label=method, color=method_color(method), alpha=shade)
+                if prefix and f"{prefix}_ci_low" in row:  # the median's 95% interval, where recorded
+                    lows.append(row[f"{prefix}_ci_low"].iloc[0])
+                    highs.append(row[f"{prefix}_ci_high"].iloc[0])
+        yerr = None
+        if lows:
+            y = np.asarray(ys, dtype=float)
+            yerr = np.vstack([np.nan_to_num(np.clip(y - np.asarray(lows, dtype=float), 0, None)),
+                              np.nan_to_num(np.clip(np.asarray(highs, dtype=float) - y, 0, None))])
+        ax.bar(xs, ys, width, label=method, color=method_color(method, methods), yerr=yerr,
+               error_kw={"elinewidth": 0.7, "capsize": 1.5, "ecolor": "0.25"})
     ax.set_xticks(range(len(scenes)))
     ax.set_xticklabels(scenes, fontsize=8)
     if log:
@@ -894,9 +948,7 @@ def structures_comparable(runs):
 
 
 def structure_order(runs):
-    kinds = runs.method_kind.unique().tolist()
-    order = ["grid 32", "grid 64", "grid 128", "bvh", "brute force", "auto"]
-    return [k for k in order if k in kinds] + sorted(k for k in kinds if k not in order)
+    return sorted(runs.method_kind.unique().tolist(), key=method_sort_key)
 
 
 def structures_time(runs, device, folder, written):
@@ -953,7 +1005,7 @@ def structures_work(runs, device, folder, written):
     part = runs[(runs.strategy_type == "branching") & (runs.method_kind != "auto")]
     for method in methods:
         group = part[part.method_kind == method]
-        left.scatter(group.predicted_work_per_ray, group.work_per_ray_mean, label=method, color=method_color(method))
+        left.scatter(group.predicted_work_per_ray, group.work_per_ray_mean, label=method, color=method_color(method, methods))
     lo = max(1e-2, min(part.predicted_work_per_ray.min(), part.work_per_ray_mean.min()))
     hi = max(part.predicted_work_per_ray.max(), part.work_per_ray_mean.max())
     left.plot([lo, hi], [lo, hi], "k--", lw=1, label="measured = predicted")
@@ -972,8 +1024,6 @@ def structures_work(runs, device, folder, written):
 
 
 # The by_<key> charts: one per swept key, time and rays wrong against the key's values.
-PALETTE = ["tab:blue", "tab:red", "tab:green", "tab:orange", "tab:purple", "tab:brown", "tab:pink", "tab:olive",
-           "tab:cyan", "tab:gray"]
 MARKERS = "osD^vP<>Xh"
 LINESTYLES = ["-", "--", ":", "-."]
 POOL_ABOVE = 8  # more settings of the other keys than this: one series per method, a dot per run
@@ -1133,15 +1183,15 @@ def by_key(runs, classes, key, followers, device, folder, written, failed=None):
     facets = [(scene, group) for scene, group in facets if not group.empty]
     if not facets:
         return skip(folder, name, f"no method was run at two values of {key} with its other settings alike")
-    methods = sorted(frame._method.unique())
-    colors = {m: PALETTE[i % len(PALETTE)] for i, m in enumerate(methods)}
-    combos = sorted(frame._combo.unique())
+    methods = sorted(frame._method.unique(), key=method_sort_key)
+    colors = method_colors(methods)
+    combos = sorted(frame._combo.unique(), key=lambda c: [natural_key(str(v)) for v in c])
     # A combination's label names the keys that take two values among the drawn series (a key at one
     # value where it applies says nothing); combinations that read alike share a style.
     telling = [i for i in range(len(vary)) if len({c[i] for c in combos if c[i] != ""}) > 1]
     labels_of = {c: ", ".join(f"{short_key(vary[i])}={c[i]}" for i in telling if c[i])
                  or ", ".join(f"{short_key(vary[i])}: does not apply" for i in telling) for c in combos}
-    names = sorted(set(labels_of.values()))
+    names = sorted(set(labels_of.values()), key=natural_key)
     by_label = {n: (MARKERS[i % len(MARKERS)], LINESTYLES[i % len(LINESTYLES)]) if not pooled else ("o", "-")
                 for i, n in enumerate(names)}
     styles = {c: by_label[labels_of[c]] for c in combos}
@@ -1155,7 +1205,7 @@ def by_key(runs, classes, key, followers, device, folder, written, failed=None):
     height = 3.3 * rows + 1.0 + 0.17 * caption_guess
     fig = plt.figure(figsize=(14.5, height))
     grid = plt.GridSpec(rows, 3, figure=fig, width_ratios=[1, 1, 0.55])
-    any_simplified = False
+    any_simplified = any_noisy = False
     for row, (scene, group) in enumerate(facets):
         left, right = fig.add_subplot(grid[row, 0]), fig.add_subplot(grid[row, 1])
         series = [(m, c) for m in methods for c in combos if ((group._method == m) & (group._combo == c)).any()]
@@ -1177,8 +1227,14 @@ def by_key(runs, classes, key, followers, device, folder, written, failed=None):
             alpha = 0.45 if pooled else 0.9
             left.errorbar(g._x, y, yerr=yerr, fmt=marker, ms=5 if not pooled else 3, color=colors[m], ecolor=colors[m],
                           elinewidth=0.8, capsize=2, alpha=alpha, transform=tr_left)
+            noisy = g.timing_warning.fillna("").astype(str) != "" if "timing_warning" in g else pd.Series(False, g.index)
+            if noisy.any():  # the noise guard flagged them: hollow, not timings of record
+                any_noisy = True
+                left.plot(g._x[noisy], y[noisy], ls="none", marker=marker, ms=5 if not pooled else 3, mfc="white",
+                          mec=colors[m], transform=tr_left)
             median = y.groupby(g._x).median()  # time: a line through the medians; rays wrong: points only
-            for xs, ys in series_segments(median.index, median.values, key):  # (one wrong ray is no trend)
+            for xs, ys in series_segments(median.index, median.values, key) if numeric else []:  # (one wrong ray is
+                # no trend; categories in a row are no trend either: points only)
                 left.plot(xs, ys, ls=ls, color=colors[m], lw=1.3 if not pooled else 0.8, alpha=alpha, transform=tr_left)
             full, simple = g[~g._simplified], g[g._simplified]
             right.scatter(full._x, full._ppm, marker=marker, s=25 if not pooled else 9, color=colors[m], alpha=alpha,
@@ -1207,7 +1263,7 @@ def by_key(runs, classes, key, followers, device, folder, written, failed=None):
             left.errorbar(y.index, y, yerr=np.vstack([(y - lo).clip(lower=0).fillna(0), (hi - y).clip(lower=0).fillna(0)]),
                           fmt=emarker, ms=4, color="k", elinewidth=0.8, capsize=2, transform=tr_left)
             ppm = at._embree_ppm.median()
-            for xs, ys in series_segments(y.index, y.values, key):
+            for xs, ys in series_segments(y.index, y.values, key) if numeric else []:
                 left.plot(xs, ys, ls=ls, color="k", lw=1.0 if not pooled else 0.7, alpha=1.0 if not pooled else 0.5,
                           transform=tr_left)
             right.scatter(ppm.index, ppm, marker=emarker, s=16, color="k", transform=tr_right)
@@ -1243,17 +1299,21 @@ def by_key(runs, classes, key, followers, device, folder, written, failed=None):
     handles += [(Line2D([], [], color=colors[m], lw=2), textwrap.fill(m, 44)) for m in methods]
     if not pooled and len(names) > 1:
         handles.append((Line2D([], [], ls="none"), "marker, line: other swept keys"))
-        handles += [(Line2D([], [], color="0.3", marker=by_label[n][0], ls=by_label[n][1]), textwrap.fill(n, 44))
+        handles += [(Line2D([], [], color="0.3", marker=by_label[n][0], ls=by_label[n][1] if numeric else "none"), textwrap.fill(n, 44))
                     for n in names]
     if False in embree_paths or not embree_paths:
-        handles.append((Line2D([], [], color="k", marker="s", ls="-"), "Embree rtcIntersect1 (CPU, the same rays)"))
+        handles.append((Line2D([], [], color="k", marker="s", ls="-" if numeric else "none"),
+                        "Embree rtcIntersect1 (CPU, the same rays)"))
     if True in embree_paths:
-        handles.append((Line2D([], [], color="k", marker="D", ls="-"),
+        handles.append((Line2D([], [], color="k", marker="D", ls="-" if numeric else "none"),
                         textwrap.fill("Embree beside a whole-path strategy: every generation of the path "
                                       "(embree_rays; CPU)", 44)))
     if any_simplified:
         handles.append((Line2D([], [], color="0.3", marker="o", mfc="none", ls="none"),
                         "hollow: simplified scene (wrong = missed or false hit only)"))
+    if any_noisy:
+        handles.append((Line2D([], [], color="0.3", marker="o", mfc="white", ls="none"),
+                        textwrap.fill("hollow time: a timing warning (the noise guard: not a timing of record)", 44)))
     legend_beside(fig, legend_ax, handles, fontsize=7)
     # The caption: what the bars are and what is not drawn.
     paths_note = ""

@@ -557,5 +557,62 @@ class ChartsSurvive(unittest.TestCase):
         self.assertIn(f"rtbench plot: {self.folder}: no chart could be drawn from these runs", err.getvalue())
 
 
+class Palette(unittest.TestCase):
+    """One palette: a structure's colour family in every chart, its resolutions in numeric order and
+    apart; categorical values as points, not joined; flagged timings hollow."""
+
+    def test_methods_sort_by_number_and_keep_their_family(self):
+        methods = ["grid 8", "bvh", "grid 16", "grid 128", "grid 32", "brute force", "auto (bvh)"]
+        ordered = sorted(methods, key=plot.method_sort_key)
+        self.assertEqual(ordered, ["grid 8", "grid 16", "grid 32", "grid 128", "bvh", "brute force", "auto (bvh)"])
+        colors = plot.method_colors(methods)
+        self.assertEqual(len(set(colors.values())), len(methods), "no two methods share a colour")
+        for m in ("grid 8", "grid 16", "grid 32", "grid 128"):
+            rgb = matplotlib.colors.to_rgb(colors[m])
+            self.assertGreater(rgb[2], rgb[0], f"{m}: a blue")
+        self.assertEqual(plot.method_colors(["bvh"])["bvh"], plot.method_colors(["bvh", "grid 8"])["bvh"],
+                         "a structure's colour does not depend on the chart's other structures")
+        self.assertNotIn(plot.STRATEGY_COLORS["branching"], colors.values())
+
+    def test_legends_list_methods_in_numeric_order(self):
+        with tempfile.TemporaryDirectory(prefix="test_plot.") as tmp:
+            settings = [{"structure_type": "uniform_grid", "structure_min_dim": d, "camera_fov_deg": f}
+                        for d in (128, 8, 32, 16) for f in (30, 60)]
+            frame = make_runs(settings, ["structure_min_dim", "camera_fov_deg"])
+            charts = Charts(write_folder(Path(tmp), "grids", frame))
+            self.assertEqual(charts.rc, 0, charts.stderr)
+            texts = [t.get_text() for ax in charts.figures["by_camera_fov_deg"].axes if ax.get_legend()
+                     for t in ax.get_legend().get_texts()]
+            dims = [t for t in texts if t.startswith("min_dim=")]
+            self.assertEqual(dims, ["min_dim=8", "min_dim=16", "min_dim=32", "min_dim=128"], texts)
+
+    def test_a_narrow_span_of_distance_errors_is_a_linear_axis_from_zero(self):
+        # 1e-7 (kernels) and 5e-8 (Embree): a factor of 2, which a log axis would stretch to its height.
+        with tempfile.TemporaryDirectory(prefix="test_plot.") as tmp:
+            frame = make_runs([{"structure_type": t} for t in ("bvh", "uniform_grid")], ["structure_type"])
+            charts = Charts(write_folder(Path(tmp), "narrow", frame))
+            right = charts.figures["speed_vs_accuracy"].axes[1]
+            self.assertEqual(right.get_yscale(), "linear")
+            self.assertEqual(right.get_ylim()[0], 0.0)
+            self.assertNotIn("(log)", right.get_ylabel())
+
+    def test_categorical_values_are_points_and_noisy_times_hollow(self):
+        with tempfile.TemporaryDirectory(prefix="test_plot.") as tmp:
+            settings = [{"structure_type": t, "strategy_type": s} for t in ("bvh", "uniform_grid") for s in ("branching", "multipass")]
+            frame = make_runs(settings, ["structure_type", "strategy_type"])
+            frame["timing_warning"] = ["", "cv 0.2 over 0.05", "", ""]
+            charts = Charts(write_folder(Path(tmp), "categories", frame))
+            self.assertEqual(charts.rc, 0, charts.stderr)
+            left = charts.figures["by_strategy_type"].axes[0]
+            joined = [line for line in left.get_lines() if line.get_linestyle() not in ("None", "none", "") and len(line.get_xdata()) > 1]
+            self.assertEqual(joined, [], "categories are not joined by lines")
+            hollow = [line for line in left.get_lines() if line.get_markerfacecolor() in ("white", (1.0, 1.0, 1.0, 1.0))]
+            self.assertEqual(len(hollow), 1, "the flagged run's time is hollow")
+            legend = " ".join(t.get_text() for ax in charts.figures["by_strategy_type"].axes for t in ax.texts)
+            self.assertIn("timing warning", legend + " ".join(
+                t.get_text() for ax in charts.figures["by_strategy_type"].axes if ax.get_legend()
+                for t in ax.get_legend().get_texts()))
+
+
 if __name__ == "__main__":
     unittest.main()

@@ -283,31 +283,32 @@ std::vector<std::string> cgalMeshNames() {
     return names;
 }
 
+std::size_t editDistance(const std::string& a, const std::string& b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diagonal = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t up = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            diagonal = up;
+        }
+    }
+    return row[b.size()];
+}
+
 std::vector<std::string> nearestNames(const std::string& name, const std::vector<std::string>& names, std::size_t count) {
     auto lower = [](std::string s) {
         std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
         return s;
     };
-    // Levenshtein distance, case ignored; a name that contains the query comes first.
-    auto distance = [](const std::string& a, const std::string& b) {
-        std::vector<std::size_t> row(b.size() + 1);
-        for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-        for (std::size_t i = 1; i <= a.size(); ++i) {
-            std::size_t diagonal = row[0];
-            row[0] = i;
-            for (std::size_t j = 1; j <= b.size(); ++j) {
-                const std::size_t up = row[j];
-                row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-                diagonal = up;
-            }
-        }
-        return row[b.size()];
-    };
+    // Edit distance, case ignored; a name that contains the query comes first.
     const std::string query = lower(name);
     std::vector<std::pair<std::size_t, std::string>> ranked;
     for (const std::string& n : names) {
         const std::string candidate = lower(n);
-        ranked.push_back({candidate.find(query) != std::string::npos ? 0 : 1 + distance(query, candidate), n});
+        ranked.push_back({candidate.find(query) != std::string::npos ? 0 : 1 + editDistance(query, candidate), n});
     }
     std::sort(ranked.begin(), ranked.end());
     std::vector<std::string> nearest;

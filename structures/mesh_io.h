@@ -29,6 +29,8 @@ std::string resolveCgalMesh(const std::string& name);
 
 // The NAMEs of cgal:NAME: libcgal-demo's data/meshes/*.off, sorted.
 std::vector<std::string> cgalMeshNames();
+// Levenshtein distance: the fewest single-character insertions, deletions and substitutions.
+std::size_t editDistance(const std::string& a, const std::string& b);
 // The `count` names of `names` nearest to `name`: those containing it (case ignored) first, then by
 // edit distance (for "no such mesh" messages).
 std::vector<std::string> nearestNames(const std::string& name, const std::vector<std::string>& names, std::size_t count);

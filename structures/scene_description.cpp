@@ -647,7 +647,18 @@ void checkSceneSource(const std::string& source, const std::string& baseDir) {
     // Nothing at all at the path; anything else (a link, a folder, a FIFO) the run's reader names.
     const std::string path = resolvePath(source, baseDir);
     std::error_code ec;
-    if (!fs::exists(fs::symlink_status(path, ec))) throw Error(printable(path) + ": no such file");
+    if (!fs::exists(fs::symlink_status(path, ec))) {
+        // The nearest names of the folder it would be in, for a typo.
+        std::vector<std::string> names;
+        const fs::path folder = fs::path(path).parent_path();
+        for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec))
+            if (it->is_regular_file(ec)) names.push_back(it->path().filename().string());
+        const std::vector<std::string> nearest = nearestNames(fs::path(path).filename().string(), names, 3);
+        std::string suggestion;
+        for (const std::string& n : nearest) suggestion += (suggestion.empty() ? "" : ", ") + printable(n);
+        throw Error(printable(path) + ": no such file" +
+                    (suggestion.empty() ? std::string() : " (nearest in " + printable(folder.string()) + ": " + suggestion + ")"));
+    }
 }
 
 TriangleMesh loadSceneSource(const std::string& source, const std::string& baseDir) {

@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 
 #include <filesystem>
+#include <set>
 
 #include "harness/config.h"
 #include "structures/error.h"
@@ -47,7 +48,7 @@ TEST_F(Config, MinimalConfigGetsDefaults) {
 TEST_F(Config, UnknownKeyNamesFileLineAndAllowedKeys) {
     EXPECT_EQ(errorOf(kMinimal + "[structure]\nmindim = 4\n"),
               path_ + ":6: unknown key 'structure.mindim' (allowed in [structure]: type, min_dim, resolution, "
-                      "cells_per_triangle, conservative, leaf_size, quality, max_tests)");
+                      "cells_per_triangle, conservative, leaf_size, quality, max_tests); did you mean 'structure.min_dim'?");
 }
 
 TEST_F(Config, UnknownSection) {
@@ -354,6 +355,86 @@ TEST_F(Config, OnlyARegularConfigFileOfBoundedSizeIsRead) {
                 HasSubstr("big.toml: the config file is 4194305 bytes, over the limit of 4 MiB"));
     std::filesystem::create_symlink("loop.toml", dir_.path() / "loop.toml");
     EXPECT_THAT(rtbench::errorOf([&] { loadExperiment(dir_.file("loop.toml")); }), HasSubstr("loop.toml: config file is a symlink loop"));
+}
+
+}  // namespace
+}  // namespace rtbench
+
+// --set "section.key=value": the key replaced wherever the file sets it (base, every [[sweep]], the
+// other keys of its group), the value read as TOML (a list sweeps) or as a bare string, checked as
+// the file's keys are, with errors that name the --set.
+namespace rtbench {
+namespace {
+using ::testing::HasSubstr;
+
+class Settings : public ::testing::Test {
+protected:
+    ExperimentPlan load(const std::string& text, const std::vector<std::string>& settings) {
+        return loadExperiment(dir_.write("s.toml", text), settings);
+    }
+    std::string errorOf(const std::string& text, const std::vector<std::string>& settings) {
+        try {
+            load(text, settings);
+        } catch (const Error& e) {
+            return e.what();
+        }
+        return "(no error)";
+    }
+    TempDir dir_;
+};
+
+const std::string kGridSweep = "[experiment]\nname = \"s\"\n[scene]\nsource = \"procedural:christen_a\"\n"
+                               "[structure]\ncells_per_triangle = 2.0\n[[sweep]]\nname = \"a\"\nstructure.min_dim = 4\n"
+                               "[[sweep]]\nname = \"b\"\ncamera.width = 32\n";
+
+// Three mistakes, one report: each with its file, line and key, and the nearest name for typos.
+TEST_F(Config, EveryErrorOfTheFileIsReportedAtOnce) {
+    const std::string error = errorOf("[experiment]\nname = \"t\"\nrepetitons = 3\n[scene]\nsource = \"procedural:christen_a\"\n"
+                                      "[camera]\nwidth = \"wide\"\n[strategy]\ntype = \"multipas\"\n");
+    EXPECT_THAT(error, HasSubstr("3 errors in " + path_ + ":\n"));
+    EXPECT_THAT(error, HasSubstr(path_ + ":3: unknown key 'experiment.repetitons'"));
+    EXPECT_THAT(error, HasSubstr("did you mean 'experiment.repetitions'?"));
+    EXPECT_THAT(error, HasSubstr(path_ + ":7: key 'camera.width': expected an integer"));
+    EXPECT_THAT(error, HasSubstr(path_ + ":9: key 'strategy.type': 'multipas' is not allowed"));
+    EXPECT_THAT(error, HasSubstr("did you mean 'multipass'?"));
+    // One mistake reads as before: the error alone.
+    EXPECT_THAT(errorOf(kMinimal + "[camera]\nwidth = \"wide\"\n"), ::testing::StartsWith(path_ + ":6: key 'camera.width'"));
+}
+
+TEST_F(Settings, AListSweepsAndReplacesTheKeyInEverySweepAndItsGroup) {
+    const ExperimentPlan plan = load(kGridSweep, {"structure.min_dim=[8, 16]"});
+    ASSERT_EQ(plan.runs.size(), 4u);  // 2 sweeps x 2 values
+    std::multiset<std::int64_t> dims;
+    for (const RunConfig& run : plan.runs) {
+        dims.insert(run.getInt("structure.min_dim"));
+        EXPECT_FALSE(run.has("structure.cells_per_triangle")) << "the other key of min_dim's group is replaced";
+    }
+    EXPECT_EQ(dims, (std::multiset<std::int64_t>{8, 8, 16, 16}));
+    EXPECT_EQ(plan.settings, std::vector<std::string>{"structure.min_dim=[8, 16]"});
+    // The runs' hashes (their identity) follow the setting.
+    const ExperimentPlan other = load(kGridSweep, {"structure.min_dim=[8, 32]"});
+    EXPECT_EQ(plan.runs[0].hash(), other.runs[0].hash());
+    EXPECT_NE(plan.runs[1].hash(), other.runs[1].hash());
+}
+
+TEST_F(Settings, ABareWordIsAStringAndAQuotedOneToo) {
+    for (const std::string& setting : {std::string("scene.source=procedural:christen_b"),
+                                       std::string("scene.source=\"procedural:christen_b\"")}) {
+        const ExperimentPlan plan = load(kMinimal, {setting});
+        ASSERT_EQ(plan.runs.size(), 1u);
+        EXPECT_EQ(plan.runs[0].getString("scene.source"), "procedural:christen_b") << setting;
+    }
+}
+
+TEST_F(Settings, ErrorsNameTheSetting) {
+    EXPECT_THAT(errorOf(kMinimal, {"structure.min_dimm=4"}),
+                HasSubstr("--set structure.min_dimm=4: unknown key 'structure.min_dimm' (nearest: structure.min_dim"));
+    EXPECT_THAT(errorOf(kMinimal, {"structure.min_dim=abc"}), HasSubstr("--set structure.min_dim=abc: "));
+    EXPECT_THAT(errorOf(kMinimal, {"structure.min_dim=abc"}), HasSubstr("expected an integer"));
+    EXPECT_THAT(errorOf(kMinimal, {"experiment.repetitions=0"}), HasSubstr("--set experiment.repetitions=0: "));
+    EXPECT_THAT(errorOf(kMinimal, {"min_dim"}), HasSubstr("--set min_dim: expected section.key=value"));
+    // A value that is two TOML keys is not one value: read as a string, then refused by type.
+    EXPECT_THAT(errorOf(kMinimal, {"structure.min_dim=4\nexperiment.name = \"x\""}), HasSubstr("expected an integer"));
 }
 
 }  // namespace

@@ -194,6 +194,12 @@ TEST_F(EndToEnd, AMissingMeshOrCgalNameStopsBeforeAnyFolderIsMade) {
                 HasSubstr("key 'scene.source' = \"meshes/absent.off\" (run 000): " + dir_.file("meshes/absent.off") +
                           ": no such file; nothing was run"));
     EXPECT_FALSE(fs::exists(dir_.file("out")));
+    // A typo of a file that is there: the config's line and the folder's nearest names.
+    dir_.write("near.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+    const std::string typo = errorOf([&] { run("[scene]\nsource = \"neer.off\"\n[camera]\nwidth = 8\nheight = 8\n"); });
+    EXPECT_THAT(typo, ::testing::ContainsRegex("[.]toml:[0-9]+: key 'scene.source' = \"neer.off\""));
+    EXPECT_THAT(typo, HasSubstr(dir_.file("neer.off") + ": no such file (nearest in " + dir_.path().string() + ": near.off"));
+    EXPECT_FALSE(fs::exists(dir_.file("out")));
     // A cgal: name libcgal-demo lacks: the nearest names, not the first in the list.
     EXPECT_THAT(errorOf([&] { run("[scene]\nsource = \"cgal:dragon\"\n"); }),
                 HasSubstr("meshes; nearest: ChineseDragon-10kv,"));
