@@ -418,8 +418,6 @@ std::string readResumable(const std::string& folder, const std::string& path, co
     return text;
 }
 
-// Every scene.source the runs name exists (structures/scene_description.h checkSceneSource);
-// else an error naming the config, the key, the source and its runs.
 // "file:line" of the first line of the config text that gives `value` as a quoted string, else
 // the file alone (a value from --set, or written another way).
 std::string whereInConfig(const ExperimentPlan& plan, const std::string& value) {
@@ -431,6 +429,8 @@ std::string whereInConfig(const ExperimentPlan& plan, const std::string& value) 
     return plan.configPath;
 }
 
+// Every scene.source the runs name exists (structures/scene_description.h checkSceneSource);
+// else an error naming the config's line, the key, the source and its runs.
 void checkSceneSources(const ExperimentPlan& plan, const std::vector<const RunConfig*>& runs) {
     std::map<std::string, std::vector<std::string>> bySource;
     for (const RunConfig* run : runs) bySource[run->getString("scene.source")].push_back(runNumber(*run));
@@ -479,17 +479,18 @@ std::string summaryTable(const std::vector<Row>& rows) {
     std::ostringstream out;
     auto get = [](const Row& r, const char* key) {
         auto it = r.find(key);
-        return it == r.end() || it->second.empty() ? std::string("-") : consoleNumber(it->second);
+        return it == r.end() || it->second.empty() ? std::string("-") : it->second;
     };
+    auto number = [&](const Row& r, const char* key) { return consoleNumber(get(r, key)); };
     out << std::left << std::setw(5) << "run" << std::right << std::setw(13) << "kernel Mr/s" << std::setw(14)
         << "Embree1 Mr/s" << std::setw(10) << "ratio" << std::setw(22) << "ratio 95% interval" << std::setw(12)
         << "wrong ppm" << std::setw(9) << "status" << "  " << std::left << "parameters (wrong ppm: against the exact reference)\n";
     for (const Row& r : rows) {
-        const std::string interval =
-            get(r, "speed_ratio_ci_low") == "-" ? "-" : "[" + get(r, "speed_ratio_ci_low") + ", " + get(r, "speed_ratio_ci_high") + "]";
-        out << std::left << std::setw(5) << get(r, "run") << std::right << std::setw(13) << get(r, "kernel_mrays_s")
-            << std::setw(14) << get(r, "embree1_mrays_s") << std::setw(10) << get(r, "speed_ratio_vs_embree1") << std::setw(22)
-            << interval << std::setw(12) << get(r, "exact_wrong_ppm") << std::setw(9) << get(r, "status") << "  " << std::left
+        const std::string interval = get(r, "speed_ratio_ci_low") == "-" ? "-"
+                                     : "[" + number(r, "speed_ratio_ci_low") + ", " + number(r, "speed_ratio_ci_high") + "]";
+        out << std::left << std::setw(5) << get(r, "run") << std::right << std::setw(13) << number(r, "kernel_mrays_s")
+            << std::setw(14) << number(r, "embree1_mrays_s") << std::setw(10) << number(r, "speed_ratio_vs_embree1") << std::setw(22)
+            << interval << std::setw(12) << number(r, "exact_wrong_ppm") << std::setw(9) << get(r, "status") << "  " << std::left
             << get(r, "label") << (get(r, "timing_warning") == "-" ? "" : " [timing_warning]")
             << (get(r, "warnings") == "-" ? "" : " [warning]") << "\n";
     }
