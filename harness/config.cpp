@@ -395,16 +395,6 @@ std::pair<std::string, const toml::node*> parseSetting(const std::string& settin
     return {key, tables.back().get("v")};
 }
 
-// The keys set together with `key` (its KeySpec::group), itself included.
-std::vector<std::string> groupOf(const std::vector<KeySpec>& schema, const std::string& key) {
-    const KeySpec& spec = *std::find_if(schema.begin(), schema.end(), [&](const KeySpec& k) { return k.name == key; });
-    if (spec.group.empty()) return {key};
-    std::vector<std::string> keys;
-    for (const KeySpec& k : schema)
-        if (k.group == spec.group) keys.push_back(k.name);
-    return keys;
-}
-
 }  // namespace
 
 ExperimentPlan loadExperiment(const std::string& path, const std::vector<std::string>& settings) {
@@ -518,22 +508,24 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
         }
     }
     if (sweeps.empty()) sweeps.push_back(Sweep{});
-    // --set: each replaces its key (and the other keys of its group) in the base and every sweep.
-    std::vector<toml::table> settingTables;
-    settingTables.reserve(settings.size());  // the nodes stay where Given points
-    for (const std::string& setting : settings) {
-        const auto [key, node] = parseSetting(setting, settingTables, schema);
-        for (const std::string& k : groupOf(schema, key)) {
-            base.erase(k);
-            for (Sweep& sweep : sweeps) sweep.overrides.erase(k);
-        }
-        base[key] = node;
-    }
 
     // Alternative keys by group (KeySpec::group), in schema order.
     std::map<std::string, std::vector<std::string>> groups;
     for (const KeySpec& spec : schema)
         if (!spec.group.empty()) groups[spec.group].push_back(spec.name);
+
+    // --set: each replaces its key (and the other keys of its group) in the base and every sweep.
+    std::vector<toml::table> settingTables;
+    settingTables.reserve(settings.size());  // the nodes stay where Given points
+    for (const std::string& setting : settings) {
+        const auto [key, node] = parseSetting(setting, settingTables, schema);
+        const std::string& group = keySpec(key).group;
+        for (const std::string& k : group.empty() ? std::vector<std::string>{key} : groups[group]) {
+            base.erase(k);
+            for (Sweep& sweep : sweeps) sweep.overrides.erase(k);
+        }
+        base[key] = node;
+    }
     std::map<std::string, const toml::node*> unread;  // given keys no run has read yet
     std::set<std::string> read;                        // keys some run of some sweep reads
     std::set<std::string> seen;                        // canonical runs, to drop duplicates

@@ -54,6 +54,18 @@ std::string tracedRays(const RunConfig& run, std::uint64_t cameraRays) {
 
 }  // namespace
 
+std::map<std::string, double> earlierWallSeconds(const std::vector<Row>& rows) {
+    std::map<std::string, double> seconds;
+    for (const Row& row : rows) {
+        const auto it = row.find("wall_s");
+        if (it == row.end() || it->second.empty() || !row.count("run") || !row.count("config_hash")) continue;
+        char* end = nullptr;
+        const double s = std::strtod(it->second.c_str(), &end);
+        if (*end == '\0' && s >= 0.0) seconds[row.at("run") + "|" + row.at("config_hash")] = s;
+    }
+    return seconds;
+}
+
 std::string describePlan(const ExperimentPlan& plan, const RunnerOptions& options, const std::vector<std::string>& filters) {
     if (plan.runs.empty()) throw Error(plan.configPath + ": the plan has no runs");
     const RunConfig& first = plan.runs.front();
@@ -66,9 +78,7 @@ std::string describePlan(const ExperimentPlan& plan, const RunnerOptions& option
     std::error_code ec;
     if (fs::is_regular_file(fs::symlink_status(csv, ec))) {
         try {
-            for (const Row& row : readRunsCsv(csv))
-                if (row.count("wall_s") && !row.at("wall_s").empty())
-                    earlier[row.at("run") + "|" + row.at("config_hash")] = std::stod(row.at("wall_s"));
+            earlier = earlierWallSeconds(readRunsCsv(csv));
         } catch (const Error&) {
             // an unreadable runs.csv gives no estimate; `rtbench run` says why it cannot resume
         }

@@ -1,6 +1,7 @@
 // `rtbench plan CONFIG` (and `rtbench run --dry-run`): the runs a config makes, with their swept
 // parameters and what they will cost, without running anything.
 #pragma once
+#include <map>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,10 @@ namespace rtbench {
 // in runs.csv, e.g. structure.type=bvh) or else a text found in the run's label (min_dim=16).
 // Throws rtbench::Error naming a section.key=value filter whose key is no config key.
 std::vector<const RunConfig*> filterRuns(const ExperimentPlan& plan, const std::vector<std::string>& filters);
+
+// What earlier rows of runs took: "run|config_hash" -> wall_s, for the rows whose wall_s is a
+// number (the plan's estimate, and the time left on `run`'s progress line).
+std::map<std::string, double> earlierWallSeconds(const std::vector<Row>& rows);
 
 // The table: run, rays, the time an earlier row of the same run took (runs.csv in the output
 // folder, same config_hash), its label; then an estimate of the whole from those rows.

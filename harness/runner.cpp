@@ -744,20 +744,20 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
     // Progress: runs done, elapsed, and an estimate for the rest from the runs executed so far.
     // The time left: an earlier row's wall_s for each run still to run that has one (a --force
     // re-run, another commit), the mean of the runs run so far for the others; unknown before any.
-    std::map<std::string, double> earlierWall;  // run|config_hash -> wall_s
-    for (const Row& row : earlierRows) {
-        const auto it = row.find("wall_s");
-        char* end = nullptr;
-        const double s = it == row.end() ? 0.0 : std::strtod(it->second.c_str(), &end);
-        if (it != row.end() && !it->second.empty() && *end == '\0' && s >= 0.0) earlierWall[row.at("run") + "|" + row.at("config_hash")] = s;
+    std::vector<double> tookBefore(mine.size(), -1.0);  // each run's earlier wall_s, -1 where none
+    {
+        const std::map<std::string, double> earlierWall = earlierWallSeconds(earlierRows);
+        for (std::size_t k = 0; k < mine.size(); ++k) {
+            const auto it = earlierWall.find(rows[k].at("run") + "|" + rows[k].at("config_hash"));
+            if (it != earlierWall.end()) tookBefore[k] = it->second;
+        }
     }
     auto secondsLeft = [&](std::size_t from) {
         double known = 0.0;
         std::size_t unknown = 0;
         for (std::size_t j = from; j < mine.size(); ++j) {
             if (kept[j]) continue;
-            const auto it = earlierWall.find(runNumber(*mine[j]) + "|" + mine[j]->hash());
-            if (it != earlierWall.end()) known += it->second;
+            if (tookBefore[j] >= 0.0) known += tookBefore[j];
             else ++unknown;
         }
         if (unknown == 0) return known;
