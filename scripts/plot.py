@@ -30,6 +30,7 @@ import numpy as np  # noqa: E402
 import pandas as pd  # noqa: E402
 from matplotlib import ticker, transforms  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
+from matplotlib.patches import Patch  # noqa: E402
 from rtbench_results import AXES, VECTOR_KEYS, christen_iterations, load, method_name, scene_name, wrong_rays  # noqa: E402
 # One palette for every chart: a colour family per acceleration structure (shades for its
 # resolutions, in numeric order), a colour per strategy apart from all of them, Embree in black.
@@ -238,6 +239,13 @@ def any_hit(frame):
     return frame["query"].eq("any") if "query" in frame else pd.Series(False, frame.index)
 
 
+def timing_warned(frame):
+    """True per run the noise guard flagged (a timing_warning): its time is not a timing of record."""
+    if "timing_warning" not in frame:
+        return pd.Series(False, frame.index)
+    return frame.timing_warning.fillna("").astype(str) != ""
+
+
 def wrong_ppm(frame, prefix="exact_"):
     """Rays wrong against the exact reference per million: false misses + false hits + wrong triangle
     (a simplified scene has other triangles: no wrong triangle counted)."""
@@ -320,7 +328,6 @@ def method_label(run) -> str:
 
 # Markers per scene variant, (Moller-Trumbore, watertight).
 VARIANT_MARKERS = {"": ("o", "^"), "packed": ("D", "d"), "simplified": ("v", "<")}
-KIND_COLORS = {kind: method_colors([kind])[kind] for kind in ("grid", "grid conservative", "bvh", "brute", "auto")}
 
 
 # Config key columns: every column before `run` (harness/columns.cpp writes the config schema's keys
@@ -395,7 +402,8 @@ def run_labels(frame, first, keys) -> list:
         parts = [str(run[c]) for c in first] + [f"{short_key(k)}={text.at[index, k]}" for k in varying
                                                 if text.at[index, k] != ""]
         labels.append("\n".join(parts))
-    return labels
+    # Runs that still read alike (they differ in a key left out) would share one bar: name each run.
+    return [f"{label}\nrun {run}" if labels.count(label) > 1 else label for label, run in zip(labels, frame["run"])]
 
 
 def speed_vs_accuracy(runs, device, folder, written):
@@ -413,27 +421,39 @@ def speed_vs_accuracy(runs, device, folder, written):
             of_size = of_scene[of_scene["size"] == name]
             for query in sorted(of_size.any_hit.unique()):
                 panels.append((scene, name + (", any-hit rays" if query else ""), of_size[of_size.any_hit == query]))
+    kinds = [method_name(r).split(" ")[0] + (" conservative" if "conservative" in method_name(r) else "")
+             for _, r in runs.iterrows()]
+    runs = runs.assign(kind=kinds, method=[f"{k} {s}" for k, s in zip(kinds, runs.strategy_type)],
+                       test=runs.get("intersection_test", "moller_trumbore"), variant=variant(runs))
+    colors = method_colors(runs.method.unique())  # a colour per structure x strategy, the same in every panel
     fig, axes = plt.subplots(len(panels), 2, figsize=(15, 4.4 * len(panels)), squeeze=False)
+    any_noisy = False
     for (left, right), (scene, name, of_scene) in zip(axes, panels):
         points = {False: [], True: []}  # simplified or not: the front of each
-        of_scene = of_scene.assign(kind=[method_name(r).split(" ")[0] + (" conservative" if "conservative" in method_name(r)
-                                                                          else "") for _, r in of_scene.iterrows()],
-                                   test=of_scene.get("intersection_test", "moller_trumbore"), variant=variant(of_scene))
-        for (kind, strategy, test, how), group in of_scene.groupby(["kind", "strategy_type", "test", "variant"]):
+        of_scene = runs.loc[of_scene.index]
+        for (method, test, how), group in sorted(of_scene.groupby(["method", "test", "variant"]),
+                                                 key=lambda item: (method_sort_key(item[0][0]), item[0][1:])):
             marker = VARIANT_MARKERS[how][test == "watertight"]
-            name_ = f"{kind} {strategy}, {'watertight' if test == 'watertight' else 'Moller-Trumbore'}" + (f", {how}" if how else "")
-            color = KIND_COLORS.get(kind, COLORS.get(strategy))
-            fill = color if strategy == "branching" else "none"  # multipass: hollow
+            name_ = f"{method}, {'watertight' if test == 'watertight' else 'Moller-Trumbore'}" + (f", {how}" if how else "")
             ppm = wrong_ppm(group)
-            left.scatter(group.kernel_mrays_s, ppm, label=name_, edgecolors=color, c=fill, marker=marker, alpha=0.8)
-            right.scatter(group.kernel_mrays_s, group.exact_distance_error_mean, label=name_, edgecolors=color, c=fill,
-                          marker=marker, alpha=0.8)
+            noisy = timing_warned(group)
+            any_noisy |= bool(noisy.any())
+            faces = [("white" if n else colors[method]) for n in noisy]  # a timing warning: hollow
+            low, high, _ = interval(group, "kernel")  # the speed's interval, from the time's
+            rays = pd.to_numeric(group.rays, errors="coerce") if "rays" in group else group.kernel_mrays_s * group.kernel_ms_median * 1e3
+            speed = group.kernel_mrays_s
+            xerr = np.vstack([(speed - rays / high / 1e3).clip(lower=0).fillna(0), (rays / low / 1e3 - speed).clip(lower=0).fillna(0)])
+            left.errorbar(speed, ppm, xerr=xerr, fmt="none", ecolor=colors[method], elinewidth=0.7, alpha=0.6)
+            left.scatter(speed, ppm, edgecolors=colors[method], c=faces, marker=marker, alpha=0.85)
+            right.scatter(speed, group.exact_distance_error_mean, edgecolors=colors[method], c=faces, marker=marker,
+                          alpha=0.85)
+            left.plot([], [], ls="none", marker=marker, color=colors[method], label=name_)  # the legend's, filled
             if how:  # which precision or simplification each point is
                 tags = [f"{int(b)} b" for b in vertex_bits(group)] if how == "packed" else \
                     [f"{100 * t / f:.3g}%" for t, f in zip(group.scene_triangles, group.scene_full_triangles)]
-                for x, y, tag in zip(group.kernel_mrays_s, ppm, tags):
-                    left.annotate(tag, (x, y), fontsize=6, xytext=(3, 2), textcoords="offset points", color=color)
-            points[how == "simplified"] += list(zip(group.kernel_mrays_s, ppm))
+                for x, y, tag in zip(speed, ppm, tags):
+                    left.annotate(tag, (x, y), fontsize=6, xytext=(3, 2), textcoords="offset points", color=colors[method])
+            points[how == "simplified"] += list(zip(speed, ppm))
         embree = of_scene[of_scene.variant == ""].drop_duplicates(["camera_width", "camera_height", *LOOK_AT])
         embree_ppm = wrong_ppm(embree, "embree_exact_")
         left.scatter(embree.embree1_mrays_s, embree_ppm, marker="s",
@@ -467,8 +487,14 @@ def speed_vs_accuracy(runs, device, folder, written):
             ax.set_xscale("log")
             ax.set_xlabel("speed (Mrays/s, log scale)")
             ax.set_title(f"{scene}, {name} ({len(of_scene)} run{'s' if len(of_scene) != 1 else ''})", fontsize=9)
-        right.legend(*left.get_legend_handles_labels(), fontsize=7, loc="upper left",
+        handles, labels = left.get_legend_handles_labels()
+        if any_noisy:
+            handles.append(Line2D([], [], ls="none", marker="o", mfc="white", mec="0.3"))
+            labels.append("hollow: a timing warning\n(the noise guard: not a timing of record)")
+        right.legend(handles, labels, fontsize=7, loc="upper left",
                      bbox_to_anchor=(1.02, 1.0))  # one legend (the left panel's, with the fronts), beside the points
+    fig.text(0.01, 0.005, "Horizontal bars: the speed's interval, from the kernel time's (bootstrap 95% interval of "
+             "the median where recorded, else min-max of the repetitions).", fontsize=7.5, color="0.2")
     fig.suptitle(f"Speed against accuracy (the exact reference), one point per run, a row per scene and image size"
                  f"\n{device}", fontsize=10)
     save(fig, folder, "speed_vs_accuracy", written)
@@ -524,7 +550,7 @@ def simplification(runs, device, folder, written):
     if not lines:
         return skip(folder, "simplification", "no runs on a simplified scene (scene.simplify_*)")
     fig, (left, right) = plt.subplots(1, 2, figsize=(12, 4.6))
-    drawn, ppms = [], []
+    drawn, ppms, embree_drawn = [], [], []
     for scene, method, group in lines:
         group = group.sort_values("scene_triangles")
         # A simplified scene has other triangles: only a miss or a false hit is wrong. The line counts
@@ -536,8 +562,10 @@ def simplification(runs, device, folder, written):
             left.scatter(full.scene_triangles, wrong_ppm(full), marker="o", s=60, facecolors="none",
                          edgecolors=line.get_color(), label=f"{scene}: {method}, full scene with wrong triangles")
         line, = right.plot(group.scene_triangles, group.kernel_mrays_s, marker="o", label=f"{scene}: {method}")
-        right.plot(group.scene_triangles, group.embree1_mrays_s, ls=":", marker=".", color=line.get_color(),
-                   label=f"{scene}: Embree rtcIntersect1 on the same scene")
+        if scene not in embree_drawn:  # Embree on the scene's versions: once per scene, black
+            right.plot(group.scene_triangles, group.embree1_mrays_s, ls=":", color="k",
+                       marker="s^v<>"[len(embree_drawn) % 5], ms=4, label=f"{scene}: Embree rtcIntersect1 on the same scene")
+            embree_drawn.append(scene)
         drawn.append(group)
         ppms += list(hit_miss) + list(wrong_ppm(full))
     left.axhline(1000, color="gray", lw=1, ls="--", label="0.1% of the rays")
@@ -731,6 +759,18 @@ def texture_cache(runs, device, folder, written):
     save(fig, folder, "texture_cache", written)
 
 
+def time_line(ax, xs, group, fmt, speed=False, **style):
+    """The kernel's median time (or speed, Mrays/s) of each run against xs, with its interval as bars
+    (interval(): the bootstrap interval of the median, else min-max of the repetitions)."""
+    low, high, _ = interval(group, "kernel")
+    y = group.kernel_ms_median.astype(float)
+    if speed:  # Mrays/s = rays / ms / 1e3: the slowest time is the lowest speed
+        rays = group.kernel_mrays_s * y * 1e3
+        y, low, high = group.kernel_mrays_s, rays / high / 1e3, rays / low / 1e3
+    yerr = np.vstack([(y - low).clip(lower=0).fillna(0), (high - y).clip(lower=0).fillna(0)])
+    ax.errorbar(xs, y, yerr=yerr, fmt=fmt, capsize=2, elinewidth=0.8, **style)
+
+
 def christen_grid_size(runs, device, folder, written):
     """Christen 2005 Fig. 6.9: frame time against grid size (sweeps fig6_9 and fig6_8 of
     configs/christen2005.toml), a line per scene and GPU architecture."""
@@ -740,7 +780,7 @@ def christen_grid_size(runs, device, folder, written):
     fig, ax = plt.subplots(figsize=(8, 5))
     for (scene, method), g in sizes.groupby(["scene", "strategy_type"]):
         g = g.sort_values("grid_res_x")
-        ax.plot(g.grid_res_x, g.kernel_ms_median, "o-" if method == "multipass" else "s--", label=f"{scene}, {method}")
+        time_line(ax, g.grid_res_x, g, "o-" if method == "multipass" else "^--", label=f"{scene}, {method}")
     ax.set_yscale("log")
     ax.set_xlabel("grid cells along each axis (n × n × n)")
     ax.set_ylabel("frame time, median (ms, log scale)")
@@ -763,7 +803,7 @@ def christen_gpu_cpu(runs, device, folder, written):
         part = gens[gens.scene_source == source]
         for method, g in part.groupby("strategy_type"):
             g = g.sort_values("iteration")
-            ax.plot(g.iteration, g.kernel_ms_median, "o-", label=method, color=COLORS.get(method))
+            time_line(ax, g.iteration, g, "o-", label=method, color=COLORS.get(method))
         ax.set_yscale("log")
         ax.set_xticks(sorted(part.iteration.unique()))
         ax.set_xlabel("iteration (1: camera rays; n: mirror reflection n - 1)")
@@ -818,7 +858,7 @@ def grid_resolution(runs, device, folder, written):
     left.legend(fontsize=8)
     for method, group in grid.groupby("strategy_type"):
         group = group.sort_values("structure_min_dim")
-        right.plot(group.structure_min_dim, group.kernel_mrays_s, "o-", label=method, color=COLORS.get(method))
+        time_line(right, group.structure_min_dim, group, "o-", speed=True, label=method, color=COLORS.get(method))
     right.set_xscale("log", base=2)
     right.set_yscale("log")
     right.set_xlabel("min_dim (log2)")
@@ -850,8 +890,7 @@ def compute_by_kernel(runs, device, folder, written):
     table2 = chosen.sweep.str.startswith("table2-")
     chosen = chosen.assign(view=chosen.scene.where(~table2, chosen.sweep.str.replace("table2-", "").str.replace("-", " ") +
                                                    " (Table 2)"))
-    keys = [k for k in swept_keys(chosen) if k not in ("scene_source", "strategy_type", "camera_position", "camera_look_at",
-                                                       "structure_min_dim")]
+    keys = [k for k in swept_keys(chosen) if k not in ("scene_source", "strategy_type", "camera_position", "camera_look_at")]
     chosen = chosen.sort_values(["view", "strategy_type"] + keys)
     labels = run_labels(chosen, ["view", "strategy_type"], keys)
     fig, (left, right) = plt.subplots(1, 2, figsize=(max(10, 1.3 * len(chosen)), 5.2))
@@ -906,30 +945,54 @@ def with_methods(runs):
 
 
 def grouped_bars(ax, frame, value, scenes, methods, log=True):
-    """Bars of `value` per scene (groups) and method (bars), with the method's colour."""
+    """Bars of `value` per scene (groups) and method (bars), with the method's colour; a method with
+    no successful run at a scene gets a grey x where its bar would be. True if any bar is missing."""
     width = 0.8 / max(len(methods), 1)
     prefix = {"kernel_ms_median": "kernel_ms", "speed_ratio_vs_embree1": "speed_ratio"}.get(value)  # its interval's columns
+    missing = []
     for i, method in enumerate(methods):
         xs, ys, lows, highs = [], [], [], []
         for j, scene in enumerate(scenes):
             row = frame[(frame.scene == scene) & (frame.method_kind == method)]
-            if not row.empty:
-                xs.append(j + (i - (len(methods) - 1) / 2) * width)
-                ys.append(row[value].iloc[0])
-                if prefix and f"{prefix}_ci_low" in row:  # the median's 95% interval, where recorded
-                    lows.append(row[f"{prefix}_ci_low"].iloc[0])
-                    highs.append(row[f"{prefix}_ci_high"].iloc[0])
+            x = j + (i - (len(methods) - 1) / 2) * width
+            if row.empty or not np.isfinite(pd.to_numeric(row[value], errors="coerce").iloc[0]):
+                missing.append(x)
+                continue
+            xs.append(x)
+            ys.append(row[value].iloc[0])
+            if prefix and f"{prefix}_ci_low" in row:  # the median's 95% interval, where recorded
+                lows.append(row[f"{prefix}_ci_low"].iloc[0])
+                highs.append(row[f"{prefix}_ci_high"].iloc[0])
         yerr = None
         if lows:
             y = np.asarray(ys, dtype=float)
             yerr = np.vstack([np.nan_to_num(np.clip(y - np.asarray(lows, dtype=float), 0, None)),
                               np.nan_to_num(np.clip(np.asarray(highs, dtype=float) - y, 0, None))])
-        ax.bar(xs, ys, width, label=method, color=method_color(method, methods), yerr=yerr,
+        ax.bar(xs, ys, width, color=method_color(method, methods), yerr=yerr,
                error_kw={"elinewidth": 0.7, "capsize": 1.5, "ecolor": "0.25"})
+    ax.scatter(missing, [0.03] * len(missing), marker="x", color="0.5", s=14, transform=ax.get_xaxis_transform())
     ax.set_xticks(range(len(scenes)))
     ax.set_xticklabels(scenes, fontsize=8)
     if log:
         ax.set_yscale("log")
+    return bool(missing)
+
+
+def bars_figure(rows: int, height: float):
+    """A figure of `rows` x 2 panels and a legend column beside them: (figure, panels, legend axes)."""
+    fig = plt.figure(figsize=(16, height * rows))
+    grid = plt.GridSpec(rows, 3, figure=fig, width_ratios=[1, 1, 0.3])
+    panels = [[fig.add_subplot(grid[r, c]) for c in range(2)] for r in range(rows)]
+    return fig, panels, fig.add_subplot(grid[:, 2])
+
+
+def method_handles(methods, missing=False, extra=()):
+    """The legend of a bars figure: a patch per method in its colour, then `extra` (handle, label)
+    pairs, and the grey x where a bar is missing."""
+    handles = [(Patch(color=method_color(m, methods)), m) for m in methods] + list(extra)
+    if missing:
+        handles.append((Line2D([], [], ls="none", marker="x", color="0.5"), "x: no successful run\n(runs.csv says why)"))
+    return handles
 
 
 def structures_comparable(runs):
@@ -958,22 +1021,27 @@ def structures_time(runs, device, folder, written):
     scenes = runs.sort_values("scene_triangles").scene.unique().tolist()
     methods = structure_order(runs)
     strategies = [s for s in ("branching", "multipass") if (runs.strategy_type == s).any()]
-    fig, axes = plt.subplots(len(strategies), 2, figsize=(15, 4.2 * len(strategies)), squeeze=False)
+    fig, axes, legend_ax = bars_figure(len(strategies), 4.2)
+    missing = False
     for row, strategy in zip(axes, strategies):
         part = runs[runs.strategy_type == strategy]
-        grouped_bars(row[0], part, "kernel_ms_median", scenes, methods)
-        embree = part.groupby("scene").embree1_ms_median.median()
-        row[0].scatter([scenes.index(s) for s in embree.index], embree.values, marker="_", s=400, color="k",
-                       label="Embree rtcIntersect1", zorder=3)
+        missing |= grouped_bars(row[0], part, "kernel_ms_median", scenes, methods)
+        embree = part.groupby("scene").embree1_ms_median.median()  # a line across each scene's bars
+        row[0].hlines(embree.values, [scenes.index(s) - 0.42 for s in embree.index],
+                      [scenes.index(s) + 0.42 for s in embree.index], color="k", lw=1.6, zorder=3)
         row[0].set_ylabel("GPU time per frame (ms, median, log)")
         row[0].set_title(f"{strategy}: time per scene")
-        grouped_bars(row[1], part, "speed_ratio_vs_embree1", scenes, methods)
+        missing |= grouped_bars(row[1], part, "speed_ratio_vs_embree1", scenes, methods)
         row[1].axhline(1.0, color="k", lw=1, ls="--")
         row[1].set_ylabel("Mrays/s / Embree rtcIntersect1's (log)")
         row[1].set_title(f"{strategy}: speed against Embree on the same rays")
-    axes[0][0].legend(fontsize=7, ncol=2)
+    extra = [(Line2D([], [], color="k", lw=1.6), "Embree rtcIntersect1 (CPU, the same rays)"),
+             (Line2D([], [], color="k", lw=1, ls="--"), "as fast as Embree")]
+    legend_beside(fig, legend_ax, method_handles(methods, missing, extra))
+    fig.text(0.01, 0.005, "Error bars: the bootstrap 95% interval of the median (kernel_ms_ci_low/high, "
+             "speed_ratio_ci_low/high) where recorded.", fontsize=7.5, color="0.2")
     fig.suptitle(f"Structures side by side, {size(runs)} primary rays; {device}")
-    save(fig, folder, "structures_time", written)
+    save(fig, folder, "structures_time", written, rect=(0, 0.02, 1, 1))
 
 
 def structures_memory(runs, device, folder, written):
@@ -983,14 +1051,14 @@ def structures_memory(runs, device, folder, written):
     runs = runs[runs.strategy_type == runs.strategy_type.iloc[0]]  # the structure is the same for both strategies
     scenes = runs.sort_values("scene_triangles").scene.unique().tolist()
     methods = [m for m in structure_order(runs) if m != "auto"]
-    fig, (left, right) = plt.subplots(1, 2, figsize=(15, 4.2))
-    grouped_bars(left, runs, "structure_bytes_per_triangle", scenes, methods)
+    fig, ((left, right),), legend_ax = bars_figure(1, 4.2)
+    missing = grouped_bars(left, runs, "structure_bytes_per_triangle", scenes, methods)
     left.set_ylabel("device bytes per triangle (log)")
     left.set_title("Memory: the structure's buffers, vertices included")
-    grouped_bars(right, runs, "structure_build_ms", scenes, methods)
+    missing |= grouped_bars(right, runs, "structure_build_ms", scenes, methods)
     right.set_ylabel("CPU build time (ms, log)")
     right.set_title("Build time (grid: CGAL exact triangle-box tests; BVH: Embree rtcBuildBVH)")
-    left.legend(fontsize=7, loc="best")
+    legend_beside(fig, legend_ax, method_handles(methods, missing))
     fig.suptitle(f"Memory and build time per structure; {device}")
     save(fig, folder, "structures_memory", written)
 
@@ -1001,30 +1069,31 @@ def structures_work(runs, device, folder, written):
     runs = with_methods(runs)
     scenes = runs.sort_values("scene_triangles").scene.unique().tolist()
     methods = [m for m in structure_order(runs) if m != "auto"]
-    fig, (left, right) = plt.subplots(1, 2, figsize=(15, 4.5))
+    fig, ((left, right),), legend_ax = bars_figure(1, 4.5)
     part = runs[(runs.strategy_type == "branching") & (runs.method_kind != "auto")]
     for method in methods:
         group = part[part.method_kind == method]
-        left.scatter(group.predicted_work_per_ray, group.work_per_ray_mean, label=method, color=method_color(method, methods))
+        left.scatter(group.predicted_work_per_ray, group.work_per_ray_mean, color=method_color(method, methods))
     lo = max(1e-2, min(part.predicted_work_per_ray.min(), part.work_per_ray_mean.min()))
     hi = max(part.predicted_work_per_ray.max(), part.work_per_ray_mean.max())
-    left.plot([lo, hi], [lo, hi], "k--", lw=1, label="measured = predicted")
+    left.plot([lo, hi], [lo, hi], "k--", lw=1)
     left.set_xscale("log")
     left.set_yscale("log")
     left.set_xlabel("predicted work per ray (cost model: visits + tests)")
     left.set_ylabel("measured work per ray")
     left.set_title("The cost model against the measured work (branching)")
-    left.legend(fontsize=7)
-    grouped_bars(right, part, "simd_lane_utilisation", scenes, methods, log=False)
+    missing = grouped_bars(right, part, "simd_lane_utilisation", scenes, methods, log=False)
     right.set_ylim(0, 1.05)
     right.set_ylabel("active lanes / lane slots")
     right.set_title("Lane utilisation of the branching kernel (Aila & Laine)")
+    extra = [(Line2D([], [], color="k", ls="--", lw=1), "measured = predicted (left)")]
+    legend_beside(fig, legend_ax, method_handles(methods, missing, extra))
     fig.suptitle(f"Work per ray and lane utilisation, {size(runs)}; {device}")
     save(fig, folder, "structures_work", written)
 
 
 # The by_<key> charts: one per swept key, time and rays wrong against the key's values.
-MARKERS = "osD^vP<>Xh"
+MARKERS = "o^vP<>Xh*p"  # squares and diamonds are Embree's
 LINESTYLES = ["-", "--", ":", "-."]
 POOL_ABOVE = 8  # more settings of the other keys than this: one series per method, a dot per run
 FLOAT_BITS = {"intersection_vertex_bits": 32}  # a value apart (float vertices), not joined to the others
@@ -1066,6 +1135,12 @@ def wrong_ppm_of(frame, prefix="exact_"):
     if all(f"{prefix}{c}" in frame for c in ("false_misses", "false_hits", "wrong_primitive")) and "exact_rays" in frame:
         return wrong_ppm(frame, prefix)
     return pd.Series(np.nan, frame.index)
+
+
+def per_ray_scale(frame, column):
+    """ms per frame -> ns per ray: 1e6 / the rays of each run (NaN where unknown)."""
+    rays = pd.to_numeric(frame[column], errors="coerce")
+    return 1e6 / rays.where(rays > 0)
 
 
 def compact(value: str) -> str:
@@ -1170,15 +1245,23 @@ def by_key(runs, classes, key, followers, device, folder, written, failed=None):
             merged.append(first)  # does not apply at some values of the key: cannot be held fixed along it
         else:
             vary.append(first)
+    if not numeric:  # categories are points, never joined: a key that applies at some values is told apart too
+        vary, merged = vary + merged, []
     combo = text.loc[data.index, vary].apply(tuple, axis=1) if vary else pd.Series([()] * len(data), data.index)
     frame = data.assign(_x=position, _method=method, _combo=combo, _ppm=wrong_ppm_of(data),
                         _embree_ppm=wrong_ppm_of(data, "embree_exact_"), _simplified=simplified(data),
                         _embree_path=embree_traced_path(data))
-    # A series needs two values of the key; the rest are not drawn (and counted in the caption).
+    # A line needs two values of the key; the rest are not drawn (and counted in the caption).
     counts = frame.groupby((["scene"] if faceted else []) + ["_method", "_combo"])._x.transform("nunique")
-    dropped = frame[counts < 2]
-    frame = frame[counts >= 2]
+    dropped = frame[(counts < 2) & numeric]
+    frame = frame[(counts >= 2) | (not numeric)]
     pooled = frame._combo.nunique() > POOL_ABOVE  # too many to tell apart: a faint line each, one style
+    # Where the batch differs between the runs drawn (later bounces, reflections), a frame's time says
+    # how many rays there were: time per ray traced instead (kernel: rays; Embree: embree_rays).
+    per_ray = "rays" in frame and any(pd.to_numeric(group.rays, errors="coerce").nunique() > 1
+                                      for _, group in (frame.groupby("scene") if faceted else [("", frame)]))
+    frame = frame.assign(_kscale=per_ray_scale(frame, "rays") if per_ray else 1.0,
+                         _escale=per_ray_scale(frame, "embree_rays" if "embree_rays" in frame else "rays") if per_ray else 1.0)
     facets = [(scene, frame[frame.scene == scene] if faceted else frame) for scene, _ in facets]
     facets = [(scene, group) for scene, group in facets if not group.empty]
     if not facets:
@@ -1197,17 +1280,23 @@ def by_key(runs, classes, key, followers, device, folder, written, failed=None):
     styles = {c: by_label[labels_of[c]] for c in combos}
     embree_keys = [i for i, k in enumerate(vary) if not k.startswith(EMBREE_BLIND)]
 
-    caption_lines = []
+    # Rays wrong: a panel where some are; where none are (or none were compared), one line of text.
+    wrong = finite(list(frame._ppm) + list(frame._embree_ppm))
+    accuracy = bool((wrong != 0).any())
+    caption_lines = [] if accuracy else [
+        "Rays wrong against the exact reference: none in any run drawn, nor in Embree's (exact_wrong_ppm 0)."
+        if not wrong.empty else "Rays wrong: no exact reference in these runs (exact_wrong_ppm empty)."]
     kernel_what, embree_what = set(), set()
     embree_paths = set()  # what Embree's drawn series traced: False the batch, True whole paths
     rows = len(facets)
     caption_guess = 7
     height = 3.3 * rows + 1.0 + 0.17 * caption_guess
-    fig = plt.figure(figsize=(14.5, height))
-    grid = plt.GridSpec(rows, 3, figure=fig, width_ratios=[1, 1, 0.55])
+    width = 14.5 if accuracy else 9.5
+    fig = plt.figure(figsize=(width, height))
+    grid = plt.GridSpec(rows, 3 if accuracy else 2, figure=fig, width_ratios=[1, 1, 0.55] if accuracy else [1, 0.55])
     any_simplified = any_noisy = False
     for row, (scene, group) in enumerate(facets):
-        left, right = fig.add_subplot(grid[row, 0]), fig.add_subplot(grid[row, 1])
+        left, right = fig.add_subplot(grid[row, 0]), fig.add_subplot(grid[row, 1]) if accuracy else None
         series = [(m, c) for m in methods for c in combos if ((group._method == m) & (group._combo == c)).any()]
         # Embree's own series: by the keys its runs depend on, and by what it traced (the batch, or
         # beside a whole-path strategy every generation of the path: a longer time, not comparable).
@@ -1219,33 +1308,35 @@ def by_key(runs, classes, key, followers, device, folder, written, failed=None):
         for i, (m, c) in enumerate(series):
             g = group[(group._method == m) & (group._combo == c)].sort_values("_x")
             marker, ls = styles[c]
-            tr_left, tr_right = dodge(left, i, n), dodge(right, i, n)
+            tr_left, tr_right = dodge(left, i, n), dodge(right, i, n) if right else None
             low, high, what = interval(g, "kernel")
             kernel_what.update(what)
-            y = g.kernel_ms_median.astype(float)
+            y, low, high = (v * g._kscale for v in (g.kernel_ms_median.astype(float), low, high))
             yerr = np.vstack([(y - low).clip(lower=0).fillna(0), (high - y).clip(lower=0).fillna(0)])
             alpha = 0.45 if pooled else 0.9
             left.errorbar(g._x, y, yerr=yerr, fmt=marker, ms=5 if not pooled else 3, color=colors[m], ecolor=colors[m],
                           elinewidth=0.8, capsize=2, alpha=alpha, transform=tr_left)
-            noisy = g.timing_warning.fillna("").astype(str) != "" if "timing_warning" in g else pd.Series(False, g.index)
+            noisy = timing_warned(g)
             if noisy.any():  # the noise guard flagged them: hollow, not timings of record
                 any_noisy = True
                 left.plot(g._x[noisy], y[noisy], ls="none", marker=marker, ms=5 if not pooled else 3, mfc="white",
-                          mec=colors[m], transform=tr_left)
+                          mec=colors[m], zorder=3, transform=tr_left)
             median = y.groupby(g._x).median()  # time: a line through the medians; rays wrong: points only
             for xs, ys in series_segments(median.index, median.values, key) if numeric else []:  # (one wrong ray is
                 # no trend; categories in a row are no trend either: points only)
                 left.plot(xs, ys, ls=ls, color=colors[m], lw=1.3 if not pooled else 0.8, alpha=alpha, transform=tr_left)
             full, simple = g[~g._simplified], g[g._simplified]
+            times += list(y) + list(low) + list(high)
+            anchor(left, list(g._x) * 3, list(y) + list(low) + list(high))
+            if right is None:
+                continue
+            any_simplified |= not simple.empty
             right.scatter(full._x, full._ppm, marker=marker, s=25 if not pooled else 9, color=colors[m], alpha=alpha,
                           transform=tr_right)
-            if not simple.empty:
-                any_simplified = True
-                right.scatter(simple._x, simple._ppm, marker=marker, s=22, facecolors="none", edgecolors=colors[m],
-                              transform=tr_right)
-            times += list(y) + list(low) + list(high)
+            if not simple.empty:  # half filled: the simplified scene's (wrong = hit/miss only)
+                right.plot(simple._x, simple._ppm, ls="none", marker=marker, ms=5, fillstyle="left", color=colors[m],
+                           transform=tr_right)
             ppms += list(g._ppm)
-            anchor(left, list(g._x) * 3, list(y) + list(low) + list(high))
             anchor(right, g._x, g._ppm)
         for j, ec in enumerate(ecombos):
             g = group[ekey == ec]
@@ -1254,10 +1345,10 @@ def by_key(runs, classes, key, followers, device, folder, written, failed=None):
                 continue
             low, high, what = interval(g, "embree1")
             embree_what.update(what)
-            at = g.assign(_low=low, _high=high).groupby("_x")
-            y, lo, hi = at.embree1_ms_median.median(), at._low.min(), at._high.max()
+            at = g.assign(_low=low * g._escale, _high=high * g._escale, _y=g.embree1_ms_median * g._escale).groupby("_x")
+            y, lo, hi = at._y.median(), at._low.min(), at._high.max()
             ls = LINESTYLES[j % len(LINESTYLES)] if not pooled else "-"
-            tr_left, tr_right = dodge(left, len(series) + j, n), dodge(right, len(series) + j, n)
+            tr_left, tr_right = dodge(left, len(series) + j, n), dodge(right, len(series) + j, n) if right else None
             emarker = "D" if ec[-1] else "s"
             embree_paths.add(ec[-1])
             left.errorbar(y.index, y, yerr=np.vstack([(y - lo).clip(lower=0).fillna(0), (hi - y).clip(lower=0).fillna(0)]),
@@ -1266,35 +1357,34 @@ def by_key(runs, classes, key, followers, device, folder, written, failed=None):
             for xs, ys in series_segments(y.index, y.values, key) if numeric else []:
                 left.plot(xs, ys, ls=ls, color="k", lw=1.0 if not pooled else 0.7, alpha=1.0 if not pooled else 0.5,
                           transform=tr_left)
-            right.scatter(ppm.index, ppm, marker=emarker, s=16, color="k", transform=tr_right)
             times += list(y) + list(lo) + list(hi)
-            ppms += list(ppm)
             anchor(left, list(y.index) * 3, list(y) + list(lo) + list(hi))
-            anchor(right, ppm.index, ppm)
+            if right is not None:
+                right.scatter(ppm.index, ppm, marker=emarker, s=16, color="k", transform=tr_right)
+                ppms += list(ppm)
+                anchor(right, ppm.index, ppm)
         # Axes. strategy.type = cpu times the host's threads, not the device.
         timed = "GPU (cpu: host)" if "strategy_type" in group and (group.strategy_type == "cpu").any() else "GPU"
+        unit = "ns per ray traced" if per_ray else "ms per frame"
         positive = finite(times)
         positive = positive[positive > 0]
         if not positive.empty and positive.max() / positive.min() >= 10:
             left.set_yscale("log")
             left.yaxis.set_minor_formatter(ticker.LogFormatterSciNotation(labelOnlyBase=False, minor_thresholds=(2, 0.5)))
             left.tick_params(axis="y", which="minor", labelsize=6)
-            left.set_ylabel(f"{timed} ms per frame\n(median; log)")
+            left.set_ylabel(f"{timed} {unit}\n(median; log)")
         else:
             left.set_ylim(bottom=0)
-            left.set_ylabel(f"{timed} ms per frame\n(median)")
-        if finite(ppms).empty:
-            all_zero_axis(right, "no exact reference in these runs (exact_wrong_ppm)")
-            right.set_ylabel("rays wrong per million\nvs the exact reference")
-        else:
-            wrong_ppm_axis(right, ppms, "rays wrong per million vs\nthe exact reference (log above 1)")
+            left.set_ylabel(f"{timed} {unit}\n(median)")
         sizes = size(group)
         left.set_title(f"{scene} ({sizes}): {timed} time", fontsize=9)
-        right.set_title(f"{scene} ({sizes}): rays wrong against the exact reference", fontsize=9)
-        for ax in (left, right):
+        if right is not None:
+            wrong_ppm_axis(right, ppms, "rays wrong per million vs\nthe exact reference (log above 1)")
+            right.set_title(f"{scene} ({sizes}): rays wrong against the exact reference", fontsize=9)
+        for ax in (left, right) if right else (left,):
             x_axis(ax, key, members, order, numeric, data, text, faceted)
     # The legend, beside the rows.
-    legend_ax = fig.add_subplot(grid[:, 2])
+    legend_ax = fig.add_subplot(grid[:, 2 if accuracy else 1])
     handles = [(Line2D([], [], ls="none"), "colour: method" + (" (structure x strategy)" if len(method_parts) == 2 else ""))]
     handles += [(Line2D([], [], color=colors[m], lw=2), textwrap.fill(m, 44)) for m in methods]
     if not pooled and len(names) > 1:
@@ -1309,8 +1399,8 @@ def by_key(runs, classes, key, followers, device, folder, written, failed=None):
                         textwrap.fill("Embree beside a whole-path strategy: every generation of the path "
                                       "(embree_rays; CPU)", 44)))
     if any_simplified:
-        handles.append((Line2D([], [], color="0.3", marker="o", mfc="none", ls="none"),
-                        "hollow: simplified scene (wrong = missed or false hit only)"))
+        handles.append((Line2D([], [], color="0.3", marker="o", fillstyle="left", ls="none"),
+                        "half filled: simplified scene (wrong = missed or false hit only)"))
     if any_noisy:
         handles.append((Line2D([], [], color="0.3", marker="o", mfc="white", ls="none"),
                         textwrap.fill("hollow time: a timing warning (the noise guard: not a timing of record)", 44)))
@@ -1324,8 +1414,13 @@ def by_key(runs, classes, key, followers, device, folder, written, failed=None):
                          + ". Embree: the median of the runs at a value (each times Embree on its rays), bars from the "
                          + "lowest to the highest end of their " + ("; ".join(sorted(embree_what)) or "(none)") + "."
                          + paths_note)
-    caption_lines.append("Points of one value are set side by side (a few points apart). Time: lines join a series' "
-                         "medians; rays wrong: points only (a ray or two wrong at one value is no trend between values).")
+    caption_lines.append("Points of one value are set side by side (a few points apart). " + (
+        "Time: lines join a series' medians; rays wrong: points only (a ray or two wrong at one value is no trend "
+        "between values)." if numeric else f"Values of {key} are categories: points, not joined by lines."))
+    if per_ray:
+        caption_lines.append("Time per ray traced: the batch differs between these runs (rays "
+                             + ", ".join(f"{int(r):,}" for r in sorted(pd.to_numeric(frame.rays, errors='coerce').dropna().unique())[:6])
+                             + "), so a frame's time would follow the batch: kernel ms / rays, Embree ms / embree_rays.")
     if pooled:
         caption_lines.append(f"{len(combos)} settings of {', '.join(vary)}: too many to tell apart, a faint line each "
                              f"(each joins runs alike in all of them).")
@@ -1350,9 +1445,9 @@ def by_key(runs, classes, key, followers, device, folder, written, failed=None):
                                  f"(runs.csv says why).")
     if FLOAT_BITS.get(key) is not None:
         caption_lines.append(f"{key} {FLOAT_BITS[key]}: float vertices, not joined to the packed ones.")
-    caption = "\n".join(textwrap.fill(line, 200) for line in caption_lines)
+    caption = "\n".join(textwrap.fill(line, int(200 * width / 14.5)) for line in caption_lines)
     lines = caption.count("\n") + 1
-    fig.set_size_inches(14.5, 3.3 * rows + 1.0 + 0.17 * lines)
+    fig.set_size_inches(width, 3.3 * rows + 1.0 + 0.17 * lines)
     bottom = (0.17 * lines + 0.15) / fig.get_size_inches()[1]
     fig.text(0.01, 0.01, caption, fontsize=7.5, va="bottom", ha="left", color="0.2")
     follow = f" (with {', '.join(followers)})" if followers else ""

@@ -43,7 +43,7 @@ PARAMETERS = ["experiment_name", "experiment_output", "experiment_repetitions", 
               "structure_type", "structure_min_dim", "structure_conservative", "structure_leaf_size",
               "strategy_type", "strategy_workgroup_size", "strategy_traverse_steps_per_pass",
               "strategy_intersections_per_pass", "strategy_suppress_finished_reads", "strategy_scheduling",
-              "strategy_oracle_threshold", "intersection_test", "intersection_vertex_bits"]
+              "strategy_oracle_threshold", "rays_type", "path_bounce", "intersection_test", "intersection_vertex_bits"]
 DEFAULTS = {"experiment_name": "synthetic", "experiment_output": "out", "experiment_repetitions": 5,
             "scene_source": "cgal:bunny00", "scene_scale": 1.0, "scene_translate": "[0 0 0]", "camera_width": 256,
             "camera_height": 256, "camera_fov_deg": 45, "structure_type": "bvh", "strategy_type": "branching",
@@ -300,15 +300,33 @@ class SpeedVsAccuracy(unittest.TestCase):
         self.assertIn("skipped by_camera_height: camera_height goes one for one with camera_width", charts.stderr)
         self.assertIn("by_camera_width", charts.figures)
 
-    def test_all_zero_data_get_a_0_to_1_axis_that_says_so(self):
+    def test_all_zero_data_get_a_0_to_1_axis_or_one_line_of_text(self):
         frame = make_runs([{"structure_leaf_size": leaf} for leaf in (2, 4, 8)], ["structure_leaf_size"])
         frame[["exact_false_misses", "exact_false_hits", "exact_wrong_ppm"]] = 0
         charts = Charts(write_folder(self.root, "zero", frame))
-        for name, ax in (("speed_vs_accuracy", data_axes(charts.figures["speed_vs_accuracy"])[0]),
-                         ("by_structure_leaf_size", data_axes(charts.figures["by_structure_leaf_size"])[1])):
-            low, high = ax.get_ylim()
-            self.assertTrue(-0.1 < low <= 0 and high >= 1, f"{name}: y from {low} to {high}")
-            self.assertIn("all zero", [t.get_text() for t in ax.texts], name)
+        ax = data_axes(charts.figures["speed_vs_accuracy"])[0]  # speed on x: the points still say something
+        low, high = ax.get_ylim()
+        self.assertTrue(-0.1 < low <= 0 and high >= 1, f"y from {low} to {high}")
+        self.assertIn("all zero", [t.get_text() for t in ax.texts])
+        by_key = charts.figures["by_structure_leaf_size"]  # an accuracy panel of zeros: a line of text
+        self.assertEqual(len(data_axes(by_key)), 1, "the time panel alone")
+        self.assertIn("Rays wrong against the exact reference: none in any run drawn",
+                      " ".join(t.get_text() for t in by_key.texts))
+
+    def test_time_per_ray_traced_where_the_batch_differs(self):
+        settings = [{"structure_type": "bvh", "path_bounce": b} for b in (1, 2, 3)]
+        frame = make_runs(settings, ["path_bounce"])
+        frame["rays"] = frame["exact_rays"] = [65536, 9000, 950]
+        charts = Charts(write_folder(self.root, "paths", frame))
+        left = data_axes(charts.figures["by_path_bounce"])[0]
+        self.assertIn("ns per ray traced", left.get_ylabel())
+        kernel = [line for line in left.get_lines() if len(line.get_xdata()) == 3 and line.get_color() != "k"]
+        ys = sorted(np.round(np.asarray(kernel[0].get_ydata(), dtype=float), 3))
+        expected = sorted(np.round([1e6 * ms / rays for ms, rays in zip(frame.kernel_ms_median, frame.rays)], 3))
+        self.assertEqual(ys, expected)
+        same = make_runs(settings, ["path_bounce"])  # one batch: ms per frame
+        left = data_axes(Charts(write_folder(self.root, "same", same)).figures["by_path_bounce"])[0]
+        self.assertIn("ms per frame", left.get_ylabel())
 
     def test_nonzero_data_stay_inside_the_axis(self):
         frame = make_runs([{"structure_leaf_size": leaf} for leaf in (2, 4, 8)], ["structure_leaf_size"])
