@@ -180,7 +180,7 @@ CheckResult checkResults(const std::string& folder, const CheckOptions& options,
                 continue;  // an older schema's hash, checked against the plan above
             switch (spec.kind) {
                 case ColumnKind::Parameter:
-                case ColumnKind::Count:
+                case ColumnKind::Exact:
                     report(old.at("run"), column, value, again, columnKindName(spec.kind));
                     ++result.deterministicDifferences;
                     break;

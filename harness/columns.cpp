@@ -62,9 +62,9 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("label", K::Parameter, "", "the swept parameters of the run");
         add("sweep", K::Parameter, "", "the name of the [[sweep]] the run comes from (empty: the base config)");
         s.back().since = 5;
-        add("status", K::Count, "", "ok or failed");
-        add("error", K::Count, "", "why the run failed");
-        add("warnings", K::Count, "",
+        add("status", K::Exact, "", "ok or failed");
+        add("error", K::Exact, "", "why the run failed");
+        add("warnings", K::Exact, "",
             "what the run did that may surprise (e.g. triangles degenerate in float)");
         add("config_hash", K::Parameter, "", "FNV-1a 64 of the run's parameters (the command line's -d, --validation and --embree-config included)");
         add("inputs_hash", K::Parameter, "", "FNV-1a 64 over the contents of every file the scene was made from (mesh files, the scene description and its meshes, a cgal: mesh's cached file; none for procedural scenes): with config_hash, git_commit, device, driver and cpu, the run's identity");
@@ -74,14 +74,14 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("driver", K::Context, "", "Vulkan driver name and version");
         add("cpu", K::Context, "", "the host's CPU model (what lavapipe and Embree ran on)");
         // Scene, rays, structure.
-        add("scene_triangles", K::Count, "triangles", "triangles after triangulation");
-        add("scene_degenerate", K::Count, "triangles", "zero-area triangles in float (never hit)");
-        add("scene_full_triangles", K::Count, "triangles", "triangles of the scene before scene.simplify_*: what the exact reference traces");
+        add("scene_triangles", K::Exact, "triangles", "triangles after triangulation");
+        add("scene_degenerate", K::Exact, "triangles", "zero-area triangles in float (never hit)");
+        add("scene_full_triangles", K::Exact, "triangles", "triangles of the scene before scene.simplify_*: what the exact reference traces");
         add("scene_simplify_ms", K::Timing, "ms", "scene.simplify_*: wall time of the edge collapses");
-        add("vertex_lattice_step", K::Count, "scene units", "intersection.vertex_bits < 32: the spacing of the vertex lattice");
-        add("vertex_snap_error_max", K::Count, "scene units", "intersection.vertex_bits < 32: the largest distance a vertex moved to its lattice point (not simplified scenes)");
-        add("rays", K::Count, "rays", "rays traced: the batch of rays.type the run measures");
-        add("query", K::Count, "", "what the rays ask: closest (the nearest hit) or any (whether anything is hit in [tMin, tMax): the walk ends at its first hit; Embree's rtcOccluded)");
+        add("vertex_lattice_step", K::Exact, "scene units", "intersection.vertex_bits < 32: the spacing of the vertex lattice");
+        add("vertex_snap_error_max", K::Exact, "scene units", "intersection.vertex_bits < 32: the largest distance a vertex moved to its lattice point (not simplified scenes)");
+        add("rays", K::Exact, "rays", "rays traced: the batch of rays.type the run measures");
+        add("query", K::Exact, "", "what the rays ask: closest (the nearest hit) or any (whether anything is hit in [tMin, tMax): the walk ends at its first hit; Embree's rtcOccluded)");
         s.back().since = 7;
         // The shading passes that made the rays after the first hit, run again on the device
         // (workloads/workload.h checkShadingOnDevice); 0 and empty for camera rays.
@@ -89,22 +89,22 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
             add(std::move(name), kind, std::move(unit), std::move(help));
             s.back().since = 9;
         };
-        since9("shading_passes", K::Count, "passes", "shading passes (kernels/shading.comp) that made the generations after the camera rays: 1 for shadow rays, k for reflection iteration k");
-        since9("shading_rays", K::Count, "rays", "rays those passes made on the device, all generations together");
+        since9("shading_passes", K::Exact, "passes", "shading passes (kernels/shading.comp) that made the generations after the camera rays: 1 for shadow rays, k for reflection iteration k");
+        since9("shading_rays", K::Exact, "rays", "rays those passes made on the device, all generations together");
         since9("shading_ms", K::Timing, "ms", "GPU time of those passes together (one dispatch each, not in kernel_ms)");
-        since9("shading_device_mismatches", K::Count, "rays", "rays the device's shading passes made that differ from the CPU's in a bit, their parent or their path (a failed run)");
+        since9("shading_device_mismatches", K::Exact, "rays", "rays the device's shading passes made that differ from the CPU's in a bit, their parent or their path (a failed run)");
         for (const char* axis : {"x", "y", "z"}) {
-            add(std::string("camera_eye_") + axis, K::Count, "scene units", std::string("the camera the rays came from (fitted to the scene, or as given, moved with it): eye position, ") + axis);
+            add(std::string("camera_eye_") + axis, K::Exact, "scene units", std::string("the camera the rays came from (fitted to the scene, or as given, moved with it): eye position, ") + axis);
             s.back().since = 5;
         }
         for (const char* axis : {"x", "y", "z"}) {
-            add(std::string("camera_target_") + axis, K::Count, "scene units", std::string("the camera's point looked at, ") + axis);
+            add(std::string("camera_target_") + axis, K::Exact, "scene units", std::string("the camera's point looked at, ") + axis);
             s.back().since = 5;
         }
-        add("structure_bytes", K::Count, "bytes", "device memory of the structure (its buffers, triangle vertices included; the driver's: its two levels' storage)");
-        add("structure_bytes_per_triangle", K::Count, "bytes", "structure_bytes / scene_triangles");
+        add("structure_bytes", K::Exact, "bytes", "device memory of the structure (its buffers, triangle vertices included; the driver's: its two levels' storage)");
+        add("structure_bytes_per_triangle", K::Exact, "bytes", "structure_bytes / scene_triangles");
         add("structure_build_ms", K::Timing, "ms", "CPU build time of the structure (the driver's: its builds on the device, GPU timestamps)");
-        add("predicted_work_per_ray", K::Count, "operations",
+        add("predicted_work_per_ray", K::Exact, "operations",
             "cost model: cells or nodes visited + triangles tested per ray, predicted from the structure alone (SAH-style, no early termination)");
         // Each structure's and strategy's own columns (methods/registry.cpp), written only by its runs.
         auto addMethodColumns = [&](const std::string& typeKey, const std::string& name,
@@ -151,7 +151,7 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
             spread(m, "Embree " + m);
             add(m + "_mrays_s", K::Timing, "Mrays/s", "rays / Embree's median time");
         }
-        add("embree_rays", K::Count, "rays",
+        add("embree_rays", K::Exact, "rays",
             "rays Embree traced per repetition: the batch's, or beside a strategy that traces the whole path (wavefront, "
             "path_megakernel) every generation's, as the kernel did");
         s.back().since = 19;
@@ -171,7 +171,7 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         since5("load_average", K::Timing, "", "noise guard: 1-minute load average when the timing ended");
         since5("device_host_threads", K::Context, "threads", "threads the device runs on the host's cores (lavapipe: LP_NUM_THREADS, else one per core up to 32; 0 for a GPU), beside embree_threads, against the machine's cores (context.json cpu_threads)");
         // Agreement with Embree, a second view of accuracy: depends on Embree's floating-point path.
-        add("hits", K::Count, "rays", "rays the kernel hit");
+        add("hits", K::Exact, "rays", "rays the kernel hit");
         add("hit_miss_agreement", K::Reference, "fraction", "rays whose hit/miss equals Embree's",
             1e-4);
         add("same_primitive_agreement", K::Reference, "fraction",
@@ -185,15 +185,15 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
             1e-4, true);
         // Accuracy against the exact reference (harness/exact_reference.h): the kernels' counts are
         // deterministic; Embree's depend on its ISA path.
-        add("exact_rays", K::Count, "rays", "rays traced by the exact reference (accuracy.exact_rays)");
-        add("exact_ties", K::Count, "rays", "of those, rays whose exact first hit is shared by several triangles (each is correct)");
+        add("exact_rays", K::Exact, "rays", "rays traced by the exact reference (accuracy.exact_rays)");
+        add("exact_ties", K::Exact, "rays", "of those, rays whose exact first hit is shared by several triangles (each is correct)");
         add("exact_ms", K::Timing, "ms", "wall time of the exact reference on those rays");
-        add("exact_parent_wrong", K::Count, "rays", "rays after the first hit: of the exact_rays, those with a ray earlier on their path (the camera ray, an earlier reflection) whose hit is not an exact first hit (they leave from another surface than the exact scene's; still judged as the rays they are)");
+        add("exact_parent_wrong", K::Exact, "rays", "rays after the first hit: of the exact_rays, those with a ray earlier on their path (the camera ray, an earlier reflection) whose hit is not an exact first hit (they leave from another surface than the exact scene's; still judged as the rays they are)");
         s.back().since = 7;
         for (const bool embree : {false, true}) {
             const std::string p = embree ? "embree_exact_" : "exact_";
             const std::string who = embree ? "Embree" : "the kernel";
-            const K kind = embree ? K::Reference : K::Count;
+            const K kind = embree ? K::Reference : K::Exact;
             add(p + "false_misses", kind, "rays", "the exact ray hits, " + who + " missed (a leak)", 1e-4, true);
             add(p + "false_hits", kind, "rays", "the exact ray misses, " + who + " hit", 1e-4, true);
             add(p + "wrong_primitive", kind, "rays", "both hit; " + who + "'s triangle is not one the exact ray hits first (empty for a simplified scene: other triangles, and for any-hit rays: any triangle answers)", 1e-4, true);
@@ -202,59 +202,59 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
             add(p + "distance_error_max", kind, "", "|t - t_exact| / t_exact, max", 1e-6);
         }
         // Image-level accuracy, as OpenImageIO's idiff measures it, on the pixels of the exact_rays.
-        add("image_psnr_db", K::Count, "dB", "shaded pixels (8-bit grey, as the PNG) of the run's image against the same image made with the exact hits on the full scene (rays after the first hit: the batch's image, of its rays' own hits or of the camera hits they change; since results schema 10): PSNR, 20 log10(1 / RMS error) on [0, 1]; inf when equal");
-        add("image_error_mean", K::Count, "", "shaded pixels against the exact render: mean |difference|");
-        add("image_error_max", K::Count, "", "shaded pixels against the exact render: largest |difference|");
-        add("image_pixels_differ", K::Count, "pixels", "shaded pixels whose 8-bit grey differs from the exact render's");
+        add("image_psnr_db", K::Exact, "dB", "shaded pixels (8-bit grey, as the PNG) of the run's image against the same image made with the exact hits on the full scene (rays after the first hit: the batch's image, of its rays' own hits or of the camera hits they change; since results schema 10): PSNR, 20 log10(1 / RMS error) on [0, 1]; inf when equal");
+        add("image_error_mean", K::Exact, "", "shaded pixels against the exact render: mean |difference|");
+        add("image_error_max", K::Exact, "", "shaded pixels against the exact render: largest |difference|");
+        add("image_pixels_differ", K::Exact, "pixels", "shaded pixels whose 8-bit grey differs from the exact render's");
         // Work and accounting (exact, from instrumented kernels; equal to the CPU reference).
-        add("work_per_ray_mean", K::Count, "operations",
+        add("work_per_ray_mean", K::Exact, "operations",
             "cells or nodes visited + triangles tested per ray, measured: what predicted_work_per_ray predicts");
-        add("triangles_per_ray_mean", K::Count, "tests", "ray-triangle tests per ray, mean");
-        add("triangles_per_ray_max", K::Count, "tests", "ray-triangle tests per ray, max");
-        add("traversal_steps_per_ray_mean", K::Count, "steps", "traversal step attempts per ray (grid: DDA steps; BVH: references visited, inner nodes and leaves), mean");
-        add("traversal_steps_per_ray_max", K::Count, "steps", "traversal step attempts per ray, max");
-        add("passes_total", K::Count, "passes", "kernel dispatches over the ray stream");
-        add("simd_efficiency", K::Count, "fraction",
+        add("triangles_per_ray_mean", K::Exact, "tests", "ray-triangle tests per ray, mean");
+        add("triangles_per_ray_max", K::Exact, "tests", "ray-triangle tests per ray, max");
+        add("traversal_steps_per_ray_mean", K::Exact, "steps", "traversal step attempts per ray (grid: DDA steps; BVH: references visited, inner nodes and leaves), mean");
+        add("traversal_steps_per_ray_max", K::Exact, "steps", "traversal step attempts per ray, max");
+        add("passes_total", K::Exact, "passes", "kernel dispatches over the ray stream");
+        add("simd_efficiency", K::Exact, "fraction",
             "the strategy's own measure, as written before schema 14 (two measures in one column; read the two below): "
             "simd_lane_utilisation for branching, persistent and the megakernel; for multipass Purcell's over the stream "
             "(control = host) or over its compacted lists (control = device: 1)");
-        add("simd_lane_utilisation", K::Count, "fraction",
+        add("simd_lane_utilisation", K::Exact, "fraction",
             "branching, persistent, megakernel: active lanes / lane slots over the kernel's subgroup ballots (Aila & Laine "
             "2009), counted only where some lane of a subgroup still works (rays that miss at once are left out)");
         s.back().since = 14;
         s.back().appliesWhen = {"strategy.type=branching|persistent|megakernel"};
-        add("simd_efficiency_purcell", K::Count, "fraction",
+        add("simd_efficiency_purcell", K::Exact, "fraction",
             "Purcell et al. 2002 Table 2's SIMD efficiency, the average fraction of the stream's rays doing useful work in a "
             "pass, misses included: multipass, rays served / (rays x traverse and intersect passes), whatever the control; "
             "branching, persistent, megakernel, the stream run in lock step one traversal step or triangle test at a time: "
             "sum of (steps + tests) / (rays x the most steps + tests of one ray)");
         s.back().since = 14;
-        add("bytes_stencil", K::Count, "bytes", "ray-state byte reads and writes");
-        add("bytes_state", K::Count, "bytes", "per-ray state saved and restored");
-        add("bytes_stack", K::Count, "bytes", "multipass: node-stack entries pushed and popped, 4 bytes each (BVH; its stack stays in memory)");
-        add("bytes_compaction", K::Count, "bytes", "multipass with strategy.control = device: compacted ray-list entries read and appended, 4 bytes each");
+        add("bytes_stencil", K::Exact, "bytes", "ray-state byte reads and writes");
+        add("bytes_state", K::Exact, "bytes", "per-ray state saved and restored");
+        add("bytes_stack", K::Exact, "bytes", "multipass: node-stack entries pushed and popped, 4 bytes each (BVH; its stack stays in memory)");
+        add("bytes_compaction", K::Exact, "bytes", "multipass with strategy.control = device: compacted ray-list entries read and appended, 4 bytes each");
         s.back().since = 13;
-        add("bytes_triangle_list", K::Count, "bytes", "triangle-list entries read");
-        add("bytes_vertices", K::Count, "bytes", "triangle vertices read");
-        add("bytes_output", K::Count, "bytes", "hit records written");
-        add("bytes_total", K::Count, "bytes", "all categories");
-        add("bytes_per_ray", K::Count, "bytes", "bytes_total / rays");
+        add("bytes_triangle_list", K::Exact, "bytes", "triangle-list entries read");
+        add("bytes_vertices", K::Exact, "bytes", "triangle vertices read");
+        add("bytes_output", K::Exact, "bytes", "hit records written");
+        add("bytes_total", K::Exact, "bytes", "all categories");
+        add("bytes_per_ray", K::Exact, "bytes", "bytes_total / rays");
         // Purcell Table 1 / Fig. 7's compute, estimated (methods/instructions/instruction_estimate.h).
         const std::string estimate = "estimate: static SPIR-V instructions (glslang, unoptimised; every branch counted) ";
-        add("instructions_per_step", K::Count, "instructions",
+        add("instructions_per_step", K::Exact, "instructions",
             estimate + "of one traversal event (grid: rtDdaStep, a DDA step; BVH: rtBvhChildren, an inner node)");
-        add("instructions_per_test", K::Count, "instructions", estimate + "of one ray-triangle test (rtIntersectStored, the run's test)");
-        add("instructions_traverse", K::Count, "instructions",
+        add("instructions_per_test", K::Exact, "instructions", estimate + "of one ray-triangle test (rtIntersectStored, the run's test)");
+        add("instructions_traverse", K::Exact, "instructions",
             estimate + "x exact counts: traversal (Fig. 7's traverser): steps x instructions_per_step, and for multipass "
             "each ray a traverse pass serves x the traverse kernel's other instructions");
-        add("instructions_intersect", K::Count, "instructions",
+        add("instructions_intersect", K::Exact, "instructions",
             estimate + "x exact counts: intersection (Fig. 7's intersector): tests x instructions_per_test, and for "
             "multipass each ray an intersect pass serves x the intersect kernel's other instructions");
-        add("instructions_other", K::Count, "instructions",
+        add("instructions_other", K::Exact, "instructions",
             estimate + "x rays: the rest of the kernel (branching) or the setup and write kernels (multipass); rays the "
             "stencil turns away cost none (Purcell's early fragment kill)");
-        add("instructions_total", K::Count, "instructions", "instructions_traverse + instructions_intersect + instructions_other");
-        add("instructions_per_byte", K::Count, "ratio", "instructions_total / bytes_total: compute against bandwidth (Purcell §4.2)");
+        add("instructions_total", K::Exact, "instructions", "instructions_traverse + instructions_intersect + instructions_other");
+        add("instructions_per_byte", K::Exact, "ratio", "instructions_total / bytes_total: compute against bandwidth (Purcell §4.2)");
         for (auto it = s.end() - 7; it != s.end(); ++it) {
             it->since = 17;
             it->appliesWhen = {"strategy.type=branching|multipass"};
@@ -262,9 +262,9 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         for (const StrategyType* t : strategyTypes()) addMethodColumns("strategy.type", t->name, t->columns);
         for (const ColumnSpec& c : cacheColumns()) s.push_back(c);  // cache.simulate
         // Self-checks (a mismatch fails the run).
-        add("cpu_reference_mismatches", K::Count, "rays",
+        add("cpu_reference_mismatches", K::Exact, "rays",
             "rays whose GPU hit record differs from the CPU reference's (empty for the driver's ray query: another's arithmetic, judged by the exact reference)");
-        add("cpu_counts_match", K::Count, "",
+        add("cpu_counts_match", K::Exact, "",
             "1 when pass and lane counts equal the CPU reference's (lane counts only on a device whose subgroups run "
             "in lock step; empty for branching elsewhere, where they are not compared)");
         add("wall_s", K::Timing, "s", "wall time of the whole run");

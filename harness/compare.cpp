@@ -124,7 +124,7 @@ CompareResult compareFolders(const std::string& folderA, const std::string& fold
         }
         // Counts: deterministic, compared exactly (the columns both files have).
         for (const ColumnSpec& c : runColumnSpecs())
-            if (c.kind == ColumnKind::Count && c.name != "error" && c.name != "warnings" && a.columns.count(c.name) &&
+            if (c.kind == ColumnKind::Exact && c.name != "error" && c.name != "warnings" && a.columns.count(c.name) &&
                 b.columns.count(c.name) &&
                 get(rowA, c.name) != get(rowB, c.name))
                 run.countDifferences.push_back(c.name + ": " + get(rowA, c.name) + " -> " + get(rowB, c.name));

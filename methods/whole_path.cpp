@@ -66,9 +66,9 @@ std::unique_ptr<GpuBuffers> uploadWholePath(VulkanContext& vk, const Structure& 
 std::vector<ColumnSpec> wholePathStrategyColumns(std::vector<ColumnSpec> own) {
     std::vector<ColumnSpec> c = wholeTraversalColumns();
     own.insert(own.begin(), {
-        {"whole_path_generations", ColumnKind::Count, "generations",
+        {"whole_path_generations", ColumnKind::Exact, "generations",
          "wavefront, path_megakernel: generations traced on the device, the camera rays' and the batch's included"},
-        {"whole_path_rays", ColumnKind::Count, "rays",
+        {"whole_path_rays", ColumnKind::Exact, "rays",
          "wavefront, path_megakernel: rays traced over those generations: what the kernel time covers, what Embree traces "
          "beside it and the rates count"}});
     for (ColumnSpec& col : own) {

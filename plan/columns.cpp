@@ -10,8 +10,8 @@ const char* columnKindName(ColumnKind kind) {
     switch (kind) {
         case ColumnKind::Parameter:
             return "parameter";
-        case ColumnKind::Count:
-            return "count";
+        case ColumnKind::Exact:
+            return "exact";
         case ColumnKind::Reference:
             return "reference";
         case ColumnKind::Timing:

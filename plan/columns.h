@@ -14,7 +14,8 @@
 
 namespace rtbench {
 
-enum class ColumnKind { Parameter, Count, Reference, Timing, Context };
+// Exact: deterministic, compared exactly (counts, and text such as status; see docs/results-folder.md).
+enum class ColumnKind { Parameter, Exact, Reference, Timing, Context };
 
 const char* columnKindName(ColumnKind kind);
 

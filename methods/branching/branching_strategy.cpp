@@ -189,7 +189,7 @@ StrategyRun judgeWholeTraversal(VulkanContext& vk, const Structure& structure, c
 }
 
 ColumnSpec streamBatchesColumn() {
-    return {"stream_batches", ColumnKind::Count, "dispatches",
+    return {"stream_batches", ColumnKind::Exact, "dispatches",
             "branching, plain, persistent, megakernel, ray_query, wavefront, path_megakernel: dispatches the ray stream ran in, each of whole workgroups, one "
             "after another (more than 1 when one binding cannot hold its ray or hit records); records and counts are as of one", 0.0, false, {}, 13};
 }
@@ -197,13 +197,13 @@ ColumnSpec streamBatchesColumn() {
 const std::vector<ColumnSpec>& wholeTraversalColumns() {
     static const std::vector<ColumnSpec> columns = [] {
         std::vector<ColumnSpec> c = {
-            {"rays_cut_short", ColumnKind::Count, "rays",
+            {"rays_cut_short", ColumnKind::Exact, "rays",
              "branching, persistent, megakernel, wavefront, path_megakernel: rays in subgroups needing more loop iterations than the device runs (a failed run; llvmpipe: 65,535)"},
-            {"lanes_model_active", ColumnKind::Count, "lanes",
+            {"lanes_model_active", ColumnKind::Exact, "lanes",
              "branching, persistent, wavefront (the batch's trace), path_megakernel: active lanes summed over the subgroup ballots "
              "as the CPU lane model counts them (lock-step loops; equal to the device's on llvmpipe, where a difference fails the "
              "run; elsewhere a warning)"},
-            {"lanes_model_slots", ColumnKind::Count, "lanes",
+            {"lanes_model_slots", ColumnKind::Exact, "lanes",
              "branching, persistent, wavefront, path_megakernel: subgroup size summed over the same ballots, as the CPU lane model counts them"},
             streamBatchesColumn()};
         for (ColumnSpec& col : c)

@@ -129,15 +129,15 @@ const StructureType& bvhStructureType() {
             {"structure.quality", ValueType::String, "BVH: medium (binned SAH) or low (Morton codes: faster build, worse tree)", std::string("medium"), false, -1e300, 1e300, {"medium", "low"}},
         };
         t.columns = {
-            {"bvh_inner_nodes", K::Count, "nodes", "BVH inner nodes (80 bytes each)"},
-            {"bvh_leaves", K::Count, "leaves", "BVH leaves"},
-            {"bvh_depth", K::Count, "levels", "deepest leaf's distance from the root"},
-            {"bvh_largest_leaf", K::Count, "triangles", "most triangles in one leaf"},
-            {"bvh_references", K::Count, "references", "triangle-list entries (each triangle once)"},
-            {"bvh_sah_cost", K::Count, "", "SAH cost of the tree (traversal and intersection cost 1)"},
-            {"nodes_per_ray_mean", K::Count, "nodes", "BVH inner nodes visited per ray, mean"},
-            {"nodes_per_ray_max", K::Count, "nodes", "BVH inner nodes visited per ray, max"},
-            {"bytes_node", K::Count, "bytes", "BVH nodes read"},
+            {"bvh_inner_nodes", K::Exact, "nodes", "BVH inner nodes (80 bytes each)"},
+            {"bvh_leaves", K::Exact, "leaves", "BVH leaves"},
+            {"bvh_depth", K::Exact, "levels", "deepest leaf's distance from the root"},
+            {"bvh_largest_leaf", K::Exact, "triangles", "most triangles in one leaf"},
+            {"bvh_references", K::Exact, "references", "triangle-list entries (each triangle once)"},
+            {"bvh_sah_cost", K::Exact, "", "SAH cost of the tree (traversal and intersection cost 1)"},
+            {"nodes_per_ray_mean", K::Exact, "nodes", "BVH inner nodes visited per ray, mean"},
+            {"nodes_per_ray_max", K::Exact, "nodes", "BVH inner nodes visited per ray, max"},
+            {"bytes_node", K::Exact, "bytes", "BVH nodes read"},
         };
         t.build = buildBvhStructure;
         return t;

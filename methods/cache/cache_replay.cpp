@@ -95,13 +95,13 @@ const std::vector<ColumnSpec>& cacheColumns() {
         using K = ColumnKind;
         const std::vector<std::string> asked = {"cache.simulate=true"};
         std::vector<ColumnSpec> c = {
-            {"cache_capacity_bytes", K::Count, "bytes", "cache.simulate: the bytes the cache holds, sets x ways x line (64 KB of 48-byte lines: 65,520)", 0.0, false, asked},
-            {"cache_ratio_total", K::Count, "fraction", "cache.simulate: memory traffic with the cache / without it, all data types (Purcell 2002 Fig. 9's bar: a missed line costs the whole line; writes cost their bytes either way)", 0.0, false, asked}};
+            {"cache_capacity_bytes", K::Exact, "bytes", "cache.simulate: the bytes the cache holds, sets x ways x line (64 KB of 48-byte lines: 65,520)", 0.0, false, asked},
+            {"cache_ratio_total", K::Exact, "fraction", "cache.simulate: memory traffic with the cache / without it, all data types (Purcell 2002 Fig. 9's bar: a missed line costs the whole line; writes cost their bytes either way)", 0.0, false, asked}};
         for (const MemoryKind kind : kReadKinds) {
             const std::string name = memoryKindName(kind);
             const std::string without = kind == MemoryKind::Cells ? "bytes_voxel or bytes_node" : "bytes_" + name;
-            c.push_back({"cache_ratio_" + name, K::Count, "fraction", "cache.simulate: traffic of " + name + " data with the cache / without it (" + without + ")", 0.0, false, asked});
-            c.push_back({"cache_hit_rate_" + name, K::Count, "fraction", "cache.simulate: of the cache lines the " + name + " reads touch, the fraction found in the cache (empty: no reads)", 0.0, false, asked});
+            c.push_back({"cache_ratio_" + name, K::Exact, "fraction", "cache.simulate: traffic of " + name + " data with the cache / without it (" + without + ")", 0.0, false, asked});
+            c.push_back({"cache_hit_rate_" + name, K::Exact, "fraction", "cache.simulate: of the cache lines the " + name + " reads touch, the fraction found in the cache (empty: no reads)", 0.0, false, asked});
         }
         for (ColumnSpec& col : c) col.since = 16;
         return c;

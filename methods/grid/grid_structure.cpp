@@ -150,20 +150,20 @@ const StructureType& gridStructureType() {
             {"structure.conservative", ValueType::Bool, "conservative traversal: each voxel also lists the triangles within a margin of it that bounds the DDA's rounding (methods/grid/uniform_grid.h), so a ray through an edge or a corner, or far from the origin, loses no triangle", false},
         };
         t.columns = {
-            {"grid_res_x", K::Count, "cells", "grid resolution along x"},
-            {"grid_res_y", K::Count, "cells", "grid resolution along y"},
-            {"grid_res_z", K::Count, "cells", "grid resolution along z"},
-            {"grid_cells", K::Count, "cells", "voxels in the grid"},
-            {"grid_empty_fraction", K::Count, "fraction", "voxels with no triangle"},
-            {"grid_references", K::Count, "references", "(voxel, triangle) pairs"},
-            {"grid_refs_per_triangle", K::Count, "references", "references per triangle"},
-            {"grid_max_refs_in_cell", K::Count, "references", "largest voxel list"},
-            {"grid_bytes", K::Count, "bytes", "grid memory (offsets, lists, vertices)"},
-            {"grid_voxel_margin", K::Count, "scene units", "structure.conservative: how far beyond its box a voxel lists triangles (0: exact voxels)"},
+            {"grid_res_x", K::Exact, "cells", "grid resolution along x"},
+            {"grid_res_y", K::Exact, "cells", "grid resolution along y"},
+            {"grid_res_z", K::Exact, "cells", "grid resolution along z"},
+            {"grid_cells", K::Exact, "cells", "voxels in the grid"},
+            {"grid_empty_fraction", K::Exact, "fraction", "voxels with no triangle"},
+            {"grid_references", K::Exact, "references", "(voxel, triangle) pairs"},
+            {"grid_refs_per_triangle", K::Exact, "references", "references per triangle"},
+            {"grid_max_refs_in_cell", K::Exact, "references", "largest voxel list"},
+            {"grid_bytes", K::Exact, "bytes", "grid memory (offsets, lists, vertices)"},
+            {"grid_voxel_margin", K::Exact, "scene units", "structure.conservative: how far beyond its box a voxel lists triangles (0: exact voxels)"},
             {"grid_build_ms", K::Timing, "ms", "CPU build time of the grid"},
-            {"voxels_per_ray_mean", K::Count, "voxels", "voxels visited per ray, mean"},
-            {"voxels_per_ray_max", K::Count, "voxels", "voxels visited per ray, max"},
-            {"bytes_voxel", K::Count, "bytes", "voxel offsets read"},
+            {"voxels_per_ray_mean", K::Exact, "voxels", "voxels visited per ray, mean"},
+            {"voxels_per_ray_max", K::Exact, "voxels", "voxels visited per ray, max"},
+            {"bytes_voxel", K::Exact, "bytes", "voxel offsets read"},
         };
         t.build = buildGrid;
         return t;

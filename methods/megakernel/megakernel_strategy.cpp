@@ -60,9 +60,9 @@ const StrategyType& megakernelStrategyType() {
         t.columns.push_back(wholeTraversalColumns().front());  // rays_cut_short
         t.columns.push_back(streamBatchesColumn());
         for (ColumnSpec c : std::vector<ColumnSpec>{
-                 {"megakernel_runs_traverse", K::Count, "executions", "megakernel: subgroup executions of the traverse state (one traversal step for the lanes in it; OptiX Fig. 6's state executions, per subgroup)"},
-                 {"megakernel_runs_intersect", K::Count, "executions", "megakernel: subgroup executions of the intersect state (one triangle test for the lanes in it)"},
-                 {"megakernel_model_runs", K::Count, "executions", "megakernel: state executions of the CPU model of the schedule (equal to the device's two; a difference fails the run)"}}) {
+                 {"megakernel_runs_traverse", K::Exact, "executions", "megakernel: subgroup executions of the traverse state (one traversal step for the lanes in it; OptiX Fig. 6's state executions, per subgroup)"},
+                 {"megakernel_runs_intersect", K::Exact, "executions", "megakernel: subgroup executions of the intersect state (one triangle test for the lanes in it)"},
+                 {"megakernel_model_runs", K::Exact, "executions", "megakernel: state executions of the CPU model of the schedule (equal to the device's two; a difference fails the run)"}}) {
             c.since = 12;
             t.columns.push_back(c);
         }

@@ -466,11 +466,11 @@ const StrategyType& multipassStrategyType() {
             if (k.name == "strategy.list_partitions") k.since = 20;
         }
         t.columns = {
-            {"passes_setup", K::Count, "passes", "multipass setup passes"},
-            {"passes_traverse", K::Count, "passes", "multipass traverse passes"},
-            {"passes_intersect", K::Count, "passes", "multipass intersect passes"},
-            {"passes_write", K::Count, "passes", "multipass write passes"},
-            {"passes_lower_bound", K::Count, "passes", "Purcell's lower bound on traverse + intersect passes"},
+            {"passes_setup", K::Exact, "passes", "multipass setup passes"},
+            {"passes_traverse", K::Exact, "passes", "multipass traverse passes"},
+            {"passes_intersect", K::Exact, "passes", "multipass intersect passes"},
+            {"passes_write", K::Exact, "passes", "multipass write passes"},
+            {"passes_lower_bound", K::Exact, "passes", "Purcell's lower bound on traverse + intersect passes"},
             {"kernel_ms_setup", K::Timing, "ms", "multipass: GPU time of the setup passes, median"},
             {"kernel_ms_traverse", K::Timing, "ms", "multipass: GPU time of the traverse passes, median"},
             {"kernel_ms_intersect", K::Timing, "ms", "multipass: GPU time of the intersect passes, median"},
@@ -478,8 +478,8 @@ const StrategyType& multipassStrategyType() {
             {"kernel_ms_stencil_pass", K::Timing, "ms", "multipass with strategy.control = host: GPU time of one more traverse pass over the stream when every ray is done (after the write pass, not in kernel_ms): what the ray-state test alone costs a pass, which Christen 2005 §5.5's early-z culling paid a masking pass for (not counted in passes_total: our kernels test the state byte themselves, bytes_stencil), median", 0.0, false, {"strategy.control=host"}, 17},
             {"kernel_ms_oracle", K::Timing, "ms", "multipass with strategy.control = device: GPU time of the oracle kernel (one invocation after each pass), median", 0.0, false, {"strategy.control=device"}, 13},
             {"multipass_live_ms_median", K::Timing, "ms", "multipass: host wall time of the live pass loop, median of one per round: with strategy.control = host the instrumented passes with the oracle's read-back after each (Christen 2005 §4.3.4's CPU-controlled loop); with device, the instrumented loop in submissions of 341 oracle iterations (the last partly idle), its control block and log read after each, and the log's replay on the host", 0.0, false, {}, 5},
-            {"branching_mismatches", K::Count, "rays", "multipass: rays whose hit record differs from the branching caster's"},
-            {"multipass_batch_rays", K::Count, "rays", "multipass: rays per batch (strategy.batch_rays, 0 made what one binding holds); passes_* add up over the batches", 0.0, false, {}, 12},
+            {"branching_mismatches", K::Exact, "rays", "multipass: rays whose hit record differs from the branching caster's"},
+            {"multipass_batch_rays", K::Exact, "rays", "multipass: rays per batch (strategy.batch_rays, 0 made what one binding holds); passes_* add up over the batches", 0.0, false, {}, 12},
         };
         t.run = runMultipassStrategy;
         return t;

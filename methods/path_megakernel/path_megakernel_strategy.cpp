@@ -155,7 +155,7 @@ const StrategyType& pathMegakernelStrategyType() {
         t.tracesPath = true;
         // The camera rays' copy, a batch ray and its flags (one path per camera ray).
         t.ownBytesPerRay = sizeof(gpu::Ray) + sizeof(gpu::Ray) + 16;
-        t.columns = wholePathStrategyColumns({{"path_megakernel_rays_traced", ColumnKind::Count, "rays",
+        t.columns = wholePathStrategyColumns({{"path_megakernel_rays_traced", ColumnKind::Exact, "rays",
                                                "path_megakernel: rays the kernel traced, counted on the device (must equal "
                                                "whole_path_rays)"}});
         t.run = runPathMegakernelStrategy;

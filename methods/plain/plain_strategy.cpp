@@ -40,7 +40,7 @@ const StrategyType& plainStrategyType() {
         t.name = "plain";
         t.help = "the branching kernel dividing as the device does (OpFDiv) instead of exactly: the control that measures "
                  "what bit-exact division costs; judged against the exact reference, no work counted";
-        t.columns = {{"plain_cpu_differing", ColumnKind::Count, "rays",
+        t.columns = {{"plain_cpu_differing", ColumnKind::Exact, "rays",
                       "plain: rays whose hit (t, triangle, u, v) differs from the CPU reference's, which divides exactly "
                       "(0 where the device's division is IEEE's, as on llvmpipe; counted, not failed)",
                       0.0, false, {}, 15},

@@ -53,10 +53,10 @@ const StructureType& driverStructureType() {
         t.onlyStrategy = "ray_query";
         const int since = 14;
         t.columns = {
-            {"driver_blas_bytes", ColumnKind::Count, "bytes", "driver: the bottom level's storage, as the driver sized it", 0.0, false, {}, since},
-            {"driver_tlas_bytes", ColumnKind::Count, "bytes", "driver: the top level's storage (one instance)", 0.0, false, {}, since},
-            {"driver_scratch_bytes", ColumnKind::Count, "bytes", "driver: the larger build's scratch (freed after the build)", 0.0, false, {}, since},
-            {"driver_input_bytes", ColumnKind::Count, "bytes", "driver: vertices, indices and the instance uploaded for the build", 0.0, false, {}, since}};
+            {"driver_blas_bytes", ColumnKind::Exact, "bytes", "driver: the bottom level's storage, as the driver sized it", 0.0, false, {}, since},
+            {"driver_tlas_bytes", ColumnKind::Exact, "bytes", "driver: the top level's storage (one instance)", 0.0, false, {}, since},
+            {"driver_scratch_bytes", ColumnKind::Exact, "bytes", "driver: the larger build's scratch (freed after the build)", 0.0, false, {}, since},
+            {"driver_input_bytes", ColumnKind::Exact, "bytes", "driver: vertices, indices and the instance uploaded for the build", 0.0, false, {}, since}};
         t.build = buildDriverStructure;
         return t;
     }();

@@ -253,7 +253,7 @@ const StrategyType& wavefrontStrategyType() {
         // The camera rays' copy, a queue entry, a made ray and its flags (fan-out 1).
         t.ownBytesPerRay = sizeof(gpu::Ray) + 16 + sizeof(gpu::Ray) + 16;
         t.columns = wholePathStrategyColumns({
-            {"wavefront_queue_capacity", K::Count, "rays", "wavefront: rays its queue holds (the camera rays times the passes' fan-outs)"},
+            {"wavefront_queue_capacity", K::Exact, "rays", "wavefront: rays its queue holds (the camera rays times the passes' fan-outs)"},
             {"kernel_ms_trace", K::Timing, "ms", "wavefront: median GPU time of its trace stages per repetition"},
             {"kernel_ms_shade", K::Timing, "ms", "wavefront: median GPU time of its shading stages per repetition"},
             {"kernel_ms_queue", K::Timing, "ms", "wavefront: median GPU time of its setup, scans and compactions per repetition"}});

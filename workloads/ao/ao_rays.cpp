@@ -39,8 +39,8 @@ const RayType& aoRayType() {
             randomSeedKey("ao.seed", "ambient occlusion"),
         };
         t.columns = {
-            {"ao_radius_traced", K::Count, "scene units", "ao: the rays' length in the traced scene"},
-            {"ao_camera_hits", K::Count, "rays", "ao: camera rays that hit; each makes ao.samples rays"},
+            {"ao_radius_traced", K::Exact, "scene units", "ao: the rays' length in the traced scene"},
+            {"ao_camera_hits", K::Exact, "rays", "ao: camera rays that hit; each makes ao.samples rays"},
         };
         t.make = aoWorkload;
         setSince(t, 9);

@@ -34,8 +34,8 @@ const RayType& pathRayType() {
             randomSeedKey("path.seed", "path rays"),
         };
         t.columns = {
-            {"path_parent_rays", K::Count, "rays", "path: rays of the bounce before (1: the camera rays)"},
-            {"path_parent_hits", K::Count, "rays", "path: of those, the rays that hit (bounce 1: each starts path.samples paths)"},
+            {"path_parent_rays", K::Exact, "rays", "path: rays of the bounce before (1: the camera rays)"},
+            {"path_parent_hits", K::Exact, "rays", "path: of those, the rays that hit (bounce 1: each starts path.samples paths)"},
         };
         t.make = pathWorkload;
         setSince(t, 9);

@@ -25,8 +25,8 @@ const RayType& reflectionRayType() {
                    "hits, the earlier iterations traced by the run's structure)",
                    ConfigValue{std::int64_t(1)}, false, 1, 64}};
         t.columns = {
-            {"reflection_parent_rays", K::Count, "rays", "reflection: rays of the iteration before (1: the camera rays)"},
-            {"reflection_parent_hits", K::Count, "rays", "reflection: of those, the rays that hit: each makes one ray"},
+            {"reflection_parent_rays", K::Exact, "rays", "reflection: rays of the iteration before (1: the camera rays)"},
+            {"reflection_parent_hits", K::Exact, "rays", "reflection: of those, the rays that hit: each makes one ray"},
         };
         t.make = reflectionWorkload;
         setSince(t, 8);

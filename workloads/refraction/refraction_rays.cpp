@@ -51,9 +51,9 @@ const RayType& refractionRayType() {
              false, 0.01, 100},
         };
         t.columns = {
-            {"refraction_parent_rays", K::Count, "rays", "refraction: rays of the iteration before (1: the camera rays)"},
-            {"refraction_parent_hits", K::Count, "rays", "refraction: of those, the rays that hit: each makes one ray"},
-            {"refraction_total_internal", K::Count, "rays",
+            {"refraction_parent_rays", K::Exact, "rays", "refraction: rays of the iteration before (1: the camera rays)"},
+            {"refraction_parent_hits", K::Exact, "rays", "refraction: of those, the rays that hit: each makes one ray"},
+            {"refraction_total_internal", K::Exact, "rays",
              "refraction: rays reflected past the critical angle (total internal reflection) instead of transmitted"},
         };
         t.make = refractionWorkload;

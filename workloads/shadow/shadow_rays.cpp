@@ -43,12 +43,12 @@ const RayType& shadowRayType() {
         t.help = "one any-hit ray from each camera ray's hit toward the point light (shadow casting)";
         // Its light is light.position (harness/config.cpp: whitted reads it too).
         t.columns = {
-            {"camera_rays", K::Count, "rays", "shadow: camera rays (one per pixel) whose hits the shadow rays leave from"},
-            {"camera_rays_hit", K::Count, "rays", "shadow: camera rays that hit (by the run's structure)"},
-            {"shadow_unlit", K::Count, "rays", "shadow: hits with the light behind their surface: unlit, no shadow ray"},
-            {"light_x", K::Count, "", "shadow: the point light in the traced scene (x)"},
-            {"light_y", K::Count, "", "shadow: the point light (y)"},
-            {"light_z", K::Count, "", "shadow: the point light (z)"},
+            {"camera_rays", K::Exact, "rays", "shadow: camera rays (one per pixel) whose hits the shadow rays leave from"},
+            {"camera_rays_hit", K::Exact, "rays", "shadow: camera rays that hit (by the run's structure)"},
+            {"shadow_unlit", K::Exact, "rays", "shadow: hits with the light behind their surface: unlit, no shadow ray"},
+            {"light_x", K::Exact, "", "shadow: the point light in the traced scene (x)"},
+            {"light_y", K::Exact, "", "shadow: the point light (y)"},
+            {"light_z", K::Exact, "", "shadow: the point light (z)"},
         };
         t.make = shadowWorkload;
         setSince(t, 7);

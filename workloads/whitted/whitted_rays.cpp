@@ -121,17 +121,17 @@ const RayType& whittedRayType() {
             ior,
         };
         t.columns = {
-            {"whitted_lights", K::Count, "lights", "whitted: point lights (each diffuse hit makes a shadow ray toward each)"},
-            {"whitted_light_positions", K::Count, "scene units",
+            {"whitted_lights", K::Exact, "lights", "whitted: point lights (each diffuse hit makes a shadow ray toward each)"},
+            {"whitted_light_positions", K::Exact, "scene units",
              "whitted: the point lights in the traced scene, \"x y z\" each, separated by \"; \""},
-            {"whitted_materials", K::Count, "materials", "whitted: materials (whitted.surface and the description's)"},
-            {"whitted_parent_rays", K::Count, "rays", "whitted: rays of the generation the batch was made from"},
-            {"whitted_parent_hits", K::Count, "rays", "whitted: of those, the rays that hit"},
-            {"whitted_rays_before", K::Count, "rays",
+            {"whitted_materials", K::Exact, "materials", "whitted: materials (whitted.surface and the description's)"},
+            {"whitted_parent_rays", K::Exact, "rays", "whitted: rays of the generation the batch was made from"},
+            {"whitted_parent_hits", K::Exact, "rays", "whitted: of those, the rays that hit"},
+            {"whitted_rays_before", K::Exact, "rays",
              "whitted: rays traced before the batch (the camera rays and generations 1 .. whitted.depth - 1 or .. depth)"},
-            {"whitted_reflected", K::Count, "rays", "whitted (secondary): batch rays that are reflections"},
-            {"whitted_refracted", K::Count, "rays", "whitted (secondary): batch rays that are refractions"},
-            {"whitted_weight", K::Count, "",
+            {"whitted_reflected", K::Exact, "rays", "whitted (secondary): batch rays that are reflections"},
+            {"whitted_refracted", K::Exact, "rays", "whitted (secondary): batch rays that are refractions"},
+            {"whitted_weight", K::Exact, "",
              "whitted: the sum of the batch rays' weights (the pixels' worth of radiance they carry)"},
         };
         t.make = whittedWorkload;
