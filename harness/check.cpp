@@ -74,6 +74,129 @@ void checkRowsAgainstPlan(const Json& context, const std::string& contextPath, c
                         " says the sweep completed: rows were lost");
 }
 
+// What differs between the recorded rows and the re-run, by class: a line per deterministic,
+// reference (within tolerance) and context difference, and one line per run for its timings.
+struct Differences {
+    CheckResult counts;
+    std::vector<std::string> deterministic, within, timings, context;
+};
+
+std::string differenceLine(const std::string& run, const std::string& column, const std::string& then,
+                           const std::string& again, const std::string& kind) {
+    std::ostringstream line;
+    line << std::left << std::setw(5) << run << " " << std::setw(29) << column << " " << std::setw(23) << then << " "
+         << std::setw(23) << again << "  " << kind;  // a long value pushes the next along, never into it
+    return line.str();
+}
+
+// A run's timings in one line, where one of them moved beyond the tolerance: the kernel's and
+// Embree rtcIntersect1's medians and their ratio, recorded -> now.
+std::string timingLine(const Row& old, const Row& fresh) {
+    auto cell = [](const Row& row, const char* column) {
+        const auto it = row.find(column);
+        return it == row.end() || it->second.empty() ? std::string("-") : it->second;
+    };
+    auto change = [&](const char* column) {
+        const double a = cellNumber(cell(old, column)), b = cellNumber(cell(fresh, column));
+        std::string text = std::string(column) + " " + cell(old, column) + " -> " + cell(fresh, column);
+        if (std::isfinite(a) && std::isfinite(b) && a > 0) {
+            std::ostringstream percent;
+            percent << std::showpos << std::fixed << std::setprecision(1) << 100.0 * (b / a - 1.0) << "%";
+            text += " (" + percent.str() + ")";
+        }
+        return text;
+    };
+    return old.at("run") + "  " + change("kernel_ms_median") + ", " + change("embree1_ms_median") + ", " +
+           change("speed_ratio_vs_embree1");
+}
+
+// One recorded row against its re-run, column by column, each by its kind.
+void compareRow(const Row& old, const Row& fresh, const CheckOptions& options, bool olderSchema, Differences& d) {
+    const double rays = cellNumber(old.at("rays"));
+    bool timingMoved = false;
+    for (const auto& [column, value] : old) {
+        const std::string again = fresh.count(column) ? fresh.at(column) : "";
+        if (again == value) continue;
+        const ColumnSpec& spec = columnSpec(column);
+        if (!options.embreeConfigOverride.empty() && (column == "baseline_embree_config" || column == "config_hash"))
+            continue;  // changed on purpose by the override
+        if (column == "config_hash" && olderSchema) continue;  // an older schema's hash, checked against the plan
+        switch (spec.kind) {
+            case ColumnKind::Parameter:
+            case ColumnKind::Exact:
+                d.deterministic.push_back(differenceLine(old.at("run"), column, value, again, columnKindName(spec.kind)));
+                break;
+            case ColumnKind::Reference: {
+                const double tolerance = spec.perRay ? spec.tolerance * rays : spec.tolerance;
+                std::ostringstream kind;
+                kind << "reference (tolerance " << tolerance << ")";
+                const bool within = std::abs(cellNumber(value) - cellNumber(again)) <= tolerance;
+                (within ? d.within : d.deterministic)
+                    .push_back(differenceLine(old.at("run"), column, value, again, kind.str() + (within ? ": within" : ": BEYOND")));
+                break;
+            }
+            case ColumnKind::Timing: {
+                // Judged on the medians and their ratio, by the tolerance (the spread, intervals and
+                // rates move with them or with the repetitions: not reported one by one).
+                if (column != "kernel_ms_median" && column != "embree1_ms_median" && column != "speed_ratio_vs_embree1")
+                    break;
+                const double a = cellNumber(value), b = cellNumber(again);
+                const bool numeric = !std::isnan(a) && !std::isnan(b);
+                timingMoved |= !numeric || std::abs(b - a) > options.timingTolerance * std::max(std::abs(a), 1e-9);
+                break;
+            }
+            case ColumnKind::Context:
+            case ColumnKind::Scheduled:
+                if (column == "git_commit") break;  // differs by design
+                d.context.push_back(differenceLine(old.at("run"), column, value, again, columnKindName(spec.kind)));
+                break;
+        }
+    }
+    if (timingMoved) d.timings.push_back(timingLine(old, fresh));
+}
+
+Differences compareRuns(const std::vector<Row>& recorded, const std::vector<Row>& rerun, const CheckOptions& options,
+                        bool olderSchema) {
+    std::map<std::string, const Row*> byRun;
+    for (const Row& row : rerun) byRun[row.at("run")] = &row;
+    Differences d;
+    for (const Row& old : recorded) {
+        ++d.counts.runs;
+        const auto found = byRun.find(old.at("run"));
+        if (found == byRun.end())
+            d.deterministic.push_back(differenceLine(old.at("run"), "(run)", "present", "not in the plan", "parameter"));
+        else
+            compareRow(old, *found->second, options, olderSchema, d);
+    }
+    d.counts.deterministicDifferences = int(d.deterministic.size());
+    d.counts.referenceDifferences = int(d.within.size());
+    d.counts.timingDifferences = int(d.timings.size());
+    d.counts.contextDifferences = int(d.context.size());
+    return d;
+}
+
+// Deterministic differences first (what fails), then reference values within tolerance, the runs
+// whose timings moved (one line each), and the context.
+void printDifferences(const Differences& d, const CheckOptions& options, std::ostream& out) {
+    const std::string header = differenceLine("run", "column", "recorded", "now", "kind");
+    if (!d.deterministic.empty()) {
+        out << "\ndeterministic differences (a failure):\n" << header << "\n";
+        for (const std::string& line : d.deterministic) out << line << "\n";
+    }
+    if (!d.within.empty()) {
+        out << "\nreference-dependent values within their tolerance:\n" << header << "\n";
+        for (const std::string& line : d.within) out << line << "\n";
+    }
+    if (!d.timings.empty()) {
+        out << "\ntimings outside " << options.timingTolerance * 100 << "% (reported, never a failure; recorded -> now):\n";
+        for (const std::string& line : d.timings) out << line << "\n";
+    }
+    if (!d.context.empty()) {
+        out << "\ncontext and scheduling (reported, never a failure):\n" << header << "\n";
+        for (const std::string& line : d.context) out << line << "\n";
+    }
+}
+
 }  // namespace
 
 ExperimentPlan recordedPlan(const Json& context, const std::string& contextPath) {
@@ -151,78 +274,15 @@ CheckResult checkResults(const std::string& folder, const CheckOptions& options,
     }
     fs::remove_all(scratch);
 
-    std::map<std::string, const Row*> byRun;
-    for (const Row& row : now.rows) byRun[row.at("run")] = &row;
-    std::ostringstream table;
-    auto report = [&](const std::string& run, const std::string& column, const std::string& then,
-                      const std::string& again, const std::string& kind) {
-        table << std::left << std::setw(6) << run << std::setw(30) << column << std::setw(24)
-              << then << std::setw(24) << again << kind << "\n";
-    };
-    for (const Row& old : recorded) {
-        ++result.runs;
-        const auto found = byRun.find(old.at("run"));
-        if (found == byRun.end()) {
-            report(old.at("run"), "(run)", "present", "not in the plan", "parameter");
-            ++result.deterministicDifferences;
-            continue;
-        }
-        const Row& fresh = *found->second;
-        const double rays = cellNumber(old.at("rays"));
-        for (const auto& [column, value] : old) {
-            const std::string again = fresh.count(column) ? fresh.at(column) : "";
-            if (again == value) continue;
-            const ColumnSpec& spec = columnSpec(column);
-            if (!options.embreeConfigOverride.empty() &&
-                (column == "baseline_embree_config" || column == "config_hash"))
-                continue;  // changed on purpose by the override
-            if (column == "config_hash" && !newerKeys.empty())
-                continue;  // an older schema's hash, checked against the plan above
-            switch (spec.kind) {
-                case ColumnKind::Parameter:
-                case ColumnKind::Exact:
-                    report(old.at("run"), column, value, again, columnKindName(spec.kind));
-                    ++result.deterministicDifferences;
-                    break;
-                case ColumnKind::Reference: {
-                    const double a = cellNumber(value), b = cellNumber(again);
-                    const double tolerance = spec.perRay ? spec.tolerance * rays : spec.tolerance;
-                    std::ostringstream kind;
-                    kind << "reference (tolerance " << tolerance << ")";
-                    if (std::abs(a - b) <= tolerance) {
-                        ++result.referenceDifferences;
-                        report(old.at("run"), column, value, again, kind.str() + ": within");
-                    } else {
-                        ++result.deterministicDifferences;
-                        report(old.at("run"), column, value, again, kind.str() + ": BEYOND");
-                    }
-                    break;
-                }
-                case ColumnKind::Timing: {
-                    // Text (timing_stop, timing_warning) differs or not; numbers by the tolerance.
-                    const double a = cellNumber(value), b = cellNumber(again);
-                    const bool numeric = !std::isnan(a) && !std::isnan(b);
-                    if (numeric && std::abs(b - a) <= options.timingTolerance * std::max(std::abs(a), 1e-9))
-                        break;
-                    report(old.at("run"), column, value, again, "timing");
-                    ++result.timingDifferences;
-                    break;
-                }
-                case ColumnKind::Context:
-                    if (column == "git_commit") break;  // differs by design
-                    report(old.at("run"), column, value, again, "context");
-                    ++result.contextDifferences;
-                    break;
-            }
-        }
-    }
+    const Differences found = compareRuns(recorded, now.rows, options, !newerKeys.empty());
+    result = found.counts;
     out << "rtbench check " << folder << ": " << result.runs << " runs re-run"
         << (options.embreeConfigOverride.empty()
                 ? ""
                 : " with baseline.embree_config = \"" + options.embreeConfigOverride + "\"")
         << "; " << result.deterministicDifferences << " deterministic difference(s), "
         << result.referenceDifferences << " reference-dependent within tolerance, "
-        << result.timingDifferences << " timing(s) outside " << options.timingTolerance * 100
+        << result.timingDifferences << " run(s) with a timing outside " << options.timingTolerance * 100
         << "%, " << result.contextDifferences << " context\n";
     // A folder of an older results schema lacks the later columns: they are not compared.
     std::string newer;
@@ -238,12 +298,7 @@ CheckResult checkResults(const std::string& folder, const CheckOptions& options,
     if (context.contains("complete") && context["complete"] == false)
         out << "(the recorded sweep was interrupted: " << recorded.size() << " of "
             << plan.runs.size() << " runs were recorded and checked)\n";
-    if (!table.str().empty()) {
-        out << std::left << std::setw(6) << "run" << std::setw(30) << "column" << std::setw(24)
-            << "recorded" << std::setw(24) << "now"
-            << "kind\n"
-            << table.str();
-    }
+    printDifferences(found, options, out);
     return result;
 }
 

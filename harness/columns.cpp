@@ -132,10 +132,12 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         };
         auto spread = [&](const std::string& m, const std::string& who) {
             since5(m + "_ms_mean", K::Timing, "ms", who + ", mean of the repetitions");
-            since5(m + "_ms_std", K::Timing, "ms", who + ", sample standard deviation of the repetitions");
-            since5(m + "_ms_cv", K::Timing, "", who + ", coefficient of variation (std / mean)");
-            since5(m + "_ms_ci_low", K::Timing, "ms", who + ", 95% percentile-bootstrap interval of the median: low end");
-            since5(m + "_ms_ci_high", K::Timing, "ms", who + ", 95% percentile-bootstrap interval of the median: high end");
+            since5(m + "_ms_std", K::Timing, "ms", who + ", sample standard deviation of the repetitions (empty for one)");
+            since5(m + "_ms_cv", K::Timing, "", who + ", coefficient of variation (std / mean; empty for one repetition)");
+            since5(m + "_ms_ci_low", K::Timing, "ms", who + ", 95% interval of the median from the order statistics "
+                   "(distribution-free, coverage at least 95%; empty below 6 repetitions; before results schema 23: "
+                   "percentile bootstrap): low end");
+            since5(m + "_ms_ci_high", K::Timing, "ms", who + ", 95% interval of the median (as _ci_low): high end");
         };
         add("kernel_ms_median", K::Timing, "ms",
             "GPU time of the kernel(s), median of the repetitions");
@@ -160,13 +162,15 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("embree_build_ms", K::Timing, "ms", "Embree BVH build time");
         add("speed_ratio_vs_embree1", K::Timing, "ratio",
             "kernel Mrays/s / Embree rtcIntersect1 Mrays/s");
-        since5("speed_ratio_ci_low", K::Timing, "ratio", "speed_ratio_vs_embree1: 95% bootstrap interval (the two methods' samples resampled on their own), low end");
-        since5("speed_ratio_ci_high", K::Timing, "ratio", "speed_ratio_vs_embree1: 95% bootstrap interval, high end");
+        since5("speed_ratio_ci_low", K::Timing, "ratio", "speed_ratio_vs_embree1: 95% interval, from each median's 97.5% "
+               "order-statistic interval (both hold at once with at least 95%; empty below 7 repetitions; before results "
+               "schema 23: percentile bootstrap), low end");
+        since5("speed_ratio_ci_high", K::Timing, "ratio", "speed_ratio_vs_embree1: 95% interval (as _ci_low), high end");
         since5("timing_repetitions", K::Timing, "repetitions", "timed repetitions of each method (kernel, Embree 1, Embree 16)");
         since5("timing_rounds", K::Timing, "rounds", "rounds they were timed in, each the kernel then Embree 1 then Embree 16");
         since5("timing_stop", K::Timing, "", "why the timing stopped: repetitions (experiment.repetitions, fixed), converged (every interval within experiment.target_ci), max_repetitions, time_budget");
         since5("timing_s", K::Timing, "s", "wall time of the timed rounds");
-        since5("timing_warning", K::Timing, "", "noise guard: why the run's timings are not results of record (a coefficient of variation above experiment.noise_cv, other processes above experiment.noise_other_cpu); empty when clean");
+        since5("timing_warning", K::Context, "", "noise guard: why the run's timings are not results of record (a coefficient of variation above experiment.noise_cv, other processes above experiment.noise_other_cpu, one repetition: noise not measured); empty when clean");
         since5("other_cpu_fraction", K::Timing, "fraction", "noise guard: CPU time other processes took while the run ran (from its scene to the end of its timing), over cores x wall time (Linux /proc/stat, hypervisor steal included); empty when that window held under 100 clock ticks of the machine");
         since5("load_average", K::Timing, "", "noise guard: 1-minute load average when the timing ended");
         since5("device_host_threads", K::Context, "threads", "threads the device runs on the host's cores (lavapipe: LP_NUM_THREADS, else one per core up to 32; 0 for a GPU), beside embree_threads, against the machine's cores (context.json cpu_threads)");

@@ -155,12 +155,15 @@ int main(int argc, char** argv) {
 
     std::string compareA, compareB;
     rtbench::CompareOptions compareOptions;
-    CLI::App* compare = app.add_subcommand("compare", "Compare two results folders run by run: kernel time change with its interval and a Mann-Whitney p-value, counts exactly (exit 1 on a significant slowdown or a count difference)");
+    CLI::App* compare = app.add_subcommand("compare", "Compare two results folders run by run: a verdict SAME, FASTER, SLOWER or UNSURE from the kernel's median change, its interval and a Holm-corrected Mann-Whitney p-value; counts exactly (exit 1 on SLOWER or a count difference, 2 when no run matched)");
     compare->add_option("a", compareA, "the baseline results folder")->required();
     compare->add_option("b", compareB, "the results folder compared with it")->required();
-    compare->add_option("--threshold", compareOptions.threshold, "a slowdown counts beyond this fraction (default 0.05 = 5%)");
-    compare->add_option("--alpha", compareOptions.alpha, "significance level of the Mann-Whitney U test (default 0.05)");
-    compare->add_flag("--markdown", compareOptions.markdown, "print a Markdown table");
+    compare->add_option("--threshold", compareOptions.threshold, "a change counts beyond this fraction (default 0.05 = 5%)");
+    compare->add_option("--alpha", compareOptions.alpha, "significance level of the Mann-Whitney U test after Holm's correction (default 0.05)");
+    compare->add_option("--relative-to", compareOptions.relativeTo, "embree1: judge the kernel's time over Embree rtcIntersect1's on the same rays (a machine slower as a whole is no regression); default: the kernel's time");
+    compare->add_option("--ignore", compareOptions.ignore, "a config key not matched on, so that runs meet across its values (repeatable)");
+    auto* markdown = compare->add_flag("--markdown", compareOptions.markdown, "print a Markdown table");
+    compare->add_flag("--json", compareOptions.json, "print the verdicts as JSON (docs/commands.md)")->excludes(markdown);
 
     CLI::App* keys = app.add_subcommand("keys", "List every config key with its type, default and meaning");
     CLI::App* columns = app.add_subcommand("columns", "List the metric columns of runs.csv: kind, value type, unit, meaning (Markdown)");

@@ -55,10 +55,12 @@ SampleStats writeTimingColumns(const std::string& prefix, const std::vector<doub
     row[prefix + "_ms_min"] = formatNumber(s.min);
     row[prefix + "_ms_max"] = formatNumber(s.max);
     row[prefix + "_ms_mean"] = formatNumber(s.mean);
-    row[prefix + "_ms_std"] = formatNumber(s.stddev, 4);
-    row[prefix + "_ms_cv"] = formatNumber(s.cv, 4);
-    row[prefix + "_ms_ci_low"] = formatNumber(s.ciLow);
-    row[prefix + "_ms_ci_high"] = formatNumber(s.ciHigh);
+    // Spread and interval where the samples have them (empty, never 0: one sample has no spread,
+    // fewer than 6 no distribution-free 95% interval of the median).
+    row[prefix + "_ms_std"] = s.stddev ? formatNumber(*s.stddev, 4) : "";
+    row[prefix + "_ms_cv"] = s.cv ? formatNumber(*s.cv, 4) : "";
+    row[prefix + "_ms_ci_low"] = s.ci ? formatNumber(s.ci->low) : "";
+    row[prefix + "_ms_ci_high"] = s.ci ? formatNumber(s.ci->high) : "";
     return s;
 }
 
@@ -70,11 +72,11 @@ void writeTimingResults(const RunConfig& run, const VulkanContext& vk, std::size
     row["kernel_mrays_s"] = formatNumber(k.median > 0 ? double(rays) / (k.median * 1e3) : 0.0);
     std::vector<std::string> noisy;
     const double noiseCv = run.getFloat("experiment.noise_cv");
-    if (k.cv > noiseCv) noisy.push_back("kernel CV " + formatNumber(k.cv, 3));
+    if (k.cv && *k.cv > noiseCv) noisy.push_back("kernel CV " + formatNumber(*k.cv, 3));
     for (const char* m : {"embree1", "embree16"}) {
         const SampleStats e = writeTimingColumns(m, timed.of(m), row);
         row[std::string(m) + "_mrays_s"] = formatNumber(double(rays) / (e.median * 1e3));
-        if (e.cv > noiseCv) noisy.push_back(std::string(m) + " CV " + formatNumber(e.cv, 3));
+        if (e.cv && *e.cv > noiseCv) noisy.push_back(std::string(m) + " CV " + formatNumber(*e.cv, 3));
     }
     // The strategy's own series: the parts of a repetition, its host-controlled loops.
     for (const auto& [name, ms] : timed.series) {
@@ -83,9 +85,9 @@ void writeTimingResults(const RunConfig& run, const VulkanContext& vk, std::size
     }
     const double embreeMedian = median(timed.of("embree1"));
     row["speed_ratio_vs_embree1"] = formatNumber(k.median > 0 ? embreeMedian / k.median : 0.0, 4);
-    const Interval ratio = bootstrapRatioOfMedians(timed.of("embree1"), timed.of("kernel"));
-    row["speed_ratio_ci_low"] = formatNumber(ratio.low, 4);
-    row["speed_ratio_ci_high"] = formatNumber(ratio.high, 4);
+    const std::optional<Interval> ratio = ratioOfMediansInterval(timed.of("embree1"), timed.of("kernel"));
+    row["speed_ratio_ci_low"] = ratio ? formatNumber(ratio->low, 4) : "";
+    row["speed_ratio_ci_high"] = ratio ? formatNumber(ratio->high, 4) : "";
     row["timing_repetitions"] = std::to_string(timed.repetitions);
     row["timing_rounds"] = std::to_string(timed.rounds);
     row["timing_stop"] = timed.stop;
@@ -98,6 +100,7 @@ void writeTimingResults(const RunConfig& run, const VulkanContext& vk, std::size
     row["load_average"] = load < 0 ? "" : formatNumber(load, 3);
     row["device_host_threads"] = std::to_string(deviceHostThreads(vk.info().type == "cpu", cores));
     if (!noisy.empty()) noisy.back() += " > experiment.noise_cv " + formatNumber(noiseCv, 3);
+    if (!k.cv) noisy.push_back("one repetition: its noise is not measured");
     if (other > run.getFloat("experiment.noise_other_cpu"))
         noisy.push_back("other processes took " + formatNumber(100 * other, 3) + "% of the machine's CPU time (> experiment.noise_other_cpu " +
                         formatNumber(run.getFloat("experiment.noise_other_cpu"), 3) + ")");

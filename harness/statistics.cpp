@@ -2,39 +2,23 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numeric>
-#include <random>
 
 namespace rtbench {
 
 namespace {
-
-// The q-quantile of sorted values, linearly interpolated (R's type 7, numpy's default).
-double quantile(const std::vector<double>& sorted, double q) {
-    const double position = q * double(sorted.size() - 1);
-    const std::size_t below = std::size_t(std::floor(position));
-    const std::size_t above = std::min(below + 1, sorted.size() - 1);
-    return sorted[below] + (position - double(below)) * (sorted[above] - sorted[below]);
-}
 
 double sortedMedian(const std::vector<double>& sorted) {
     const std::size_t n = sorted.size();
     return n % 2 ? sorted[n / 2] : 0.5 * (sorted[n / 2 - 1] + sorted[n / 2]);
 }
 
-// The median of a resample of `samples` (with replacement), in `scratch`.
-double resampledMedian(const std::vector<double>& samples, std::mt19937_64& generator, std::vector<double>& scratch) {
-    std::uniform_int_distribution<std::size_t> pick(0, samples.size() - 1);
-    scratch.resize(samples.size());
-    for (double& v : scratch) v = samples[pick(generator)];
-    std::sort(scratch.begin(), scratch.end());
-    return sortedMedian(scratch);
-}
-
-Interval percentileInterval(std::vector<double> statistics) {
-    std::sort(statistics.begin(), statistics.end());
-    return {quantile(statistics, 0.025), quantile(statistics, 0.975)};
+// P(Binomial(n, 1/2) = i), from logarithms (2^-n underflows beyond n = 1074).
+double binomialHalf(std::size_t n, std::size_t i) {
+    return std::exp(std::lgamma(double(n) + 1.0) - std::lgamma(double(i) + 1.0) - std::lgamma(double(n - i) + 1.0) -
+                    double(n) * std::log(2.0));
 }
 
 }  // namespace
@@ -43,6 +27,34 @@ double median(std::vector<double> samples) {
     if (samples.empty()) return 0.0;
     std::sort(samples.begin(), samples.end());
     return sortedMedian(samples);
+}
+
+double orderStatisticCoverage(std::size_t n, std::size_t k) {
+    if (k == 0 || 2 * k > n + 1) return 0.0;
+    double below = 0.0;  // P(B <= k - 1)
+    for (std::size_t i = 0; i < k; ++i) below += binomialHalf(n, i);
+    return std::max(0.0, 1.0 - 2.0 * below);
+}
+
+std::optional<Interval> medianInterval(const std::vector<double>& samples, double confidence) {
+    const std::size_t n = samples.size();
+    // The coverage falls as k grows: the largest k whose coverage holds, adding P(B = k - 1) a step.
+    std::size_t k = 0;
+    double below = 0.0;
+    while (2 * (k + 1) <= n + 1) {
+        below += binomialHalf(n, k);
+        if (1.0 - 2.0 * below < confidence) break;
+        ++k;
+    }
+    if (k == 0) return std::nullopt;
+    std::vector<double> sorted = samples;
+    std::sort(sorted.begin(), sorted.end());
+    return Interval{sorted[k - 1], sorted[n - k]};
+}
+
+double SampleStats::relativeHalfWidth() const {
+    if (!ci) return std::numeric_limits<double>::infinity();
+    return median > 0 ? 0.5 * (ci->high - ci->low) / median : 0.0;
 }
 
 SampleStats summarize(const std::vector<double>& samples) {
@@ -59,27 +71,17 @@ SampleStats summarize(const std::vector<double>& samples) {
         double squares = 0.0;
         for (double v : sorted) squares += (v - s.mean) * (v - s.mean);
         s.stddev = std::sqrt(squares / double(s.n - 1));
+        s.cv = s.mean > 0 ? *s.stddev / s.mean : 0.0;
     }
-    s.cv = s.mean > 0 ? s.stddev / s.mean : 0.0;
-    std::mt19937_64 generator(kBootstrapSeed);
-    std::vector<double> medians(kBootstrapResamples), scratch;
-    for (double& m : medians) m = resampledMedian(samples, generator, scratch);
-    const Interval ci = percentileInterval(std::move(medians));
-    s.ciLow = ci.low;
-    s.ciHigh = ci.high;
+    s.ci = medianInterval(sorted);
     return s;
 }
 
-Interval bootstrapRatioOfMedians(const std::vector<double>& numerator, const std::vector<double>& denominator) {
-    if (numerator.empty() || denominator.empty()) return {};
-    std::mt19937_64 generator(kBootstrapSeed);
-    std::vector<double> ratios(kBootstrapResamples), scratch;
-    for (double& r : ratios) {
-        const double top = resampledMedian(numerator, generator, scratch);
-        const double bottom = resampledMedian(denominator, generator, scratch);
-        r = bottom > 0 ? top / bottom : 0.0;
-    }
-    return percentileInterval(std::move(ratios));
+std::optional<Interval> ratioOfMediansInterval(const std::vector<double>& numerator,
+                                               const std::vector<double>& denominator) {
+    const std::optional<Interval> top = medianInterval(numerator, 0.975), bottom = medianInterval(denominator, 0.975);
+    if (!top || !bottom || bottom->low <= 0.0) return std::nullopt;
+    return Interval{top->low / bottom->high, top->high / bottom->low};
 }
 
 MannWhitney mannWhitneyU(const std::vector<double>& a, const std::vector<double>& b) {

@@ -1,41 +1,50 @@
 // Statistics of timing samples, as the benchmark tools researchers use report them (google/
-// benchmark's compare.py, nvbench, hyperfine): centre and spread of every sample kept, a bootstrap
-// confidence interval of the median, and a rank test for "is B slower than A".
+// benchmark's compare.py, nvbench, hyperfine): centre and spread of every sample kept, a
+// distribution-free confidence interval of the median, and a rank test for "is B slower than A".
 #pragma once
-#include <cstdint>
+#include <cstddef>
+#include <optional>
 #include <vector>
 
 namespace rtbench {
 
-// The percentile bootstrap's resamples and the seed of its generator (std::mt19937_64): fixed, so
-// the same samples always give the same interval.
-constexpr int kBootstrapResamples = 2000;
-constexpr std::uint64_t kBootstrapSeed = 20021101;  // Purcell et al., SIGGRAPH 2002
-
 // Sample median: the middle value, or the mean of the two middle values.
 double median(std::vector<double> samples);
+
+struct Interval {
+    double low = 0.0, high = 0.0;
+};
+
+// The probability that [x(k), x(n + 1 - k)] (1-based order statistics of n samples) holds the
+// median of the distribution they were drawn from: 1 - 2 P(Binomial(n, 1/2) <= k - 1), whatever
+// the distribution (continuous). 0 when k is 0 or beyond n / 2 + 1/2.
+double orderStatisticCoverage(std::size_t n, std::size_t k);
+
+// The distribution-free interval of the median (Conover, Practical Nonparametric Statistics §3.2):
+// [x(k), x(n + 1 - k)] with k the largest rank whose coverage is at least `confidence`. None when
+// even [min, max] covers less: fewer than 6 samples at 95%, fewer than 7 at 97.5%.
+std::optional<Interval> medianInterval(const std::vector<double>& samples, double confidence = 0.95);
 
 struct SampleStats {
     std::size_t n = 0;
     double mean = 0.0, median = 0.0, min = 0.0, max = 0.0;
-    double stddev = 0.0;  // sample standard deviation (n - 1); 0 for one sample
-    double cv = 0.0;      // stddev / mean
-    // 95% percentile-bootstrap interval of the median (kBootstrapResamples resamples); the
-    // median itself for one sample.
-    double ciLow = 0.0, ciHigh = 0.0;
-    // Half the interval's width over the median: what adaptive repetitions drive down.
-    double relativeHalfWidth() const { return median > 0 ? 0.5 * (ciHigh - ciLow) / median : 0.0; }
+    std::optional<double> stddev;  // sample standard deviation (n - 1); none for one sample
+    std::optional<double> cv;      // stddev / mean; none for one sample
+    std::optional<Interval> ci;    // medianInterval at 95%; none below 6 samples
+    // Half the interval's width over the median: what adaptive repetitions drive down (infinite
+    // without an interval: more samples needed).
+    double relativeHalfWidth() const;
 };
 
-// All of the above; n = 0 leaves every field 0.
+// All of the above; n = 0 leaves every field 0 or none.
 SampleStats summarize(const std::vector<double>& samples);
 
-// 95% percentile-bootstrap interval of median(numerator) / median(denominator), each resampled
-// on its own (independent samples), e.g. a speed ratio: Embree's time over the kernel's.
-struct Interval {
-    double low = 0.0, high = 0.0;
-};
-Interval bootstrapRatioOfMedians(const std::vector<double>& numerator, const std::vector<double>& denominator);
+// An interval of median(numerator) / median(denominator), e.g. a speed ratio, Embree's time over
+// the kernel's: each median's 97.5% interval, and the ratio of their far ends. Both hold with 97.5%
+// each, so both at once with at least 95% (Bonferroni; no independence assumed). None when either
+// has fewer than 7 samples.
+std::optional<Interval> ratioOfMediansInterval(const std::vector<double>& numerator,
+                                               const std::vector<double>& denominator);
 
 // Two-sided Mann-Whitney U test of two independent samples (what compare.py reports): U of `a`
 // (pairs a > b, ties counting one half) and the p-value of "a and b come from one distribution",

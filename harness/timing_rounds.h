@@ -1,7 +1,7 @@
 // Timing in rounds. A run's repetitions are split into rounds; each round times the strategy's
 // host-controlled loops (if any), then a batch of the kernel, then of each Embree method, so that
 // drift (clocks, caches, a neighbour's load) hits all of them alike. With experiment.target_ci,
-// rounds are added until every method's bootstrap interval of the median is narrow enough (a
+// rounds are added until every method's interval of the median (order statistics) is narrow enough (a
 // stopping rule like nvbench's, which stops on the relative standard deviation instead), from
 // kMinAdaptiveRepetitions on, up to a count and a time budget. Every sample is kept.
 #pragma once
@@ -18,7 +18,8 @@
 
 namespace rtbench {
 
-constexpr int kMinAdaptiveRepetitions = 5;
+// The fewest samples whose median has a distribution-free 95% interval (statistics.h).
+constexpr int kMinAdaptiveRepetitions = 6;
 
 struct RoundsOptions {
     int warmups = 1;        // untimed, before each method's first batch

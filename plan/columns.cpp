@@ -18,6 +18,8 @@ const char* columnKindName(ColumnKind kind) {
             return "timing";
         case ColumnKind::Context:
             return "context";
+        case ColumnKind::Scheduled:
+            return "scheduled";
     }
     return "?";
 }

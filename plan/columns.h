@@ -14,8 +14,10 @@
 
 namespace rtbench {
 
-// Exact: deterministic, compared exactly (counts, and text such as status; see docs/results-folder.md).
-enum class ColumnKind { Parameter, Exact, Reference, Timing, Context };
+// Exact: deterministic, compared exactly (counts, and text such as status). Scheduled: decided by
+// the device's scheduling (which subgroup fetched last), checked by the run against its range,
+// reported by check and compare, never a failure. See docs/results-folder.md.
+enum class ColumnKind { Parameter, Exact, Reference, Timing, Context, Scheduled };
 
 const char* columnKindName(ColumnKind kind);
 
@@ -80,7 +82,11 @@ struct ColumnSpec {
 //        and setup wrote it).
 //  22  + persistent_max_fetches (persistent threads: the fetches a subgroup may make, bounded under
 //        llvmpipe's loop limit; before, a subgroup fetched until the stream was done).
-constexpr int kSchemaVersion = 22;
+//  23  *_ms_ci_low/_high: the median's interval from the order statistics (empty below 6
+//        repetitions), speed_ratio_ci_*: from the two medians' 97.5% intervals (before: percentile
+//        bootstrap at any n); *_ms_std and _cv empty for one repetition (before: 0), and one
+//        repetition is a timing_warning.
+constexpr int kSchemaVersion = 23;
 
 // The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".
 std::string paramColumn(const std::string& key);

@@ -326,6 +326,9 @@ def method_label(run) -> str:
     return f"{method_name(run)} {run.strategy_type} {test}"
 
 
+# Markers per strategy in speed_vs_accuracy (squares are Embree's, x the Pareto front's).
+STRATEGY_MARKERS = {"branching": "o", "multipass": "P", "megakernel": "^", "persistent": "h", "wavefront": "p",
+                    "path_megakernel": "*", "plain": "8", "cpu": "X", "ray_query": ">"}
 # Markers per scene variant, (Moller-Trumbore, watertight).
 VARIANT_MARKERS = {"": ("o", "^"), "packed": ("D", "d"), "simplified": ("v", "<")}
 
@@ -433,21 +436,26 @@ def speed_vs_accuracy(runs, device, folder, written):
         of_scene = runs.loc[of_scene.index]
         for (method, test, how), group in sorted(of_scene.groupby(["method", "test", "variant"]),
                                                  key=lambda item: (method_sort_key(item[0][0]), item[0][1:])):
-            marker = VARIANT_MARKERS[how][test == "watertight"]
+            # Colour: structure x strategy; marker: the strategy (or the scene's variant); half filled:
+            # watertight; hollow: a timing warning.
+            marker = STRATEGY_MARKERS.get(group.strategy_type.iloc[0], "o") if not how else VARIANT_MARKERS[how][0]
+            fill = "left" if test == "watertight" else "full"
             name_ = f"{method}, {'watertight' if test == 'watertight' else 'Moller-Trumbore'}" + (f", {how}" if how else "")
             ppm = wrong_ppm(group)
             noisy = timing_warned(group)
             any_noisy |= bool(noisy.any())
-            faces = [("white" if n else colors[method]) for n in noisy]  # a timing warning: hollow
             low, high, _ = interval(group, "kernel")  # the speed's interval, from the time's
             rays = pd.to_numeric(group.rays, errors="coerce") if "rays" in group else group.kernel_mrays_s * group.kernel_ms_median * 1e3
             speed = group.kernel_mrays_s
             xerr = np.vstack([(speed - rays / high / 1e3).clip(lower=0).fillna(0), (rays / low / 1e3 - speed).clip(lower=0).fillna(0)])
             left.errorbar(speed, ppm, xerr=xerr, fmt="none", ecolor=colors[method], elinewidth=0.7, alpha=0.6)
-            left.scatter(speed, ppm, edgecolors=colors[method], c=faces, marker=marker, alpha=0.85)
-            right.scatter(speed, group.exact_distance_error_mean, edgecolors=colors[method], c=faces, marker=marker,
-                          alpha=0.85)
-            left.plot([], [], ls="none", marker=marker, color=colors[method], label=name_)  # the legend's, filled
+            for flagged in (False, True):
+                at = noisy == flagged
+                style = dict(ls="none", marker=marker, color=colors[method], alpha=0.85, ms=7,
+                             **({"mfc": "white", "fillstyle": "full"} if flagged else {"fillstyle": fill}))
+                left.plot(speed[at], ppm[at], **style)
+                right.plot(speed[at], group.exact_distance_error_mean[at], **style)
+            left.plot([], [], ls="none", marker=marker, ms=7, color=colors[method], fillstyle=fill, label=name_)
             if how:  # which precision or simplification each point is
                 tags = [f"{int(b)} b" for b in vertex_bits(group)] if how == "packed" else \
                     [f"{100 * t / f:.3g}%" for t, f in zip(group.scene_triangles, group.scene_full_triangles)]
@@ -470,8 +478,8 @@ def speed_vs_accuracy(runs, device, folder, written):
                           **({"color": "tab:purple"} if simplified_ else {}))
         all_ppm = [p[1] for p in points[False] + points[True]] + list(embree_ppm)
         any_hit_panel = bool(of_scene.any_hit.all())
-        wrong_ppm_axis(left, all_ppm, "rays whose hit/miss differs from exact (per million; log above 1)" if any_hit_panel
-                       else "rays wrong vs exact (per million; log above 1)")
+        wrong_ppm_axis(left, all_ppm, "rays whose hit/miss differs\nfrom exact (per million; log above 1)" if any_hit_panel
+                       else "rays wrong vs exact\n(per million; log above 1)")
         distances = finite(list(of_scene.exact_distance_error_mean) + list(embree.embree_exact_distance_error_mean))
         if any_hit_panel or distances.empty:  # any-hit rays report whether, not where: no distance to compare
             right.cla()
@@ -493,11 +501,11 @@ def speed_vs_accuracy(runs, device, folder, written):
             labels.append("hollow: a timing warning\n(the noise guard: not a timing of record)")
         right.legend(handles, labels, fontsize=7, loc="upper left",
                      bbox_to_anchor=(1.02, 1.0))  # one legend (the left panel's, with the fronts), beside the points
-    fig.text(0.01, 0.005, "Horizontal bars: the speed's interval, from the kernel time's (bootstrap 95% interval of "
+    fig.text(0.01, 0.005, "Horizontal bars: the speed's interval, from the kernel time's (95% interval of "
              "the median where recorded, else min-max of the repetitions).", fontsize=7.5, color="0.2")
     fig.suptitle(f"Speed against accuracy (the exact reference), one point per run, a row per scene and image size"
                  f"\n{device}", fontsize=10)
-    save(fig, folder, "speed_vs_accuracy", written)
+    save(fig, folder, "speed_vs_accuracy", written, rect=(0, 0.3 / fig.get_size_inches()[1], 1, 1))
 
 
 def reduced_lines(runs, how):
@@ -761,7 +769,7 @@ def texture_cache(runs, device, folder, written):
 
 def time_line(ax, xs, group, fmt, speed=False, **style):
     """The kernel's median time (or speed, Mrays/s) of each run against xs, with its interval as bars
-    (interval(): the bootstrap interval of the median, else min-max of the repetitions)."""
+    (interval(): the 95% interval of the median, else min-max of the repetitions)."""
     low, high, _ = interval(group, "kernel")
     y = group.kernel_ms_median.astype(float)
     if speed:  # Mrays/s = rays / ms / 1e3: the slowest time is the lowest speed
@@ -926,6 +934,8 @@ def kernel_time(runs, device, folder, written):
         labels = [f"{label}\nrun {int(r.run):03d}" for label, r in zip(labels, chosen.itertuples())]
     parts = KERNELS + ([ORACLE] if ORACLE[0] in chosen and chosen[ORACLE[0]].fillna(0).any() else [])
     stacked_bars(ax, labels, chosen, parts)
+    if len(chosen) > 6:  # labels of two or three lines side by side: turned, so that they do not run together
+        ax.tick_params(axis="x", labelrotation=90, labelsize=7)
     ax.set_ylabel("GPU time per frame (ms, median)")
     shown = f", the first 12 of {total} runs" if total > 12 else ""
     ax.set_title(f"Multipass GPU time by kernel, {size(chosen)}{shown}\n{device}")
@@ -972,7 +982,7 @@ def grouped_bars(ax, frame, value, scenes, methods, log=True):
                error_kw={"elinewidth": 0.7, "capsize": 1.5, "ecolor": "0.25"})
     ax.scatter(missing, [0.03] * len(missing), marker="x", color="0.5", s=14, transform=ax.get_xaxis_transform())
     ax.set_xticks(range(len(scenes)))
-    ax.set_xticklabels(scenes, fontsize=8)
+    ax.set_xticklabels([textwrap.fill(scene, 12) for scene in scenes], fontsize=8)
     if log:
         ax.set_yscale("log")
     return bool(missing)
@@ -1038,7 +1048,7 @@ def structures_time(runs, device, folder, written):
     extra = [(Line2D([], [], color="k", lw=1.6), "Embree rtcIntersect1 (CPU, the same rays)"),
              (Line2D([], [], color="k", lw=1, ls="--"), "as fast as Embree")]
     legend_beside(fig, legend_ax, method_handles(methods, missing, extra))
-    fig.text(0.01, 0.005, "Error bars: the bootstrap 95% interval of the median (kernel_ms_ci_low/high, "
+    fig.text(0.01, 0.005, "Error bars: the 95% interval of the median (kernel_ms_ci_low/high, "
              "speed_ratio_ci_low/high) where recorded.", fontsize=7.5, color="0.2")
     fig.suptitle(f"Structures side by side, {size(runs)} primary rays; {device}")
     save(fig, folder, "structures_time", written, rect=(0, 0.02, 1, 1))
@@ -1113,11 +1123,11 @@ def runs_count(n: int) -> str:
 
 
 def interval(frame, prefix):
-    """Error bar ends of `<prefix>_ms_median` per row, and what they are: the bootstrap 95% interval
+    """Error bar ends of `<prefix>_ms_median` per row, and what they are: the 95% interval
     of the median (`<prefix>_ms_ci_low`, `_ci_high`) where a row has it, else the repetitions' range
     (`<prefix>_ms_min`, `_max`)."""
     low, high, what = pd.Series(np.nan, frame.index), pd.Series(np.nan, frame.index), []
-    for lo, hi, name in ((f"{prefix}_ms_ci_low", f"{prefix}_ms_ci_high", "bootstrap 95% interval of the median"),
+    for lo, hi, name in ((f"{prefix}_ms_ci_low", f"{prefix}_ms_ci_high", "95% interval of the median"),
                          (f"{prefix}_ms_min", f"{prefix}_ms_max", "min-max of the repetitions")):
         if lo in frame and hi in frame:
             a, b = pd.to_numeric(frame[lo], errors="coerce"), pd.to_numeric(frame[hi], errors="coerce")
@@ -1341,7 +1351,7 @@ def by_key(runs, classes, key, followers, device, folder, written, failed=None):
         for j, ec in enumerate(ecombos):
             g = group[ekey == ec]
             g = g.drop_duplicates(["_x", "_combo", *LOOK_AT] if "camera_look_at_x" in g else ["_x", "_combo"])
-            if g._x.nunique() < 2 or "embree1_ms_median" not in g:
+            if (numeric and g._x.nunique() < 2) or "embree1_ms_median" not in g:
                 continue
             low, high, what = interval(g, "embree1")
             embree_what.update(what)
@@ -1371,7 +1381,7 @@ def by_key(runs, classes, key, followers, device, folder, written, failed=None):
         if not positive.empty and positive.max() / positive.min() >= 10:
             left.set_yscale("log")
             left.yaxis.set_minor_formatter(ticker.LogFormatterSciNotation(labelOnlyBase=False, minor_thresholds=(2, 0.5)))
-            left.tick_params(axis="y", which="minor", labelsize=6)
+            left.tick_params(axis="y", which="minor", labelsize=7)
             left.set_ylabel(f"{timed} {unit}\n(median; log)")
         else:
             left.set_ylim(bottom=0)
@@ -1410,10 +1420,11 @@ def by_key(runs, classes, key, followers, device, folder, written, failed=None):
     if True in embree_paths:
         paths_note = " Diamonds: the runs of whole-path strategies, where Embree traced every generation of the path"
         paths_note += ", apart from the runs where it traced the batch alone (squares)." if False in embree_paths else "."
-    caption_lines.append("Error bars, kernel: " + ("; ".join(sorted(kernel_what)) or "none (no interval columns)")
-                         + ". Embree: the median of the runs at a value (each times Embree on its rays), bars from the "
-                         + "lowest to the highest end of their " + ("; ".join(sorted(embree_what)) or "(none)") + "."
-                         + paths_note)
+    embree_note = (" Embree: the median of the runs at a value (each times Embree on its rays), bars from the lowest to "
+                   "the highest end of their " + "; ".join(sorted(embree_what)) + "." if embree_what else
+                   " Embree: no interval columns." if embree_paths else "")
+    caption_lines.append("Error bars, kernel: " + ("; ".join(sorted(kernel_what)) or "none (no interval columns)") + "."
+                         + embree_note + paths_note)
     caption_lines.append("Points of one value are set side by side (a few points apart). " + (
         "Time: lines join a series' medians; rays wrong: points only (a ray or two wrong at one value is no trend "
         "between values)." if numeric else f"Values of {key} are categories: points, not joined by lines."))
@@ -1479,10 +1490,10 @@ def x_axis(ax, key, members, order, numeric, data, text, faceted):
             ax.xaxis.set_minor_locator(ticker.NullLocator())
         lo, hi = values.min(), values.max()  # room beyond the end values for the points set side by side
         if ax.get_xscale() == "log":
-            pad = max(1.15, (hi / lo) ** 0.06)
+            pad = max(1.3, (hi / lo) ** 0.09)  # points set side by side reach a few points beyond
             ax.set_xlim(lo / pad, hi * pad)
         else:
-            ax.set_xlim(lo - 0.06 * (hi - lo), hi + 0.06 * (hi - lo))
+            ax.set_xlim(lo - 0.09 * (hi - lo), hi + 0.09 * (hi - lo))
     else:
         ax.set_xticks(range(len(order)), labels, fontsize=7)
         ax.set_xlim(-0.5, len(order) - 0.5)

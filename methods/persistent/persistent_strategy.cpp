@@ -112,7 +112,7 @@ const StrategyType& persistentStrategyType() {
         for (ColumnSpec c : std::vector<ColumnSpec>{
                  {"persistent_rays_per_fetch", K::Exact, "rays", "persistent: rays a subgroup took per fetch (strategy.rays_per_fetch, 0 made the subgroup size)"},
                  {"persistent_max_fetches", K::Exact, "fetches", "persistent: fetches a subgroup may make (0: until the stream is done); on a device with a loop limit (llvmpipe: 65,535 iterations of all loops together, a workgroup's subgroups run one after another) as many as its longest walks fit, each counted as 2 passes a loop trip (docs/method.md)", 0.0, false, {}, 22},
-                 {"rays_fetched", K::Exact, "rays", "persistent: the fetch counter's final value, the batches handed out and the last fetch, which found none, of each subgroup that did not reach persistent_max_fetches"},
+                 {"rays_fetched", K::Scheduled, "rays", "persistent: the fetch counter's final value, the batches handed out and the last fetch, which found none, of each subgroup that did not reach persistent_max_fetches (which subgroups reach it is the device's scheduling: the run checks it lies between the batches handed out and those plus a last fetch of every subgroup)"},
                  {"rays_traced", K::Exact, "rays", "persistent: records the kernel wrote (must equal the rays: each traced once)"}}) {
             if (c.since == 1) c.since = 12;  // persistent_max_fetches: 22
             t.columns.push_back(c);

@@ -92,21 +92,22 @@ TEST(TimingRounds, PartsAndHostLoopsBecomeSeriesOfTheirOwn) {
 }
 
 TEST(TimingRounds, AdaptiveRoundsStopWhenTheIntervalIsNarrow) {
-    RoundsOptions o = fixed(5, 5, 0);
+    RoundsOptions o = fixed(6, 6, 0);
     o.targetCi = 0.02;
     FakeMethod steady{"kernel", {10.0}};
     const RoundsResult r = timeInRounds({steady.method()}, nullptr, o, std::chrono::steady_clock::now());
     EXPECT_EQ(r.stop, "converged");
-    EXPECT_EQ(r.repetitions, 5);
+    EXPECT_EQ(r.repetitions, 6);
 }
 
-TEST(TimingRounds, AdaptiveRoundsJudgeNoIntervalOfFewerThanFiveSamples) {
+TEST(TimingRounds, AdaptiveRoundsJudgeNoIntervalOfFewerThanSixSamples) {
     RoundsOptions o = fixed(1, 5, 0);
     o.targetCi = 0.02;
     FakeMethod steady{"kernel", {10.0}};
     const RoundsResult r = timeInRounds({steady.method()}, nullptr, o, std::chrono::steady_clock::now());
     EXPECT_EQ(r.stop, "converged");
-    EXPECT_EQ(r.repetitions, kMinAdaptiveRepetitions);  // not 1: one sample's interval is a point
+    EXPECT_EQ(kMinAdaptiveRepetitions, 6);  // the fewest samples with a distribution-free 95% interval
+    EXPECT_EQ(r.repetitions, kMinAdaptiveRepetitions);  // not 1: one sample has no interval
 }
 
 TEST(TimingRounds, AdaptiveRoundsStopAtTheCountOrTheBudget) {
