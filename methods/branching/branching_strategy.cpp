@@ -97,11 +97,17 @@ std::uint64_t wholeTraversalBatchRays(const DeviceInfo& device, unsigned workgro
     return raysPerBinding(device, std::max(sizeof(gpu::Ray), sizeof(gpu::HitRecord)), workgroupSize);
 }
 
+void requireWholeSubgroups(const VulkanContext& vk, unsigned workgroupSize) {
+    const unsigned subgroup = vk.info().subgroupSize;
+    if (workgroupSize == 0 || subgroup == 0 || workgroupSize % subgroup)
+        throw Error("strategy.workgroup_size " + std::to_string(workgroupSize) + " is not a multiple of the subgroup size " +
+                    std::to_string(subgroup) + " of " + vk.info().name + " (" + std::to_string(subgroup) + ", " +
+                    std::to_string(2 * subgroup) + ", ...)");
+}
+
 BranchingRun runBranching(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
                           const TimingOptions& timing, std::uint32_t query, const TraceLaunch& launch) {
-    if (timing.workgroupSize % vk.info().subgroupSize)
-        throw Error("strategy.workgroup_size " + std::to_string(timing.workgroupSize) +
-                    " is not a multiple of the subgroup size " + std::to_string(vk.info().subgroupSize));
+    requireWholeSubgroups(vk, timing.workgroupSize);
     const std::uint64_t batchRays = launch.batchRays ? launch.batchRays : wholeTraversalBatchRays(vk.info(), timing.workgroupSize);
     if (batchRays % timing.workgroupSize)
         throw Error("rays per batch " + std::to_string(batchRays) + " is not a multiple of the workgroup size " +

@@ -52,6 +52,10 @@ LaneVerdict judgeLaneCounts(const DeviceInfo& device, std::uint64_t deviceActive
 // warm-ups and timed repetitions `timing` asks for (none: the timer does them later) with
 // instrumentation off; checks the timed runs' hits equal the counted ones. `query`: gpu::kQuery*.
 
+// Kernels that share a subgroup's work (ballots, fetches) need whole subgroups in a workgroup:
+// throws naming strategy.workgroup_size unless it is a positive multiple of the subgroup size.
+void requireWholeSubgroups(const VulkanContext& vk, unsigned workgroupSize);
+
 BranchingRun runBranching(VulkanContext& vk, const Structure& structure, const std::vector<gpu::Ray>& rays,
                           const TimingOptions& timing, std::uint32_t query = gpu::kQueryClosest,
                           const TraceLaunch& launch = {});

@@ -106,9 +106,7 @@ StrategyRun runPathMegakernelStrategy(VulkanContext& vk, const Structure& struct
         if (path.passes[g].pass.z != 1)
             throw Error("strategy.type = path_megakernel follows one ray per hit after the first pass, and pass " +
                         std::to_string(g + 1) + " makes " + std::to_string(path.passes[g].pass.z));
-    if (timing.workgroupSize % vk.info().subgroupSize)
-        throw Error("strategy.workgroup_size " + std::to_string(timing.workgroupSize) + " is not a multiple of the subgroup size " +
-                    std::to_string(vk.info().subgroupSize));
+    requireWholeSubgroups(vk, timing.workgroupSize);
     const std::uint64_t cameraRays = path.generations.front().rays->size();
     const std::uint64_t paths = wholePathCapacity(path).queue;  // fan-out 1 after the first pass
     auto buffers = uploadWholePath(vk, structure, path, paths, {0, 0, paths}, 0, std::uint32_t(paths));

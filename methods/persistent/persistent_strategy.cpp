@@ -10,6 +10,9 @@ namespace rtbench {
 PersistentCounts persistentCounts(const PersistentOptions& options, std::uint64_t rays, unsigned workgroupSize,
                                   unsigned subgroupSize) {
     PersistentCounts c;
+    if (subgroupSize == 0 || workgroupSize < subgroupSize)
+        throw Error("strategy.workgroup_size " + std::to_string(workgroupSize) + " holds no whole subgroup of " +
+                    std::to_string(subgroupSize) + " lanes");
     c.raysPerFetch = options.raysPerFetch ? options.raysPerFetch : subgroupSize;
     if (c.raysPerFetch % subgroupSize)
         throw Error("strategy.rays_per_fetch " + std::to_string(c.raysPerFetch) + " is not a multiple of the subgroup size " +
@@ -35,6 +38,7 @@ StrategyRun runPersistentStrategy(VulkanContext& vk, const Structure& structure,
     options.raysPerFetch = std::uint32_t(config.getInt("strategy.rays_per_fetch"));
     const std::uint64_t rays = batch.rays.size();
     const unsigned subgroupSize = vk.info().subgroupSize;
+    requireWholeSubgroups(vk, timing.workgroupSize);  // before anything divides by its subgroups
     const PersistentCounts expected = persistentCounts(options, rays, timing.workgroupSize, subgroupSize);
     // The lane model's loop iterations bound the fetches a subgroup may make under the device's
     // loop limit (llvmpipe); the grid must then still hand out every batch.

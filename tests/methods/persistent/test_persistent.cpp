@@ -7,6 +7,7 @@
 // workgroup's subgroups one after another, so an unbounded subgroup can take most of the stream and
 // be cut short: there the runner bounds each subgroup's fetches (persistentMaxFetches; the kernel
 // tests below run unbounded on rays few enough for any subgroup).
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "methods/branching/branching_strategy.h"
@@ -20,6 +21,7 @@
 #include "tests/device/test_device.h"
 #include "tests/methods/test_rays.h"
 #include "tests/temp_dir.h"
+#include "harness/config.h"
 #include "harness/runner.h"
 
 namespace rtbench {
@@ -120,6 +122,26 @@ TEST(PersistentCounts, TheFetchCounterEndsWhereEverySubgroupFoundNone) {
     EXPECT_EQ(persistentCounts({1, 0}, 20011, 64, 8).raysPerFetch, 8u);
     EXPECT_EQ(persistentCounts({1, 0}, 20011, 64, 8).fetchedWhenDone, 20016u + 64u);
     EXPECT_THROW(persistentCounts({1, 12}, 100, 64, 8), Error);
+    EXPECT_THROW(persistentCounts({1, 0}, 100, 4, 8), Error) << "a workgroup of 4 holds no subgroup of 8";
+}
+
+// A workgroup smaller than a subgroup (legal config values 1-7 on llvmpipe's subgroups of 8) is a
+// failed row naming the key, not a division by zero (SIGFPE) that kills the sweep and its resume.
+TEST(PersistentRuns, AWorkgroupBelowTheSubgroupSizeIsAFailedRowNamingTheKey) {
+    TempDir dir;
+    const std::string path = dir.write("p.toml", "[experiment]\nname = \"p\"\noutput = \"" + dir.file("out") +
+                                                     "\"\nrepetitions = 1\nwarmups = 0\n[device]\nname = \"" + testDeviceName() +
+                                                     "\"\n[scene]\nsource = \"procedural:christen_a\"\n[camera]\nwidth = 8\n"
+                                                     "height = 8\n[strategy]\ntype = \"persistent\"\nworkgroup_size = [1, 4, 7]\n"
+                                                     "[output]\nimages = false\n");
+    RunnerOptions quiet;
+    quiet.quiet = true;
+    const ExperimentResult result = runExperiment(loadExperiment(path), quiet);
+    ASSERT_EQ(result.rows.size(), 3u);
+    for (const Row& row : result.rows) {
+        EXPECT_EQ(row.at("status"), "failed");
+        EXPECT_THAT(row.at("error"), ::testing::HasSubstr("is not a multiple of the subgroup size")) << row.at("error");
+    }
 }
 
 // The fetch bound by hand: llvmpipe's budget of 65,535 - 64 iterations over fetches of one round
