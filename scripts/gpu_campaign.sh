@@ -171,8 +171,9 @@ case "${1:-}" in
   unpack)
     tarball=$(cd "$called_from" && realpath -m "${2:?usage: gpu_campaign.sh unpack TARBALL DIR}")
     dir=$(cd "$called_from" && realpath -m "${3:?usage: gpu_campaign.sh unpack TARBALL DIR}")
-    mkdir -p "$dir"
-    tar xJf "$tarball" -C "$dir" --no-same-owner
+    # The tarball comes back from a borrowed machine: plain folders and files only, capped, written
+    # with our own modes (scripts/campaign_unpack.py says what it refuses).
+    /usr/bin/python3 scripts/campaign_unpack.py "$tarball" "$dir"
     ls "$dir"
     ;;
   dry-run)

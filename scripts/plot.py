@@ -31,7 +31,8 @@ import pandas as pd  # noqa: E402
 from matplotlib import ticker, transforms  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
-from rtbench_results import AXES, VECTOR_KEYS, christen_iterations, load, method_name, scene_name, wrong_rays  # noqa: E402
+from rtbench_results import (AXES, VECTOR_KEYS, christen_iterations, load, method_name, scene_name,  # noqa: E402
+                             UnsafePath, write_file_atomically, wrong_rays)
 # One palette for every chart: a colour family per acceleration structure (shades for its
 # resolutions, in numeric order), a colour per strategy apart from all of them, Embree in black.
 # A colour means the same thing in every file.
@@ -89,12 +90,6 @@ class PlotError(Exception):
     """What stops the charts, said in one line: "<path>: <why>"."""
 
 
-def umask() -> int:
-    mask = os.umask(0o022)
-    os.umask(mask)
-    return mask
-
-
 def write_atomically(fig, target: Path, ext: str):
     """fig as `ext` into `target`: a new temporary file in the same folder (O_EXCL, O_NOFOLLOW:
     mkstemp), then os.replace over the target, which replaces a name and never writes through a
@@ -103,21 +98,9 @@ def write_atomically(fig, target: Path, ext: str):
         raise PlotError(f"{target}: is a symbolic link; refusing to write a chart through it")
     if target.exists() and not target.is_file():
         raise PlotError(f"{target}: exists and is not a regular file; cannot write a chart there")
-    fd, tmp = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".tmp")
-    try:
-        os.fchmod(fd, 0o666 & ~umask())  # as a plain open() would create it, not mkstemp's 0600
-        with os.fdopen(fd, "wb") as out:
-            # SVGs without a date and with fixed ids: a chart of the same runs is the same file.
-            fig.savefig(out, format=ext, dpi=110, **({"metadata": {"Date": None}} if ext == "svg" else {}))
-            out.flush()
-            os.fsync(out.fileno())
-        os.replace(tmp, target)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except FileNotFoundError:
-            pass
-        raise
+    # SVGs without a date and with fixed ids: a chart of the same runs is the same file.
+    write_file_atomically(target, lambda out: fig.savefig(out, format=ext, dpi=110,
+                                                          **({"metadata": {"Date": None}} if ext == "svg" else {})))
 
 
 VERBOSE = False  # -v: name every chart the runs do not call for
@@ -1567,6 +1550,8 @@ def run(folder: Path) -> int:
         raise PlotError(f"{folder / 'context.json'}: not valid JSON (line {e.lineno}: {e.msg})") from e
     except (AttributeError, KeyError) as e:
         raise PlotError(f"{folder}: runs.csv or context.json lacks what rtbench writes ({e})") from e
+    except UnsafePath as e:  # a FIFO or device where a file belongs: refused, not waited on
+        raise PlotError(str(e)) from e
     if runs.empty:
         raise PlotError(f"{folder}: no successful runs to chart")
     written = []

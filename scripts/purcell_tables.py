@@ -8,7 +8,7 @@ import sys
 
 import pandas as pd
 
-from rtbench_results import CHRISTEN_SCENES, open_results
+from rtbench_results import CHRISTEN_SCENES, open_results, write_text_atomically
 
 
 def mb(value) -> str:
@@ -274,7 +274,7 @@ def main() -> int:
             f"{len(multipass)} multipass runs.",
             f"- Hit/miss agreement with Embree: min {100 * checks.hit_miss_agreement.min():.4f}% over all runs.",
             f"- Total wall time of the runs: {runs.wall_s.sum() / 60:.1f} min.", ""]
-    (folder / "tables.md").write_text("\n".join(out))
+    write_text_atomically(folder / "tables.md", "\n".join(out))
     print(f"wrote {folder / 'tables.md'}")
     return 0
 

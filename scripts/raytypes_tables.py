@@ -18,7 +18,8 @@ import matplotlib.pyplot as plt
 import matplotlib.ticker
 import pandas as pd
 
-from rtbench_results import commit_text, fmt, open_results, structure_names, whitted_frames, wrong_rays
+from rtbench_results import (commit_text, fmt, open_results, save_figure, structure_names, whitted_frames,
+                             write_text_atomically, wrong_rays)
 
 # Purcell et al. 2002, Table 3: relative instructions / bandwidth of a frame, against ray casting
 # (his shadow caster finds the eye rays' hits by rasterization, so its frame is the shadow rays').
@@ -52,7 +53,7 @@ def legend_first(axes_row, fontsize):
 def save(fig, folder: Path, name: str):
     fig.tight_layout()
     for ext in ("png", "svg"):
-        fig.savefig(folder / f"{name}.{ext}", dpi=110)
+        save_figure(fig, folder / f"{name}.{ext}", dpi=110)
     plt.close(fig)
 
 
@@ -137,7 +138,7 @@ def main() -> int:
         for r in failed.itertuples():
             lines.append(f"| {int(r.run):03d} | {r.label} | {r.error} |")
     text = "\n".join(lines) + "\n"
-    (folder / "tables.md").write_text(text)
+    write_text_atomically(folder / "tables.md", text)
 
     # Chart 1: a frame's cost by ray type against the camera rays', per scene (time and bytes).
     scenes = sorted(runs.scene.unique())

@@ -1,6 +1,9 @@
 """Loading an rtbench results folder for the scripts (Debian's python3-pandas)."""
 import json
+import os
+import stat
 import sys
+import tempfile
 from pathlib import Path
 
 import pandas as pd
@@ -118,6 +121,64 @@ def split_simd_measures(runs: pd.DataFrame) -> pd.DataFrame:
     return runs
 
 
+class UnsafePath(OSError):
+    """A results folder's file that is not a plain file where one is read or written (a link, a
+    FIFO, a device): refused, never followed or waited on."""
+
+
+def readable_file(path: Path) -> Path:
+    """`path` if it is a regular file (not a FIFO, which would hang the read, nor a device); a
+    missing file is the caller's to report."""
+    path = Path(path)
+    if os.path.lexists(path):
+        mode = os.stat(path).st_mode
+        if not stat.S_ISREG(mode):
+            raise UnsafePath(f"{path}: not a regular file (a FIFO, device or folder); refusing to read it")
+    return path
+
+
+def write_file_atomically(target: Path, write):
+    """`write(binary file)` into a new temporary file beside `target` (mkstemp: O_EXCL, never a
+    name planted before), then os.replace over `target`: it replaces a name and never writes
+    through a link. A target that is a link, or exists and is not a regular file, is refused; a
+    failed write leaves the old file."""
+    target = Path(target)
+    if target.is_symlink():
+        raise UnsafePath(f"{target}: is a symbolic link; refusing to write through it")
+    if target.exists() and not target.is_file():
+        raise UnsafePath(f"{target}: exists and is not a regular file; refusing to write there")
+    if target.parent.is_symlink():
+        raise UnsafePath(f"{target.parent}: is a symbolic link; refusing to write through it")
+    fd, temporary = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.", suffix=".tmp")
+    try:
+        mask = os.umask(0)
+        os.umask(mask)
+        os.fchmod(fd, 0o666 & ~mask)  # as a plain open() would create it, not mkstemp's 0600
+        with os.fdopen(fd, "wb") as out:
+            write(out)
+            out.flush()
+            os.fsync(out.fileno())
+        os.replace(temporary, target)
+    except BaseException:
+        try:
+            os.unlink(temporary)
+        except FileNotFoundError:
+            pass
+        raise
+
+
+def write_text_atomically(target: Path, text: str):
+    write_file_atomically(target, lambda out: out.write(text.encode()))
+
+
+def save_figure(fig, target: Path, **options):
+    """A matplotlib figure into `target` (its format from the suffix), as write_file_atomically writes."""
+    ext = Path(target).suffix[1:]
+    if ext == "svg":  # no date, so that a chart of the same runs is the same file
+        options = dict(options, metadata={"Date": None})
+    write_file_atomically(target, lambda out: fig.savefig(out, format=ext, **options))
+
+
 def read_runs(folder: Path) -> pd.DataFrame:
     """A folder's runs.csv with clean types: each column's pandas dtype from the folder's columns.csv
     (integers Int64, booleans boolean, text string, missing cells <NA>); a folder without one (before
@@ -127,8 +188,9 @@ def read_runs(folder: Path) -> pd.DataFrame:
     dictionary = folder / "columns.csv"
     dtypes = None
     if dictionary.exists():
-        columns = pd.read_csv(dictionary, dtype="string", keep_default_na=False)
+        columns = pd.read_csv(readable_file(dictionary), dtype="string", keep_default_na=False)
         dtypes = {c: DTYPES[t] for c, t in zip(columns.column, columns.type)} if "type" in columns else None
+    readable_file(folder / "runs.csv")
     if dtypes is None:
         runs = pd.read_csv(folder / "runs.csv", dtype={"run": "string", "config_hash": "string"})
     else:
@@ -143,7 +205,7 @@ def read_samples(folder: Path) -> pd.DataFrame:
     path = Path(folder) / "samples.csv"
     if not path.exists():
         return pd.DataFrame(columns=["run", "method", "round", "ms"])
-    return pd.read_csv(path, dtype={"run": str})
+    return pd.read_csv(readable_file(path), dtype={"run": str})
 
 
 def round_times(samples: pd.DataFrame, run: str, method: str = "kernel") -> pd.Series:
@@ -173,6 +235,15 @@ def with_vector_text(runs: pd.DataFrame) -> pd.DataFrame:
     return runs
 
 
+def refused_in_one_line(kind, error, trace):
+    """A table script's refusal (UnsafePath) as one line naming the file, exit status 1; any other
+    error as Python reports it."""
+    if isinstance(error, UnsafePath):
+        print(f"{Path(sys.argv[0]).name}: {error}", file=sys.stderr)
+    else:
+        sys.__excepthook__(kind, error, trace)
+
+
 def open_results(doc: str):
     """A table script's one argument, the RESULTS_DIR, loaded as `load` loads it, the ok runs a copy
     to add columns to: (folder, runs, failed, context, device). Any other command line prints the
@@ -181,6 +252,7 @@ def open_results(doc: str):
         print(doc)
         sys.exit(2)
     folder = Path(sys.argv[1])
+    sys.excepthook = refused_in_one_line
     runs, failed, context, device = load(folder)
     return folder, runs.copy(), failed, context, device
 
@@ -199,7 +271,7 @@ def command_text(context: dict) -> str:
 def load(folder: Path):
     """(ok runs with `scene` and `sweep` columns added, failed runs, context dict, device name)."""
     runs = with_vector_text(read_runs(folder))
-    context = json.loads((folder / "context.json").read_text())
+    context = json.loads(readable_file(folder / "context.json").read_text())
     failed = runs[runs.status != "ok"]
     runs = runs[runs.status == "ok"].copy()
     runs["scene"] = runs.scene_source.map(scene_name)
@@ -251,7 +323,7 @@ def failed_rows(failed: pd.DataFrame, what: str, name) -> list:
 
 def write_tables(folder: Path, lines: list) -> int:
     """Writes folder/tables.md and names it."""
-    (folder / "tables.md").write_text("\n".join(lines) + "\n")
+    write_text_atomically(folder / "tables.md", "\n".join(lines) + "\n")
     print(folder / "tables.md")
     return 0
 

@@ -16,7 +16,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import pandas as pd
 
-from rtbench_results import commit_text, fmt, open_results, read_samples, round_ratios, structure_names, wrong_rays
+from rtbench_results import (commit_text, fmt, open_results, read_samples, round_ratios, save_figure, structure_names,
+                             write_text_atomically, wrong_rays)
 
 
 def strategy(run) -> str:
@@ -97,7 +98,7 @@ def main() -> int:
                   "| run | structure | strategy | why |", "|---|---|---|---|"]
         for r in failed.itertuples():
             lines.append(f"| {r.run} | {r.structure_type} | {r.strategy_type} | {str(r.error).replace('|', '/')} |")
-    (folder / "tables.md").write_text("\n".join(lines) + "\n")
+    write_text_atomically(folder / "tables.md", "\n".join(lines) + "\n")
 
     if len(runs):
         structures = sorted(runs.structure.unique())
@@ -128,7 +129,7 @@ def main() -> int:
         fig.suptitle(f"Execution strategies on {device} ({commit_text(context)})", fontsize=9)
         fig.tight_layout()
         for ext in ("png", "svg"):
-            fig.savefig(folder / f"strategies.{ext}", dpi=110, bbox_inches="tight")
+            save_figure(fig, folder / f"strategies.{ext}", dpi=110, bbox_inches="tight")
         plt.close(fig)
     print(folder / "tables.md")
     return 0

@@ -8,7 +8,7 @@ usage: scripts/structures_tables.py RESULTS_DIR
 """
 import sys
 
-from rtbench_results import command_text, method_name, open_results
+from rtbench_results import command_text, method_name, open_results, write_text_atomically
 
 
 def fmt(value, digits=3):
@@ -56,7 +56,7 @@ def main() -> int:
         for r in failed.itertuples():
             lines.append(f"| {int(r.run):03d} | {r.label} | {r.error} |")
     text = "\n".join(lines) + "\n"
-    (folder / "tables.md").write_text(text)
+    write_text_atomically(folder / "tables.md", text)
     print(text)
     return 0
 

@@ -16,7 +16,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import pandas as pd
 
-from rtbench_results import commit_text, failed_rows, fmt, open_results, structure_names, wrong_rays, write_tables
+from rtbench_results import commit_text, failed_rows, fmt, open_results, save_figure, structure_names, wrong_rays, write_tables
 
 
 def generation(run) -> int:
@@ -145,7 +145,7 @@ def main() -> int:
                      f"({commit_text(context)})", fontsize=9)
         fig.tight_layout()
         for ext in ("png", "svg"):
-            fig.savefig(folder / f"wavefront.{ext}", dpi=110)
+            save_figure(fig, folder / f"wavefront.{ext}", dpi=110)
         plt.close(fig)
     return 0
 
