@@ -9,6 +9,8 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <tuple>
+#include <utility>
 
 #include "structures/error.h"
 #include "structures/text.h"
@@ -173,6 +175,32 @@ OutputFolderLock::~OutputFolderLock() {
         if (it->exclusive || ::flock(it->fd, LOCK_EX | LOCK_NB) == 0) ::unlink(it->path.c_str());
         ::close(it->fd);
     }
+}
+
+namespace {
+
+// (device, inode) of `folder` itself (lstat: a link is not followed); throws unless a real folder.
+std::pair<unsigned long long, unsigned long long> folderNode(const std::string& folder, const char* when) {
+    struct stat st {};
+    if (::lstat(folder.c_str(), &st) != 0)
+        throw Error(folder + ": the results folder " + when + " is gone (" + std::strerror(errno) +
+                    "); rtbench writes only into the folder it opened");
+    if (S_ISLNK(st.st_mode) || !S_ISDIR(st.st_mode))
+        throw Error(folder + ": the results folder " + when + " is " + (S_ISLNK(st.st_mode) ? "a symlink" : "not a folder") +
+                    "; rtbench never writes through one");
+    return {static_cast<unsigned long long>(st.st_dev), static_cast<unsigned long long>(st.st_ino)};
+}
+
+}  // namespace
+
+FolderIdentity::FolderIdentity(std::string folder) : folder_(std::move(folder)) {
+    std::tie(device_, inode_) = folderNode(folder_, "when opened");
+}
+
+void FolderIdentity::check() const {
+    if (folderNode(folder_, "now") != std::make_pair(device_, inode_))
+        throw Error(folder_ + ": the results folder was replaced while the sweep ran (another folder now has its "
+                              "name); rtbench writes only into the folder it opened");
 }
 
 void refuseSymlinks(const std::string& folder) {

@@ -35,6 +35,19 @@ class OutputFolderLock {
     std::vector<Held> held_;
 };
 
+// The results folder a sweep writes into, as it was when opened (device and inode): before each
+// write the runner checks that the path still names that real folder, so a folder renamed away
+// mid-run and a symlink (or another folder) put in its place is refused, not written through.
+class FolderIdentity {
+public:
+    explicit FolderIdentity(std::string folder);  // throws unless `folder` is a real folder
+    const std::string& path() const { return folder_; }
+    void check() const;  // throws rtbench::Error naming the folder when the path names another
+private:
+    std::string folder_;
+    unsigned long long device_ = 0, inode_ = 0;
+};
+
 // Throws rtbench::Error when the results folder is a symlink or holds one: rtbench writes only
 // regular files of its own in it, and a planted link (runs.csv -> ~/.bashrc) must not redirect
 // a write.

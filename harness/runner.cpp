@@ -220,7 +220,7 @@ std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunC
     return p;
 }
 
-void finishRun(RunInProgress& p, const std::string& folder, Caches& caches, Row& row, std::vector<TimingSample>& samples) {
+void finishRun(RunInProgress& p, const FolderIdentity& folder, Caches& caches, Row& row, std::vector<TimingSample>& samples) {
     const RunConfig& run = *p.run;
     VulkanContext& vk = *p.vk;
     const RunScene& scene = *p.scene;
@@ -291,7 +291,8 @@ void finishRun(RunInProgress& p, const std::string& folder, Caches& caches, Row&
     }
 
     // Writers: images, or the per-ray records to make them later.
-    const std::string prefix = (fs::path(folder) / ("run-" + row["run"])).string();
+    folder.check();  // still the folder the sweep opened
+    const std::string prefix = (fs::path(folder.path()) / ("run-" + row["run"])).string();
     const bool wantImages = run.getBool("output.images");
     if (run.getBool("output.hit_records") || (wantImages && !imagesSupported())) writeHitRecords(prefix + ".hits", image, row["run"], row["config_hash"]);
     if (wantImages && imagesSupported()) writeImages(prefix, image, run.getBool("output.exr"));
@@ -306,7 +307,7 @@ void finishRun(RunInProgress& p, const std::string& folder, Caches& caches, Row&
 }
 
 // One run, whole: prepared, timed round after round, finished.
-void executeRun(const ExperimentPlan& plan, const RunConfig& run, const std::string& folder, Caches& caches, Row& row,
+void executeRun(const ExperimentPlan& plan, const RunConfig& run, const FolderIdentity& folder, Caches& caches, Row& row,
                 std::vector<TimingSample>& samples) {
     const std::unique_ptr<RunInProgress> p = prepareRun(plan, run, caches, row);
     while (!p->rounds->done()) p->rounds->runRound();
@@ -550,6 +551,7 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
         options.shardCount > 1 ? std::make_unique<OutputFolderLock>(result.folder, shardSuffix(options).substr(1))
                                : std::make_unique<OutputFolderLock>(result.folder);
     refuseSymlinks(result.folder);
+    const FolderIdentity folder(result.folder);  // checked again before every write below
     const std::string csvName = runsFileName(options);
     const std::string csvPath = (fs::path(result.folder) / csvName).string();
     const std::string contextPath = (fs::path(result.folder) / contextFileName(options)).string();
@@ -735,6 +737,7 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
         if (!row["timing_warning"].empty() && !options.quiet)
             std::cerr << "[rtbench] run " << row["run"] << " timing warning: " << row["timing_warning"]
                       << " (not a timing of record)\n";
+        folder.check();  // the folder opened, not one put in its place since
         appendCsvRows(samplesPath, sampleColumns(), sampleRows(row, samples));
         appendCsvRow(csvPath, columns, row);  // an interrupt loses nothing done
         ++rowsWritten;
@@ -784,7 +787,7 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
             std::vector<TimingSample> samples;
             std::string error;
             try {
-                executeRun(plan, *mine[k], result.folder, caches, rows[k], samples);
+                executeRun(plan, *mine[k], folder, caches, rows[k], samples);
             } catch (const std::exception& e) {
                 error = e.what();
             }
@@ -836,7 +839,7 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
             std::vector<TimingSample> samples;
             std::string error;
             try {
-                finishRun(*running[k], result.folder, caches, rows[k], samples);
+                finishRun(*running[k], folder, caches, rows[k], samples);
             } catch (const std::exception& e) {
                 error = e.what();
             }
@@ -846,6 +849,7 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
     }
     result.rows = rows;
     const std::vector<Row> written = inRunOrder(rows, carried);
+    folder.check();
     writeCsv(csvPath, columns, written);  // in plan order
     // Complete when every planned run of this file has its row (--filter may leave some without).
     const std::size_t plannedHere = std::size_t(std::count_if(plan.runs.begin(), plan.runs.end(), [&](const RunConfig& run) {
