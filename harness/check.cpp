@@ -16,6 +16,8 @@
 #include "columns.h"
 #include "config.h"
 #include "runner.h"
+#include "samples_check.h"
+#include "timing_rounds.h"
 #include "structures/error.h"
 #include "writers.h"
 
@@ -175,6 +177,23 @@ Differences compareRuns(const std::vector<Row>& recorded, const std::vector<Row>
     return d;
 }
 
+// The recorded rows' samples (samples_check.h), one line per row whose samples are not its own: the
+// timings of record are only as good as the samples behind them.
+std::vector<std::string> samplesProblems(const std::string& folder, const std::vector<Row>& recorded, int schema) {
+    const std::string path = (fs::path(folder) / "samples.csv").string();
+    std::error_code ec;
+    if (schema < 5) return {};
+    if (!fs::exists(fs::symlink_status(path, ec)))
+        return {differenceLine("-", "(samples.csv)", "missing", "", "evidence of the timings")};
+    const std::vector<Row> samples = readSamplesCsv(path);
+    const auto byRun = samplesByRun(samples);
+    std::vector<std::string> problems;
+    for (const Row& row : recorded)
+        if (const std::string problem = samplesProblem(row, byRun); !problem.empty())
+            problems.push_back(differenceLine(row.at("run"), "(samples.csv)", problem, "", "evidence of the timings"));
+    return problems;
+}
+
 // Deterministic differences first (what fails), then reference values within tolerance, the runs
 // whose timings moved (one line each), and the context.
 void printDifferences(const Differences& d, const CheckOptions& options, std::ostream& out) {
@@ -274,7 +293,9 @@ CheckResult checkResults(const std::string& folder, const CheckOptions& options,
     }
     fs::remove_all(scratch);
 
-    const Differences found = compareRuns(recorded, now.rows, options, !newerKeys.empty());
+    Differences found = compareRuns(recorded, now.rows, options, !newerKeys.empty());
+    for (const std::string& problem : samplesProblems(folder, recorded, schema)) found.deterministic.push_back(problem);
+    found.counts.deterministicDifferences = int(found.deterministic.size());
     result = found.counts;
     out << "rtbench check " << folder << ": " << result.runs << " runs re-run"
         << (options.embreeConfigOverride.empty()

@@ -169,7 +169,7 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         since5("timing_repetitions", K::Timing, "repetitions", "timed repetitions of each method (kernel, Embree 1, Embree 16)");
         since5("timing_rounds", K::Timing, "rounds", "rounds they were timed in, each the kernel then Embree 1 then Embree 16");
         since5("timing_stop", K::Timing, "", "why the timing stopped: repetitions (experiment.repetitions, fixed), converged (every interval within experiment.target_ci), max_repetitions, time_budget");
-        since5("timing_s", K::Timing, "s", "wall time of the timed rounds");
+        since5("timing_s", K::Timing, "s", "wall time of the timed rounds (with experiment.target_ci, the judging after each included: what experiment.time_budget_s bounds)");
         since5("timing_warning", K::Context, "", "noise guard: why the run's timings are not results of record (a coefficient of variation above experiment.noise_cv, other processes above experiment.noise_other_cpu, one repetition: noise not measured); empty when clean");
         since5("other_cpu_fraction", K::Timing, "fraction", "noise guard: CPU time other processes took while the run ran (from its scene to the end of its timing), over cores x wall time (Linux /proc/stat, hypervisor steal included); empty when that window held under 100 clock ticks of the machine");
         since5("load_average", K::Timing, "", "noise guard: 1-minute load average when the timing ended");

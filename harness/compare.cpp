@@ -13,6 +13,7 @@
 #include "statistics.h"
 #include "structures/error.h"
 #include "timing_rounds.h"
+#include "samples_check.h"
 #include "writers.h"
 
 namespace rtbench {
@@ -27,6 +28,11 @@ struct Side {
     std::map<std::string, std::vector<double>> samples;
 };
 
+std::string get(const Row& row, const std::string& column) {
+    const auto it = row.find(column);
+    return it == row.end() ? std::string() : it->second;
+}
+
 Side load(const std::string& folder) {
     std::error_code ec;
     if (!fs::is_directory(folder, ec)) throw Error(folder + ": not a results folder (no such folder)");
@@ -34,23 +40,27 @@ Side load(const std::string& folder) {
     if (!fs::exists(fs::symlink_status(csv, ec)))
         throw Error(csv + ": not found (not a results folder, or its shards are not merged yet)");
     Side side;
-    side.rows = readRunsCsv(csv);
+    int schema = kSchemaVersion;
+    side.rows = readRunsCsv(csv, &schema);
     if (!side.rows.empty())
         for (const auto& [column, value] : side.rows.front()) side.columns.insert(column);
+    // The samples are the evidence a verdict rests on: from results schema 5 on, every ok row's
+    // must be there and its own (samples_check.h), else the folder is refused.
     const std::string samples = (fs::path(folder) / "samples.csv").string();
-    if (fs::exists(fs::symlink_status(samples, ec))) {
-        for (const Row& s : readSamplesCsv(samples)) {
-            const double ms = cellNumber(s.at("ms"));
-            if (std::isnan(ms)) throw Error(samples + ": run " + s.at("run") + ": ms '" + s.at("ms") + "' is not a number");
-            side.samples[s.at("run") + "|" + s.at("config_hash") + "|" + s.at("method")].push_back(ms);
-        }
+    if (!fs::exists(fs::symlink_status(samples, ec))) {
+        if (schema >= 5 && !side.rows.empty())
+            throw Error(samples + ": missing; a folder of results schema " + std::to_string(schema) +
+                        " keeps every timing sample there, and compare judges on them");
+        return side;
     }
+    const std::vector<Row> rows = readSamplesCsv(samples);
+    const auto byRun = samplesByRun(rows);
+    for (const Row& row : side.rows)
+        if (const std::string problem = samplesProblem(row, byRun); !problem.empty())
+            throw Error(samples + ": run " + get(row, "run") + " (" + get(row, "label") + "): " + problem +
+                        "; its timings cannot be trusted");
+    for (const Row& s : rows) side.samples[s.at("run") + "|" + s.at("config_hash") + "|" + s.at("method")].push_back(cellNumber(s.at("ms")));
     return side;
-}
-
-std::string get(const Row& row, const std::string& column) {
-    const auto it = row.find(column);
-    return it == row.end() ? std::string() : it->second;
 }
 
 // A run's samples of one method; none when the folder (or the run) has none.

@@ -42,6 +42,7 @@
 #include "run_inputs.h"
 #include "run_metrics.h"
 #include "run_verdict.h"
+#include "samples_check.h"
 #include "statistics.h"
 #include "timing_rounds.h"
 #include "output_folder.h"
@@ -600,6 +601,8 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
     std::vector<bool> kept(mine.size(), false);
     std::set<const Row*> keptEarlier;
     std::map<std::string, std::string> inputsNow;  // run -> inputs_hash, of runs with an earlier ok row
+    std::set<const Row*> samplesNotItsOwn;         // earlier ok rows whose samples are missing or another's
+    const auto earlierByRun = samplesByRun(earlierSamples);
     for (std::size_t k = 0; k < mine.size(); ++k) {
         const RunConfig& run = *mine[k];
         const VulkanContext& vk = deviceFor(run, caches);
@@ -614,6 +617,10 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
         inputsNow[row["run"]] = withInputs["inputs_hash"];
         const auto previous = earlier.find(identity(withInputs));
         if (previous == earlier.end()) continue;
+        if (!samplesProblem(*previous->second, earlierByRun).empty()) {  // a row is kept with its evidence only
+            samplesNotItsOwn.insert(previous->second);
+            continue;
+        }
         row = *previous->second;
         row["label"] = run.label();  // the label names the swept keys of this plan
         kept[k] = true;
@@ -649,6 +656,7 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
                                  : differs("device") || differs("driver")                      ? "another device or driver"
                                  : differs("cpu")                                              ? "another CPU"
                                  : !inputsNow.count(row.at("run"))                             ? "a scene that no longer loads"
+                                 : samplesNotItsOwn.count(&row)                                ? "samples missing or not its own"
                                                                                                : "other input files";
             ++why[reason];
         }

@@ -90,17 +90,17 @@ void Rounds::runRound() {
     }
     result_.repetitions += count;
     result_.rounds = round + 1;
-    result_.seconds += seconds(start, Clock::now());
-    if (result_.rounds < initialRounds_) return;
-    if (options_.targetCi <= 0) {
-        result_.stop = "repetitions";
+    if (result_.rounds < initialRounds_ || options_.targetCi <= 0) {
+        result_.seconds += seconds(start, Clock::now());
+        if (result_.rounds >= initialRounds_) result_.stop = "repetitions";
         return;
     }
-    // An interval of a handful of samples says little (one sample's is a point): judged from
-    // kMinAdaptiveRepetitions on.
+    // An interval needs kMinAdaptiveRepetitions samples (statistics.h): judged from there on. The
+    // judging counts against the time budget like the round it follows.
     bool converged = result_.repetitions >= kMinAdaptiveRepetitions;
     for (const TimedMethod& method : methods_)
         converged = converged && summarize(result_.of(method.name)).relativeHalfWidth() <= options_.targetCi;
+    result_.seconds += seconds(start, Clock::now());
     if (converged)
         result_.stop = "converged";
     else if (result_.repetitions >= options_.maxRepetitions)

@@ -1,19 +1,28 @@
 #include "cpu_strategy.h"
 
+#include <tbb/global_control.h>
 #include <tbb/task_arena.h>
 
 #include <chrono>
 #include <thread>
+
+#include "plan/warnings.h"
 
 
 namespace rtbench {
 
 namespace {
 
-// Threads of the run: strategy.threads, or every hardware thread for 0.
-int hostThreads(const RunConfig& config) {
+// Threads of the run: strategy.threads, or every hardware thread for 0; at most what TBB will
+// run at once (its global limit: the hardware threads unless a global_control lowers it).
+int hostThreads(const RunConfig& config, Row& row) {
     const std::int64_t asked = config.getInt("strategy.threads");
-    return asked > 0 ? int(asked) : int(std::max(1u, std::thread::hardware_concurrency()));
+    const int wanted = asked > 0 ? int(asked) : int(std::max(1u, std::thread::hardware_concurrency()));
+    const int limit = int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+    if (wanted <= limit) return wanted;
+    addWarning(row, "strategy.threads " + std::to_string(asked) + ": TBB runs at most " + std::to_string(limit) +
+                        " threads here, so " + std::to_string(limit) + " traced the rays");
+    return limit;
 }
 
 // The rays through the structure's traversal on `threads` TBB threads.
@@ -52,8 +61,8 @@ private:
 
 StrategyRun runOnHost(VulkanContext&, const Structure& structure, const RayBatch& batch, const RunConfig& config,
                       const TimingOptions& timing, Row& row) {
-    const int threads = hostThreads(config);
-    row["host_threads"] = std::to_string(threads);
+    const int threads = hostThreads(config, row);
+    row["host_threads"] = std::to_string(threads);  // what ran, not what was asked
     tbb::task_arena arena(threads);
     StrategyRun run;
     run.hits = traceOnHost(structure, batch.rays, batch.query, arena);

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "harness/check.h"
+#include "harness/timing_rounds.h"
 #include "harness/embree_config.h"
 #include "harness/runner.h"
 #include "structures/error.h"
@@ -109,6 +110,27 @@ TEST_F(Golden, ReproducesAndAChangedCountFails) {
     EXPECT_THAT(report.str(), HasSubstr("passes_total"));
     EXPECT_THAT(report.str(), HasSubstr(recorded));
     EXPECT_THAT(report.str(), HasSubstr(" exact\n"));  // its kind, at the end of its line
+}
+
+// The samples behind the recorded timings are read too: a sample that is not the row's (here the
+// kernel's one sample of run 002 forged) is a deterministic difference naming the run; so is a
+// missing samples.csv.
+TEST_F(Golden, SamplesThatAreNotTheRowsFail) {
+    std::vector<Row> rows = readCsv(csv());
+    keepOnly({rows[2]});
+    std::vector<Row> samples = readCsv((copy_ / "samples.csv").string());
+    for (Row& sample : samples)
+        if (sample.at("run") == "002" && sample.at("method") == "kernel") sample["ms"] = "99.5";
+    writeCsv((copy_ / "samples.csv").string(), sampleColumns(), samples);
+    std::ostringstream report;
+    const CheckResult forged = check(report);
+    EXPECT_EQ(forged.deterministicDifferences, 1) << report.str();
+    EXPECT_THAT(report.str(), HasSubstr("002   (samples.csv)"));
+    EXPECT_THAT(report.str(), HasSubstr("the kernel samples' median 99.5 is not the row's kernel_ms_median"));
+    fs::remove(copy_ / "samples.csv");
+    std::ostringstream missing;
+    EXPECT_TRUE(check(missing).failed());
+    EXPECT_THAT(missing.str(), HasSubstr("-     (samples.csv)                 missing"));
 }
 
 TEST_F(Golden, AReferenceValueBeyondItsToleranceFailsAndSaysItsKind) {

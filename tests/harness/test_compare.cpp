@@ -10,6 +10,7 @@
 
 #include "harness/compare.h"
 #include "harness/config.h"
+#include "harness/statistics.h"
 #include "harness/runner.h"
 #include "harness/timing_rounds.h"
 #include "structures/error.h"
@@ -57,8 +58,29 @@ protected:
             addSamples(a, row, "embree1", 2.0, 1.0);
             addSamples(b, row, "embree1", 2.0, 1.0, 5);
         }
+        writeBoth(a, b);
+    }
+    // A folder's rows as its samples make them (what the runner writes): each method's median of
+    // its samples, timing_repetitions their count, no Embree 16 where it has none.
+    static void matchRowsToSamples(const std::string& folder) {
+        std::vector<Row> rows = readCsv(folder + "/runs.csv");
+        const std::vector<Row> samples = readCsv(folder + "/samples.csv");
+        for (Row& row : rows) {
+            for (const char* method : {"kernel", "embree1", "embree16"}) {
+                std::vector<double> ms;
+                for (const Row& s : samples)
+                    if (s.at("run") == row.at("run") && s.at("method") == method) ms.push_back(std::stod(s.at("ms")));
+                row[std::string(method) + "_ms_median"] = ms.empty() ? "" : formatNumber(median(ms));
+                if (std::string(method) == "kernel") row["timing_repetitions"] = std::to_string(ms.size());
+            }
+        }
+        writeCsv(folder + "/runs.csv", runColumns(), rows);
+    }
+    void writeBoth(const std::vector<Row>& a, const std::vector<Row>& b) const {
         writeCsv(a_ + "/samples.csv", sampleColumns(), a);
         writeCsv(b_ + "/samples.csv", sampleColumns(), b);
+        matchRowsToSamples(a_);
+        matchRowsToSamples(b_);
     }
     CompareResult compare(const CompareOptions& options = {}) const { return compareFolders(a_, b_, options); }
     TempDir dir_;
@@ -103,7 +125,7 @@ TEST_F(Compare, AnInjectedSlowdownIsSlowerAndNoiseAloneIsSame) {
 // A run with a timing warning on either side is UNSURE, whatever its samples say, and never fails.
 TEST_F(Compare, AFlaggedRunIsUnsure) {
     writeSamples(0.2);
-    std::vector<Row> rows = rows_;
+    std::vector<Row> rows = readCsv(b_ + "/runs.csv");  // as its samples made them
     rows[0]["timing_warning"] = "kernel CV 0.2 > experiment.noise_cv 0.05";
     writeCsv(b_ + "/runs.csv", runColumns(), rows);
     const CompareResult r = compare();
@@ -124,8 +146,7 @@ TEST_F(Compare, ALargeChangeWithoutEvidenceIsUnsure) {
                          {"round", std::to_string(i)}, {"repetition", std::to_string(i)},
                          {"ms", i < 4 ? "8" : i < 6 ? "11" : "14"}, {"t_s", std::to_string(i)}});
     }
-    writeCsv(a_ + "/samples.csv", sampleColumns(), a);
-    writeCsv(b_ + "/samples.csv", sampleColumns(), b);
+    writeBoth(a, b);
     const CompareResult r = compare();
     ASSERT_EQ(r.runs.size(), 3u);
     EXPECT_GT(r.runs[0].change, 0.05);
@@ -157,8 +178,7 @@ TEST_F(Compare, FifteenRunsOfNoiseGiveNoSlowerAfterHolm) {
     }
     writeCsv(a_ + "/runs.csv", runColumns(), rowsA);
     writeCsv(b_ + "/runs.csv", runColumns(), rowsA);
-    writeCsv(a_ + "/samples.csv", sampleColumns(), a);
-    writeCsv(b_ + "/samples.csv", sampleColumns(), b);
+    writeBoth(a, b);
     const CompareResult r = compare();
     ASSERT_EQ(r.runs.size(), 15u);
     EXPECT_NEAR(r.runs[0].p, 2.0 / 252.0, 1e-12);
@@ -180,8 +200,7 @@ TEST_F(Compare, MachineDriftIsSameRelativeToEmbree) {
         addSamples(a, row, "embree1", 2.0, 1.0);
         addSamples(b, row, "embree1", 2.0, 1.2, 5);
     }
-    writeCsv(a_ + "/samples.csv", sampleColumns(), a);
-    writeCsv(b_ + "/samples.csv", sampleColumns(), b);
+    writeBoth(a, b);
     EXPECT_EQ(compare().slower, 3);
     const CompareResult relative = compare({.relativeTo = "embree1"});
     EXPECT_EQ(relative.same, 3);
@@ -193,7 +212,7 @@ TEST_F(Compare, MachineDriftIsSameRelativeToEmbree) {
 // No run matches when the folders differ in a key: exit 2, the key named; --ignore matches across it.
 TEST_F(Compare, NoMatchIsExitTwoNamingTheKeyAndIgnoreMatches) {
     writeSamples(0.0);
-    std::vector<Row> rows = rows_;
+    std::vector<Row> rows = readCsv(b_ + "/runs.csv");  // as its samples made them
     for (Row& row : rows) row["intersection_test"] = "watertight";
     writeCsv(b_ + "/runs.csv", runColumns(), rows);
     const CompareResult r = compare();
@@ -212,7 +231,7 @@ TEST_F(Compare, NoMatchIsExitTwoNamingTheKeyAndIgnoreMatches) {
 
 TEST_F(Compare, ACountDifferenceIsReportedAsACount) {
     writeSamples(0.0);
-    std::vector<Row> rows = rows_;
+    std::vector<Row> rows = readCsv(b_ + "/runs.csv");  // as its samples made them
     const std::string hits = rows[2].at("hits");
     rows[2]["hits"] = std::to_string(std::stoull(hits) + 1);
     writeCsv(b_ + "/runs.csv", runColumns(), rows);
@@ -227,10 +246,53 @@ TEST_F(Compare, ACountDifferenceIsReportedAsACount) {
     EXPECT_THAT(out.str(), HasSubstr("| A | B | parameters |"));
 }
 
+// The samples are the evidence: a folder of results schema 5 on whose samples are missing, forged
+// or of another config is refused, naming the file, the run and what is wrong (the rows' medians x
+// 50 with samples.csv deleted used to pass as "no test").
+TEST_F(Compare, SamplesThatAreNotTheRowsAreRefused) {
+    auto refusal = [&]() -> std::string {
+        try {
+            compare();
+        } catch (const Error& e) {
+            return e.what();
+        }
+        return "accepted";
+    };
+    writeSamples(0.0);
+    const std::vector<Row> rows = readCsv(b_ + "/runs.csv");
+    const std::vector<Row> samples = readCsv(b_ + "/samples.csv");
+    fs::remove(b_ + "/samples.csv");
+    EXPECT_THAT(refusal(), HasSubstr("samples.csv: missing; a folder of results schema"));
+
+    std::vector<Row> forged = rows;
+    forged[1]["kernel_ms_median"] = formatNumber(50 * std::stod(rows[1].at("kernel_ms_median")));
+    writeCsv(b_ + "/samples.csv", sampleColumns(), samples);
+    writeCsv(b_ + "/runs.csv", runColumns(), forged);
+    EXPECT_THAT(refusal(), HasSubstr("run 001 (structure.min_dim=6): the kernel samples' median"));
+    writeCsv(b_ + "/runs.csv", runColumns(), rows);
+    EXPECT_EQ(refusal(), "accepted");
+
+    std::vector<Row> negative = samples;
+    negative[0]["ms"] = "-5";
+    writeCsv(b_ + "/samples.csv", sampleColumns(), negative);
+    EXPECT_THAT(refusal(), HasSubstr("sample '-5' is not a positive number of ms"));
+
+    std::vector<Row> twice = samples;
+    twice.push_back(samples[0]);
+    writeCsv(b_ + "/samples.csv", sampleColumns(), twice);
+    EXPECT_THAT(refusal(), HasSubstr("round 0 repetition 0 twice"));
+
+    std::vector<Row> otherConfig = samples;
+    for (Row& sample : otherConfig)
+        if (sample.at("run") == "002") sample["config_hash"] = "0123456789abcdef";
+    writeCsv(b_ + "/samples.csv", sampleColumns(), otherConfig);
+    EXPECT_THAT(refusal(), HasSubstr("run 002 (structure.min_dim=8): no samples of its run and config hash"));
+}
+
 TEST_F(Compare, WhatOneSideLacksIsNamed) {
     writeSamples(0.2);
     // A run only in A, and a B of an older schema: no samples, fewer columns.
-    std::vector<Row> rows = rows_;
+    std::vector<Row> rows = readCsv(b_ + "/runs.csv");  // as its samples made them
     rows.erase(rows.begin() + 1);
     std::vector<std::string> columns;
     for (const ColumnSpec& c : runColumnSpecs())

@@ -336,6 +336,25 @@ TEST_F(ResultsFolder, AResumeAcrossACommitReRunsTheRow) {
     EXPECT_EQ(readCsv(superseded()[0].string()).at(0).at("git_commit"), "0123456789ab");
 }
 
+// A row is kept on resume only with its own samples: forged, duplicated or missing samples re-run
+// the run (the old row set aside), and an untouched folder resumes whole.
+TEST_F(ResultsFolder, AResumeReRunsARowWhoseSamplesAreNotItsOwn) {
+    const std::string body = "[scene]\nsource = \"procedural:christen_a\"\n[structure]\nmin_dim = [2, 3]\n";
+    run(body);
+    EXPECT_EQ(run(body).reused, 2);
+    const std::string samplesPath = (folder() / "samples.csv").string();
+    std::vector<Row> samples = readCsv(samplesPath);
+    for (Row& sample : samples)
+        if (sample.at("run") == "001" && sample.at("method") == "kernel") sample["ms"] = "1e6";
+    writeCsv(samplesPath, sampleColumns(), samples);
+    const ExperimentResult again = run(body);
+    EXPECT_EQ(again.reused, 1) << "run 000 kept, run 001 run again";
+    ASSERT_EQ(superseded().size(), 1u);
+    EXPECT_EQ(readCsv(superseded()[0].string()).at(0).at("run"), "001");
+    fs::remove(samplesPath);
+    EXPECT_EQ(run(body).reused, 0) << "no samples: nothing kept";
+}
+
 // Nothing is written through a symlink: a planted link in the folder (the lock, runs.csv, a
 // temporary's name) refuses the folder and leaves the link's target untouched.
 TEST_F(ResultsFolder, ASymlinkInTheFolderIsRefusedAndItsTargetUntouched) {

@@ -3,6 +3,7 @@
 // through the runner it is judged and timed as the kernels are, on the threads it is given.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include <tbb/global_control.h>
 
 #include "methods/branching/branching_strategy.h"
 #include "methods/cpu/cpu_strategy.h"
@@ -65,6 +66,21 @@ TEST(CpuStrategyRuns, AreJudgedAndTimedAsTheKernelsAre) {
                     runTestConfig(dir, "threads", "[scene]\nsource = \"procedural:christen_a\"\n[strategy]\ntype = \"branching\"\nthreads = 2\n");
                 }),
                 HasSubstr("strategy.threads"));
+}
+
+// More threads than TBB runs at once: host_threads records what traced the rays, and the row says so.
+TEST(CpuStrategyRuns, HostThreadsRecordsTheThreadsThatRan) {
+    TempDir dir;
+    const ExperimentResult result = runTestConfig(
+        dir, "many", "[scene]\nsource = \"procedural:christen_a\"\n[camera]\nwidth = 8\nheight = 8\n"
+                     "[strategy]\ntype = \"cpu\"\nthreads = 1000\n[output]\nimages = false\n");
+    ASSERT_EQ(result.rows.size(), 1u);
+    const Row& row = result.rows[0];
+    EXPECT_EQ(cellOf(row, "status"), "ok") << cellOf(row, "error");
+    const int limit = int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+    ASSERT_LT(limit, 1000) << "this machine runs 1000 threads at once: the case does not arise";
+    EXPECT_EQ(cellOf(row, "host_threads"), std::to_string(limit));
+    EXPECT_THAT(cellOf(row, "warnings"), HasSubstr("strategy.threads 1000: TBB runs at most " + std::to_string(limit)));
 }
 
 }  // namespace

@@ -1,0 +1,63 @@
+#include "samples_check.h"
+
+#include <cmath>
+#include <set>
+#include <tuple>
+
+#include "statistics.h"
+#include "writers.h"
+
+namespace rtbench {
+
+std::map<std::string, std::vector<const Row*>> samplesByRun(const std::vector<Row>& samples) {
+    std::map<std::string, std::vector<const Row*>> byRun;
+    for (const Row& s : samples) byRun[s.at("run") + "|" + s.at("config_hash")].push_back(&s);
+    return byRun;
+}
+
+namespace {
+
+std::string cell(const Row& row, const std::string& column) {
+    const auto it = row.find(column);
+    return it == row.end() ? std::string() : it->second;
+}
+
+// One method's samples against the row's median and repetitions; "" when they agree.
+std::string methodProblem(const Row& row, const std::string& method, const std::vector<const Row*>& samples,
+                          double repetitions) {
+    std::vector<double> ms;
+    std::set<std::tuple<std::string, std::string>> seen;
+    for (const Row* s : samples) {
+        if (s->at("method") != method) continue;
+        const double value = cellNumber(s->at("ms"));
+        if (!(value > 0) || !std::isfinite(value))
+            return method + " sample '" + s->at("ms") + "' is not a positive number of ms";
+        if (!seen.insert({s->at("round"), s->at("repetition")}).second)
+            return method + " round " + s->at("round") + " repetition " + s->at("repetition") + " twice";
+        ms.push_back(value);
+    }
+    if (ms.empty()) return "no " + method + " samples";
+    if (double(ms.size()) != repetitions)
+        return std::to_string(ms.size()) + " " + method + " samples, timing_repetitions says " + cell(row, "timing_repetitions");
+    const double recorded = cellNumber(cell(row, method + "_ms_median")), again = median(ms);
+    if (!(std::abs(again - recorded) <= 1e-5 * std::abs(recorded)))  // the row keeps 6 digits
+        return "the " + method + " samples' median " + formatNumber(again) + " is not the row's " + method + "_ms_median " +
+               cell(row, method + "_ms_median");
+    return "";
+}
+
+}  // namespace
+
+std::string samplesProblem(const Row& row, const std::map<std::string, std::vector<const Row*>>& byRun) {
+    if (cell(row, "status") != "ok" || cell(row, "timing_repetitions").empty()) return "";
+    const double repetitions = cellNumber(cell(row, "timing_repetitions"));
+    const auto found = byRun.find(cell(row, "run") + "|" + cell(row, "config_hash"));
+    if (found == byRun.end()) return "no samples of its run and config hash";
+    for (const char* method : {"kernel", "embree1", "embree16"}) {
+        if (cell(row, std::string(method) + "_ms_median").empty()) continue;
+        if (std::string problem = methodProblem(row, method, found->second, repetitions); !problem.empty()) return problem;
+    }
+    return "";
+}
+
+}  // namespace rtbench
