@@ -449,6 +449,16 @@ void checkSceneSources(const ExperimentPlan& plan, const std::vector<const RunCo
     }
 }
 
+// samples.csv rows of one run as the timing samples they were (an interrupted sweep's rounds).
+std::vector<TimingSample> timingSamples(const std::vector<Row>& rows) {
+    std::vector<TimingSample> samples;
+    for (const Row& r : rows)
+        samples.push_back({r.at("method"), std::stoi(r.at("round")), std::stoi(r.at("repetition")), cellNumber(r.at("ms")),
+                           cellNumber(r.at("t_s"))});
+    std::stable_sort(samples.begin(), samples.end(), [](const TimingSample& a, const TimingSample& b) { return a.round < b.round; });
+    return samples;
+}
+
 // A run's timing samples as samples.csv rows.
 std::vector<Row> sampleRows(const Row& row, const std::vector<TimingSample>& samples) {
     std::vector<Row> rows;
@@ -664,9 +674,21 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
     // interrupted before its row was written) are set aside.
     std::set<std::string> keptRuns;
     for (const Row* row : keptEarlier) keptRuns.insert(row->at("run") + "|" + row->at("config_hash"));
+    // An interleaved sweep appends each round's samples as it goes: the rounds a killed invocation
+    // finished of a run with no row stand, and its timing goes on from them.
+    std::set<std::string> rowRuns, toRun;
+    for (const Row& row : earlierRows) rowRuns.insert(row.at("run") + "|" + row.at("config_hash"));
+    const bool interleaved = first.getString("experiment.order") == "interleaved";
+    for (std::size_t k = 0; k < mine.size(); ++k)
+        if (!kept[k] && interleaved && !options.force) toRun.insert(rows[k].at("run") + "|" + rows[k].at("config_hash"));
     std::vector<Row> keptSamples, supersededSamples;
-    for (Row& sample : earlierSamples)
-        (keptRuns.count(sample.at("run") + "|" + sample.at("config_hash")) ? keptSamples : supersededSamples).push_back(std::move(sample));
+    std::map<std::string, std::vector<Row>> resumedSamples;  // "run|config_hash" -> its finished rounds
+    for (Row& sample : earlierSamples) {
+        const std::string key = sample.at("run") + "|" + sample.at("config_hash");
+        if (keptRuns.count(key)) keptSamples.push_back(std::move(sample));
+        else if (toRun.count(key) && !rowRuns.count(key)) resumedSamples[key].push_back(std::move(sample));
+        else supersededSamples.push_back(std::move(sample));
+    }
     if (superseded.empty() && !supersededSamples.empty()) {
         const std::string aside = setAside(result.folder, csvName, contextPath, columns, {}, samplesName, supersededSamples);
         std::cerr << "[rtbench] " << supersededSamples.size() << " timing sample(s) of " << samplesPath
@@ -702,7 +724,8 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
         for (std::size_t k = 0; k < mine.size(); ++k)
             if (kept[k]) keptRows.push_back(rows[k]);
         writeCsv(csvPath, columns, inRunOrder(keptRows, carried));
-        writeCsv(samplesPath, sampleColumns(), keptSamples);  // the kept runs' samples first
+        for (const auto& [key, samples] : resumedSamples) keptSamples.insert(keptSamples.end(), samples.begin(), samples.end());
+        writeCsv(samplesPath, sampleColumns(), keptSamples);  // the kept runs' samples first, then resumed rounds
     }
     if (!options.quiet)
         std::cout << "[rtbench] " << plan.configPath << ": " << mine.size() << " run" << (mine.size() == 1 ? "" : "s")
@@ -806,15 +829,25 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
         // then timed one round at a time across the sweep, round r of every run before round r + 1
         // of any, so runs compared in one table were timed under the same conditions; then each is
         // finished. Every prepared run keeps its device buffers until then.
+        // Each round's samples are appended as it ends (`appended`: a run's samples in the file), so
+        // a killed sweep resumes from the rounds it finished (resumedSamples).
         std::vector<std::unique_ptr<RunInProgress>> running(mine.size());
         std::vector<double> seconds(mine.size(), 0.0);
+        std::vector<std::size_t> appended(mine.size(), 0);
         for (std::size_t k = 0; k < mine.size(); ++k) {
             if (kept[k]) continue;
             progress("prepare", k);
             const auto start = Clock::now();
             try {
                 running[k] = prepareRun(plan, *mine[k], caches, rows[k]);
-                if (!options.quiet) std::cout << " prepared\n";
+                const auto resumed = resumedSamples.find(rows[k].at("run") + "|" + rows[k].at("config_hash"));
+                if (resumed != resumedSamples.end()) {
+                    running[k]->rounds->resume(timingSamples(resumed->second));
+                    appended[k] = resumed->second.size();
+                    if (!options.quiet) std::cout << " prepared; " << running[k]->rounds->result().rounds << " round(s) kept from the interrupted sweep\n";
+                } else if (!options.quiet) {
+                    std::cout << " prepared\n";
+                }
             } catch (const std::exception& e) {
                 record(k, e.what(), since(start), {});
             }
@@ -828,6 +861,11 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
                 const auto start = Clock::now();
                 try {
                     running[k]->rounds->runRound();
+                    const std::vector<TimingSample>& taken = running[k]->rounds->result().samples;
+                    folder.check();
+                    appendCsvRows(samplesPath, sampleColumns(),
+                                  sampleRows(rows[k], std::vector<TimingSample>(taken.begin() + appended[k], taken.end())));
+                    appended[k] = taken.size();
                 } catch (const std::exception& e) {
                     running[k].reset();  // its buffers go now
                     if (!options.quiet) std::cout << "[round " << round + 1 << "] " << mine[k]->label() << ":";
@@ -852,7 +890,9 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
                 error = e.what();
             }
             running[k].reset();
-            record(k, error, seconds[k] + since(start), samples);
+            // Its rounds' samples are in the file already: the row and any samples after them.
+            record(k, error, seconds[k] + since(start),
+                   std::vector<TimingSample>(samples.begin() + std::min(appended[k], samples.size()), samples.end()));
         }
     }
     result.rows = rows;

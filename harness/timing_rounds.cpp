@@ -80,7 +80,7 @@ void Rounds::runRound() {
         for (const auto& [name, ms] : hostLoops_()) add(name, round, ms, seconds(origin_, Clock::now()) - ms / 1e3);
     for (const TimedMethod& method : methods_) {
         const double batchStart = seconds(origin_, Clock::now());
-        const TimedBatch batch = method.time(round == 0 ? options_.warmups : 0, count);
+        const TimedBatch batch = method.time(warmedUp_ ? 0 : options_.warmups, count);
         double t = batchStart + batch.warmupMs / 1e3;
         for (std::size_t i = 0; i < batch.ms.size(); ++i) {
             add(method.name, round, batch.ms[i], t);
@@ -88,8 +88,22 @@ void Rounds::runRound() {
             t += batch.ms[i] / 1e3;
         }
     }
+    warmedUp_ = true;
     result_.repetitions += count;
     result_.rounds = round + 1;
+    judge(start);
+}
+
+void Rounds::resume(const std::vector<TimingSample>& earlier) {
+    for (const TimingSample& s : earlier) {
+        add(s.method, s.round, s.ms, s.t);
+        result_.rounds = std::max(result_.rounds, s.round + 1);
+    }
+    result_.repetitions = int(result_.of(methods_.front().name).size());
+    if (result_.rounds > 0) judge(Clock::now());
+}
+
+void Rounds::judge(Clock::time_point start) {
     if (result_.rounds < initialRounds_ || options_.targetCi <= 0) {
         result_.seconds += seconds(start, Clock::now());
         if (result_.rounds >= initialRounds_) result_.stop = "repetitions";

@@ -73,10 +73,17 @@ public:
     bool done() const { return !result_.stop.empty(); }
     // The next round: the host loops, then a batch of each method; then whether to stop.
     void runRound();
+    // Whole rounds an earlier, interrupted invocation finished (its samples.csv rows of this run):
+    // taken as this run's first rounds, so that the rounds go on from there; then whether to stop.
+    // The warm-ups still come before this invocation's first batch.
+    void resume(const std::vector<TimingSample>& earlier);
     const RoundsResult& result() const { return result_; }
 
 private:
     void add(const std::string& name, int round, double ms, double t);
+    // After round `result_.rounds - 1`: whether to stop, the judging counted from `start`.
+    void judge(std::chrono::steady_clock::time_point start);
+    bool warmedUp_ = false;
     std::vector<TimedMethod> methods_;
     HostLoops hostLoops_;
     RoundsOptions options_;
