@@ -14,6 +14,7 @@
 #include "embree_config.h"
 #include "methods/cache/cache_replay.h"
 #include "methods/registry.h"
+#include "structures/text.h"
 #include "workloads/registry.h"
 #include "output_folder.h"
 #include "structures/error.h"
@@ -61,20 +62,6 @@ std::string shortest(double v) {
     char text[32];
     const auto end = std::to_chars(text, text + sizeof text, v).ptr;
     return std::string(text, end);
-}
-
-// Strings name files, devices and folders: a NUL would cut them where the OS reads them (and
-// every message quoting them), and other control characters hide what they say.
-void refuseControlCharacters(const std::string& at, const std::string& v) {
-    for (std::size_t i = 0; i < v.size(); ++i) {
-        const unsigned char c = static_cast<unsigned char>(v[i]);
-        if (c < 0x20 || c == 0x7f) {
-            char code[8];
-            std::snprintf(code, sizeof code, "U+%04X", c);
-            throw Error(at + "control character " + code + " at byte " + std::to_string(i) +
-                        " of the string: not allowed in a string value");
-        }
-    }
 }
 
 }  // namespace

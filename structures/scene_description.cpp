@@ -187,6 +187,7 @@ class Reader {
             if (name == "name") {
                 if (!node.is_string()) throw Error(at(node) + ": key 'name': expected a string");
                 result.title = node.as_string()->get();
+                refuseControlCharacters(at(node) + ": key 'name': ", result.title);
             } else if (name == "object" || name == "scatter") {
                 const toml::array* list = node.as_array();
                 if (!list || !list->is_array_of_tables())
@@ -280,6 +281,7 @@ class Reader {
                 if (!node.is_string())
                     throw Error(at(node) + ": key '" + full + "': expected a string");
                 p.mesh = node.as_string()->get();
+                refuseControlCharacters(at(node) + ": key '" + full + "': ", p.mesh);
                 p.meshAt = at(node);
                 if (p.mesh.empty())
                     throw Error(at(node) + ": key '" + full + "': expected a mesh, not \"\"");
@@ -401,6 +403,7 @@ class Reader {
                 if (!node.is_string() || node.as_string()->get().empty())
                     throw Error(at(node) + ": key '" + full + "': expected a mesh as an [[object]] or [[scatter]] names it");
                 e.material.mesh = node.as_string()->get();
+                refuseControlCharacters(at(node) + ": key '" + full + "': ", e.material.mesh);
                 e.meshKey = meshKeyOf(e.material.mesh);
                 e.meshAt = at(node);
                 hasMesh = true;

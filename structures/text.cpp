@@ -1,6 +1,9 @@
 #include "text.h"
 
 #include <cstdint>
+#include <cstdio>
+
+#include "error.h"
 
 namespace rtbench {
 
@@ -51,6 +54,18 @@ std::string printable(std::string_view text) {
 }
 std::string validUtf8(std::string_view text) {
     return escapeBytes(text, false);
+}
+
+void refuseControlCharacters(const std::string& at, const std::string& v) {
+    for (std::size_t i = 0; i < v.size(); ++i) {
+        const unsigned char c = static_cast<unsigned char>(v[i]);
+        if (c < 0x20 || c == 0x7f) {
+            char code[8];
+            std::snprintf(code, sizeof code, "U+%04X", c);
+            throw Error(at + "control character " + code + " at byte " + std::to_string(i) +
+                        " of the string: not allowed in a string value");
+        }
+    }
 }
 
 }  // namespace rtbench

@@ -12,4 +12,9 @@ std::string printable(std::string_view text);
 // Keeps control characters (line breaks in a CSV field stay line breaks).
 std::string validUtf8(std::string_view text);
 
+// Strings of a config or scene description name files, devices and folders: a NUL would cut them
+// where the OS reads them (and every message quoting them), other control characters hide what
+// they say. Throws rtbench::Error "<at>control character U+NNNN at byte i ..." on the first.
+void refuseControlCharacters(const std::string& at, const std::string& value);
+
 }  // namespace rtbench

@@ -300,6 +300,17 @@ TEST_F(SceneDescriptionTest, MaterialsCoverTheirMeshsCopiesAndLightsKeepTheirPos
     EXPECT_TRUE(read("[[object]]\nmesh = \"tri.off\"\n").mesh.appearance.materialOf.empty());
 }
 
+// A NUL (or another control character) in a string would cut the file name where the OS reads it
+// and every message quoting it: refused with the file, line and key.
+TEST_F(SceneDescriptionTest, ControlCharactersInStringsAreRefused) {
+    EXPECT_THAT(errorFor("[[object]]\nmesh = \"tri.off\\u0000zz.off\"\n"),
+                HasSubstr(file() + ":2: key 'object.mesh': control character U+0000 at byte 7"));
+    EXPECT_THAT(errorFor("name = \"a\\u0007b\"\n[[object]]\nmesh = \"tri.off\"\n"),
+                HasSubstr(file() + ":1: key 'name': control character U+0007 at byte 1"));
+    EXPECT_THAT(errorFor("[[object]]\nmesh = \"tri.off\"\n[[material]]\nmesh = \"tri\\u0000.off\"\ntype = \"glass\"\n"),
+                HasSubstr(file() + ":4: key 'material.mesh': control character U+0000 at byte 3"));
+}
+
 TEST_F(SceneDescriptionTest, MaterialAndLightErrorsNameTheFileLineAndKey) {
     const std::string placed = "[[object]]\nmesh = \"tri.off\"\n";
     EXPECT_THAT(errorFor(placed + "[[material]]\nmesh = \"cube.off\"\ntype = \"glass\"\n"),
