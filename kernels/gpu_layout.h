@@ -78,6 +78,7 @@ RTBENCH_CONST kSpecNativeDivision = 20;  // 1: rtDivide is the device's own divi
 RTBENCH_CONST kSpecDivision = 21;        // kDivision*: how rtDivide rounds exactly (intersection.division)
 RTBENCH_CONST kSpecListPartitions = 22;  // multipass, control on the device: partitions of each ray list (1..kMaxListPartitions)
 RTBENCH_CONST kSpecMaxFetches = 23;      // persistent threads: fetches a subgroup makes at most (0: until the stream is done)
+RTBENCH_CONST kSpecPersistentWorkgroups = 24;  // persistent threads: the workgroups asked for (a 2-D grid may pad beyond them)
 
 // ---- megakernel schedules (methods/megakernel/megakernel.comp; Parker et al. 2013 §5.1-5.2) ----
 RTBENCH_CONST kScheduleSwitch = 0;          // each lane runs its own state: the subgroup runs every state present, one after another

@@ -14,8 +14,11 @@
 
 layout(constant_id = kSpecRaysPerFetch) const uint raysPerFetch = 32u;
 layout(constant_id = kSpecMaxFetches) const uint maxFetches = 0u;  // 0: until the stream is done
+layout(constant_id = kSpecPersistentWorkgroups) const uint workgroups = 0xffffffffu;
 
 void main() {
+    // Beyond 65,535 workgroups the grid is 2-D and may hold a few more than asked: they fetch nothing.
+    if (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x >= workgroups) return;
     const uint rayCount = rtRayCount();
     bool fetching = true;
     for (uint fetches = 0u; fetching && (maxFetches == 0u || fetches < maxFetches); ++fetches) {

@@ -61,7 +61,8 @@ StrategyRun runPersistentStrategy(VulkanContext& vk, const Structure& structure,
     launch.kernel = "persistent";
     launch.invocations = std::uint64_t(options.workgroups) * timing.workgroupSize;
     launch.constants = {{gpu::kSpecRaysPerFetch, std::uint32_t(expected.raysPerFetch)},
-                        {gpu::kSpecMaxFetches, std::uint32_t(std::min<std::uint64_t>(maxFetches, UINT32_MAX))}};
+                        {gpu::kSpecMaxFetches, std::uint32_t(std::min<std::uint64_t>(maxFetches, UINT32_MAX))},
+                        {gpu::kSpecPersistentWorkgroups, options.workgroups}};
     launch.countersWhenTimed = true;  // the ray-fetch counter starts at 0 in every dispatch
     BranchingRun kernel = runBranching(vk, structure, batch.rays, timing, batch.query, launch);
     // A stream in batches is a fetch loop per batch: the counter ends where each batch's does.

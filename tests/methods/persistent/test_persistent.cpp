@@ -125,6 +125,25 @@ TEST(PersistentCounts, TheFetchCounterEndsWhereEverySubgroupFoundNone) {
     EXPECT_THROW(persistentCounts({1, 0}, 100, 4, 8), Error) << "a workgroup of 4 holds no subgroup of 8";
 }
 
+// More workgroups than one grid row holds (65,535 on llvmpipe): the 2-D grid pads a few more, which
+// fetch nothing, so the fetch counter still ends in its range (65,537 was a failed row).
+TEST(PersistentRuns, MoreWorkgroupsThanAGridRowHoldsTraceEveryRayOnce) {
+    TempDir dir;
+    const std::string path = dir.write("w.toml", "[experiment]\nname = \"w\"\noutput = \"" + dir.file("out") +
+                                                     "\"\nrepetitions = 1\nwarmups = 0\n[device]\nname = \"" + testDeviceName() +
+                                                     "\"\n[scene]\nsource = \"procedural:christen_a\"\n[camera]\nwidth = 16\n"
+                                                     "height = 16\n[strategy]\ntype = \"persistent\"\nworkgroup_size = 8\n"
+                                                     "persistent_workgroups = [65535, 65537, 100003]\n[output]\nimages = false\n");
+    RunnerOptions quiet;
+    quiet.quiet = true;
+    const ExperimentResult result = runExperiment(loadExperiment(path), quiet);
+    ASSERT_EQ(result.rows.size(), 3u);
+    for (const Row& row : result.rows) {
+        EXPECT_EQ(row.at("status"), "ok") << row.at("label") << ": " << row.at("error");
+        EXPECT_EQ(row.at("rays_traced"), row.at("rays")) << row.at("label");
+    }
+}
+
 // A workgroup smaller than a subgroup (legal config values 1-7 on llvmpipe's subgroups of 8) is a
 // failed row naming the key, not a division by zero (SIGFPE) that kills the sweep and its resume.
 TEST(PersistentRuns, AWorkgroupBelowTheSubgroupSizeIsAFailedRowNamingTheKey) {
