@@ -50,6 +50,11 @@ def legend_first(axes_row, fontsize):
             return
 
 
+def percent(value) -> str:
+    """A fraction as a table's percentage, "—" where the run has no such measure."""
+    return "—" if pd.isna(value) else f"{fmt(100 * value, 1)}%"
+
+
 def save(fig, folder: Path, name: str):
     fig.tight_layout()
     for ext in ("png", "svg"):
@@ -81,8 +86,8 @@ def main() -> int:
              "exact reference contradicts; parent wrong: rays that left from a hit the exact reference does not "
              "confirm (counted, each still judged as the ray it is).", ""]
     lines += ["| scene | method | rays | rays traced | hits | GPU ms | × primary (time) | × primary (bytes) | "
-              "Embree ms | × primary (Embree) | work/ray | SIMD eff. | wrong | parent wrong |",
-              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+              "Embree ms | × primary (Embree) | work/ray | SIMD eff. (Purcell) | lane util. | wrong | parent wrong |",
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     order = {w: i for i, w in enumerate(["primary", "shadow (any)", "shadow (closest)", "ao (any)", "ao (closest)"] +
                                         [f"reflection {k}" for k in range(1, 65)] +
                                         [f"refraction {k}" for k in range(1, 65)] +
@@ -93,7 +98,7 @@ def main() -> int:
         lines.append(f"| {r.scene} | {r.method} | {r.workload} | {int(r.rays):,} | {int(r.hits):,} | "
                      f"{fmt(r.kernel_ms_median)} | {fmt(r.time_vs_primary, 2)} | {fmt(r.bytes_vs_primary, 2)} | "
                      f"{fmt(r.embree1_ms_median)} | {fmt(r.embree_vs_primary, 2)} | {fmt(r.work_per_ray_mean, 2)} | "
-                     f"{fmt(100 * r.simd_efficiency, 1)}% | {int(r.wrong)} | "
+                     f"{percent(r.simd_efficiency_purcell)} | {percent(r.simd_lane_utilisation)} | {int(r.wrong)} | "
                      f"{'' if pd.isna(getattr(r, 'exact_parent_wrong', None)) else int(r.exact_parent_wrong)} |")
 
     shadow = runs[runs.rays_type == "shadow"]
@@ -115,11 +120,11 @@ def main() -> int:
                   "A frame to depth D: the camera rays, generations 1..D of reflections and refractions and the shadow "
                   "rays of generations 0..D (every light), each batch a run of its own; its cost is the sum of the "
                   "batches' against the camera rays' alone (same scene, structure and strategy).", "",
-                  "| scene | method | depth | rays | × rays | × time | × bytes | × Embree time | SIMD eff. (secondary) | wrong |",
+                  "| scene | method | depth | rays | × rays | × time | × bytes | × Embree time | SIMD eff. (Purcell; secondary) | wrong |",
                   "|---|---|---|---|---|---|---|---|---|---|"]
         for f in frames.itertuples():
             lines.append(f"| {f.scene} | {f.method} | {f.depth} | {f.rays:,} | {fmt(f.rays_x, 2)} | {fmt(f.time_x, 2)} | "
-                         f"{fmt(f.bytes_x, 2)} | {fmt(f.embree_x, 2)} | {fmt(100 * f.secondary_simd, 1)}% | {f.wrong} |")
+                         f"{fmt(f.bytes_x, 2)} | {fmt(f.embree_x, 2)} | {percent(f.secondary_simd)} | {f.wrong} |")
     lines += ["", "## Beside Purcell et al. 2002, Table 3", "",
               f"Purcell's shadow caster costs {PURCELL_TABLE3['shadow'][0]} × ray casting's instructions and "
               f"{PURCELL_TABLE3['shadow'][1]} × its bandwidth (simulated, his branching kernels); his Whitted "
@@ -183,7 +188,7 @@ def main() -> int:
                 if method.endswith("branching"):  # Embree on the same rays as this structure's
                     ax.plot(g.k, g.embree1_ms_median.cumsum(), marker="x", ls=":", color=color,
                             label=f"Embree rtcIntersect1 (rays of {method.split(' /')[0]})")
-                lanes.plot(g.k, 100 * g.simd_efficiency, marker="o", color=color, label=f"{method}, reflection")
+                lanes.plot(g.k, 100 * g.simd_efficiency_purcell, marker="o", color=color, label=f"{method}, reflection")
             # Whitted: a frame to depth D (every batch up to it), and generation k's SIMD efficiency.
             wf = frames[(frames.scene == scene) & (frames.method == method)] if not frames.empty else frames
             if not wf.empty:
@@ -194,11 +199,11 @@ def main() -> int:
                             label=f"Embree rtcIntersect1 (rays of {method.split(' /')[0]})")
                 w = mine[(mine.rays_type == "primary") | ((mine.rays_type == "whitted") & (mine.whitted_rays == "secondary"))]
                 w = w.assign(k=w.whitted_depth.where(w.rays_type == "whitted", 0)).sort_values("k")
-                lanes.plot(w.k, 100 * w.simd_efficiency, marker="D", ls="-.", color=color, label=f"{method}, Whitted generation")
+                lanes.plot(w.k, 100 * w.simd_efficiency_purcell, marker="D", ls="-.", color=color, label=f"{method}, Whitted generation")
             p = mine[mine.rays_type.isin(["primary", "path"])]
             if (p.rays_type == "path").any():
                 p = p.assign(k=p.path_bounce.where(p.rays_type == "path", 0)).sort_values("k")
-                lanes.plot(p.k, 100 * p.simd_efficiency, marker="s", ls="--", color=color, label=f"{method}, path bounce")
+                lanes.plot(p.k, 100 * p.simd_efficiency_purcell, marker="s", ls="--", color=color, label=f"{method}, path bounce")
         for a in (ax, lanes):
             a.xaxis.set_major_locator(matplotlib.ticker.MaxNLocator(integer=True))
         ax.set_yscale("log")
@@ -208,9 +213,9 @@ def main() -> int:
         ax.set_xlabel("Whitted depth k (0: camera rays and their shadow rays)" if whitted_scene
                       else "reflection iterations k (0: camera rays only)")
         ax.set_ylabel("ms, cumulative (log)")
-        lanes.set_title(f"{scene}: SIMD efficiency of " + ("Whitted generation k's reflections\nand refractions"
+        lanes.set_title(f"{scene}: SIMD efficiency (Purcell) of " + ("Whitted generation k's reflections\nand refractions"
                         if whitted_scene else "reflection\niteration k's and path bounce k's rays") +
-                        "\n(branching: lane utilisation; multipass: Purcell's)", fontsize=8)
+                        "\n(Purcell's measure for every strategy: the stream's rays doing useful work)", fontsize=8)
         lanes.set_xlabel("iteration or bounce k (0: camera rays)")
         lanes.set_ylabel("%")
         lanes.set_ylim(0, 100)

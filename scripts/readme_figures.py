@@ -493,12 +493,12 @@ def raytypes() -> list:
            "Full tables: [`results/raytypes/tables.md`](results/raytypes/tables.md). A frame's GPU time for shadow rays "
            "(any hit) and for the first and last reflection iteration, against the camera rays' on the same scene and "
            "method; early termination as the same shadow rays' closest-hit time over their any-hit time; SIMD "
-           "efficiency of the camera rays and of the last iteration's (branching: lane utilisation; multipass: "
-           "Purcell's measure). Each ratio is of two runs' medians (separate runs of one sweep, so no interval; "
+           "efficiency of the camera rays and of the last iteration's (Purcell's measure for every strategy: the "
+           "stream's rays doing useful work per step or pass, misses included). Each ratio is of two runs' medians (separate runs of one sweep, so no interval; "
            "`timing_warning` flags most of them as noisy on this machine): read them to a first digit. Purcell's "
            "shadow caster: 0.85 × ray casting's instructions, 1.15 × its bandwidth.", "",
            "| scene | method | shadow × primary | closest / any | reflection 1 × primary | last iteration | its × primary | "
-           "SIMD eff. primary → last |", "|---|---|---|---|---|---|---|---|"]
+           "SIMD eff. (Purcell) primary → last |", "|---|---|---|---|---|---|---|---|"]
     for (scene, method), g in ok.groupby(["scene", "method"]):
         primary = g[g.rays_type == "primary"]
         shadow_any = g[(g.rays_type == "shadow") & (g["query"] == "any")]
@@ -511,8 +511,8 @@ def raytypes() -> list:
         out.append(f"| {scene} | {method} | {num(shadow_any.kernel_ms_median.iloc[0] / base, 2)} | "
                    f"{num(shadow_closest.kernel_ms_median.iloc[0] / shadow_any.kernel_ms_median.iloc[0], 2)} | "
                    f"{num(reflection.kernel_ms_median.iloc[0] / base, 2)} | {count(last.reflection_iteration)} | "
-                   f"{num(last.kernel_ms_median / base, 2)} | {num(100 * primary.simd_efficiency.iloc[0], 3)}% → "
-                   f"{num(100 * last.simd_efficiency, 3)}% |")
+                   f"{num(last.kernel_ms_median / base, 2)} | {num(100 * primary.simd_efficiency_purcell.iloc[0], 3)}% → "
+                   f"{num(100 * last.simd_efficiency_purcell, 3)}% |")
     out.append("")
     diffuse = []
     for (scene, method), g in ok.groupby(["scene", "method"]):
@@ -523,7 +523,7 @@ def raytypes() -> list:
             continue
         base = primary.kernel_ms_median.iloc[0]
         last = path.iloc[-1]
-        lanes = " → ".join(f"{num(100 * v, 3)}%" for v in [primary.simd_efficiency.iloc[0]] + list(path.simd_efficiency))
+        lanes = " → ".join(f"{num(100 * v, 3)}%" for v in [primary.simd_efficiency_purcell.iloc[0]] + list(path.simd_efficiency_purcell))
         diffuse.append(f"| {scene} | {method} | {num(path.kernel_ms_median.iloc[0] / base, 2)} | {count(last.path_bounce)} | "
                        f"{num(last.kernel_ms_median / base, 2)} | {lanes} | {num(ao.kernel_ms_median.iloc[0] / base, 2)} | "
                        f"{count(ao.rays.iloc[0])} | {count(sum(ok.shading_device_mismatches.fillna(0)))} |")
@@ -532,7 +532,7 @@ def raytypes() -> list:
                 "rays (one path per pixel), SIMD efficiency from the camera rays through each bounce, ambient occlusion "
                 "(4 any-hit rays per camera hit) against the camera rays; the last column counts the rays, over every run "
                 "of the folder, that the device's shading passes made other than the CPU's.", "",
-                "| scene | method | path bounce 1 × primary | last bounce | its × primary | SIMD eff. primary → bounces | "
+                "| scene | method | path bounce 1 × primary | last bounce | its × primary | SIMD eff. (Purcell) primary → bounces | "
                 "ao × primary | ao rays | shading mismatches (all runs) |", "|---|---|---|---|---|---|---|---|---|"] + diffuse + [""]
     frames = whitted_frames(ok)
     if not frames.empty:
@@ -541,7 +541,7 @@ def raytypes() -> list:
                 "refractions and the shadow rays of generations 0..D, each batch a run) against the camera rays' alone; "
                 "Purcell's Whitted ray tracer on the bunny, depth not given: 2.62 × ray casting's instructions, 3.00 × "
                 "its bandwidth.", "",
-                "| method | depth | rays | × rays | × time | × bytes | × Embree time | SIMD eff. of the reflections and "
+                "| method | depth | rays | × rays | × time | × bytes | × Embree time | SIMD eff. (Purcell) of the reflections and "
                 "refractions | rays wrong |", "|---|---|---|---|---|---|---|---|---|"]
         out += [f"| {f.method} | {f.depth} | {count(f.rays)} | {num(f.rays_x, 2)} | {num(f.time_x, 2)} | "
                 f"{num(f.bytes_x, 2)} | {num(f.embree_x, 2)} | "

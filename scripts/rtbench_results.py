@@ -290,7 +290,8 @@ def whitted_frames(runs: pd.DataFrame) -> pd.DataFrame:
     generations 0..D, each batch a run of its own, summed and set against the camera rays' run of
     the same scene and method ("method" column). A depth is kept only when every batch up to it is
     there. Columns: scene, method, depth, rays, and × primary for rays, time, bytes and Embree's
-    time; secondary_simd: the secondary batches' mean SIMD efficiency; wrong: their rays wrong."""
+    time; secondary_simd: the secondary batches' mean SIMD efficiency (Purcell's measure, the same for
+    every strategy); wrong: their rays wrong."""
     rows = []
     primary = runs[runs.rays_type == "primary"].set_index(["scene", "method"])
     whitted = runs[runs.rays_type == "whitted"]
@@ -308,7 +309,7 @@ def whitted_frames(runs: pd.DataFrame) -> pd.DataFrame:
                          "time_x": total("kernel_ms_median") / base.kernel_ms_median,
                          "bytes_x": total("bytes_total") / base.bytes_total,
                          "embree_x": total("embree1_ms_median") / base.embree1_ms_median,
-                         "secondary_simd": upto[upto.whitted_rays == "secondary"].simd_efficiency.mean(),
+                         "secondary_simd": upto[upto.whitted_rays == "secondary"].simd_efficiency_purcell.mean(),
                          "wrong": int(wrong_rays(upto).sum())})
     return pd.DataFrame(rows)
 
