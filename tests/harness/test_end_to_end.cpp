@@ -413,9 +413,11 @@ TEST_F(EndToEnd, ThreeShardsMergedEqualTheUnshardedRun) {
         EXPECT_TRUE(sampled.count(row.at("run") + "|kernel")) << row.at("run");
         EXPECT_TRUE(sampled.count(row.at("run") + "|embree16")) << row.at("run");
     }
+    // Every column but the timings and the noise guard's verdict (a context column: the machine's
+    // load while each was timed, which differs between the unsharded run and the shards).
     for (std::size_t r = 0; r < merged.size(); ++r)
         for (const auto& [column, value] : unsharded[r])
-            if (columnSpec(column).kind != ColumnKind::Timing) {
+            if (columnSpec(column).kind != ColumnKind::Timing && column != "timing_warning") {
                 EXPECT_EQ(merged[r].at(column), value) << "run " << r << " column " << column;
             }
 
