@@ -3,8 +3,9 @@
 benchmarks at his settings, his scenes A, B and C at 256 x 256 over a uniform grid.
   Fig. 6.8    render time per scene at a 20 x 20 x 20 grid (sweep fig6_8);
   Fig. 6.9    render time against grid size (sweeps fig6_9 and fig6_8);
-  Figs. 6.10-6.11  the GPU against the CPU running the same grid traversal, by iteration (sweeps
-              fig6_8 for the camera rays and fig6_11 for the reflections).
+  Figs. 6.10-6.11  his GPU against his CPU, here the Vulkan kernels on the device (lavapipe: on the
+              host's own cores) against host C++ running the same grid traversal, by iteration
+              (sweeps fig6_8 for the camera rays and fig6_11 for the reflections).
 His figures are bitmaps the thesis text lacks: there are no numbers of his to put beside ours.
 
 usage: scripts/christen_tables.py RESULTS_DIR
@@ -15,7 +16,8 @@ import sys
 
 import pandas as pd
 
-from rtbench_results import CHRISTEN_SCENES, christen_iterations, command_text, masking_share, failed_rows, fmt, open_results, scene_name, write_tables, wrong_rays
+from rtbench_results import (CHRISTEN_SCENES, christen_iterations, command_text, embree_speed_caption, failed_rows, fmt,
+                             host_against_device, masking_share, open_results, scene_name, write_tables, wrong_rays)
 
 STRATEGIES = ["multipass", "branching", "cpu"]
 
@@ -30,17 +32,18 @@ def main() -> int:
     runs["grid"] = [grid_text(r) for r in runs.itertuples()]
     runs["wrong"] = wrong_rays(runs)
     runs["iteration"] = christen_iterations(runs)
+    versus = host_against_device(runs, device)
     lines = [f"# Christen 2005's benchmarks — {device}, {context.get('cpu', '?')}", "",
              command_text(context) + " "
              f"{len(runs)} runs ok, {len(failed)} failed. {CHRISTEN_SCENES}", "",
              "All at 256×256 (his size), uniform grid. multipass: Christen's architecture (K = M = 1, oracle 20%, the host "
              "in control, every pass over the whole stream; our stencil test stands for his early-z); branching: one "
-             "kernel; cpu: the same grid traversal (the kernels' source compiled as C++) on the host's "
+             "kernel; cpu: host C++, the same grid traversal (the kernels' source compiled as C++) on the host's "
              f"{'/'.join(sorted({str(int(t)) for t in runs.get('host_threads', pd.Series(dtype=float)).dropna()})) or '?'} "
-             "TBB threads. ms: median time of a frame (GPU time; cpu: wall time); × Embree: its speed over Embree "
-             "rtcIntersect1's on the same rays in the same run, with the 95% bootstrap interval; wrong: rays the exact "
-             "reference contradicts. Christen's figures are bitmaps missing from the thesis text: compare shapes, "
-             "not numbers.", ""]
+             f"TBB threads. Figs. 6.10-6.11 set {versus}. ms: median time of a frame (the device's "
+             "timestamps; cpu: wall time); " + embree_speed_caption(runs) + " In the same run, with the 95% bootstrap "
+             "interval; wrong: rays the exact reference contradicts. Christen's figures are bitmaps missing from the "
+             "thesis text: compare shapes, not numbers.", ""]
 
     first = runs[runs.sweep == "fig6_8"].copy()
     first["order"] = first.strategy_type.map(STRATEGIES.index)
@@ -66,10 +69,10 @@ def main() -> int:
     lines += [text for _, text in sorted(rows)]
 
     gens = runs[runs.sweep.isin(["fig6_8", "fig6_11"]) & (runs.scene_source != "procedural:christen_a")]
-    lines += ["", "## Figs. 6.10-6.11: the GPU against the CPU on the same grid, by iteration", "",
+    lines += ["", f"## Figs. 6.10-6.11: {versus}, on the same grid, by iteration", "",
               "Iteration 1: the camera rays; 2-4: mirror reflections 1-3 of every surface (our reading of his iterations). "
-              "cpu / GPU: the CPU's median time over the GPU architecture's, two runs timed round by round together "
-              "(experiment.order = interleaved); no interval.", "",
+              "cpu / multipass, cpu / branching: host C++'s median time over the kernel's, two runs timed round by round "
+              "together (experiment.order = interleaved); no interval.", "",
               "| scene | iteration | rays | multipass ms | branching ms | cpu ms | cpu / multipass | cpu / branching |",
               "|---|---|---|---|---|---|---|---|"]
     for (label, it), g in gens.sort_values(["scene_triangles", "iteration"]).groupby(["scene_label", "iteration"], sort=False):

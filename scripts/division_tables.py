@@ -13,7 +13,8 @@ import sys
 
 import pandas as pd
 
-from rtbench_results import command_text, division_names, failed_rows, fmt, open_results, structure_names, write_tables, wrong_rays
+from rtbench_results import (command_text, division_names, embree_speed_caption, failed_rows, fmt, open_results,
+                             structure_names, write_tables, wrong_rays)
 
 
 def main() -> int:
@@ -27,9 +28,9 @@ def main() -> int:
              command_text(context) + " "
              f"{len(runs)} runs ok, {len(failed)} failed.",
              "kernel: the branching kernel dividing exactly, through 32-bit integer products (`integer`) or a double "
-             "quotient (`double`; `intersection.division`), or its plain twin dividing as the device does; × Embree: the "
-             "kernel's speed over Embree rtcIntersect1's on the identical rays in the same run (`speed_ratio_vs_embree1`, "
-             "its 95% bootstrap interval); exact / plain: an exact kernel's ratio over the plain twin's, a ratio of ratios, "
+             "quotient (`double`; `intersection.division`), or its plain twin dividing as the device does; " +
+             embree_speed_caption(runs) + " In the same run (`speed_ratio_vs_embree1`, its 95% bootstrap interval); "
+             "exact / plain: an exact kernel's ratio over the plain twin's, a ratio of ratios, "
              "so drift that hits Embree and the kernel alike cancels; integer / double: the same between the two exact "
              "kernels; ns/ray: GPU time per ray (median); 2048² / 1024²: that time per ray at 2048² over 1024²'s; "
              "differing: rays whose plain hit differs from the exactly dividing CPU reference's; wrong: rays the exact "

@@ -31,7 +31,7 @@ import pandas as pd  # noqa: E402
 from matplotlib import ticker, transforms  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
-from rtbench_results import (AXES, VECTOR_KEYS, christen_iterations, load, method_name, scene_name,  # noqa: E402
+from rtbench_results import (AXES, VECTOR_KEYS, christen_iterations, host_against_device, load, method_name, scene_name,  # noqa: E402
                              UnsafePath, write_file_atomically, wrong_rays)
 # One palette for every chart: a colour family per acceleration structure (shades for its
 # resolutions, in numeric order), a colour per strategy apart from all of them, Embree in black.
@@ -801,7 +801,8 @@ def christen_gpu_cpu(runs, device, folder, written):
         ax.set_ylabel("frame time, median (ms, log scale; cpu: wall time)")
         ax.set_title(part.scene.iloc[0])
         ax.legend(fontsize=7, loc="best")
-    fig.suptitle(f"The GPU against the CPU on the same grid (Christen 2005 Figs. 6.10-6.11 style), {size(gens)}; {device}")
+    fig.suptitle(f"Christen 2005 Figs. 6.10-6.11 style, {size(gens)}; {device}:\n"
+                 f"{host_against_device(gens, device)}, on the same grid")
     save(fig, folder, "christen_gpu_cpu", written)
 
 

@@ -8,7 +8,7 @@ import sys
 
 import pandas as pd
 
-from rtbench_results import CHRISTEN_SCENES, open_results, write_text_atomically
+from rtbench_results import CHRISTEN_SCENES, embree_speed_caption, interval_of, open_results, with_interval, write_text_atomically
 
 
 def mb(value) -> str:
@@ -91,7 +91,9 @@ def main() -> int:
     fixed = lambda digits: (lambda v: f"{v:,.{digits}f}")
     size = lambda frame: f"{int(frame.camera_width.iloc[0])}x{int(frame.camera_height.iloc[0])}" if len(frame) else "-"
 
-    arch = runs[runs.sweep == "architecture"].sort_values(["scene", "strategy_type"])
+    arch = runs[runs.sweep == "architecture"].sort_values(["scene", "strategy_type"]).copy()
+    arch["embree_speed"] = [with_interval(r.speed_ratio_vs_embree1, interval_of(r, "speed_ratio"), fixed(4))
+                            for r in arch.itertuples()]
     multipass = arch[arch.strategy_type == "multipass"]
     at_table_2 = len(multipass) and (multipass.strategy_traverse_steps_per_pass == 1).all() and \
         (multipass.strategy_intersections_per_pass == 1).all()
@@ -116,7 +118,8 @@ def main() -> int:
                 "measures: Purcell's (Table 2: the average fraction of the stream's rays doing useful work in a "
                 "pass, misses included; for branching, the stream run in lock step one step or test at a time) and "
                 "the subgroups' lane utilisation (Aila & Laine's ballots, branching only: counted only where some "
-                "lane of a subgroup still works). Purcell's numbers are his Table 2's." + grid, "",
+                "lane of a subgroup still works). Purcell's numbers are his Table 2's. " + embree_speed_caption(runs) +
+                " In the same run, with its 95% interval." + grid, "",
                 table(arch, {"scene": ("scene", str), "strategy_type": ("architecture", str),
                              "passes_total": ("passes", integer), "passes_traverse": ("traverse", integer),
                              "passes_intersect": ("intersect", integer), "passes_lower_bound": ("lower bound", integer),
@@ -124,7 +127,7 @@ def main() -> int:
                              "triangles_per_ray_max": ("max tests/ray", integer),
                              "simd_efficiency_purcell": ("SIMD eff. (Purcell)", pct),
                              "simd_lane_utilisation": ("lane util.", pct), "kernel_mrays_s": ("Mrays/s", fixed(3)),
-                             "speed_ratio_vs_embree1": ("vs Embree", fixed(4)),
+                             "embree_speed": ("× Embree [95% interval]", str),
                              "hit_miss_agreement": ("hit/miss agr.", pct)}), ""]
 
     views = table_2_views(runs)

@@ -18,8 +18,8 @@ import matplotlib.pyplot as plt
 import matplotlib.ticker
 import pandas as pd
 
-from rtbench_results import (commit_text, fmt, open_results, save_figure, structure_names, whitted_frames,
-                             write_text_atomically, wrong_rays)
+from rtbench_results import (commit_text, embree_on, embree_speed_caption, fmt, interval_of, open_results, save_figure,
+                             structure_names, whitted_frames, with_interval, write_text_atomically, wrong_rays)
 
 # Purcell et al. 2002, Table 3: relative instructions / bandwidth of a frame, against ray casting
 # (his shadow caster finds the eye rays' hits by rasterization, so its frame is the shadow rays').
@@ -81,13 +81,16 @@ def main() -> int:
              f"Command: `{context.get('command', '?')}` at commit {commit_text(context)}, "
              f"{context.get('date_utc', '?')}; {size} pixels. {len(runs)} runs ok, {len(failed)} failed.",
              "GPU ms is the kernel's median over the timed repetitions, Embree's rtcIntersect1/rtcOccluded1 on the "
-             "identical rays in the same run. \"× primary\" is the frame's cost (the whole batch, not per ray) "
+             "identical rays in the same run; " + embree_speed_caption(runs) + " With its 95% interval; for any-hit rays "
+             "(query any) Embree's is rtcOccluded1. \"× primary\" "
+             "is the frame's cost (the whole batch, not per ray) "
              "against the camera rays' on the same scene, structure and strategy. Wrong: rays whose answer the "
              "exact reference contradicts; parent wrong: rays that left from a hit the exact reference does not "
              "confirm (counted, each still judged as the ray it is).", ""]
     lines += ["| scene | method | rays | rays traced | hits | GPU ms | × primary (time) | × primary (bytes) | "
-              "Embree ms | × primary (Embree) | work/ray | SIMD eff. (Purcell) | lane util. | wrong | parent wrong |",
-              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+              "Embree ms | × Embree [95% interval] | × primary (Embree) | work/ray | SIMD eff. (Purcell) | lane util. | "
+              "wrong | parent wrong |",
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     order = {w: i for i, w in enumerate(["primary", "shadow (any)", "shadow (closest)", "ao (any)", "ao (closest)"] +
                                         [f"reflection {k}" for k in range(1, 65)] +
                                         [f"refraction {k}" for k in range(1, 65)] +
@@ -97,7 +100,8 @@ def main() -> int:
     for r in runs.sort_values(["scene", "method", "order"]).itertuples():
         lines.append(f"| {r.scene} | {r.method} | {r.workload} | {int(r.rays):,} | {int(r.hits):,} | "
                      f"{fmt(r.kernel_ms_median)} | {fmt(r.time_vs_primary, 2)} | {fmt(r.bytes_vs_primary, 2)} | "
-                     f"{fmt(r.embree1_ms_median)} | {fmt(r.embree_vs_primary, 2)} | {fmt(r.work_per_ray_mean, 2)} | "
+                     f"{fmt(r.embree1_ms_median)} | {with_interval(r.speed_ratio_vs_embree1, interval_of(r, 'speed_ratio'))} | "
+                     f"{fmt(r.embree_vs_primary, 2)} | {fmt(r.work_per_ray_mean, 2)} | "
                      f"{percent(r.simd_efficiency_purcell)} | {percent(r.simd_lane_utilisation)} | {int(r.wrong)} | "
                      f"{'' if pd.isna(getattr(r, 'exact_parent_wrong', None)) else int(r.exact_parent_wrong)} |")
 
@@ -119,8 +123,9 @@ def main() -> int:
         lines += ["", "## Whitted ray tracing: a frame to depth D against ray casting", "",
                   "A frame to depth D: the camera rays, generations 1..D of reflections and refractions and the shadow "
                   "rays of generations 0..D (every light), each batch a run of its own; its cost is the sum of the "
-                  "batches' against the camera rays' alone (same scene, structure and strategy).", "",
-                  "| scene | method | depth | rays | × rays | × time | × bytes | × Embree time | SIMD eff. (Purcell; secondary) | wrong |",
+                  "batches' against the camera rays' alone (same scene, structure and strategy); × time (Embree's): the "
+                  f"same for {embree_on(runs)} (rtcOccluded1 for the shadow rays) on the same rays.", "",
+                  "| scene | method | depth | rays | × rays | × time | × bytes | × time (Embree's) | SIMD eff. (Purcell; secondary) | wrong |",
                   "|---|---|---|---|---|---|---|---|---|---|"]
         for f in frames.itertuples():
             lines.append(f"| {f.scene} | {f.method} | {f.depth} | {f.rays:,} | {fmt(f.rays_x, 2)} | {fmt(f.time_x, 2)} | "

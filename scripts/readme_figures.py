@@ -20,7 +20,10 @@ from pathlib import Path
 import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rtbench_results import CHRISTEN_SCENES, commit_text, division_names, masking_share, method_name, read_runs, read_samples, round_ratios, round_times, scene_name, structure_names, whitted_frames, wrong_rays  # noqa: E402
+from rtbench_results import (CHRISTEN_SCENES, EMBREE_SPEED, auto_summary, auto_verdicts, commit_text, division_names,  # noqa: E402
+                             embree_on, embree_speed_caption, faster_of, host_against_device, interval_of, leaders,
+                             masking_share, method_name, ranked_text, read_runs, read_samples, round_ratios, round_times,
+                             scene_name, structure_names, verdict_counts, whitted_frames, with_interval, wrong_rays)
 from purcell_tables import PURCELL_TABLE_2  # noqa: E402  (his Table 2, the paper's numbers)
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -148,11 +151,11 @@ def bunny() -> list:
         out.append(f"| {label} | {num(r[m + '_ms_median'])} {interval(r[m + '_ms_ci_low'], r[m + '_ms_ci_high'])} | "
                    f"{num(r[m + '_ms_cv'], 2)} | {num(r[rate])} |")
     headline("bunny", "How fast and how exact is the default experiment?",
-             f"{r.strategy_type} kernel, {r.method}, {size(r)}: **{num(r.speed_ratio_vs_embree1)}×** Embree rtcIntersect1's speed "
+             f"{r.strategy_type} kernel, {r.method}, {size(r)}: **{num(r.speed_ratio_vs_embree1)}×** the speed of {embree_on(runs)} "
              f"{interval(r.speed_ratio_ci_low, r.speed_ratio_ci_high)}; {num(r.exact_wrong_ppm)} rays wrong per million "
              f"(Embree {num(r.embree_exact_wrong_ppm)})", context)
     out += ["",
-            f"- Speed against Embree `rtcIntersect1` on the same rays, in the same run: **{num(r.speed_ratio_vs_embree1)}** "
+            f"- {EMBREE_SPEED}, in the same run ({embree_on(runs)}): **{num(r.speed_ratio_vs_embree1)}** "
             f"(95% interval {interval(r.speed_ratio_ci_low, r.speed_ratio_ci_high)}).",
             f"- Against the exact reference on {count(r.exact_rays)} rays: the kernel gets {count(r.exact_false_misses)} "
             f"false misses, {count(r.exact_false_hits)} false hits and {count(r.exact_wrong_primitive)} wrong triangles "
@@ -179,54 +182,13 @@ def bunny() -> list:
 SAME_WORK = ("hits", "passes_total", "bytes_total", "work_per_ray_mean", "simd_efficiency", "exact_wrong_ppm")
 
 
-def structures() -> list:
-    runs, context = load("structures")
-    ok = runs[runs.status == "ok"].copy()
-    out = ["### `results/structures/`: which structure does a scene need?", "", provenance("structures", runs, context), "",
-           f"Full tables: [`results/structures/tables.md`](results/structures/tables.md). GPU ms per frame at "
-           f"{size(ok.iloc[0])} (median [95% interval]; "
-           f"the fastest in bold, × Embree `rtcIntersect1` in the same run):", ""]
-    columns = ["grid 32", "grid 64", "grid 128", "bvh", "brute force"]
-    fastest = {}  # strategy -> structure -> scenes where it is the fastest
-    for strategy in ["branching", "multipass"]:
-        part = ok[ok.strategy_type == strategy]
-        out += [f"{strategy}:", "", "| scene (triangles) | " + " | ".join(columns) + " | auto's choice |",
-                "|---|" + "---|" * (len(columns) + 1)]
-        for scene, group in sorted(part.groupby("scene"), key=lambda g: g[1].scene_triangles.iloc[0]):
-            plain = group[group.structure_type != "auto"]
-            best = plain.kernel_ms_median.min()
-            fastest.setdefault(strategy, {}).setdefault(plain[plain.kernel_ms_median == best].method.iloc[0], []).append(scene)
-            cells = []
-            for column in columns:
-                row = plain[plain.method == column]
-                if row.empty:
-                    failed = runs[(runs.status != "ok") & (runs.scene_source == group.scene_source.iloc[0]) &
-                                  (runs.strategy_type == strategy)]
-                    failed = failed[failed.method == column]
-                    cells.append("failed" if not failed.empty else "—")
-                    continue
-                row = row.iloc[0]
-                text = f"{num(row.kernel_ms_median)} {interval(row.kernel_ms_ci_low, row.kernel_ms_ci_high)}"
-                if row.kernel_ms_median == best:
-                    text = f"**{num(row.kernel_ms_median)}** {interval(row.kernel_ms_ci_low, row.kernel_ms_ci_high)} " \
-                           f"({num(row.speed_ratio_vs_embree1, 2)}×)"
-                cells.append(text)
-            auto = group[group.structure_type == "auto"]
-            choice = auto.auto_choice.iloc[0] if not auto.empty else "—"
-            out.append(f"| {scene} ({count(group.scene_triangles.iloc[0])}) | " + " | ".join(cells) + f" | {choice} |")
-        out.append("")
-    headline("structures", "Which acceleration structure does a scene need?",
-             "the fastest by median GPU time at " + size(ok.iloc[0]) + ": " + "; ".join(
-                 f"{strategy}: " + ", ".join(f"{structure} on {', '.join(scenes)}" for structure, scenes in by.items())
-                 for strategy, by in fastest.items()), context)
-    # auto against its chosen candidate's own run: the same work, timed apart.
+def auto_lines(ok) -> list:
+    """auto against the run of the structure it chose (the same work, timed apart), and whether it
+    picked the fastest of its candidates (rtbench_results.auto_verdicts: ranked only where the 95%
+    intervals separate)."""
     pairs = []
-    candidates = ok[(ok.structure_type.isin(["bvh", "brute_force"])) |
-                    ((ok.structure_type == "uniform_grid") & (ok.structure_min_dim == 64) &
-                     ~ok.structure_conservative.fillna(False).astype(bool))]
-    right = total = tied = 0
-    for _, auto in ok[ok.structure_type == "auto"].iterrows():
-        pool = candidates[(candidates.scene_source == auto.scene_source) & (candidates.strategy_type == auto.strategy_type)]
+    verdicts = auto_verdicts(ok)
+    for auto, pool, _, _ in verdicts:
         chosen = pool[pool.structure_type == auto.auto_choice]
         if chosen.empty:
             continue
@@ -234,25 +196,73 @@ def structures() -> list:
         overlap = auto.kernel_ms_ci_low <= c.kernel_ms_ci_high and c.kernel_ms_ci_low <= auto.kernel_ms_ci_high
         same = all(auto[k] == c[k] for k in SAME_WORK)
         pairs.append((auto.kernel_ms_median / c.kernel_ms_median, overlap, auto.scene, auto.strategy_type, same))
-        fastest = pool.sort_values("kernel_ms_median").iloc[0]
-        total += 1
-        if fastest.structure_type == auto.auto_choice:
-            right += 1
-        elif c.kernel_ms_ci_low <= fastest.kernel_ms_ci_high:
-            tied += 1
-    if pairs:
-        ratios = [max(p[0], 1 / p[0]) for p in pairs]
-        worst = pairs[ratios.index(max(ratios))]
-        within = sum(r <= 1.05 for r in ratios)
-        same = sum(p[4] for p in pairs)
-        out += [f"- **`auto` and the run of the structure it chose** trace the same rays through the same structure "
-                f"({same} of {len(pairs)} pairs equal in {', '.join(f'`{k}`' for k in SAME_WORK)}) and were timed "
-                f"apart: their medians differ by at most {num(100 * (max(ratios) - 1), 2)}% (worst: {worst[2]}, "
-                f"{worst[3]}, auto / candidate {num(worst[0])}), {within} of {len(pairs)} pairs within 5%, and "
-                f"{sum(p[1] for p in pairs)} of {len(pairs)} pairs have overlapping 95% intervals.",
-                f"- **`auto` picked the fastest of its candidates** (grid at min_dim 64, BVH, brute force) in {right} of "
-                f"{total} cases by the medians" + (f"; in {tied} more its choice's interval overlaps the fastest's (a tie "
-                                                  f"at this noise)." if tied else ".")]
+    if not pairs:
+        return []
+    ratios = [max(p[0], 1 / p[0]) for p in pairs]
+    worst = pairs[ratios.index(max(ratios))]
+    within = sum(r <= 1.05 for r in ratios)
+    same = sum(p[4] for p in pairs)
+    return [f"- **`auto` and the run of the structure it chose** trace the same rays through the same structure "
+            f"({same} of {len(pairs)} pairs equal in {', '.join(f'`{k}`' for k in SAME_WORK)}) and were timed "
+            f"apart: their medians differ by at most {num(100 * (max(ratios) - 1), 2)}% (worst: {worst[2]}, "
+            f"{worst[3]}, auto / candidate {num(worst[0])}), {within} of {len(pairs)} pairs within 5%, and "
+            f"{sum(p[1] for p in pairs)} of {len(pairs)} pairs have overlapping 95% intervals.",
+            "- **Did `auto` pick the fastest of its candidates** (grid at min_dim 64, BVH, brute force)? "
+            + auto_summary(verdicts)]
+
+
+def structure_row(group, columns, failed_of) -> tuple:
+    """A scene's cells (GPU ms [95% interval], the separated fastest in bold) and its fastest: one
+    structure (with its × Embree), a tie, or no interval."""
+    plain = group[group.structure_type != "auto"]
+    leading = leaders(plain)
+    cells = []
+    for column in columns:
+        row = plain[plain.method == column]
+        if row.empty:
+            cells.append("failed" if failed_of(column) else "—")
+            continue
+        row = row.iloc[0]
+        text = f"{num(row.kernel_ms_median)} {interval(row.kernel_ms_ci_low, row.kernel_ms_ci_high)}"
+        cells.append(f"**{num(row.kernel_ms_median)}** {interval(row.kernel_ms_ci_low, row.kernel_ms_ci_high)}"
+                     if leading and len(leading) == 1 and leading[0].method == column else text)
+    fastest = ranked_text(leading, lambda r: r.method, num)
+    if leading and len(leading) == 1:
+        w = leading[0]
+        fastest += f"; × Embree {with_interval(w.speed_ratio_vs_embree1, interval_of(w, 'speed_ratio'), lambda v: num(v, 2))}"
+    return cells, fastest, leading
+
+
+def structures() -> list:
+    runs, context = load("structures")
+    ok = runs[runs.status == "ok"].copy()
+    out = ["### `results/structures/`: which structure does a scene need?", "", provenance("structures", runs, context), "",
+           f"Full tables: [`results/structures/tables.md`](results/structures/tables.md). GPU ms per frame at "
+           f"{size(ok.iloc[0])} (median [95% interval]). Fastest: the structure whose interval lies wholly below every "
+           f"other's, in bold; where intervals overlap the fastest's, a tie (each with its interval). Beside the fastest, "
+           f"{EMBREE_SPEED}, in the same run ({embree_on(ok)}), with its 95% interval.", ""]
+    columns = ["grid 32", "grid 64", "grid 128", "bvh", "brute force"]
+    fastest = {}  # strategy -> the fastest structure, "tied" or "not ranked" -> scenes
+    for strategy in ["branching", "multipass"]:
+        part = ok[ok.strategy_type == strategy]
+        out += [f"{strategy}:", "", "| scene (triangles) | " + " | ".join(columns) + " | fastest | auto's choice |",
+                "|---|" + "---|" * (len(columns) + 2)]
+        for scene, group in sorted(part.groupby("scene"), key=lambda g: g[1].scene_triangles.iloc[0]):
+            failed = runs[(runs.status != "ok") & (runs.scene_source == group.scene_source.iloc[0]) &
+                          (runs.strategy_type == strategy)]
+            cells, best, leading = structure_row(group, columns, lambda column: (failed.method == column).any())
+            key = leading[0].method if leading and len(leading) == 1 else \
+                "tied" if leading else "not ranked"
+            fastest.setdefault(strategy, {}).setdefault(key, []).append(scene)
+            auto = group[group.structure_type == "auto"]
+            choice = auto.auto_choice.iloc[0] if not auto.empty else "—"
+            out.append(f"| {scene} ({count(group.scene_triangles.iloc[0])}) | " + " | ".join(cells) + f" | {best} | {choice} |")
+        out.append("")
+    headline("structures", "Which acceleration structure does a scene need?",
+             "the fastest by GPU time at " + size(ok.iloc[0]) + ", where the 95% intervals separate: " + "; ".join(
+                 f"{strategy}: " + ", ".join(f"{structure} ({', '.join(scenes)})" for structure, scenes in by.items())
+                 for strategy, by in fastest.items()), context)
+    out += auto_lines(ok)
     failed = runs[runs.status != "ok"]
     if not failed.empty:
         out.append(f"- {len(failed)} runs failed, each naming why: {reasons(failed.error)}.")
@@ -283,9 +293,9 @@ def purcell2002() -> list:
            ("Purcell's Table 2 setting, one step or one test a pass" if table_2 else "not Purcell's Table 2 setting, K = M = 1") +
            "), oracle threshold 0.2. SIMD efficiency: Purcell's (the stream's rays doing useful work per pass, misses "
            "included; branching run in lock step one step or test at a time); lane utilisation: the branching "
-           "kernel's subgroup ballots. " + CHRISTEN_SCENES, ""]
+           "kernel's subgroup ballots. " + embree_speed_caption(ok) + " " + CHRISTEN_SCENES, ""]
     if not arch.empty:
-        out += [f"| {size(arch.iloc[0])} | passes (traverse+intersect) | lower bound | SIMD efficiency (Purcell) | lane utilisation | MB moved | GPU ms | × Embree rtcIntersect1 |",
+        out += [f"| {size(arch.iloc[0])} | passes (traverse+intersect) | lower bound | SIMD efficiency (Purcell) | lane utilisation | MB moved | GPU ms | × Embree [95% interval] |",
                 "|---|---|---|---|---|---|---|---|"]
         for _, r in arch.iterrows():
             passes = "1" if r.strategy_type == "branching" else \
@@ -293,26 +303,29 @@ def purcell2002() -> list:
             percent = lambda v: "" if pd.isna(v) else f"{num(100 * v)}%"
             out.append(f"| {r.scene}, {r.strategy_type} | {passes} | {count(r.get('passes_lower_bound'))} | "
                        f"{percent(r.simd_efficiency_purcell)} | {percent(r.simd_lane_utilisation)} | "
-                       f"{num(r.bytes_total / 1e6)} | {num(r.kernel_ms_median)} | {num(r.speed_ratio_vs_embree1)} |")
-        slow = []
+                       f"{num(r.bytes_total / 1e6)} | {num(r.kernel_ms_median)} | "
+                       f"{with_interval(r.speed_ratio_vs_embree1, interval_of(r, 'speed_ratio'), num)} |")
+        slow, ranked = [], []
         for scene, g in arch.groupby("scene"):
             b, m = g[g.strategy_type == "branching"], g[g.strategy_type == "multipass"]
             if len(b) and len(m):
+                ranked.append(faster_of(m.iloc[0], b.iloc[0], ("multipass", "branching")))
                 slow.append((m.kernel_ms_median.iloc[0] / b.kernel_ms_median.iloc[0],
                              m.bytes_total.iloc[0] / b.bytes_total.iloc[0],
                              m.passes_total.iloc[0] - 2, m.passes_lower_bound.iloc[0],
                              m.multipass_live_ms_median.iloc[0] / m.kernel_ms_median.iloc[0]))
         if slow:
             headline("purcell2002", "Multipass or branching (Purcell et al. 2002)?",
-                     f"multipass is {num(min(x[0] for x in slow), 2)}–{num(max(x[0] for x in slow), 2)}× slower than branching "
-                     f"at {size(arch.iloc[0])}, with {num(min(x[2] / x[3] for x in slow), 2)}–{num(max(x[2] / x[3] for x in slow), 2)}× "
+                     f"multipass takes {num(min(x[0] for x in slow), 2)}–{num(max(x[0] for x in slow), 2)}× branching's GPU "
+                     f"time at {size(arch.iloc[0])} ({verdict_counts(ranked, 'scenes')}), with {num(min(x[2] / x[3] for x in slow), 2)}–{num(max(x[2] / x[3] for x in slow), 2)}× "
                      f"Purcell's lower bound in passes and {num(min(x[1] for x in slow), 2)}–{num(max(x[1] for x in slow), 2)}× "
                      "the bytes", context)
             out += ["",
                     f"- Multipass needs {num(min(s[2] / s[3] for s in slow), 2)}–{num(max(s[2] / s[3] for s in slow), 2)}× "
                     f"Purcell's lower bound in traverse + intersect passes, moves {num(min(s[1] for s in slow), 2)}–"
-                    f"{num(max(s[1] for s in slow), 2)}× the branching kernel's bytes, and is {num(min(s[0] for s in slow), 2)}–"
-                    f"{num(max(s[0] for s in slow), 2)}× slower on this device (the replayed passes' GPU time). The live "
+                    f"{num(max(s[1] for s in slow), 2)}× the branching kernel's bytes, and takes {num(min(s[0] for s in slow), 2)}–"
+                    f"{num(max(s[0] for s in slow), 2)}× its GPU time on this device (the replayed passes'; "
+                    f"{verdict_counts(ranked, 'scenes')}). The live "
                     f"loop, with the oracle's read-back after every pass (`multipass_live_ms_median`), takes "
                     f"{num(min(s[4] for s in slow), 2)}–{num(max(s[4] for s in slow), 2)}× that GPU time."]
     oracle = ok[ok.sweep.isin(["oracle", "architecture"]) & (ok.strategy_type == "multipass") &
@@ -337,8 +350,11 @@ def purcell2002() -> list:
     grid = ok[(ok.sweep == "grid") & (ok.strategy_type == "branching")]
     if not grid.empty:
         fastest = grid.loc[grid.kernel_ms_median.idxmin()]
-        out.append(f"- **Grid resolution** (branching): fastest at min_dim {count(fastest.structure_min_dim)} "
-                   f"({num(fastest.kernel_mrays_s)} Mrays/s); triangle tests per ray from "
+        leading = leaders(grid)
+        ranked = "the 95% intervals separate" if leading and len(leading) == 1 else \
+            ranked_text(leading, lambda r: f"min_dim {count(r.structure_min_dim)}", num)
+        out.append(f"- **Grid resolution** (branching): the highest median speed at min_dim {count(fastest.structure_min_dim)} "
+                   f"({num(fastest.kernel_mrays_s)} Mrays/s; {ranked}); triangle tests per ray from "
                    f"{num(grid.triangles_per_ray_mean.max())} to {num(grid.triangles_per_ray_mean.min())} and voxels per ray "
                    f"from {num(grid.voxels_per_ray_mean.min())} to {num(grid.voxels_per_ray_mean.max())} over min_dim "
                    f"{count(grid.structure_min_dim.min())}–{count(grid.structure_min_dim.max())}.")
@@ -436,24 +452,53 @@ def stability() -> list:
     return out + [""]
 
 
+def speed_interval(run):
+    """A run's 95% interval of Mrays/s, from its GPU time's; None where it has none."""
+    span = interval_of(run)
+    rays = run.kernel_mrays_s * run.kernel_ms_median
+    return None if span is None else (rays / span[1], rays / span[0])
+
+
+def pareto(g) -> list:
+    """The runs no other run beats, each with the run it ties (or None): another run beats one when it
+    is at most as wrong and its speed interval lies wholly above; one at most as wrong with a higher
+    median whose interval overlaps is a tie (a run without an interval stays, not ranked)."""
+    rows = [r for _, r in g.sort_values(["exact_wrong_ppm", "kernel_mrays_s"], ascending=[True, False]).iterrows()]
+    spans = [speed_interval(r) for r in rows]
+    front = []
+    for r, mine in zip(rows, spans):
+        better = [(o, theirs) for o, theirs in zip(rows, spans)
+                  if o.exact_wrong_ppm <= r.exact_wrong_ppm and o.kernel_mrays_s > r.kernel_mrays_s]
+        if not any(mine and theirs and theirs[0] > mine[1] for _, theirs in better):
+            front.append((r, better[0][0] if better else None))
+    return front
+
+
+def run_text(r) -> str:
+    """An accuracy run in a few words: method, test, vertex bits, triangles kept."""
+    bits = "float" if r.intersection_vertex_bits == 32 else f"{count(r.intersection_vertex_bits)} bits"
+    kept = "all" if pd.isna(r.scene_simplify_ratio) else f"{num(100 * r.scene_simplify_ratio)}%"
+    return f"{r.method} | {r.intersection_test} | {bits} | {kept}"
+
+
 def accuracy() -> list:
     runs, context = load("accuracy")
     ok = runs[runs.status == "ok"].copy()
     out = ["### `results/accuracy/`: speed against accuracy", "", provenance("accuracy", runs, context), "",
-           "Every ray judged against the exact reference on the full scene. The fastest run for its accuracy on each "
-           "scene (the Pareto front: no other run both faster and at most as wrong):", "",
-           "| scene | method | test | vertices | triangles kept | Mrays/s | × Embree | wrong per million |",
-           "|---|---|---|---|---|---|---|---|"]
+           "Every ray judged against the exact reference on the full scene. The Pareto front of each scene: the runs "
+           "that no other run beats, one at most as wrong whose 95% interval of speed lies wholly above theirs (runs "
+           "whose intervals overlap tie and both stay: tie names the one with the higher median). " +
+           embree_speed_caption(ok), "",
+           "| scene | method | test | vertices | triangles kept | Mrays/s [95% interval] | × Embree [95% interval] | "
+           "wrong per million | tie |",
+           "|---|---|---|---|---|---|---|---|---|"]
     for scene, g in ok.groupby("scene"):
-        g = g.sort_values(["exact_wrong_ppm", "kernel_mrays_s"], ascending=[True, False])
-        best = -1.0
-        for _, r in g.iterrows():
-            if r.kernel_mrays_s > best:
-                best = r.kernel_mrays_s
-                bits = "float" if r.intersection_vertex_bits == 32 else f"{count(r.intersection_vertex_bits)} bits"
-                kept = "all" if pd.isna(r.scene_simplify_ratio) else f"{num(100 * r.scene_simplify_ratio)}%"
-                out.append(f"| {scene} | {r.method} | {r.intersection_test} | {bits} | {kept} | {num(r.kernel_mrays_s)} | "
-                           f"{num(r.speed_ratio_vs_embree1, 2)} | {num(r.exact_wrong_ppm)} |")
+        for r, tied in pareto(g):
+            tie = "" if tied is None else \
+                f"with {run_text(tied).replace(' |', ',')}: {with_interval(tied.kernel_mrays_s, speed_interval(tied), num)}"
+            out.append(f"| {scene} | {run_text(r)} | {with_interval(r.kernel_mrays_s, speed_interval(r), num)} | "
+                       f"{with_interval(r.speed_ratio_vs_embree1, interval_of(r, 'speed_ratio'), lambda v: num(v, 2))} | "
+                       f"{num(r.exact_wrong_ppm)} | {tie} |")
     out.append("")
     summary = []
     for scene, g in ok.groupby("scene"):
@@ -538,10 +583,11 @@ def raytypes() -> list:
     if not frames.empty:
         out += ["Whitted ray tracing in `scenes/whitted_room.toml` (scene B as a half-silvered mirror, three glass spheres, "
                 "a diffuse cow, two lights): a frame to depth D (the camera rays, generations 1..D of reflections and "
-                "refractions and the shadow rays of generations 0..D, each batch a run) against the camera rays' alone; "
+                "refractions and the shadow rays of generations 0..D, each batch a run) against the camera rays' alone "
+                f"(× time (Embree's): the same for {embree_on(ok)}, rtcOccluded1 for the shadow rays, on the same rays); "
                 "Purcell's Whitted ray tracer on the bunny, depth not given: 2.62 × ray casting's instructions, 3.00 × "
                 "its bandwidth.", "",
-                "| method | depth | rays | × rays | × time | × bytes | × Embree time | SIMD eff. (Purcell) of the reflections and "
+                "| method | depth | rays | × rays | × time | × bytes | × time (Embree's) | SIMD eff. (Purcell) of the reflections and "
                 "refractions | rays wrong |", "|---|---|---|---|---|---|---|---|---|"]
         out += [f"| {f.method} | {f.depth} | {count(f.rays)} | {num(f.rays_x, 2)} | {num(f.time_x, 2)} | "
                 f"{num(f.bytes_x, 2)} | {num(f.embree_x, 2)} | "
@@ -658,13 +704,15 @@ def wavefront() -> list:
            "deepest generation k (reflection iteration or path bounce), every generation traced on the device with no "
            "host round trip: the wavefront (a kernel per stage over stable, compacted queues) and the path megakernel "
            "(one invocation per camera ray's whole path); host: branching's runs of each generation as a batch of its "
-           "own, their medians summed (the shading and the host's round trips untimed). Each ratio is of two runs' "
-           "medians (no interval). × Embree: over Embree rtcIntersect1 on the same rays of every generation, in the "
-           "same run.", "",
-           "| scene | rays | k | structure | rays traced | host ms | wavefront ms | megakernel ms | megakernel ÷ wavefront | "
-           "wavefront × Embree | lane util. (wavefront batch / megakernel) |", "|---|---|---|---|---|---|---|---|---|---|---|"]
+           "own, their medians summed: the trace alone (the shading passes that made each generation are timed apart, "
+           "`shading_ms`, and not added; the host's round trips are not timed). Megakernel ÷ wavefront: the ratio of two "
+           "runs' medians (no interval); ranked: by the two runs' 95% intervals of GPU time, a tie where they overlap. "
+           + embree_speed_caption(ok) + " The same rays: those of every generation.", "",
+           "| scene | rays | k | structure | rays traced | host ms (trace only: no shading, no round trips) | wavefront ms | "
+           "megakernel ms | megakernel ÷ wavefront | ranked | wavefront × Embree [95% interval] | "
+           "lane util. (wavefront batch / megakernel) |", "|---|---|---|---|---|---|---|---|---|---|---|---|"]
     whole = ok[ok.strategy_type.isin(["wavefront", "path_megakernel"]) & (ok.rays_type != "primary")]
-    over = []  # megakernel / wavefront, per row
+    over, ranked = [], []  # megakernel / wavefront, and the intervals' verdict, per row
     for (scene, kind, structure), g in whole.groupby(["scene", "rays_type", "structure"]):
         k = g.k.max()
         w = g[(g.k == k) & (g.strategy_type == "wavefront")]
@@ -675,13 +723,16 @@ def wavefront() -> list:
             continue
         w, m = w.iloc[0], m.iloc[0]
         over.append(m.kernel_ms_median / w.kernel_ms_median)
+        ranked.append(faster_of(w, m, ("wavefront", "megakernel")))
         out.append(f"| {scene} | {kind} | {k} | {structure} | {count(w.whole_path_rays)} | {num(b.kernel_ms_median.sum())} | "
                    f"{num(w.kernel_ms_median)} | {num(m.kernel_ms_median)} | {num(m.kernel_ms_median / w.kernel_ms_median, 2)} | "
-                   f"{num(w.kernel_ms_median / w.embree1_ms_median, 2)} | {num(w.simd_lane_utilisation)} / "
+                   f"{ranked[-1]} | {with_interval(w.speed_ratio_vs_embree1, interval_of(w, 'speed_ratio'), lambda v: num(v, 2))} | "
+                   f"{num(w.simd_lane_utilisation)} / "
                    f"{num(m.simd_lane_utilisation)} |")
     if over:
         headline("wavefront", "Whole paths on the device: wavefront or one megakernel?",
-                 f"the path megakernel takes {span(min(over), max(over))}× the wavefront's time (two runs' medians)", context)
+                 f"the path megakernel takes {span(min(over), max(over))}× the wavefront's time (two runs' medians; "
+                 f"ranked by their 95% intervals: {verdict_counts(ranked, 'paths')})", context)
     out += [""] + charts("wavefront", {"wavefront": "GPU time per ray traced against the generations of the path"})
     return out + [""]
 
@@ -698,8 +749,9 @@ def division() -> list:
            "dividing exactly through 32-bit integer products (`intersection.division = \"integer\"`: no double on the "
            "common path) or a double quotient (`\"double\"`, the default), and its plain twin dividing as the device does "
            "(`OpFDiv`); each is its speed over Embree rtcIntersect1's on the same rays in the same run, so a ratio "
-           "between two of them is a ratio of ratios. Each cell: the median ratio and its 95% bootstrap interval; † a "
-           "run the noise guard flagged (`timing_warning`).", "",
+           "between two of them is a ratio of ratios. Each cell: the median ratio and its 95% interval (order statistics "
+           "from results schema 23 on, a percentile bootstrap before); † a "
+           "run the noise guard flagged (`timing_warning`). " + embree_speed_caption(ok), "",
            "| structure | rays | × Embree: integer | double | plain | integer / double | integer / plain |",
            "|---|---|---|---|---|---|---|"]
 
@@ -725,6 +777,23 @@ def division() -> list:
     return out + [""]
 
 
+def fastest_grid(g) -> tuple:
+    """The grid size whose 95% interval of time lies wholly below every other's, in full ("10³ (3.51 ms
+    [2.9, 4.59])") and short ("10³"); else the tie ("tie: 10³ [2.9, 4.59], 20³ [3.9, 5.23]", "tie of 10³,
+    20³") or "no interval: not ranked"."""
+    leading = leaders(g)
+    name = lambda r: f"{count(r.grid_res_x)}³"
+    if leading and len(leading) == 1:
+        r = leading[0]
+        return f"{name(r)} ({num(r.kernel_ms_median)} ms {interval(r.kernel_ms_ci_low, r.kernel_ms_ci_high)})", name(r)
+    short = "tie of " + ", ".join(name(r) for r in leading) if leading else "not ranked"
+    return ranked_text(leading, name, num), short
+
+
+def device_of(context) -> str:
+    return context["devices"][0].get("name", "?") if context.get("devices") else "?"
+
+
 def christen2005() -> list:
     if not folder_of("christen2005").exists():
         return []
@@ -734,27 +803,27 @@ def christen2005() -> list:
            provenance("christen2005", runs, context), "",
            "Full tables: [`results/christen2005/tables.md`](results/christen2005/tables.md). His scenes A, B (Table 6.1's "
            "2,064 triangles) and C at 256×256 over a uniform grid: his multipass (K = M = 1, oracle 20%, the host in "
-           "control), the branching kernel, and the CPU running the same grid traversal on the host's threads "
-           "(`strategy.type = \"cpu\"`). His figures are bitmaps missing from the thesis text: shapes, not numbers, compare.", ""]
+           "control), the branching kernel, and host C++ running the same grid traversal on the host's threads "
+           f"(`strategy.type = \"cpu\"`). Figs. 6.10-6.11 set {host_against_device(ok, device_of(context))}. "
+           "His figures are bitmaps missing from the thesis text: shapes, not numbers, compare. Ranked: by the two runs' "
+           "95% intervals of time, a tie where they overlap; the fastest grid: the one whose interval lies wholly below "
+           "every other grid's.", ""]
     first = ok[ok.sweep == "fig6_8"]
     if not first.empty:
-        out += ["| Fig. 6.8, grid 20×20×20 | multipass ms | branching ms | cpu ms | cpu / branching |", "|---|---|---|---|---|"]
+        out += ["| Fig. 6.8, grid 20×20×20 | multipass ms | branching ms | cpu ms | cpu / branching | ranked |",
+                "|---|---|---|---|---|---|"]
         for _, g in first.sort_values("scene_triangles").groupby("scene_triangles"):
-            ms = {t: g[g.strategy_type == t].kernel_ms_median.iloc[0] for t in ("multipass", "branching", "cpu")
-                  if (g.strategy_type == t).any()}
-            nan = float("nan")
-            out.append(f"| {g.scene.iloc[0]} ({count(g.scene_triangles.iloc[0])} triangles) | {num(ms.get('multipass', nan))} | "
-                       f"{num(ms.get('branching', nan))} | {num(ms.get('cpu', nan))} | "
-                       f"{num(ms.get('cpu', nan) / ms.get('branching', nan), 2)} |")
+            run = {t: g[g.strategy_type == t].iloc[0] for t in ("multipass", "branching", "cpu") if (g.strategy_type == t).any()}
+            ms = lambda t: run[t].kernel_ms_median if t in run else float("nan")
+            ranked = faster_of(run["cpu"], run["branching"], ("cpu", "branching")) if {"cpu", "branching"} <= set(run) else ""
+            out.append(f"| {g.scene.iloc[0]} ({count(g.scene_triangles.iloc[0])} triangles) | {num(ms('multipass'))} | "
+                       f"{num(ms('branching'))} | {num(ms('cpu'))} | {num(ms('cpu') / ms('branching'), 2)} | {ranked} |")
     sizes = ok[ok.sweep.isin(["fig6_8", "fig6_9"]) & ok.strategy_type.isin(["multipass", "branching"])]
     if not sizes.empty:
-        best = []
-        for (scene, method), g in sizes.groupby(["scene", "strategy_type"]):
-            r = g.loc[g.kernel_ms_median.idxmin()]
-            best.append(f"{scene} {method} at {count(r.grid_res_x)}³ ({num(r.kernel_ms_median)} ms)")
-        out += ["", "- **Fig. 6.9**, the fastest grid (10³–60³): " + "; ".join(best) + "."]
+        best = [(f"{scene} {method}", *fastest_grid(g)) for (scene, method), g in sizes.groupby(["scene", "strategy_type"])]
+        out += ["", "- **Fig. 6.9**, the fastest grid (10³–60³): " + "; ".join(f"{what}: {full}" for what, full, _ in best) + "."]
         headline("christen2005", "Christen 2005's benchmarks: the fastest grid",
-                 "; ".join(b.rsplit(" (", 1)[0] for b in best), context)
+                 "where the 95% intervals separate: " + "; ".join(f"{what}: {short}" for what, _, short in best), context)
     masked = ok[(ok.strategy_type == "multipass") & ok.sweep.isin(["fig6_8", "fig6_11"])]
     if "kernel_ms_stencil_pass" in masked and masked.kernel_ms_stencil_pass.notna().any():
         masked = masked[masked.kernel_ms_stencil_pass.notna()]
@@ -765,7 +834,8 @@ def christen2005() -> list:
                    f"{num(masked.kernel_ms_stencil_pass.min())}–{num(masked.kernel_ms_stencil_pass.max())} ms a pass here, "
                    f"{num(100 * share.min())}–{num(100 * share.max())}% of a frame over its loop passes (an upper bound).")
     out += [""] + charts("christen2005", {"christen_grid_size": "render time against grid size (Christen Fig. 6.9)",
-                                           "christen_gpu_cpu": "the GPU against the CPU by iteration (Christen Figs. 6.10-6.11)"})
+                                           "christen_gpu_cpu": f"{host_against_device(ok, device_of(context))}, by "
+                                                               "iteration (Christen Figs. 6.10-6.11)"})
     return out + [""]
 
 
@@ -806,10 +876,14 @@ def results_page() -> str:
            "<!-- Written by scripts/readme_figures.py from the folders here; the test scripts.readme_figures fails when "
            "this file differs from what it writes. Do not edit. -->", "",
            "Every figure below comes from a `runs.csv` in this folder, and each folder names the machine, device, "
-           "command and commit its `context.json` records. Timings are medians with 95% bootstrap intervals of the "
+           "command and commit its `context.json` records. Timings are medians with 95% intervals (from the order statistics "
+           "from results schema 23 on; a percentile bootstrap in folders recorded before) of the "
            "repetitions of one run (an interval says nothing of the spread between runs in separate processes); a speed "
            "claim is a ratio measured in the same run. Counts (passes, bytes, work, rays wrong) are the same on every "
-           "machine with the same device; timings are that machine's.", ""]
+           "machine with the same device; timings are that machine's. On every table: " + EMBREE_SPEED + ". One method "
+           "is called faster than another (or the fastest) only where their 95% intervals do not overlap; where they "
+           "overlap it is a tie, given with both intervals; a run without an interval (one timed repetition) is not "
+           "ranked.", ""]
     for part in (bunny, structures, purcell2002, stability, accuracy, raytypes, strategies, multipass_device, wavefront, division, christen2005, golden, h200):
         lines = part()
         if lines:

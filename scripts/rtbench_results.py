@@ -334,3 +334,123 @@ def christen_iterations(runs: pd.DataFrame) -> list:
     1 for the camera rays, 1 + n for mirror reflection n."""
     return [1 + int(n) if kind == "reflection" else 1
             for kind, n in zip(runs.rays_type, runs.get("reflection_iteration", pd.Series(0, index=runs.index)).fillna(0))]
+
+
+# "× Embree" means one thing in every table: the kernel's speed over Embree's on the same rays,
+# speed_ratio_vs_embree1 (Embree's time over the kernel's), never a time ratio.
+EMBREE_SPEED = "× Embree: speed over Embree rtcIntersect1 on the same rays (above 1: faster)"
+
+
+def embree_threads(runs: pd.DataFrame) -> str:
+    """The TBB threads Embree ran on, from `embree_threads`: "2", "2/4" where the runs differ, "?"."""
+    threads = runs["embree_threads"].dropna() if "embree_threads" in runs else []
+    return "/".join(str(t) for t in sorted({int(t) for t in threads})) or "?"
+
+
+def embree_on(runs: pd.DataFrame) -> str:
+    """"Embree rtcIntersect1 on 2 threads", the threads read from the runs."""
+    threads = embree_threads(runs)
+    return f"Embree rtcIntersect1 on {threads} thread{'' if threads == '1' else 's'}"
+
+
+def embree_speed_caption(runs: pd.DataFrame) -> str:
+    """The sentence a table with a × Embree column carries."""
+    return f"{EMBREE_SPEED}; {embree_on(runs)} (`embree_threads`)."
+
+
+def host_against_device(runs: pd.DataFrame, device: str) -> str:
+    """Christen 2005's "GPU against CPU" as these runs measured it: the Vulkan kernels on the device
+    (`device`; lavapipe, whose name says llvmpipe, runs them on the host's own cores) against rtbench's
+    host C++ traversal."""
+    names = sorted(set(runs["device"].dropna())) if "device" in runs else []
+    device = " / ".join(names) or device
+    if "llvmpipe" in device:
+        return "the Vulkan kernels on lavapipe against host C++ on the same cores (Christen's GPU against CPU)"
+    return f"the Vulkan kernels on {device} against host C++ (Christen's GPU against CPU)"
+
+
+# Ranking: one run is faster than another only where their 95% intervals do not overlap.
+def interval_of(run, prefix="kernel_ms"):
+    """A run's 95% interval (low, high) from <prefix>_ci_low and _ci_high (kernel_ms: GPU time;
+    speed_ratio: × Embree); None where it has none: empty cells (too few repetitions), or one timed
+    repetition (an older folder's bootstrap of one value: a point, not an interval)."""
+    low, high = getattr(run, prefix + "_ci_low", None), getattr(run, prefix + "_ci_high", None)
+    repetitions = getattr(run, "timing_repetitions", None)
+    if pd.isna(low) or pd.isna(high) or (pd.notna(repetitions) and repetitions < 2):
+        return None
+    return float(low), float(high)
+
+
+def interval_text(span, digits=3) -> str:
+    """A 95% interval alone: "[63.2, 66.4]", or "—" where there is none."""
+    return f"[{fmt(span[0], digits)}, {fmt(span[1], digits)}]" if span else "—"
+
+
+def with_interval(value, span, show=fmt) -> str:
+    """A median and its 95% interval: "0.306 [0.203, 0.613]", or "0.142 (no interval)"."""
+    return f"{show(value)} " + (f"[{show(span[0])}, {show(span[1])}]" if span else "(no interval)")
+
+
+def leaders(runs: pd.DataFrame):
+    """The runs that no other run beats on GPU time, fastest median first; a run beats another when its
+    95% interval lies wholly below the other's. One leader: a winner the intervals separate; several: a
+    tie; None where a run has no interval (not ranked)."""
+    rows = [r for _, r in runs.iterrows()]
+    spans = [interval_of(r) for r in rows]
+    if not rows or any(s is None for s in spans):
+        return None
+    kept = [r for r, mine in zip(rows, spans) if not any(other[1] < mine[0] for other in spans)]
+    return sorted(kept, key=lambda r: r.kernel_ms_median)
+
+
+def ranked_text(leading, name, show=fmt) -> str:
+    """leaders() of GPU time in words: the winner's name(run), "tie: a [l, h], b [l, h]", or "no interval:
+    not ranked"."""
+    if leading is None:
+        return "no interval: not ranked"
+    if len(leading) == 1:
+        return name(leading[0])
+    return "tie: " + ", ".join(f"{name(r)} [{show(r.kernel_ms_ci_low)}, {show(r.kernel_ms_ci_high)}]" for r in leading)
+
+
+def auto_verdicts(runs: pd.DataFrame) -> list:
+    """`auto` against the candidates it weighs (the grid at min_dim 64, not conservative; the BVH; brute
+    force), measured in the same sweep on the same scene and strategy: per auto run (auto, pool, leaders
+    of the pool, verdict): "yes" (its choice the one leader), "tie" (among tied leaders), "no" (another
+    candidate's interval wholly below its choice's) or "no interval" (not ranked)."""
+    conservative = runs.structure_conservative.fillna(False).astype(bool) if "structure_conservative" in runs else False
+    candidates = runs[runs.structure_type.isin(["bvh", "brute_force"]) |
+                      ((runs.structure_type == "uniform_grid") & (runs.structure_min_dim == 64) & ~conservative)]
+    out = []
+    for _, auto in runs[runs.structure_type == "auto"].iterrows():
+        pool = candidates[(candidates.scene_source == auto.scene_source) & (candidates.strategy_type == auto.strategy_type)]
+        if pool.empty:
+            continue
+        leading = leaders(pool)
+        chosen = [r for r in leading or [] if r.structure_type == auto.auto_choice]
+        verdict = "no interval" if leading is None else "no" if not chosen else "yes" if len(leading) == 1 else "tie"
+        out.append((auto, pool, leading, verdict))
+    return out
+
+
+def auto_summary(verdicts: list) -> str:
+    """auto_verdicts() counted in one sentence."""
+    n = {v: sum(1 for *_, verdict in verdicts if verdict == v) for v in ("yes", "tie", "no", "no interval")}
+    return (f"`auto` picked the fastest candidate (its 95% interval wholly below every other's) in {n['yes']} of "
+            f"{len(verdicts)} cases; its choice tied the fastest (overlapping intervals) in {n['tie']}; another "
+            f"candidate was faster (intervals apart) in {n['no']}; {n['no interval']} without intervals (not ranked).")
+
+
+def faster_of(a, b, names=("a", "b")) -> str:
+    """Two runs ranked by their 95% intervals of GPU time: "<name> faster" where the intervals separate,
+    "tie" where they overlap, else "no interval: not ranked"."""
+    leading = leaders(pd.DataFrame([a, b]).reset_index(drop=True))
+    if leading is None:
+        return "no interval: not ranked"
+    return "tie" if len(leading) == 2 else f"{names[leading[0].name]} faster"
+
+
+def verdict_counts(verdicts: list, what: str) -> str:
+    """faster_of()'s verdicts counted: "branching faster on 2 of 3 scenes, tie on 1"."""
+    counted = pd.Series(verdicts).value_counts()
+    return ", ".join(f"{v} on {n}" + (f" of {len(verdicts)} {what}" if i == 0 else "") for i, (v, n) in enumerate(counted.items()))

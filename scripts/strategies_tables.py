@@ -16,8 +16,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import pandas as pd
 
-from rtbench_results import (commit_text, fmt, open_results, read_samples, round_ratios, save_figure, structure_names,
-                             write_text_atomically, wrong_rays)
+from rtbench_results import (commit_text, embree_on, embree_speed_caption, fmt, interval_of, interval_text, open_results, read_samples,
+                             round_ratios, save_figure, structure_names, with_interval, write_text_atomically, wrong_rays)
 
 
 def strategy(run) -> str:
@@ -70,8 +70,7 @@ def main() -> int:
               "median of the rounds' ratios and their range; " if by_round else
               "that median over the branching kernel's on the same scene and structure (two runs of one sweep, so no "
               "interval: read it to a first digit when either run has a timing warning); ") +
-             "× Embree: that median over Embree rtcIntersect1's on the "
-             "identical rays in the same run (above 1: slower than one CPU thread). SIMD eff. (Purcell): Purcell 2002 Table 2's "
+             embree_speed_caption(runs) + " In the same run, with its 95% interval. SIMD eff. (Purcell): Purcell 2002 Table 2's "
              "measure on one definition for every strategy, the stream's rays doing useful work per step, misses included "
              "(multipass: rays served over rays × traverse and intersect passes, whatever the control; a whole-traversal "
              "kernel: its stream run in lock step one traversal step or triangle test at a time). Lane util.: branching, "
@@ -79,7 +78,7 @@ def main() -> int:
              "runs on the device and each pass serves a compacted list (strategy.control = device). Executions: the megakernel's subgroup state executions (traverse + intersect; OptiX Fig. 6's "
              "measure, summed over subgroups); passes: multipass dispatches. Wrong: rays the exact reference "
              "contradicts.", ""]
-    lines += ["| scene | structure | strategy | GPU ms | 95% interval | × branching | its range | × Embree | SIMD eff. (Purcell) | "
+    lines += ["| scene | structure | strategy | GPU ms | 95% interval | × branching | its range | × Embree [95% interval] | SIMD eff. (Purcell) | "
               "lane util. | executions (trav + isect) | passes | bytes/ray | wrong | timing warning |",
               "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in runs.sort_values(["scene", "structure", "strategy_type", "strategy"]).itertuples():
@@ -87,9 +86,9 @@ def main() -> int:
             f"{int(r.megakernel_runs_traverse):,} + {int(r.megakernel_runs_intersect):,}"
         passes = "" if r.strategy_type != "multipass" else f"{int(r.passes_total):,}"
         lines.append(f"| {r.scene} | {r.structure} | {r.strategy} | {fmt(r.kernel_ms_median, 1)} | "
-                     f"[{fmt(r.kernel_ms_ci_low, 1)}, {fmt(r.kernel_ms_ci_high, 1)}] | {fmt(r.vs_branching, 2)} | "
+                     f"{interval_text(interval_of(r), 1)} | {fmt(r.vs_branching, 2)} | "
                      f"{'' if pd.isna(r.vs_branching_low) or r.strategy_type == 'branching' else f'{fmt(r.vs_branching_low, 2)}–{fmt(r.vs_branching_high, 2)}'} | "
-                     f"{fmt(r.kernel_ms_median / r.embree1_ms_median, 2)} | {fmt(r.simd_efficiency_purcell)} | "
+                     f"{with_interval(r.speed_ratio_vs_embree1, interval_of(r, 'speed_ratio'))} | {fmt(r.simd_efficiency_purcell)} | "
                      f"{fmt(r.simd_lane_utilisation)} | {executions} | "
                      f"{passes} | {fmt(r.bytes_per_ray, 0)} | {int(r.wrong)} | "
                      f"{'yes' if isinstance(r.timing_warning, str) and r.timing_warning else ''} |")
@@ -117,7 +116,7 @@ def main() -> int:
                             fmt=marker, color=colour, capsize=3, label=r.strategy)
             embree = g.embree1_ms_median.median()
             ax.axhline(embree, color="grey", linestyle="--", linewidth=0.8)
-            ax.annotate("Embree, 1 thread", (0.02, embree), xycoords=("axes fraction", "data"), fontsize=7,
+            ax.annotate(embree_on(g), (0.02, embree), xycoords=("axes fraction", "data"), fontsize=7,
                         xytext=(0, 3), textcoords="offset points", color="grey")
             ax.set_yscale("log")
             ax.set_xlim(0, 1.05)

@@ -16,7 +16,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import pandas as pd
 
-from rtbench_results import commit_text, failed_rows, fmt, open_results, save_figure, structure_names, wrong_rays, write_tables
+from rtbench_results import (commit_text, embree_on, embree_speed_caption, failed_rows, faster_of, fmt, interval_of,
+                             open_results, save_figure, structure_names, with_interval, wrong_rays, write_tables)
 
 
 def generation(run) -> int:
@@ -72,16 +73,18 @@ def main() -> int:
              "0: the camera rays alone). Rays: every generation's, what the whole-path strategies and Embree traced. "
              "Wavefront and megakernel ms: the median GPU time of the whole path (the wavefront's split into its trace, "
              "shade and queue stages: setup, scans, compactions). Host: branching's runs of the camera rays and of every "
-             "generation up to the batch, each a batch of its own, their medians summed: the same rays traced, the "
-             "shading and the host's round trips not timed. Megakernel ÷ wavefront: the two medians of two runs of one "
-             "sweep (no interval). × Embree: the median over Embree rtcIntersect1's on the same rays of every generation, "
-             "in the same run (above 1: slower than one CPU thread). Lane util.: lanes that take a step over subgroup "
+             "generation up to the batch, each a batch of its own, their medians summed: the same rays traced, the trace "
+             "alone (the shading passes that made each generation are timed apart, `shading_ms`, and not added; the host's "
+             "round trips are not timed). Megakernel ÷ wavefront: the two medians of two runs of one sweep (no interval); "
+             "ranked: by the two runs' 95% intervals of GPU time, a tie where they overlap. " + embree_speed_caption(runs) +
+             " The same rays: those of every generation, in the same run, with its 95% interval. Lane util.: lanes that take a step over subgroup "
              "size × steps (ballots): the wavefront's of the batch's trace, the megakernel's over its whole path. Wrong: "
              "batch rays the exact reference contradicts.", "",
-             "| scene | rays | k | structure | rays traced | host ms | wavefront ms (trace + shade + queue) | "
-             "megakernel ms | megakernel ÷ wavefront | wavefront × Embree | megakernel × Embree | lane util. "
+             "| scene | rays | k | structure | rays traced | host ms (trace only: no shading, no round trips) | "
+             "wavefront ms (trace + shade + queue) | megakernel ms | megakernel ÷ wavefront | ranked | "
+             "wavefront × Embree [95% interval] | megakernel × Embree [95% interval] | lane util. "
              "(wavefront batch / megakernel) | wrong |",
-             "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
+             "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     keys = whole[["scene", "rays_type", "generation", "structure"]].drop_duplicates().sort_values(
         ["scene", "rays_type", "generation", "structure"])
     for key in keys.itertuples(index=False):
@@ -105,8 +108,9 @@ def main() -> int:
         lines.append(f"| {key.scene} | {key.rays_type} | {key.generation} | {key.structure} | {int(traced):,} | "
                      f"{fmt(host_ms, 1)} | {wave} | {'' if m is None else fmt(m.kernel_ms_median, 1)} | "
                      f"{fmt(m.kernel_ms_median / w.kernel_ms_median, 2) if w is not None and m is not None else ''} | "
-                     f"{'' if w is None else fmt(w.kernel_ms_median / w.embree1_ms_median, 2)} | "
-                     f"{'' if m is None else fmt(m.kernel_ms_median / m.embree1_ms_median, 2)} | "
+                     f"{faster_of(w, m, ('wavefront', 'megakernel')) if w is not None and m is not None else ''} | "
+                     f"{'' if w is None else with_interval(w.speed_ratio_vs_embree1, interval_of(w, 'speed_ratio'))} | "
+                     f"{'' if m is None else with_interval(m.speed_ratio_vs_embree1, interval_of(m, 'speed_ratio'))} | "
                      f"{'' if w is None else fmt(w.simd_lane_utilisation)} / {'' if m is None else fmt(m.simd_lane_utilisation)} | "
                      f"{int(g.wrong.sum())} |")
     lines += failed_rows(failed, "structure", lambda r: r.structure_type)
@@ -133,8 +137,8 @@ def main() -> int:
             hp = hp_all[(hp_all.scene == scene) & (hp_all.structure == structure) & (hp_all.rays_type == kind)]
             hp = pd.concat([pd.DataFrame({"generation": [0], "rays": camera.rays.values[:1], "ms": camera.kernel_ms_median.values[:1],
                                           "embree_ms": camera.embree1_ms_median.values[:1]}), hp]).sort_values("generation")
-            ax.plot(hp.generation, 1e6 * hp.ms / hp.rays, marker="^", color="C2", label="host: branching per generation")
-            ax.plot(hp.generation, 1e6 * hp.embree_ms / hp.rays, linestyle="--", color="grey", label="Embree, 1 thread")
+            ax.plot(hp.generation, 1e6 * hp.ms / hp.rays, marker="^", color="C2", label="host: branching per generation (trace only)")
+            ax.plot(hp.generation, 1e6 * hp.embree_ms / hp.rays, linestyle="--", color="grey", label=embree_on(runs))
             ax.set_xlabel(f"{kind} generation k (0: camera rays)")
             ax.set_ylabel("ns per ray traced")
             ax.set_ylim(bottom=0)
