@@ -1,5 +1,6 @@
 #include "gpu_buffers.h"
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -29,8 +30,15 @@ void refuseOversizedTotal(const DeviceInfo& device, const std::vector<BufferSize
                     "'s largest device-local heap of " + std::to_string(device.deviceLocalBytes) + " bytes");
 }
 
+std::uint64_t hostMemoryLimit(std::uint64_t physicalBytes, std::uint64_t addressSpaceLimit) {
+    const std::uint64_t physicalHalf = physicalBytes / 2;
+    return addressSpaceLimit == std::uint64_t(RLIM_INFINITY) ? physicalHalf : std::min(physicalHalf, addressSpaceLimit / 2);
+}
+
 std::uint64_t hostMemoryLimit() {
-    return std::uint64_t(sysconf(_SC_PHYS_PAGES)) * std::uint64_t(sysconf(_SC_PAGE_SIZE)) / 2;
+    rlimit limit{};
+    const std::uint64_t addressSpace = ::getrlimit(RLIMIT_AS, &limit) == 0 ? std::uint64_t(limit.rlim_cur) : std::uint64_t(RLIM_INFINITY);
+    return hostMemoryLimit(std::uint64_t(sysconf(_SC_PHYS_PAGES)) * std::uint64_t(sysconf(_SC_PAGE_SIZE)), addressSpace);
 }
 
 void refuseOversizedRayStream(std::uint64_t rays) {
@@ -38,7 +46,7 @@ void refuseOversizedRayStream(std::uint64_t rays) {
     if (bytes > hostMemoryLimit())
         throw Error(std::to_string(rays) + " rays need " + std::to_string(bytes) + " bytes of host memory (" +
                     std::to_string(kHostBytesPerRay) + " per ray), over the limit of " +
-                    std::to_string(hostMemoryLimit()) + " bytes (half the physical memory)");
+                    std::to_string(hostMemoryLimit()) + " bytes (half the physical memory, or of the address-space limit, ulimit -v, when lower)");
 }
 
 std::vector<BufferSize> sizesOf(const std::vector<BufferData>& buffers) {

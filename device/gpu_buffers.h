@@ -47,8 +47,12 @@ void refuseOversizedTotal(const DeviceInfo& device, const std::vector<BufferSize
 // shade and difference per pixel, and the exact reference's hit and sample index (28 bytes, when
 // every ray is sampled).
 constexpr std::uint64_t kHostBytesPerRay = sizeof(gpu::Ray) + 7 * sizeof(gpu::HitRecord) + 5 + 28;
-// The host-memory limit of a run's per-ray data: half the machine's physical memory.
+// The host-memory limit of a run's per-ray data: half the machine's physical memory, or half the
+// process's address-space limit (RLIMIT_AS, `ulimit -v`, as a cluster's scheduler may set) when
+// that is lower: the Vulkan driver and Embree need the rest.
 std::uint64_t hostMemoryLimit();
+// The same from the two figures (addressSpaceLimit: RLIM_INFINITY when there is none).
+std::uint64_t hostMemoryLimit(std::uint64_t physicalBytes, std::uint64_t addressSpaceLimit);
 // Throws rtbench::Error when `rays` rays need more than hostMemoryLimit(); allocates nothing.
 void refuseOversizedRayStream(std::uint64_t rays);
 

@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "columns.h"
+#include "output_folder.h"
 #include "config.h"
 #include "runner.h"
 #include "samples_check.h"
@@ -95,8 +96,8 @@ std::string differenceLine(const std::string& run, const std::string& column, co
 // Embree rtcIntersect1's medians and their ratio, recorded -> now.
 std::string timingLine(const Row& old, const Row& fresh) {
     auto cell = [](const Row& row, const char* column) {
-        const auto it = row.find(column);
-        return it == row.end() || it->second.empty() ? std::string("-") : it->second;
+        const std::string text = cellText(row, column);
+        return text.empty() ? std::string("-") : text;
     };
     auto change = [&](const char* column) {
         const double a = cellNumber(cell(old, column)), b = cellNumber(cell(fresh, column));
@@ -194,6 +195,27 @@ std::vector<std::string> samplesProblems(const std::string& folder, const std::v
     return problems;
 }
 
+// The folder's columns.csv, where it has one (the early schemas wrote none), must describe its
+// runs.csv: a readable CSV naming every column of the recorded rows with its kind (a reader types
+// the cells from it). "" when it does.
+std::string columnsProblem(const std::string& folder, const std::vector<Row>& recorded) {
+    const std::string path = (fs::path(folder) / "columns.csv").string();
+    std::error_code ec;
+    if (!fs::exists(fs::symlink_status(path, ec))) return "";
+    std::set<std::string> described;
+    try {
+        for (const Row& row : readCsv(path)) {
+            if (!row.count("column") || !row.count("kind")) return "no column and kind columns";
+            described.insert(row.at("column"));
+        }
+    } catch (const Error& e) {
+        return e.what();
+    }
+    for (const auto& [column, value] : recorded.front())
+        if (!described.count(column)) return "does not describe runs.csv's column " + column;
+    return "";
+}
+
 // Deterministic differences first (what fails), then reference values within tolerance, the runs
 // whose timings moved (one line each), and the context.
 void printDifferences(const Differences& d, const CheckOptions& options, std::ostream& out) {
@@ -217,6 +239,12 @@ void printDifferences(const Differences& d, const CheckOptions& options, std::os
 }
 
 }  // namespace
+
+std::vector<std::string> deterministicDifferences(const Row& recorded, const Row& rerun) {
+    Differences d;
+    compareRow(recorded, rerun, CheckOptions{}, false, d);
+    return d.deterministic;
+}
 
 ExperimentPlan recordedPlan(const Json& context, const std::string& contextPath) {
     const std::string configPath = contextString(context, contextPath, "config_path");
@@ -258,6 +286,8 @@ CheckResult checkResults(const std::string& folder, const CheckOptions& options,
     const std::string contextPath = (fs::path(folder) / "context.json").string();
     if (!fs::exists(contextPath))
         throw Error(contextPath + ": not found (is this a results folder?)");
+    if (const std::string pids = folderWriters(folder); !pids.empty())
+        throw Error(folder + ": being written by rtbench (pid " + pids + "): check it when that run ends");
     const Json context = readJson(contextPath);
     ExperimentPlan plan = recordedPlan(context, contextPath);
     const std::string csvPath = (fs::path(folder) / "runs.csv").string();
@@ -295,6 +325,8 @@ CheckResult checkResults(const std::string& folder, const CheckOptions& options,
 
     Differences found = compareRuns(recorded, now.rows, options, !newerKeys.empty());
     for (const std::string& problem : samplesProblems(folder, recorded, schema)) found.deterministic.push_back(problem);
+    if (const std::string problem = columnsProblem(folder, recorded); !problem.empty())
+        found.deterministic.push_back(differenceLine("-", "(columns.csv)", problem, "", "the columns' description"));
     found.counts.deterministicDifferences = int(found.deterministic.size());
     result = found.counts;
     out << "rtbench check " << folder << ": " << result.runs << " runs re-run"
@@ -316,6 +348,9 @@ CheckResult checkResults(const std::string& folder, const CheckOptions& options,
     if (!newer.empty())
         out << "(recorded under results schema " << schema << "; columns of schema " << kSchemaVersion
             << " not compared: " << newer << ")\n";
+    if (!now.rows.empty() && cellText(recorded.front(), "git_commit") != cellText(now.rows.front(), "git_commit"))
+        out << "(recorded by commit " << cellText(recorded.front(), "git_commit") << ", re-run by commit "
+            << cellText(now.rows.front(), "git_commit") << ": a timing may also move with the code)\n";
     if (context.contains("complete") && context["complete"] == false)
         out << "(the recorded sweep was interrupted: " << recorded.size() << " of "
             << plan.runs.size() << " runs were recorded and checked)\n";

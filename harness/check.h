@@ -5,6 +5,7 @@
 #pragma once
 #include <ostream>
 #include <string>
+#include <vector>
 
 #include "config.h"
 #include "writers.h"
@@ -31,6 +32,10 @@ struct CheckResult {
 // scenes resolved against the recorded config's folder (where it was when run if that still
 // exists, else where the path points from here), with the command line's overrides.
 ExperimentPlan recordedPlan(const Json& context, const std::string& contextPath);
+
+// What would fail `check` between a recorded row and its re-run: parameters and exact columns that
+// differ, reference-dependent values beyond their tolerance; one table line each (none: the same run).
+std::vector<std::string> deterministicDifferences(const Row& recorded, const Row& rerun);
 
 // Re-runs <folder>/context.json's config text (scenes resolve against the recorded config's
 // folder) into a temporary folder, for the runs recorded in <folder>/runs.csv (an interrupted

@@ -171,6 +171,8 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         since5("timing_stop", K::Timing, "", "why the timing stopped: repetitions (experiment.repetitions, fixed), converged (every interval within experiment.target_ci), max_repetitions, time_budget");
         since5("timing_s", K::Timing, "s", "wall time of the timed rounds (with experiment.target_ci, the judging after each included: what experiment.time_budget_s bounds)");
         since5("timing_warning", K::Context, "", "noise guard: why the run's timings are not results of record (a coefficient of variation above experiment.noise_cv, other processes above experiment.noise_other_cpu, one repetition: noise not measured); empty when clean");
+        add("retimed", K::Context, "", "rtbench retime: when the run was re-timed, which try's timings were kept and why (no timing warning beats one, then the lower largest CV), or that none was better conditioned; empty when never re-timed");
+        s.back().since = 24;
         since5("other_cpu_fraction", K::Timing, "fraction", "noise guard: CPU time other processes took while the run ran (from its scene to the end of its timing), over cores x wall time (Linux /proc/stat, hypervisor steal included); empty when that window held under 100 clock ticks of the machine");
         since5("load_average", K::Timing, "", "noise guard: 1-minute load average when the timing ended");
         since5("device_host_threads", K::Context, "threads", "threads the device runs on the host's cores (lavapipe: LP_NUM_THREADS, else one per core up to 32; 0 for a GPU), beside embree_threads, against the machine's cores (context.json cpu_threads)");

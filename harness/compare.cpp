@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "columns.h"
+#include "output_folder.h"
 #include "config.h"
 #include "statistics.h"
 #include "structures/error.h"
@@ -28,14 +29,11 @@ struct Side {
     std::map<std::string, std::vector<double>> samples;
 };
 
-std::string get(const Row& row, const std::string& column) {
-    const auto it = row.find(column);
-    return it == row.end() ? std::string() : it->second;
-}
-
 Side load(const std::string& folder) {
     std::error_code ec;
     if (!fs::is_directory(folder, ec)) throw Error(folder + ": not a results folder (no such folder)");
+    if (const std::string pids = folderWriters(folder); !pids.empty())
+        throw Error(folder + ": being written by rtbench (pid " + pids + "): compare it when that run ends");
     const std::string csv = (fs::path(folder) / "runs.csv").string();
     if (!fs::exists(fs::symlink_status(csv, ec)))
         throw Error(csv + ": not found (not a results folder, or its shards are not merged yet)");
@@ -57,7 +55,7 @@ Side load(const std::string& folder) {
     const auto byRun = samplesByRun(rows);
     for (const Row& row : side.rows)
         if (const std::string problem = samplesProblem(row, byRun); !problem.empty())
-            throw Error(samples + ": run " + get(row, "run") + " (" + get(row, "label") + "): " + problem +
+            throw Error(samples + ": run " + cellText(row, "run") + " (" + cellText(row, "label") + "): " + problem +
                         "; its timings cannot be trusted");
     for (const Row& s : rows) side.samples[s.at("run") + "|" + s.at("config_hash") + "|" + s.at("method")].push_back(cellNumber(s.at("ms")));
     return side;
@@ -65,7 +63,7 @@ Side load(const std::string& folder) {
 
 // A run's samples of one method; none when the folder (or the run) has none.
 std::vector<double> timesOf(const Side& side, const Row& row, const std::string& method) {
-    const auto it = side.samples.find(get(row, "run") + "|" + get(row, "config_hash") + "|" + method);
+    const auto it = side.samples.find(cellText(row, "run") + "|" + cellText(row, "config_hash") + "|" + method);
     if (it != side.samples.end()) return it->second;
     return {};
 }
@@ -111,8 +109,8 @@ std::vector<std::string> differingKeys(const Side& a, const Side& b, const std::
     std::set<std::string> said;
     for (const std::string& c : matchOn) {
         std::set<std::string> inA, inB;
-        for (const Row& row : a.rows) inA.insert(get(row, c));
-        for (const Row& row : b.rows) inB.insert(get(row, c));
+        for (const Row& row : a.rows) inA.insert(cellText(row, c));
+        for (const Row& row : b.rows) inB.insert(cellText(row, c));
         if (inA == inB || said.count(keys.at(c))) continue;
         said.insert(keys.at(c));
         auto list = [](const std::set<std::string>& values) {
@@ -142,21 +140,21 @@ std::vector<std::string> countDifferences(const Side& a, const Side& b, const Ro
     std::vector<std::string> differences;
     for (const ColumnSpec& c : runColumnSpecs())
         if (c.kind == ColumnKind::Exact && c.name != "error" && c.name != "warnings" && a.columns.count(c.name) &&
-            b.columns.count(c.name) && get(rowA, c.name) != get(rowB, c.name))
-            differences.push_back(c.name + ": " + get(rowA, c.name) + " -> " + get(rowB, c.name));
+            b.columns.count(c.name) && cellText(rowA, c.name) != cellText(rowB, c.name))
+            differences.push_back(c.name + ": " + cellText(rowA, c.name) + " -> " + cellText(rowB, c.name));
     return differences;
 }
 
 // One matched pair, its verdict not yet given (that waits for the Holm correction over all).
 ComparedRun compareRun(const Side& a, const Side& b, const Row& rowA, const Row& rowB, const CompareOptions& options) {
     ComparedRun run;
-    run.key = get(rowA, "label");
-    run.runA = get(rowA, "run");
-    run.runB = get(rowB, "run");
-    run.accuracyA = get(rowA, "exact_wrong_ppm");
-    run.accuracyB = get(rowB, "exact_wrong_ppm");
-    const bool okA = get(rowA, "status") == "ok", okB = get(rowB, "status") == "ok";
-    if (okA != okB) run.countDifferences.push_back("status: " + get(rowA, "status") + " -> " + get(rowB, "status"));
+    run.key = cellText(rowA, "label");
+    run.runA = cellText(rowA, "run");
+    run.runB = cellText(rowB, "run");
+    run.accuracyA = cellText(rowA, "exact_wrong_ppm");
+    run.accuracyB = cellText(rowB, "exact_wrong_ppm");
+    const bool okA = cellText(rowA, "status") == "ok", okB = cellText(rowB, "status") == "ok";
+    if (okA != okB) run.countDifferences.push_back("status: " + cellText(rowA, "status") + " -> " + cellText(rowB, "status"));
     if (!okA || !okB) {
         run.failed = true;
         run.why = std::string(okA ? "" : "failed in A") + (!okA && !okB ? ", " : "") + (okB ? "" : "failed in B");
@@ -166,16 +164,16 @@ ComparedRun compareRun(const Side& a, const Side& b, const Row& rowA, const Row&
     // The measure: the samples when both folders have them, else the rows' medians (no test).
     const std::vector<double> sampleA = measured(a, rowA, options), sampleB = measured(b, rowB, options);
     auto rowMedian = [&](const Row& row) {
-        const double kernel = cellNumber(get(row, "kernel_ms_median"));
-        return options.relativeTo.empty() ? kernel : kernel / cellNumber(get(row, options.relativeTo + "_ms_median"));
+        const double kernel = cellNumber(cellText(row, "kernel_ms_median"));
+        return options.relativeTo.empty() ? kernel : kernel / cellNumber(cellText(row, options.relativeTo + "_ms_median"));
     };
     const bool sampled = !sampleA.empty() && !sampleB.empty();
     run.medianA = sampled ? median(sampleA) : rowMedian(rowA);
     run.medianB = sampled ? median(sampleB) : rowMedian(rowB);
     run.change = run.medianB / run.medianA - 1.0;
     const std::vector<double> embreeA = timesOf(a, rowA, "embree1"), embreeB = timesOf(b, rowB, "embree1");
-    const double embreeMedianA = !embreeA.empty() ? median(embreeA) : cellNumber(get(rowA, "embree1_ms_median"));
-    const double embreeMedianB = !embreeB.empty() ? median(embreeB) : cellNumber(get(rowB, "embree1_ms_median"));
+    const double embreeMedianA = !embreeA.empty() ? median(embreeA) : cellNumber(cellText(rowA, "embree1_ms_median"));
+    const double embreeMedianB = !embreeB.empty() ? median(embreeB) : cellNumber(cellText(rowB, "embree1_ms_median"));
     run.embreeChange = embreeMedianB / embreeMedianA - 1.0;
     run.changeLow = run.changeHigh = std::nan("");
     if (sampled) {
@@ -188,10 +186,10 @@ ComparedRun compareRun(const Side& a, const Side& b, const Row& rowA, const Row&
         run.why = std::string("no samples of this run in ") +
                   (sampleA.empty() && sampleB.empty() ? "A and B" : sampleA.empty() ? "A" : "B") + ": medians only, no test";
     }
-    run.flagged = !get(rowA, "timing_warning").empty() || !get(rowB, "timing_warning").empty();
+    run.flagged = !cellText(rowA, "timing_warning").empty() || !cellText(rowB, "timing_warning").empty();
     if (run.flagged)
         run.why = std::string("timing warning in ") +
-                  (get(rowA, "timing_warning").empty() ? "B" : get(rowB, "timing_warning").empty() ? "A" : "A and B");
+                  (cellText(rowA, "timing_warning").empty() ? "B" : cellText(rowB, "timing_warning").empty() ? "A" : "A and B");
     return run;
 }
 
@@ -260,7 +258,7 @@ CompareResult compareFolders(const std::string& folderA, const std::string& fold
     const std::vector<std::string> matchOn = matchColumns(a, b, options);
     auto keyOf = [&](const Row& row) {
         std::string key;
-        for (const std::string& c : matchOn) key += c + "=" + get(row, c) + ";";
+        for (const std::string& c : matchOn) key += c + "=" + cellText(row, c) + ";";
         return key;
     };
     std::map<std::string, std::vector<const Row*>> inB;
@@ -272,14 +270,14 @@ CompareResult compareFolders(const std::string& folderA, const std::string& fold
         const auto candidates = inB.find(key);
         const std::size_t k = taken[key]++;
         if (candidates == inB.end() || k >= candidates->second.size()) {
-            result.onlyA.push_back(get(rowA, "run") + " (" + get(rowA, "label") + ")");
+            result.onlyA.push_back(cellText(rowA, "run") + " (" + cellText(rowA, "label") + ")");
             continue;
         }
         matchedB.insert(candidates->second[k]);
         result.runs.push_back(compareRun(a, b, rowA, *candidates->second[k], options));
     }
     for (const Row& row : b.rows)
-        if (!matchedB.count(&row)) result.onlyB.push_back(get(row, "run") + " (" + get(row, "label") + ")");
+        if (!matchedB.count(&row)) result.onlyB.push_back(cellText(row, "run") + " (" + cellText(row, "label") + ")");
     if (!result.onlyA.empty() || !result.onlyB.empty()) result.differingKeys = differingKeys(a, b, matchOn);
     holm(result.runs);
     for (ComparedRun& run : result.runs) {

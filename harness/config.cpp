@@ -310,10 +310,11 @@ std::vector<std::string> ruleWords(const std::string& rule) {
     return words;
 }
 
+// `option` names what holds the rule in errors (the key sweep.skip; none for --filter).
 SkipRule parseSkipRule(const std::string& path, const std::string& at, const std::string& text,
-                       const std::vector<KeySpec>& schema) {
+                       const std::vector<KeySpec>& schema, const std::string& option = "key 'sweep.skip': ") {
     SkipRule rule{text, at, {}};
-    const std::string key = at + ": key 'sweep.skip': ";
+    const std::string key = at + ": " + option;
     refuseControlCharacters(key, text);
     for (const std::string& word : ruleWords(text)) {
         const std::size_t eq = word.find('=');
@@ -322,7 +323,7 @@ SkipRule parseSkipRule(const std::string& path, const std::string& at, const std
         if (eq == std::string::npos || spec == schema.end())
             throw Error(key + "'" + word + "' is not section.key=value for a known key");
         std::string value = word.substr(eq + 1);
-        const std::string valueAt = at + ": key 'sweep.skip': in '" + word + "'";
+        const std::string valueAt = at + ": " + option + "in '" + word + "'";
         if (spec->type == ValueType::String) {
             // A bare word or a quoted string.
             if (value.size() >= 2 && value.front() == '"' && value.back() == '"') value = value.substr(1, value.size() - 2);
@@ -383,6 +384,10 @@ std::pair<std::string, const toml::node*> parseSetting(const std::string& settin
 }
 
 }  // namespace
+
+std::vector<std::pair<std::string, ConfigValue>> parseKeyConditions(const std::string& at, const std::string& text) {
+    return parseSkipRule("", at, text, configSchema(), "").conditions;
+}
 
 ExperimentPlan loadExperiment(const std::string& path, const std::vector<std::string>& settings) {
     const std::string text = readInputFile(path, kMaxConfigBytes, "config file");

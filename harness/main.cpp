@@ -17,6 +17,7 @@
 #include "harness/columns.h"
 #include "harness/config.h"
 #include "harness/images.h"
+#include "harness/retime.h"
 #include "harness/plan_view.h"
 #include "harness/runner.h"
 #include "harness/version.h"
@@ -82,7 +83,7 @@ void printMeshes(std::ostream& out) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+static int runCommand(int argc, char** argv) {
     CLI::App app{"rtbench: GPU ray tracing strategies (Purcell 2002, Christen 2005) measured against Embree"};
     app.require_subcommand(1);
     app.set_version_flag("--version", rtbench::versionText(), "print the version, the commit it was built from and the build type");
@@ -128,7 +129,7 @@ int main(int argc, char** argv) {
     CLI::App* merge = app.add_subcommand("merge", "Join the runs.shard-*.csv of a results folder into runs.csv, checking none is missing or doubled");
     merge->add_option("results_dir", mergeFolder, "results folder of a sharded run")->required();
     std::string missingAsFailed;
-    merge->add_option("--missing-as-failed", missingAsFailed,
+    CLI::Option* missingOption = merge->add_option("--missing-as-failed", missingAsFailed,
                       "write a failed row, its error \"no row from its shard: REASON\", for each run no shard finished "
                       "(a shard killed by a time limit or never started) instead of refusing; context.json then says "
                       "complete: false");
@@ -152,6 +153,12 @@ int main(int argc, char** argv) {
     check->add_option("--tolerance", checkOptions.timingTolerance, "relative tolerance for timing columns (default 0.5 = 50%)");
     check->add_option("--embree-config", checkOptions.embreeConfigOverride,
                       "re-run with this Embree config string (e.g. isa=sse4.2): counts must not change");
+
+    std::string retimeFolder;
+    rtbench::RetimeOptions retimeOptions;
+    CLI::App* retime = app.add_subcommand("retime", "Re-time the runs of a results folder that have a timing warning, up to --tries times each; keep the better-conditioned samples (column retimed says which and why); exit 1 if a count moved");
+    retime->add_option("results_dir", retimeFolder, "results folder recorded by this binary on this machine")->required();
+    retime->add_option("--tries", retimeOptions.tries, "re-runs of each flagged run at most (default 3; a run stops once it times clean)");
 
     std::string compareA, compareB;
     rtbench::CompareOptions compareOptions;
@@ -254,6 +261,8 @@ int main(int argc, char** argv) {
             return 0;
         }
         if (*merge) {
+            if (missingOption->count() && missingAsFailed.find_first_not_of(" \t") == std::string::npos)
+                throw rtbench::Error("--missing-as-failed: give the reason the missing runs failed (it goes into their error)");
             const std::vector<rtbench::Row> rows = rtbench::mergeShards(mergeFolder, missingAsFailed);
             std::cout << "merged " << rows.size() << " runs into " << mergeFolder << "/runs.csv\n";
             return 0;
@@ -269,6 +278,12 @@ int main(int argc, char** argv) {
         }
         if (*check) {
             const rtbench::CheckResult result = rtbench::checkResults(checkFolder, checkOptions, std::cout);
+            return result.failed() ? 1 : 0;
+        }
+        if (*retime) {
+            const rtbench::RetimeResult result = rtbench::retimeFlagged(retimeFolder, retimeOptions, std::cout);
+            for (const std::string& d : result.differences) std::cerr << "rtbench: deterministic difference: " << d << "\n";
+            if (result.failed()) std::cerr << "rtbench: error: a re-run's counts differ from the record; nothing written\n";
             return result.failed() ? 1 : 0;
         }
         if (*plot) {
@@ -304,4 +319,16 @@ int main(int argc, char** argv) {
         return 2;
     }
     return 0;
+}
+
+int main(int argc, char** argv) {
+    const int status = runCommand(argc, argv);
+    // What a command printed must have reached its reader: a full disk or a closed pipe behind
+    // stdout (rtbench columns --csv > /dev/full) is a failure, not exit 0.
+    std::cout.flush();
+    if (!std::cout) {
+        std::cerr << "rtbench: error: cannot write to standard output (a full disk or a closed pipe?)\n";
+        return status ? status : 2;
+    }
+    return status;
 }

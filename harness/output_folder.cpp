@@ -9,11 +9,14 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
+#include <set>
 #include <tuple>
 #include <utility>
 
 #include "structures/error.h"
 #include "structures/text.h"
+#include "version.h"
+#include "writers.h"
 
 namespace rtbench {
 namespace fs = std::filesystem;
@@ -195,6 +198,19 @@ std::pair<unsigned long long, unsigned long long> folderNode(const std::string& 
 
 FolderIdentity::FolderIdentity(std::string folder) : folder_(std::move(folder)) {
     std::tie(device_, inode_) = folderNode(folder_, "when opened");
+    fd_ = ::open(folder_.c_str(), O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
+    struct stat st {};
+    if (fd_ < 0 || ::fstat(fd_, &st) != 0 || std::make_pair(static_cast<unsigned long long>(st.st_dev),
+                                                           static_cast<unsigned long long>(st.st_ino)) != std::make_pair(device_, inode_)) {
+        if (fd_ >= 0) ::close(fd_);
+        throw Error(folder_ + ": the results folder changed while it was opened; rtbench writes only into the folder it opened");
+    }
+    holdFolder(folder_, fd_);  // every write into it goes through fd_ from now on (writers.h)
+}
+
+FolderIdentity::~FolderIdentity() {
+    releaseFolder(folder_, fd_);
+    ::close(fd_);
 }
 
 void FolderIdentity::check() const {
@@ -225,6 +241,41 @@ void checkWritableFile(const std::string& path) {
         throw Error(path + ": exists but is not a regular file; move it away first");
     if (::access(path.c_str(), W_OK) != 0 && errno != ENOENT)
         throw Error(path + ": not writable: " + std::strerror(errno));
+}
+
+std::string folderWriters(const std::string& folder) {
+    std::string pids;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(folder, ec)) {
+        const std::string name = entry.path().filename().string();
+        const bool lockFile = name.rfind(".rtbench.", 0) == 0 && name.size() > 5 && name.substr(name.size() - 5) == ".lock";
+        if (!lockFile || entry.is_symlink(ec)) continue;
+        const int fd = ::open(entry.path().c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
+        if (fd < 0) continue;
+        // A holder that is ending holds its lock exclusively for a moment: ask twice.
+        bool held = ::flock(fd, LOCK_SH | LOCK_NB) != 0;
+        if (held) {
+            ::usleep(50000);
+            held = ::flock(fd, LOCK_SH | LOCK_NB) != 0;
+        }
+        if (held) pids += (pids.empty() ? "" : ", ") + pidIn(fd);
+        ::close(fd);
+    }
+    return pids;
+}
+
+std::string supersededPrefix(const std::string& folder) {
+    std::string stamp = utcNow();
+    stamp.erase(std::remove(stamp.begin(), stamp.end(), ':'), stamp.end());
+    stamp.erase(std::remove(stamp.begin(), stamp.end(), '-'), stamp.end());
+    std::set<std::string> names;  // every name in the folder: a prefix no file has yet
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(folder, ec)) names.insert(entry.path().filename().string());
+    for (int k = 0;; ++k) {
+        const std::string name = "superseded-" + stamp + (k ? "-" + std::to_string(k) : "") + "-";
+        const auto after = names.lower_bound(name);
+        if (after == names.end() || after->rfind(name, 0) != 0) return (fs::path(folder) / name).string();
+    }
 }
 
 }  // namespace rtbench

@@ -38,14 +38,22 @@ class OutputFolderLock {
 // The results folder a sweep writes into, as it was when opened (device and inode): before each
 // write the runner checks that the path still names that real folder, so a folder renamed away
 // mid-run and a symlink (or another folder) put in its place is refused, not written through.
+//
+// It also holds the folder open (O_DIRECTORY | O_NOFOLLOW) while it lives: every file rtbench
+// writes into it, between two checks too, is created and renamed relative to that descriptor
+// (writers.h holdFolder), so a swap between a check and a write redirects nothing either.
 class FolderIdentity {
 public:
     explicit FolderIdentity(std::string folder);  // throws unless `folder` is a real folder
+    ~FolderIdentity();
+    FolderIdentity(const FolderIdentity&) = delete;
+    FolderIdentity& operator=(const FolderIdentity&) = delete;
     const std::string& path() const { return folder_; }
     void check() const;  // throws rtbench::Error naming the folder when the path names another
 private:
     std::string folder_;
     unsigned long long device_ = 0, inode_ = 0;
+    int fd_ = -1;
 };
 
 // Throws rtbench::Error when the results folder is a symlink or holds one: rtbench writes only
@@ -56,5 +64,15 @@ void refuseSymlinks(const std::string& folder);
 // Throws rtbench::Error unless `path` is absent or a regular file (not a symlink) that can be
 // replaced (checked before a run is computed, so a result is never computed and then lost).
 void checkWritableFile(const std::string& path);
+
+// The pids of the rtbench processes writing `folder` now (holding a lock of it exclusively: a
+// whole-plan run, a shard, a merge or a retime), "" when none. Reads only: check and compare ask
+// it so as never to judge a folder half-written.
+std::string folderWriters(const std::string& folder);
+
+// "<folder>/superseded-<UTC time>[-k]-": the prefix of what one invocation sets aside (rows,
+// samples, the context they were run under, their per-run files), names merge and resume never
+// read, and the start of no existing file's name.
+std::string supersededPrefix(const std::string& folder);
 
 }  // namespace rtbench

@@ -15,24 +15,23 @@ namespace rtbench {
 namespace fs = std::filesystem;
 
 std::vector<const RunConfig*> filterRuns(const ExperimentPlan& plan, const std::vector<std::string>& filters) {
-    std::set<std::string> keys;
-    for (const KeySpec& k : configSchema()) keys.insert(k.name);
-    // "section.key=value" names a key (a typo is an error); anything else is text of the label.
-    auto keyOf = [](const std::string& f) {
+    // "section.key=value" is a typed condition, as a skip rule's (structure.type=BVH is refused,
+    // camera.fov_deg=30 matches 30.0); anything else is text of the label.
+    std::vector<std::vector<std::pair<std::string, ConfigValue>>> conditions;
+    for (const std::string& f : filters) {
+        if (f.find_first_not_of(" \t") == std::string::npos) throw Error("--filter '" + f + "': an empty filter selects nothing");
         const std::size_t eq = f.find('=');
-        return eq != std::string::npos && f.substr(0, eq).find('.') != std::string::npos ? f.substr(0, eq) : std::string();
-    };
-    for (const std::string& f : filters)
-        if (!keyOf(f).empty() && !keys.count(keyOf(f)))
-            throw Error("--filter " + f + ": no config key " + keyOf(f) + " (rtbench keys lists them)");
+        const bool keyed = eq != std::string::npos && f.substr(0, eq).find('.') != std::string::npos;
+        conditions.push_back(keyed ? parseKeyConditions("--filter " + f, f) : std::vector<std::pair<std::string, ConfigValue>>{});
+    }
     std::vector<const RunConfig*> kept;
     for (const RunConfig& run : plan.runs) {
-        const bool all = std::all_of(filters.begin(), filters.end(), [&](const std::string& f) {
-            const std::size_t eq = f.find('=');
-            if (keyOf(f).empty()) return run.label().find(f) != std::string::npos;
-            const std::string key = f.substr(0, eq);
-            return run.has(key) && formatValue(run.values.at(key)) == f.substr(eq + 1);
-        });
+        bool all = true;
+        for (std::size_t i = 0; i < filters.size() && all; ++i)
+            all = conditions[i].empty() ? run.label().find(filters[i]) != std::string::npos
+                                        : std::all_of(conditions[i].begin(), conditions[i].end(), [&](const auto& c) {
+                                              return run.has(c.first) && run.values.at(c.first) == c.second;
+                                          });
         if (all) kept.push_back(&run);
     }
     return kept;

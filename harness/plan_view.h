@@ -10,9 +10,10 @@
 
 namespace rtbench {
 
-// Keeps the runs that match every filter: "section.key=value" (the config key's value as written
-// in runs.csv, e.g. structure.type=bvh) or else a text found in the run's label (min_dim=16).
-// Throws rtbench::Error naming a section.key=value filter whose key is no config key.
+// Keeps the runs that match every filter: "section.key=value" (the value typed as the key's own, as
+// a sweep.skip rule reads it: camera.fov_deg=30 matches 30.0) or else a text found in the run's
+// label (min_dim=16). Throws rtbench::Error naming a section.key=value filter whose key is no
+// config key or whose value the key refuses (structure.type=BVH), and an empty filter.
 std::vector<const RunConfig*> filterRuns(const ExperimentPlan& plan, const std::vector<std::string>& filters);
 
 // What earlier rows of runs took: "run|config_hash" -> wall_s, for the rows whose wall_s is a

@@ -353,33 +353,22 @@ Json contextJson(const ExperimentPlan& plan, const RunnerOptions& options, const
     return j;
 }
 
+// A failed run's error: what the exception says, and for an allocation that failed, what ran out.
+std::string failureReason(const std::exception& e) {
+    if (dynamic_cast<const std::bad_alloc*>(&e))
+        return std::string("out of host memory (") + e.what() +
+               "): the run needs more than the machine, or the process's address-space limit (ulimit -v), allows";
+    return e.what();
+}
+
 // A run's identity beyond its parameters (config_hash): the commit of the binary, the device it
 // ran on and the contents of the files its scene was made from. A row of an earlier invocation
 // stands for a run of this plan only when all of them are equal.
 std::string identity(const Row& row) {
-    auto get = [&](const char* column) {
-        const auto it = row.find(column);
-        return it == row.end() ? std::string() : it->second;
-    };
-    return get("run") + "|" + get("config_hash") + "|" + get("git_commit") + "|" + get("device") + "|" + get("driver") +
-           "|" + get("cpu") + "|" + get("inputs_hash");
-}
-
-// "<folder>/superseded-<UTC time>[-k]-": the prefix of what one invocation sets aside (rows,
-// samples, the context they were run under, their per-run files), names merge and resume never
-// read, and the start of no existing file's name.
-std::string supersededPrefix(const std::string& folder) {
-    std::string stamp = utcNow();
-    stamp.erase(std::remove(stamp.begin(), stamp.end(), ':'), stamp.end());
-    stamp.erase(std::remove(stamp.begin(), stamp.end(), '-'), stamp.end());
-    std::set<std::string> names;  // every name in the folder: a prefix no file has yet
-    std::error_code ec;
-    for (const auto& entry : fs::directory_iterator(folder, ec)) names.insert(entry.path().filename().string());
-    for (int k = 0;; ++k) {
-        const std::string name = "superseded-" + stamp + (k ? "-" + std::to_string(k) : "") + "-";
-        const auto after = names.lower_bound(name);
-        if (after == names.end() || after->rfind(name, 0) != 0) return (fs::path(folder) / name).string();
-    }
+    std::string key;
+    for (const char* column : {"run", "config_hash", "git_commit", "device", "driver", "cpu", "inputs_hash"})
+        key += (key.empty() ? "" : "|") + cellText(row, column);
+    return key;
 }
 
 // Sets aside rows of an earlier invocation that a resume does not keep: the rows, their timing
@@ -820,7 +809,7 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
             try {
                 executeRun(plan, *mine[k], folder, caches, rows[k], samples);
             } catch (const std::exception& e) {
-                error = e.what();
+                error = failureReason(e);
             }
             record(k, error, since(start), samples);
         }
@@ -849,7 +838,7 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
                     std::cout << " prepared\n";
                 }
             } catch (const std::exception& e) {
-                record(k, e.what(), since(start), {});
+                record(k, failureReason(e), since(start), {});
             }
             seconds[k] += since(start);
         }
@@ -869,7 +858,7 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
                 } catch (const std::exception& e) {
                     running[k].reset();  // its buffers go now
                     if (!options.quiet) std::cout << "[round " << round + 1 << "] " << mine[k]->label() << ":";
-                    record(k, e.what(), seconds[k] + since(start), {});
+                    record(k, failureReason(e), seconds[k] + since(start), {});
                 }
                 seconds[k] += since(start);
             }
@@ -887,7 +876,7 @@ ExperimentResult runExperiment(const ExperimentPlan& plan, const RunnerOptions& 
             try {
                 finishRun(*running[k], folder, caches, rows[k], samples);
             } catch (const std::exception& e) {
-                error = e.what();
+                error = failureReason(e);
             }
             running[k].reset();
             // Its rounds' samples are in the file already: the row and any samples after them.

@@ -17,11 +17,6 @@ std::map<std::string, std::vector<const Row*>> samplesByRun(const std::vector<Ro
 
 namespace {
 
-std::string cell(const Row& row, const std::string& column) {
-    const auto it = row.find(column);
-    return it == row.end() ? std::string() : it->second;
-}
-
 // One method's samples against the row's median and repetitions; "" when they agree.
 std::string methodProblem(const Row& row, const std::string& method, const std::vector<const Row*>& samples,
                           double repetitions) {
@@ -38,23 +33,23 @@ std::string methodProblem(const Row& row, const std::string& method, const std::
     }
     if (ms.empty()) return "no " + method + " samples";
     if (double(ms.size()) != repetitions)
-        return std::to_string(ms.size()) + " " + method + " samples, timing_repetitions says " + cell(row, "timing_repetitions");
-    const double recorded = cellNumber(cell(row, method + "_ms_median")), again = median(ms);
+        return std::to_string(ms.size()) + " " + method + " samples, timing_repetitions says " + cellText(row, "timing_repetitions");
+    const double recorded = cellNumber(cellText(row, method + "_ms_median")), again = median(ms);
     if (!(std::abs(again - recorded) <= 1e-5 * std::abs(recorded)))  // the row keeps 6 digits
         return "the " + method + " samples' median " + formatNumber(again) + " is not the row's " + method + "_ms_median " +
-               cell(row, method + "_ms_median");
+               cellText(row, method + "_ms_median");
     return "";
 }
 
 }  // namespace
 
 std::string samplesProblem(const Row& row, const std::map<std::string, std::vector<const Row*>>& byRun) {
-    if (cell(row, "status") != "ok" || cell(row, "timing_repetitions").empty()) return "";
-    const double repetitions = cellNumber(cell(row, "timing_repetitions"));
-    const auto found = byRun.find(cell(row, "run") + "|" + cell(row, "config_hash"));
+    if (cellText(row, "status") != "ok" || cellText(row, "timing_repetitions").empty()) return "";
+    const double repetitions = cellNumber(cellText(row, "timing_repetitions"));
+    const auto found = byRun.find(cellText(row, "run") + "|" + cellText(row, "config_hash"));
     if (found == byRun.end()) return "no samples of its run and config hash";
     for (const char* method : {"kernel", "embree1", "embree16"}) {
-        if (cell(row, std::string(method) + "_ms_median").empty()) continue;
+        if (cellText(row, std::string(method) + "_ms_median").empty()) continue;
         if (std::string problem = methodProblem(row, method, found->second, repetitions); !problem.empty()) return problem;
     }
     return "";

@@ -13,6 +13,7 @@
 #include "runner.h"
 #include "timing_rounds.h"
 #include "structures/error.h"
+#include "structures/text.h"
 
 namespace rtbench {
 namespace fs = std::filesystem;
@@ -35,10 +36,12 @@ std::string contextField(const Json& context, const fs::path& path, const char* 
 }  // namespace
 
 std::vector<Row> mergeShards(const std::string& folder, const std::string& missingReason) {
+    refuseControlCharacters("--missing-as-failed: ", missingReason);  // it goes into every missing run's error
     std::error_code ec;
     if (!fs::is_directory(folder, ec)) throw Error(folder + ": not a results folder");
     refuseSymlinks(folder);  // before the lock file is made
     const OutputFolderLock lock(folder);  // no shard is running
+    const FolderIdentity held(folder);     // the writes below go into this folder, whatever its path names later
     // runs.shard-<i>-of-<n>.csv with its context.shard-<i>-of-<n>.json.
     std::map<std::string, ShardFiles> shards;
     const std::regex csvName(R"(runs\.(shard-[0-9]+-of-[0-9]+)\.csv)"), contextName(R"(context\.(shard-[0-9]+-of-[0-9]+)\.json)");

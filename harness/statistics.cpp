@@ -88,15 +88,25 @@ MannWhitney mannWhitneyU(const std::vector<double>& a, const std::vector<double>
     MannWhitney result;
     const std::size_t m = a.size(), n = b.size();
     if (m == 0 || n == 0) return result;
-    // U of a: pairs (x in a, y in b) with x > y, a tie counting 1/2.
-    for (double x : a)
-        for (double y : b) result.u += x > y ? 1.0 : x == y ? 0.5 : 0.0;
-    // Ties across the pooled samples.
-    std::map<double, std::size_t> counts;
-    for (double v : a) ++counts[v];
-    for (double v : b) ++counts[v];
-    double tieTerm = 0.0;
-    for (const auto& [value, t] : counts) tieTerm += double(t) * double(t) * double(t) - double(t);
+    // U of a, the pairs (x in a, y in b) with x > y, a tie counting 1/2, from the ranks of the
+    // pooled samples (a run of ties shares its mean rank): U = R_a - m(m + 1)/2, in
+    // O((m + n) log(m + n)) rather than a pass over every pair (100,000 samples a side). Every
+    // term is a multiple of 1/2 below 2^53: exact in double.
+    std::vector<std::pair<double, bool>> pooled;  // (value, from a)
+    pooled.reserve(m + n);
+    for (double v : a) pooled.emplace_back(v, true);
+    for (double v : b) pooled.emplace_back(v, false);
+    std::sort(pooled.begin(), pooled.end());
+    double rankSumA = 0.0, tieTerm = 0.0;
+    for (std::size_t i = 0; i < pooled.size();) {
+        std::size_t j = i, fromA = 0;
+        for (; j < pooled.size() && pooled[j].first == pooled[i].first; ++j) fromA += pooled[j].second;
+        const double t = double(j - i);
+        rankSumA += double(fromA) * (double(i + 1) + double(j)) / 2.0;  // ranks i+1 .. j, their mean
+        tieTerm += t * t * t - t;
+        i = j;
+    }
+    result.u = rankSumA - double(m) * double(m + 1) / 2.0;
     const double mn = double(m) * double(n);
     if (tieTerm == 0.0 && m * n <= 400) {
         // Exact: f(i, j, k) arrangements of i a's and j b's with U = k. The largest of them is an

@@ -4,12 +4,16 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <atomic>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
+#include <mutex>
 #include <set>
 #include <sstream>
 
@@ -48,10 +52,59 @@ mode_t processUmask() {
     return mask;
 }
 
-void refuseSymlink(const std::string& path) {
+// The results folders held open (holdFolder), by their lexically normal path.
+std::mutex heldMutex;
+std::map<std::string, std::vector<int>> heldFolders;
+
+std::string folderKey(const std::string& folder) {
+    std::string key = std::filesystem::path(folder.empty() ? "." : folder).lexically_normal().string();
+    while (key.size() > 1 && key.back() == '/') key.pop_back();
+    return key;
+}
+
+// The folder a write goes into: the held descriptor of its parent when it is a held results
+// folder (owned = false), else the parent opened now.
+struct Folder {
+    int fd = -1;
+    bool owned = false;
+    Folder(const Folder&) = delete;
+    Folder& operator=(const Folder&) = delete;
+    explicit Folder(const std::string& path) {
+        const std::string parent = parentOf(path);
+        {
+            std::lock_guard<std::mutex> lock(heldMutex);
+            const auto it = heldFolders.find(folderKey(parent));
+            if (it != heldFolders.end() && !it->second.empty()) fd = it->second.back();
+        }
+        if (fd >= 0) return;
+        fd = ::open(parent.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+        if (fd < 0) throw Error(path + ": cannot open its folder: " + std::strerror(errno));
+        owned = true;
+    }
+    ~Folder() {
+        if (owned) ::close(fd);
+    }
+};
+
+std::string nameOf(const std::string& path) { return std::filesystem::path(path).filename().string(); }
+
+void refuseSymlinkAt(const Folder& dir, const std::string& path) {
     struct stat st{};
-    if (::lstat(path.c_str(), &st) == 0 && S_ISLNK(st.st_mode))
+    if (::fstatat(dir.fd, nameOf(path).c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 && S_ISLNK(st.st_mode))
         throw Error(path + ": is a symlink; rtbench never writes through one: remove it");
+}
+
+// A new file of a unique name in `dir` (O_CREAT | O_EXCL | O_NOFOLLOW: never a planted file or
+// link): its descriptor, its name in `name`.
+int createTemporaryAt(const Folder& dir, const std::string& stem, std::string& name) {
+    static std::atomic<unsigned> counter{0};
+    for (int attempt = 0; attempt < 100; ++attempt) {
+        name = "." + stem + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+        const int fd = ::openat(dir.fd, name.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0666);
+        if (fd >= 0 || errno != EEXIST) return fd;
+    }
+    errno = EEXIST;
+    return -1;
 }
 
 // Writes all of `bytes` to fd; false (errno set) on failure.
@@ -71,34 +124,41 @@ bool writeAll(int fd, std::string_view bytes) {
 
 }  // namespace
 
+void holdFolder(const std::string& folder, int fd) {
+    std::lock_guard<std::mutex> lock(heldMutex);
+    heldFolders[folderKey(folder)].push_back(fd);
+}
+
+void releaseFolder(const std::string& folder, int fd) {
+    std::lock_guard<std::mutex> lock(heldMutex);
+    auto& fds = heldFolders[folderKey(folder)];
+    fds.erase(std::remove(fds.begin(), fds.end(), fd), fds.end());
+    if (fds.empty()) heldFolders.erase(folderKey(folder));
+}
+
 void writeFileAtomically(const std::string& path, const std::string& text) {
-    refuseSymlink(path);
-    // A temporary of a unique name beside the target (mkostemp: O_CREAT | O_EXCL, so a planted
-    // file or symlink of that name is never opened), renamed over the target: rename replaces
-    // the directory entry, never writing through what was there.
-    std::string tmp = (std::filesystem::path(parentOf(path)) /
-                       ("." + std::filesystem::path(path).filename().string() + ".tmp-XXXXXX"))
-                          .string();
-    const int fd = ::mkostemp(tmp.data(), O_CLOEXEC);
+    // A temporary of a unique name beside the target, renamed over it: rename replaces the
+    // directory entry, never writing through what was there. Every step is relative to the
+    // folder's descriptor (held for a results folder), so a folder renamed or swapped for a link
+    // meanwhile redirects nothing.
+    const Folder dir(path);
+    refuseSymlinkAt(dir, path);
+    std::string tmp;
+    const int fd = createTemporaryAt(dir, nameOf(path), tmp);
     if (fd < 0) throw Error(path + ": cannot create a temporary file beside it: " + std::strerror(errno));
     const bool written = ::fchmod(fd, 0666 & ~processUmask()) == 0 && writeAll(fd, text) && ::fsync(fd) == 0;
     const int why = errno;
     if (::close(fd) != 0 || !written) {
-        ::unlink(tmp.c_str());  // never leave a partial file behind
-        throw Error(tmp + ": write failed (disk full?): " + std::strerror(written ? errno : why) + "; " + path +
-                    " is unchanged");
+        ::unlinkat(dir.fd, tmp.c_str(), 0);  // never leave a partial file behind
+        throw Error(parentOf(path) + "/" + tmp + ": write failed (disk full?): " + std::strerror(written ? errno : why) +
+                    "; " + path + " is unchanged");
     }
-    if (::rename(tmp.c_str(), path.c_str()) != 0) {
+    if (::renameat(dir.fd, tmp.c_str(), dir.fd, nameOf(path).c_str()) != 0) {
         const int renameWhy = errno;
-        ::unlink(tmp.c_str());
+        ::unlinkat(dir.fd, tmp.c_str(), 0);
         throw Error(path + ": rename failed: " + std::strerror(renameWhy));
     }
-    // The rename itself, synced: the folder's entry.
-    const int dir = ::open(parentOf(path).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (dir >= 0) {
-        ::fsync(dir);
-        ::close(dir);
-    }
+    ::fsync(dir.fd);  // the rename itself, synced: the folder's entry
 }
 
 namespace {
@@ -119,6 +179,11 @@ std::string csvLine(const std::string& path, const std::vector<std::string>& col
 }
 
 }  // namespace
+
+std::string cellText(const Row& row, const std::string& column) {
+    const auto it = row.find(column);
+    return it == row.end() ? std::string() : it->second;
+}
 
 double cellNumber(const std::string& cell) {
     char* end = nullptr;
@@ -147,7 +212,8 @@ void appendCsvRows(const std::string& path, const std::vector<std::string>& colu
     const std::set<std::string> declared(columns.begin(), columns.end());
     std::string line;
     for (std::size_t r = 0; r < rows.size(); ++r) line += csvLine(path, columns, declared, rows[r], r + 1);
-    const int fd = ::open(path.c_str(), O_WRONLY | O_APPEND | O_NOFOLLOW | O_CLOEXEC);
+    const Folder dir(path);
+    const int fd = ::openat(dir.fd, nameOf(path).c_str(), O_WRONLY | O_APPEND | O_NOFOLLOW | O_CLOEXEC);
     if (fd < 0) {
         if (errno == ELOOP) throw Error(path + ": is a symlink; rtbench never writes through one: remove it");
         throw Error(path + ": cannot open to append a row: " + std::strerror(errno));
@@ -257,8 +323,9 @@ void writeJson(const std::string& path, const Json& json) {
     writeFileAtomically(path, json.dump(2, ' ', false, Json::error_handler_t::replace) + "\n");
 }
 
-Json readJson(const std::string& path) {
-    const std::string text = readInputFile(path, kMaxResultsFileBytes, "JSON file");
+Json readJson(const std::string& path) { return parseJson(readInputFile(path, kMaxResultsFileBytes, "JSON file"), path); }
+
+Json parseJson(const std::string& text, const std::string& path) {
     try {
         return Json::parse(text);
     } catch (const Json::exception& e) {

@@ -13,6 +13,8 @@ namespace rtbench {
 
 // The value of a numeric cell as rtbench writes it; NaN for an empty or text cell.
 double cellNumber(const std::string& cell);
+// A row's cell, "" when the row lacks the column (a folder of an older schema).
+std::string cellText(const Row& row, const std::string& column);
 
 // Writes `rows` under `columns` (missing cells empty) to path atomically (writeFileAtomically); a
 // row that sets a column not in `columns` is an error (a typo never silently drops a value).
@@ -40,11 +42,19 @@ std::vector<Row> parseCsv(const std::string& text, const std::string& path);
 // symlink. On failure the temporary is removed and path unchanged.
 void writeFileAtomically(const std::string& path, const std::string& text);
 
+// A results folder held open (output_folder.h FolderIdentity, O_DIRECTORY | O_NOFOLLOW): while
+// held, writeFileAtomically and appendCsvRows into it (a path whose parent is `folder`) create,
+// write and rename relative to `fd`, never through the path, so a folder renamed away and
+// replaced by a link mid-run receives nothing.
+void holdFolder(const std::string& folder, int fd);
+void releaseFolder(const std::string& folder, int fd);
+
 // JSON files (nlohmann::json, keys kept in the order written): written atomically; a read that
 // fails names the file. CSV and JSON files are read only when regular and within
 // kMaxResultsFileBytes (structures/input_file.h).
 using Json = nlohmann::ordered_json;
 void writeJson(const std::string& path, const Json& json);
 Json readJson(const std::string& path);
+Json parseJson(const std::string& text, const std::string& path);  // `path` names it in errors
 
 }  // namespace rtbench

@@ -86,7 +86,8 @@ struct ColumnSpec {
 //        repetitions), speed_ratio_ci_*: from the two medians' 97.5% intervals (before: percentile
 //        bootstrap at any n); *_ms_std and _cv empty for one repetition (before: 0), and one
 //        repetition is a timing_warning.
-constexpr int kSchemaVersion = 23;
+//  24  + retimed (rtbench retime re-times the runs with a timing warning).
+constexpr int kSchemaVersion = 24;
 
 // The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".
 std::string paramColumn(const std::string& key);

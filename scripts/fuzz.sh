@@ -5,6 +5,8 @@
 #   scripts/fuzz.sh TARGET SECONDS [libFuzzer flags...]
 #     TARGET   fuzz_mesh (structures/mesh_io.h readMeshFile; first byte picks .off/.obj/.ply/.stl)
 #              fuzz_config (harness/config.h loadExperimentText)
+#              fuzz_results (a results folder's runs.csv, samples.csv, context.json; first byte picks)
+#              fuzz_scene (structures/scene_description.h readSceneDescription)
 #   FUZZ_KEEP_GOING=1  after a finding, start libFuzzer again (same corpus) until SECONDS are up
 #   FUZZ_CLANG=N       clang version (default 16, from Debian 12's packages; Debian's default
 #                      clang 14 lacks C++20 that GCC 12 has: lambdas capturing structured bindings)
@@ -25,8 +27,10 @@ shift 2
 case "$target" in
   mesh) target=fuzz_mesh ;;
   config) target=fuzz_config ;;
-  fuzz_mesh | fuzz_config) ;;
-  *) echo "[fuzz] unknown target '$target' (fuzz_mesh, fuzz_config)" >&2; exit 2 ;;
+  results) target=fuzz_results ;;
+  scene) target=fuzz_scene ;;
+  fuzz_mesh | fuzz_config | fuzz_results | fuzz_scene) ;;
+  *) echo "[fuzz] unknown target '$target' (fuzz_mesh, fuzz_config, fuzz_results, fuzz_scene)" >&2; exit 2 ;;
 esac
 [[ "$seconds" =~ ^[0-9]+$ ]] || { echo "[fuzz] SECONDS must be a whole number" >&2; exit 2; }
 
@@ -70,6 +74,12 @@ as_input() {  # FILE DEST-FOLDER
       *.off) prefix=0 ;; *.obj) prefix=1 ;; *.ply) prefix=2 ;; *.stl) prefix=3 ;; *) return 0 ;;
     esac
     { printf '%s' "$prefix"; cat "$1"; } >"$2/$(basename "$1")"
+  elif [ "$target" = fuzz_results ]; then  # first byte: '0' runs.csv, '1' samples.csv, '2' context.json
+    local prefix
+    case "$(basename "$1")" in
+      runs*.csv) prefix=0 ;; samples*.csv) prefix=1 ;; context*.json) prefix=2 ;; *) return 0 ;;
+    esac
+    { printf '%s' "$prefix"; cat "$1"; } >"$2/$(basename "$(dirname "$1")")-$(basename "$1")"
   else
     case "$1" in *.md) return 0 ;; esac
     cp "$1" "$2/"
@@ -78,6 +88,12 @@ as_input() {  # FILE DEST-FOLDER
 if [ "$target" = fuzz_mesh ]; then
   sources=(fuzz/seeds/fuzz_mesh/* tests/corpus/meshes/*.{off,obj,ply,stl})
   dict=fuzz/fuzz_mesh.dict
+elif [ "$target" = fuzz_results ]; then
+  sources=(results/golden/{runs.csv,samples.csv,context.json} results/division/{runs.csv,context.json})
+  dict=fuzz/fuzz_results.dict
+elif [ "$target" = fuzz_scene ]; then
+  sources=(fuzz/seeds/fuzz_scene/*)
+  dict=fuzz/fuzz_config.dict  # TOML's tokens; the scene's keys are in the seeds
 else
   sources=(fuzz/seeds/fuzz_config/* configs/*.toml tests/harness/data/*.toml)
   dict=fuzz/fuzz_config.dict

@@ -3,6 +3,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <cmath>
 #include <sstream>
 
@@ -52,6 +55,17 @@ protected:
 };
 
 // The grid covers every group, the fewest rows, and leaves fewer than a row's worth (y - 1) empty.
+// Half the physical memory, or half the address-space limit (ulimit -v) when lower: a run under a
+// 4 GiB limit is refused with the figure, not ended by a bare std::bad_alloc.
+TEST(HostMemoryLimit, HalfThePhysicalMemoryOrHalfTheAddressSpaceLimitWhenLower) {
+    constexpr std::uint64_t GiB = std::uint64_t(1) << 30;
+    EXPECT_EQ(hostMemoryLimit(24 * GiB, std::uint64_t(RLIM_INFINITY)), 12 * GiB);
+    EXPECT_EQ(hostMemoryLimit(24 * GiB, 4 * GiB), 2 * GiB);
+    EXPECT_EQ(hostMemoryLimit(2 * GiB, 64 * GiB), 1 * GiB);
+    EXPECT_LE(hostMemoryLimit(), hostMemoryLimit(std::uint64_t(sysconf(_SC_PHYS_PAGES)) * std::uint64_t(sysconf(_SC_PAGE_SIZE)),
+                                                 std::uint64_t(RLIM_INFINITY)));
+}
+
 TEST(WorkgroupGrid, CoversEveryGroupWithTheFewestRowsAndFewerThanOneEmptyGroupPerRow) {
     using Grid = std::pair<std::uint64_t, std::uint64_t>;
     EXPECT_EQ(workgroupGrid(0, 65535), Grid(0, 1));

@@ -133,6 +133,22 @@ TEST_F(Golden, SamplesThatAreNotTheRowsFail) {
     EXPECT_THAT(missing.str(), HasSubstr("-     (samples.csv)                 missing"));
 }
 
+// columns.csv tells a reader each column's kind: garbage there, or one that misses a column of
+// runs.csv, fails the check by name; a folder's re-run by another commit is said.
+TEST_F(Golden, AGarbageColumnsCsvFailsAndTheCommitDifferenceIsSaid) {
+    std::vector<Row> rows = readCsv(csv());
+    keepOnly({rows[0]});
+    std::ofstream((copy_ / "columns.csv").string(), std::ios::trunc) << "column,kind\n\"unclosed\n";
+    std::ostringstream garbage;
+    EXPECT_EQ(check(garbage).deterministicDifferences, 1) << garbage.str();
+    EXPECT_THAT(garbage.str(), HasSubstr("(columns.csv)"));
+    std::ofstream((copy_ / "columns.csv").string(), std::ios::trunc) << "column,kind\nrun,parameter\n";
+    std::ostringstream partial;
+    EXPECT_EQ(check(partial).deterministicDifferences, 1) << partial.str();
+    EXPECT_THAT(partial.str(), HasSubstr("does not describe runs.csv's column"));
+    EXPECT_THAT(partial.str(), HasSubstr("(recorded by commit " + rows[0].at("git_commit") + ", re-run by commit "));
+}
+
 TEST_F(Golden, AReferenceValueBeyondItsToleranceFailsAndSaysItsKind) {
     std::vector<Row> rows = readCsv(csv());
     rows[0]["hit_miss_agreement"] = "0.9";  // Embree-dependent, but no ISA moves it this far

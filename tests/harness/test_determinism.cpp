@@ -43,11 +43,11 @@ TEST(Determinism, EveryExactColumnIsEqualBetweenTwoRunsOfOneConfig) {
     int compared = 0;
     for (std::size_t i = 0; i < first.rows.size(); ++i) {
         const Row &a = first.rows[i], &b = second.rows[i];
-        ASSERT_EQ(cellOf(a, "status"), "ok") << cellOf(a, "label") << ": " << cellOf(a, "error");
+        ASSERT_EQ(cellText(a, "status"), "ok") << cellText(a, "label") << ": " << cellText(a, "error");
         for (const ColumnSpec& c : runColumnSpecs()) {
             if (c.kind != ColumnKind::Exact) continue;
-            EXPECT_EQ(cellOf(a, c.name), cellOf(b, c.name)) << cellOf(a, "label") << ": " << c.name;
-            compared += !cellOf(a, c.name).empty();
+            EXPECT_EQ(cellText(a, c.name), cellText(b, c.name)) << cellText(a, "label") << ": " << c.name;
+            compared += !cellText(a, c.name).empty();
         }
     }
     EXPECT_GT(compared, 400) << "the runs write their counts";

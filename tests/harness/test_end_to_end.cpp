@@ -421,6 +421,15 @@ TEST_F(EndToEnd, ThreeShardsMergedEqualTheUnshardedRun) {
                 EXPECT_EQ(merged[r].at(column), value) << "run " << r << " column " << column;
             }
 
+    // One run in two shards (a shard re-run with another split, a copied row) is refused by name.
+    {
+        const std::string second = whole.folder + "/runs.shard-1-of-3.csv";
+        const std::vector<Row> secondRows = readCsv(second);
+        appendCsvRow(second, runColumns(), readCsv(whole.folder + "/runs.shard-0-of-3.csv").front());
+        EXPECT_THAT(errorOf([&] { mergeShards(whole.folder); }), HasSubstr("run 000 (") );
+        EXPECT_THAT(errorOf([&] { mergeShards(whole.folder); }), HasSubstr("appears in more than one shard"));
+        writeCsv(second, runColumns(), secondRows);
+    }
     // A missing or doubled shard is an error.
     std::filesystem::copy_file(whole.folder + "/runs.shard-0-of-3.csv", whole.folder + "/runs.shard-3-of-3.csv");
     EXPECT_THROW(mergeShards(whole.folder), std::exception);

@@ -16,8 +16,6 @@ inline RunnerOptions quietRunnerOptions() {
     return options;
 }
 
-// A row's value of `key`, "" where the run wrote none.
-inline std::string cellOf(const Row& row, const std::string& key) { return row.count(key) ? row.at(key) : std::string(); }
 
 inline ExperimentResult runTestConfig(TempDir& dir, const std::string& name, const std::string& body,
                                       const RunnerOptions& options = quietRunnerOptions()) {

@@ -95,6 +95,35 @@ TEST(Writers, AFailedWriteLeavesNoTmpAndTheOldFileIntact) {
     EXPECT_EQ(content, "old");
 }
 
+// A held results folder renamed away and replaced by a symlink between two writes (what a check
+// before each write cannot close): the writes still go into the folder that was opened, by its
+// descriptor, and nothing reaches the link's target.
+TEST(OutputFolder, WritesGoIntoTheHeldFolderAfterItIsSwappedForALink) {
+    TempDir dir;
+    const std::string folder = dir.file("out"), moved = dir.file("moved"), target = dir.file("elsewhere");
+    fs::create_directories(folder);
+    fs::create_directories(target);
+    const FolderIdentity held(folder);
+    writeCsv(folder + "/runs.csv", {"run"}, {{{"run", "000"}}});
+    fs::rename(folder, moved);
+    fs::create_directory_symlink(target, folder);
+    writeCsv(folder + "/runs.csv", {"run"}, {{{"run", "000"}}, {{"run", "001"}}});
+    appendCsvRow(folder + "/runs.csv", {"run"}, {{"run", "002"}});
+    writeFileAtomically(folder + "/context.json", "{}\n");
+    EXPECT_TRUE(fs::is_empty(target)) << "a write went through the link";
+    EXPECT_EQ(readCsv(moved + "/runs.csv").size(), 3u);
+    EXPECT_TRUE(fs::exists(moved + "/context.json"));
+    EXPECT_THAT(errorOf([&] { held.check(); }), HasSubstr("symlink"));
+}
+
+// merge --missing-as-failed writes its reason into every missing run's error: a control
+// character there is refused by name, as in a config string.
+TEST(OutputFolder, AMergeReasonWithAControlCharacterIsRefused) {
+    TempDir dir;
+    EXPECT_THAT(errorOf([&] { mergeShards(dir.path(), std::string("killed\x07 by the scheduler")); }),
+                HasSubstr("--missing-as-failed: control character U+0007"));
+}
+
 TEST(Writers, ARowWithAnUndeclaredColumnIsAnError) {
     TempDir dir;
     EXPECT_THAT(errorOf([&] {

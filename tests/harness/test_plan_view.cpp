@@ -42,7 +42,13 @@ TEST(Plan, ASweepWithASkipRuleAndFilters) {
     EXPECT_EQ(filterRuns(plan, {"strategy.type=multipass", "structure.min_dim=8"}).size(), 1u);
     EXPECT_EQ(filterRuns(plan, {"min_dim=16"}).size(), 1u);  // text of the label
     EXPECT_TRUE(filterRuns(plan, {"structure.min_dim=5"}).empty());
-    EXPECT_THAT(errorOf([&] { filterRuns(plan, {"structure.min_dimm=4"}); }), HasSubstr("no config key structure.min_dimm"));
+    EXPECT_THAT(errorOf([&] { filterRuns(plan, {"structure.min_dimm=4"}); }),
+                HasSubstr("--filter structure.min_dimm=4: 'structure.min_dimm=4' is not section.key=value for a known key"));
+    // Typed as the key's own value, as a skip rule: 45 = 45.000 (the default), a spelling the key refuses is an error.
+    EXPECT_EQ(filterRuns(plan, {"camera.fov_deg=45.000"}).size(), 5u);
+    EXPECT_THAT(errorOf([&] { filterRuns(plan, {"structure.min_dim=8.5"}); }), HasSubstr("key 'structure.min_dim': expected"));
+    EXPECT_THAT(errorOf([&] { filterRuns(plan, {"structure.type=UNIFORM_GRID"}); }), HasSubstr("'UNIFORM_GRID' is not allowed"));
+    EXPECT_THAT(errorOf([&] { filterRuns(plan, {""}); }), HasSubstr("an empty filter selects nothing"));
 
     const std::string table = describePlan(plan, {}, {"strategy.type=branching"});
     EXPECT_THAT(table, HasSubstr("5 runs, 3 selected by --filter -> " + dir.file("out") + "/p/"));

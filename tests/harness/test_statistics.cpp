@@ -2,7 +2,9 @@
 // and the interval's coverage against a simulation of a known distribution.
 #include <gtest/gtest.h>
 
+
 #include <cmath>
+#include <numeric>
 #include <random>
 
 #include "harness/statistics.h"
@@ -139,6 +141,44 @@ TEST(Statistics, MannWhitneyExactPValuesByCounting) {
     t = mannWhitneyU({1, 2, 4}, {3, 5, 6});
     EXPECT_DOUBLE_EQ(t.u, 1.0);
     EXPECT_NEAR(t.p, 0.2, 1e-12);
+}
+
+// U from the ranks equals U counted pair by pair (x > y: 1, a tie: 1/2), ties included; and two
+// samples of 100,000 (which a pass over every pair took 110 s for) give the hand-counted U.
+TEST(Statistics, MannWhitneyUFromRanksEqualsThePairCount) {
+    std::mt19937 rng(7);
+    for (int trial = 0; trial < 200; ++trial) {
+        std::vector<double> a(1 + rng() % 30), b(1 + rng() % 30);
+        for (double& v : a) v = double(rng() % 12);  // few values: many ties
+        for (double& v : b) v = double(rng() % 12);
+        double pairs = 0.0;
+        for (double x : a)
+            for (double y : b) pairs += x > y ? 1.0 : x == y ? 0.5 : 0.0;
+        ASSERT_EQ(mannWhitneyU(a, b).u, pairs) << "trial " << trial;
+    }
+    // a = b = 0 .. N-1: N(N-1)/2 pairs with x > y and N ties, U = N^2 / 2.
+    const std::size_t n = 100000;
+    std::vector<double> same(n);
+    std::iota(same.begin(), same.end(), 0.0);
+    EXPECT_EQ(mannWhitneyU(same, same).u, double(n) * double(n) / 2.0);
+}
+
+// The exact distribution up to m n = 400, the normal approximation beyond: 20 against 20 fully
+// apart is exact, p = 2 / C(40, 20) = 2 / 137,846,528,820; 20 against 21 is not exact, and its
+// continuity-corrected z = (210 - 0.5) / sqrt(20 21 42 / 12) = 5.4642 gives p = 4.65e-8.
+TEST(Statistics, MannWhitneyIsExactUpTo400PairsAndNormalBeyond) {
+    std::vector<double> low(20), high(20), higher(21);
+    std::iota(low.begin(), low.end(), 0.0);
+    std::iota(high.begin(), high.end(), 100.0);
+    std::iota(higher.begin(), higher.end(), 100.0);
+    const MannWhitney exact = mannWhitneyU(low, high);
+    EXPECT_TRUE(exact.exact);
+    EXPECT_DOUBLE_EQ(exact.u, 0.0);
+    EXPECT_NEAR(exact.p / (2.0 / 137846528820.0), 1.0, 1e-9);
+    const MannWhitney normal = mannWhitneyU(low, higher);
+    EXPECT_FALSE(normal.exact);
+    EXPECT_DOUBLE_EQ(normal.u, 0.0);
+    EXPECT_NEAR(normal.p / std::erfc(((210.0 - 0.5) / std::sqrt(20.0 * 21.0 * 42.0 / 12.0)) / std::sqrt(2.0)), 1.0, 1e-9);
 }
 
 TEST(Statistics, MannWhitneyWithTiesUsesTheCorrectedNormalApproximation) {

@@ -133,6 +133,20 @@ TEST(ShadowRays, TheDefaultLightIsOneBoxDiagonalAboveTheCentreAlongUp) {
     EXPECT_THAT(errorOf([&] { defaultLight(box, glm::vec3(0.0f)); }), HasSubstr("camera.up"));
 }
 
+// A shadow ray's direction is light - point: a light beyond 2^24 of the scene's box along an axis
+// is named with the axis, not left to fail as "ray 0 direction out of range".
+TEST(ShadowRays, ALightTooFarForAShadowRaysDirectionIsNamed) {
+    Bounds3 box;
+    box.extend(glm::vec3(-1, 0, -1));
+    box.extend(glm::vec3(1, 2, 1));
+    const glm::vec3 near(0, 16777214, 0);  // 2^24 - 2: its farthest corner is 2^24 away along y
+    EXPECT_EQ(reachableLight(near, box, "light.position"), near);
+    const std::string error = errorOf([&] { reachableLight(glm::vec3(1e10f, 0, 0), box, "light.position"); });
+    EXPECT_THAT(error, HasSubstr("light.position (1e+10, 0, 0"));
+    EXPECT_THAT(error, HasSubstr("along x"));
+    EXPECT_THAT(errorOf([&] { reachableLight(glm::vec3(0, 16777220, 0), box, "[[light]] 2"); }), HasSubstr("[[light]] 2"));
+}
+
 using ShadowRuns = WorkloadRuns;
 
 // Christen's scene B (a room of 166 cubes) lit from inside, on every structure and both

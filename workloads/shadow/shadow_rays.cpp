@@ -1,6 +1,10 @@
 #include "shadow_rays.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "structures/error.h"
+#include "structures/scene_limits.h"
 #include "workloads/shading.h"
 
 namespace rtbench {
@@ -11,13 +15,25 @@ glm::vec3 defaultLight(const Bounds3& box, glm::vec3 up) {
     return (box.min + box.max) * 0.5f + up / upLength * glm::length(box.extent());
 }
 
+glm::vec3 reachableLight(glm::vec3 light, const Bounds3& box, const std::string& what) {
+    for (int a = 0; a < 3; ++a) {
+        const double farthest = std::max(std::abs(double(light[a]) - box.min[a]), std::abs(double(light[a]) - box.max[a]));
+        if (!(farthest <= double(kMaxDirectionComponent)))
+            throw Error(what + " (" + formatFloat(light.x) + ", " + formatFloat(light.y) + ", " + formatFloat(light.z) +
+                        " in the traced scene) is " + formatFloat(farthest) + " from the scene's box along " + char('x' + a) +
+                        ": a shadow ray's direction (light - point) may not exceed " + formatFloat(kMaxDirectionComponent) +
+                        " per component; bring the light nearer the scene");
+    }
+    return light;
+}
+
 namespace {
 
 Workload shadowWorkload(const WorkloadInputs& in, Row& row) {
     const glm::vec3 light = [&in] {
         if (!in.run.has("light.position")) return defaultLight(in.scene.bounds(), in.cameraUp);
         const std::array<double, 3> given = in.run.getVec3("light.position");
-        return in.toScene(glm::vec3(given[0], given[1], given[2]));
+        return reachableLight(in.toScene(glm::vec3(given[0], given[1], given[2])), in.scene.bounds(), "light.position");
     }();
     for (int a = 0; a < 3; ++a) row[std::string("light_") + char('x' + a)] = formatNumber(light[a], 9);
     row["camera_rays"] = std::to_string(in.cameraRays.size());

@@ -30,10 +30,12 @@ std::shared_ptr<const Surfaces> whittedSurfaces(const WorkloadInputs& in) {
         if (in.run.has("light.position"))
             throw Error("light.position: the scene description gives " + std::to_string(look.lights.size()) +
                         " [[light]] tables, which light a whitted run; give one or the other");
-        for (const glm::dvec3& l : look.lights) s->lights.push_back(in.toScene(glm::vec3(l)));
+        for (std::size_t k = 0; k < look.lights.size(); ++k)
+            s->lights.push_back(reachableLight(in.toScene(glm::vec3(look.lights[k])), in.scene.bounds(),
+                                               "the scene description's [[light]] " + std::to_string(k + 1)));
     } else if (in.run.has("light.position")) {
         const std::array<double, 3> given = in.run.getVec3("light.position");
-        s->lights.push_back(in.toScene(glm::vec3(given[0], given[1], given[2])));
+        s->lights.push_back(reachableLight(in.toScene(glm::vec3(given[0], given[1], given[2])), in.scene.bounds(), "light.position"));
     } else {
         s->lights.push_back(defaultLight(in.scene.bounds(), in.cameraUp));
     }

@@ -270,12 +270,12 @@ TEST(CacheReplay, RunsWriteTheCacheColumns) {
                       "[strategy]\ntype = [\"branching\", \"multipass\"]\n[cache]\nsimulate = true\nline_bytes = 64\n");
     ASSERT_EQ(result.rows.size(), 4u);
     for (const Row& row : result.rows) {
-        SCOPED_TRACE(cellOf(row, "label"));
-        EXPECT_EQ(cellOf(row, "status"), "ok") << cellOf(row, "error");
-        EXPECT_EQ(cellOf(row, "cache_capacity_bytes"), "65536");
-        EXPECT_NE(cellOf(row, "cache_ratio_total"), "");
-        EXPECT_NE(cellOf(row, "cache_hit_rate_vertices"), "");
-        EXPECT_EQ(cellOf(row, "cache_hit_rate_stencil").empty(), cellOf(row, "strategy_type") == "branching");
+        SCOPED_TRACE(cellText(row, "label"));
+        EXPECT_EQ(cellText(row, "status"), "ok") << cellText(row, "error");
+        EXPECT_EQ(cellText(row, "cache_capacity_bytes"), "65536");
+        EXPECT_NE(cellText(row, "cache_ratio_total"), "");
+        EXPECT_NE(cellText(row, "cache_hit_rate_vertices"), "");
+        EXPECT_EQ(cellText(row, "cache_hit_rate_stencil").empty(), cellText(row, "strategy_type") == "branching");
     }
     EXPECT_THAT(errorOf([&] {
                     runTestConfig(dir, "plaincache",

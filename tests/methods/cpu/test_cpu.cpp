@@ -53,14 +53,14 @@ TEST(CpuStrategyRuns, AreJudgedAndTimedAsTheKernelsAre) {
         "[rays]\ntype = [\"primary\", \"shadow\"]\n");
     ASSERT_EQ(result.rows.size(), 4u);
     for (const Row& row : result.rows) {
-        SCOPED_TRACE(cellOf(row, "label"));
-        EXPECT_EQ(cellOf(row, "status"), "ok") << cellOf(row, "error");
-        EXPECT_EQ(cellOf(row, "host_threads"), "2");
-        EXPECT_EQ(cellOf(row, "cpu_reference_mismatches"), "");
-        EXPECT_NE(cellOf(row, "work_per_ray_mean"), "");
-        EXPECT_EQ(cellOf(row, "simd_lane_utilisation"), "");
-        EXPECT_GT(std::stod(cellOf(row, "kernel_ms_median")), 0.0);
-        EXPECT_EQ(cellOf(row, "exact_wrong_ppm"), "0");
+        SCOPED_TRACE(cellText(row, "label"));
+        EXPECT_EQ(cellText(row, "status"), "ok") << cellText(row, "error");
+        EXPECT_EQ(cellText(row, "host_threads"), "2");
+        EXPECT_EQ(cellText(row, "cpu_reference_mismatches"), "");
+        EXPECT_NE(cellText(row, "work_per_ray_mean"), "");
+        EXPECT_EQ(cellText(row, "simd_lane_utilisation"), "");
+        EXPECT_GT(std::stod(cellText(row, "kernel_ms_median")), 0.0);
+        EXPECT_EQ(cellText(row, "exact_wrong_ppm"), "0");
     }
     EXPECT_THAT(errorOf([&] {
                     runTestConfig(dir, "threads", "[scene]\nsource = \"procedural:christen_a\"\n[strategy]\ntype = \"branching\"\nthreads = 2\n");
@@ -76,11 +76,11 @@ TEST(CpuStrategyRuns, HostThreadsRecordsTheThreadsThatRan) {
                      "[strategy]\ntype = \"cpu\"\nthreads = 1000\n[output]\nimages = false\n");
     ASSERT_EQ(result.rows.size(), 1u);
     const Row& row = result.rows[0];
-    EXPECT_EQ(cellOf(row, "status"), "ok") << cellOf(row, "error");
+    EXPECT_EQ(cellText(row, "status"), "ok") << cellText(row, "error");
     const int limit = int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
     ASSERT_LT(limit, 1000) << "this machine runs 1000 threads at once: the case does not arise";
-    EXPECT_EQ(cellOf(row, "host_threads"), std::to_string(limit));
-    EXPECT_THAT(cellOf(row, "warnings"), HasSubstr("strategy.threads 1000: TBB runs at most " + std::to_string(limit)));
+    EXPECT_EQ(cellText(row, "host_threads"), std::to_string(limit));
+    EXPECT_THAT(cellText(row, "warnings"), HasSubstr("strategy.threads 1000: TBB runs at most " + std::to_string(limit)));
 }
 
 }  // namespace

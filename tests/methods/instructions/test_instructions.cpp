@@ -186,18 +186,18 @@ TEST(InstructionEstimate, EveryBranchingAndMultipassRunWritesItsColumns) {
     ASSERT_EQ(result.rows.size(), 6u);
     std::map<std::string, std::string> perTest;
     for (const Row& row : result.rows) {
-        const auto number = [&](const char* key) { return std::stoull(cellOf(row, key)); };
-        SCOPED_TRACE(cellOf(row, "label"));
-        ASSERT_EQ(cellOf(row, "status"), "ok") << cellOf(row, "error");
+        const auto number = [&](const char* key) { return std::stoull(cellText(row, key)); };
+        SCOPED_TRACE(cellText(row, "label"));
+        ASSERT_EQ(cellText(row, "status"), "ok") << cellText(row, "error");
         EXPECT_EQ(number("instructions_total"),
                   number("instructions_traverse") + number("instructions_intersect") + number("instructions_other"));
         EXPECT_GT(number("instructions_intersect"), 0u);
         // Brute force takes no traversal steps.
-        EXPECT_EQ(number("instructions_per_step") == 0, cellOf(row, "structure_type") == "brute_force");
+        EXPECT_EQ(number("instructions_per_step") == 0, cellText(row, "structure_type") == "brute_force");
         // A test costs the two architectures alike.
-        auto [it, added] = perTest.emplace(cellOf(row, "structure_type"), cellOf(row, "instructions_per_test"));
+        auto [it, added] = perTest.emplace(cellText(row, "structure_type"), cellText(row, "instructions_per_test"));
         if (!added) {
-            EXPECT_EQ(it->second, cellOf(row, "instructions_per_test"));
+            EXPECT_EQ(it->second, cellText(row, "instructions_per_test"));
         }
     }
 }

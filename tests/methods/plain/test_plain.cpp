@@ -79,11 +79,11 @@ TEST(Plain, RunsBesideBranchingOnTheSameRays) {
         EXPECT_EQ(row.at("status"), "ok") << row.at("error");
         if (row.at("label").find("plain") == std::string::npos) continue;
         ++plain;
-        EXPECT_EQ(cellOf(row, "cpu_reference_mismatches"), "");
-        EXPECT_EQ(cellOf(row, "work_per_ray_mean"), "");
-        EXPECT_EQ(cellOf(row, "stream_batches"), "1");
+        EXPECT_EQ(cellText(row, "cpu_reference_mismatches"), "");
+        EXPECT_EQ(cellText(row, "work_per_ray_mean"), "");
+        EXPECT_EQ(cellText(row, "stream_batches"), "1");
         if (llvmpipe) {
-            EXPECT_EQ(cellOf(row, "plain_cpu_differing"), "0");
+            EXPECT_EQ(cellText(row, "plain_cpu_differing"), "0");
         }
     }
     EXPECT_EQ(plain, 6);

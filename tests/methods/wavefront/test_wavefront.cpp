@@ -205,7 +205,7 @@ TEST_F(WavefrontKernels, APathMegakernelBatchThatIsNotTheDevicesIsNamed) {
 
 using WavefrontRuns = WorkloadRuns;
 
-std::string cellOf(const Row& row, const std::string& key) { return row.count(key) ? row.at(key) : std::string(); }
+std::string cellText(const Row& row, const std::string& key) { return row.count(key) ? row.at(key) : std::string(); }
 
 // The runs of `result` (scene B, every structure, branching and both whole-path strategies) by a
 // whole-path strategy: each batch is branching's (the same rays and hits); it traced every
@@ -216,7 +216,7 @@ int expectWholePathsEndAtBranchingsBatch(const ExperimentResult& result, std::ui
     std::map<std::string, const Row*> branching;  // structure + rays -> branching's row
     auto key = [](const Row& row) {
         return row.at("structure_type") + " " + row.at("rays_type") + " " + row.at("query") + " " +
-               cellOf(row, "reflection_iteration") + cellOf(row, "path_bounce") + cellOf(row, "refraction_iteration");
+               cellText(row, "reflection_iteration") + cellText(row, "path_bounce") + cellText(row, "refraction_iteration");
     };
     for (const Row& row : result.rows) {
         EXPECT_EQ(row.at("status"), "ok") << row.at("label") << ": " << row.at("error");
@@ -236,13 +236,13 @@ int expectWholePathsEndAtBranchingsBatch(const ExperimentResult& result, std::ui
         }
         const Row& b = *branching.at(key(row));
         for (const char* same : {"rays", "hits", "query", "voxels_per_ray_mean", "triangles_per_ray_mean", "triangles_per_ray_max"})
-            EXPECT_EQ(cellOf(row, same), cellOf(b, same)) << same;
+            EXPECT_EQ(cellText(row, same), cellText(b, same)) << same;
         if (wavefront) {  // the batch's trace is branching's dispatch
             for (const char* same : {"lanes_model_active", "lanes_model_slots", "simd_lane_utilisation"})
-                EXPECT_EQ(cellOf(row, same), cellOf(b, same)) << same;
+                EXPECT_EQ(cellText(row, same), cellText(b, same)) << same;
         }
         for (const char* zero : {"cpu_reference_mismatches", "hit_miss_mismatches", "rays_cut_short", "exact_false_misses", "exact_false_hits"})
-            EXPECT_EQ(cellOf(row, zero), "0") << zero;
+            EXPECT_EQ(cellText(row, zero), "0") << zero;
         // The rays before the batch: the camera rays and the rays of every earlier iteration or bounce.
         std::uint64_t before = cameraRays;
         std::string type = row.at("rays_type"), column = type == "path" ? "path_bounce" : type + "_iteration";
