@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cstring>
 
-#include "structures/error.h"
+#include "core/error.h"
 
 #include "embedded_kernels.h"
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "kernels/gpu_layout.h"
-#include "structures/mesh.h"
+#include "scene/mesh.h"
 #include "vulkan_context.h"
 
 namespace rtbench {

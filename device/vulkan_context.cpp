@@ -5,7 +5,7 @@
 #include <fstream>
 #include <iostream>
 
-#include "structures/error.h"
+#include "core/error.h"
 
 namespace rtbench {
 

@@ -17,9 +17,9 @@
 #include "harness/samples_check.h"
 #include "harness/timing_rounds.h"
 #include "harness/writers.h"
-#include "structures/error.h"
-#include "structures/mesh_io.h"
-#include "structures/scene_description.h"
+#include "core/error.h"
+#include "scene/mesh_io.h"
+#include "scene/scene_description.h"
 
 namespace fuzz {
 
@@ -37,7 +37,7 @@ std::string onlyRtbenchErrors(const char* entry, Body&& body) {
     return "";
 }
 
-// A mesh's promises (structures/mesh_io.h): a triangle at least, indices in range, finite vertices.
+// A mesh's promises (scene/mesh_io.h): a triangle at least, indices in range, finite vertices.
 inline std::string meshProblem(const rtbench::TriangleMesh& mesh) {
     if (mesh.triangles.empty()) return "a mesh without triangles was accepted";
     for (const auto& t : mesh.triangles)

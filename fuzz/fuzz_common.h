@@ -6,7 +6,7 @@
 #include <string>
 #include <typeinfo>
 
-#include "structures/error.h"
+#include "core/error.h"
 
 namespace fuzz {
 

@@ -1,4 +1,4 @@
-// libFuzzer target for the mesh readers (structures/mesh_io.h, readMeshFile).
+// libFuzzer target for the mesh readers (scene/mesh_io.h, readMeshFile).
 // Input: the first byte picks the extension (byte % 4: 0 .off, 1 .obj, 2 .ply, 3 .stl; the seeds
 // use the characters '0'..'3'), the rest is the file's content. It is written to a file in
 // /dev/shm (else $TMPDIR, else /tmp) and read through readMeshFile, the path the harness takes.
@@ -24,8 +24,8 @@
 #include <typeinfo>
 
 #include "fuzz_common.h"
-#include "structures/error.h"
-#include "structures/mesh_io.h"
+#include "core/error.h"
+#include "scene/mesh_io.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// libFuzzer target for scene descriptions (structures/scene_description.h, readSceneDescription).
+// libFuzzer target for scene descriptions (scene/scene_description.h, readSceneDescription).
 // Input: the description's text, written to a scratch folder beside a tetrahedron it may place.
 // Expected: a mesh that keeps the reader's promises, or rtbench::Error (fuzz_bodies.h).
 #include <unistd.h>

@@ -19,7 +19,7 @@
 #include "runner.h"
 #include "samples_check.h"
 #include "timing_rounds.h"
-#include "structures/error.h"
+#include "core/error.h"
 #include "writers.h"
 
 namespace rtbench {

@@ -10,8 +10,8 @@
 #include "methods/cache/cache_replay.h"
 #include "methods/registry.h"
 #include "workloads/registry.h"
-#include "structures/error.h"
-#include "structures/input_file.h"
+#include "core/error.h"
+#include "core/input_file.h"
 
 namespace rtbench {
 

@@ -12,7 +12,7 @@
 #include "output_folder.h"
 #include "config.h"
 #include "statistics.h"
-#include "structures/error.h"
+#include "core/error.h"
 #include "timing_rounds.h"
 #include "samples_check.h"
 #include "writers.h"

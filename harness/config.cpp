@@ -14,12 +14,12 @@
 #include "embree_config.h"
 #include "methods/cache/cache_replay.h"
 #include "methods/registry.h"
-#include "structures/text.h"
+#include "core/text.h"
 #include "workloads/registry.h"
 #include "output_folder.h"
-#include "structures/error.h"
-#include "structures/input_file.h"
-#include "structures/mesh_io.h"
+#include "core/error.h"
+#include "core/input_file.h"
+#include "scene/mesh_io.h"
 
 namespace rtbench {
 
@@ -102,7 +102,7 @@ const std::vector<KeySpec>& configSchema() {
         timingKey({"experiment.time_budget_s", ValueType::Float, "adaptive repetitions: stop adding rounds once a run's timing has taken this long", 30.0, false, 0, 1e6});
         timingKey({"experiment.noise_cv", ValueType::Float, "noise guard: a timing_warning when a method's coefficient of variation exceeds this", 0.05, false, 0, 1e3});
         timingKey({"experiment.noise_other_cpu", ValueType::Float, "noise guard: a timing_warning when other processes took more than this fraction of the machine's CPU time while the run ran", 0.1, false, 0, 1});
-        add({"scene.source", ValueType::String, "mesh file (.off/.obj/.ply/.stl, relative to the config), scene description (.toml, relative to the config: meshes with transforms and seeded scatters, see structures/scene_description.h), cgal:NAME, or procedural:christen_a|christen_b|christen_b_thesis|closed_box|icosphere|tetrahedron|forest|building", {}, true});
+        add({"scene.source", ValueType::String, "mesh file (.off/.obj/.ply/.stl, relative to the config), scene description (.toml, relative to the config: meshes with transforms and seeded scatters, see scene/scene_description.h), cgal:NAME, or procedural:christen_a|christen_b|christen_b_thesis|closed_box|icosphere|tetrahedron|forest|building", {}, true});
         add({"scene.scale", ValueType::Float, "uniform scale applied to every vertex, in float: v * scale + translate (camera.position and camera.look_at move with the scene)", 1.0, false, 1e-30, 1e30});
         add({"scene.translate", ValueType::Float3, "translation applied after scene.scale, in float (stability sweeps move a scene away from the origin)", std::array<double, 3>{0, 0, 0}});
         add({"scene.simplify_ratio", ValueType::Float, "simplify the scene by edge collapse (CGAL Surface_mesh_simplification, Lindstrom-Turk) to at most this fraction of its triangles; every method traces the simplified scene, the exact reference the full one", {}, false, 1e-9, 1, {}, {}, {}, "scene simplification"});

@@ -4,7 +4,7 @@
 #include <set>
 #include <sstream>
 
-#include "structures/error.h"
+#include "core/error.h"
 
 namespace rtbench {
 

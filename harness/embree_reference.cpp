@@ -8,8 +8,8 @@
 #include <cstring>
 #include <limits>
 
-#include "structures/error.h"
-#include "structures/scene_limits.h"
+#include "core/error.h"
+#include "scene/scene_limits.h"
 
 namespace rtbench {
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "kernels/gpu_layout.h"
-#include "structures/mesh.h"
+#include "scene/mesh.h"
 
 namespace rtbench {
 
@@ -19,7 +19,7 @@ class EmbreeReference {
 public:
     // deviceConfig: Embree's device config string, e.g. "isa=avx2" (Debian's 3.13 crashes with
     // its default ISA on some AVX-512 machines). Builds a RTC_SCENE_FLAG_ROBUST scene. Throws
-    // rtbench::Error for a scene outside the range of structures/scene_limits.h.
+    // rtbench::Error for a scene outside the range of scene/scene_limits.h.
     EmbreeReference(const TriangleMesh& mesh, const std::string& deviceConfig);
     ~EmbreeReference();
     EmbreeReference(const EmbreeReference&) = delete;

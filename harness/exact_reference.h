@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "kernels/gpu_layout.h"
-#include "structures/mesh.h"
+#include "scene/mesh.h"
 
 namespace rtbench {
 

@@ -5,7 +5,7 @@
 #include <limits>
 #include <string>
 
-#include "structures/error.h"
+#include "core/error.h"
 
 #ifdef RTBENCH_WITH_OIIO
 #include <OpenImageIO/imagebuf.h>

@@ -14,8 +14,8 @@
 #include <map>
 
 #include "harness/writers.h"
-#include "structures/error.h"
-#include "structures/text.h"
+#include "core/error.h"
+#include "core/text.h"
 
 #ifdef RTBENCH_WITH_OIIO
 #include <OpenImageIO/filesystem.h>

@@ -20,11 +20,12 @@
 #include "harness/retime.h"
 #include "harness/plan_view.h"
 #include "harness/runner.h"
+#include "harness/shard_merge.h"
 #include "harness/version.h"
 #include "device/vulkan_context.h"
-#include "structures/error.h"
-#include "structures/mesh_io.h"
-#include "structures/procedural.h"
+#include "core/error.h"
+#include "scene/mesh_io.h"
+#include "scene/procedural.h"
 
 namespace {
 

@@ -13,8 +13,8 @@
 #include <tuple>
 #include <utility>
 
-#include "structures/error.h"
-#include "structures/text.h"
+#include "core/error.h"
+#include "core/text.h"
 #include "version.h"
 #include "writers.h"
 

@@ -9,7 +9,7 @@
 
 #include "columns.h"
 #include "output_folder.h"
-#include "structures/error.h"
+#include "core/error.h"
 
 namespace rtbench {
 namespace fs = std::filesystem;

@@ -18,7 +18,7 @@
 #include "runner.h"
 #include "timing_rounds.h"
 #include "version.h"
-#include "structures/error.h"
+#include "core/error.h"
 #include "writers.h"
 
 namespace rtbench {

@@ -1,10 +1,10 @@
 #include "run_inputs.h"
 
-#include "structures/error.h"
-#include "structures/procedural.h"
-#include "structures/scene_description.h"
-#include "structures/scene_limits.h"
-#include "structures/simplify.h"
+#include "core/error.h"
+#include "scene/procedural.h"
+#include "scene/scene_description.h"
+#include "scene/scene_limits.h"
+#include "scene/simplify.h"
 #include "methods/triangle_store.h"
 #include "plan/warnings.h"
 

@@ -13,8 +13,8 @@
 #include "device/vulkan_context.h"
 #include "embree_reference.h"
 #include "exact_reference.h"
-#include "structures/camera.h"
-#include "structures/mesh.h"
+#include "scene/camera.h"
+#include "scene/mesh.h"
 #include "writers.h"
 
 namespace rtbench {

@@ -1,6 +1,6 @@
 #include "run_verdict.h"
 
-#include "structures/error.h"
+#include "core/error.h"
 
 namespace rtbench {
 

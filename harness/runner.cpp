@@ -46,9 +46,9 @@
 #include "statistics.h"
 #include "timing_rounds.h"
 #include "output_folder.h"
-#include "structures/camera.h"
-#include "structures/error.h"
-#include "structures/scene_description.h"
+#include "scene/camera.h"
+#include "core/error.h"
+#include "scene/scene_description.h"
 #include "version.h"
 #include "workloads/registry.h"
 #include "plan/warnings.h"
@@ -420,7 +420,7 @@ std::string whereInConfig(const ExperimentPlan& plan, const std::string& value) 
     return plan.configPath;
 }
 
-// Every scene.source the runs name exists (structures/scene_description.h checkSceneSource);
+// Every scene.source the runs name exists (scene/scene_description.h checkSceneSource);
 // else an error naming the config's line, the key, the source and its runs.
 void checkSceneSources(const ExperimentPlan& plan, const std::vector<const RunConfig*>& runs) {
     std::map<std::string, std::vector<std::string>> bySource;

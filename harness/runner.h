@@ -1,5 +1,6 @@
-// Runs an experiment plan: for each run, scene -> grid -> kernel on Vulkan -> Embree on the same
-// rays -> metrics -> one CSV row (+ context JSON, images). A failing run writes a row with
+// Runs an experiment plan: for each run, scene -> rays -> acceleration structure -> the strategy's
+// kernels on Vulkan -> Embree on the same rays -> references -> verdict -> one CSV row (+ context
+// JSON, images). A failing run writes a row with
 // status=failed and its reason; the other runs go on.
 #pragma once
 #include <set>
@@ -57,13 +58,6 @@ std::string runNumber(const RunConfig& run);
 // binary's commit, the device and CPU it runs on).
 Row identityRow(const RunConfig& run, const std::string& commit, const std::string& device, const std::string& driver,
                 const std::string& cpu);
-
-// Joins the shards' CSVs of a results folder into runs.csv; checks that every run of the plan
-// (from the shards' context files) is there exactly once. With `missingReason`, a run no shard
-// finished (a shard killed by a time limit, or never started) is a failed row instead, its error
-// "no row from its shard: " + missingReason, its identity from the recorded plan and the other
-// rows' device. Returns the merged rows.
-std::vector<Row> mergeShards(const std::string& folder, const std::string& missingReason = "");
 
 // A number for the console: 3 significant digits (whole numbers from 100 on); other text as it is.
 std::string consoleNumber(const std::string& cell);

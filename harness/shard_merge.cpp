@@ -1,5 +1,7 @@
 // `rtbench merge`: the shards of a sharded sweep (runs.shard-<i>-of-<n>.csv) joined into runs.csv
-// (harness/runner.h mergeShards).
+// (shard_merge.h).
+#include "shard_merge.h"
+
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
@@ -12,8 +14,8 @@
 #include "columns.h"
 #include "runner.h"
 #include "timing_rounds.h"
-#include "structures/error.h"
-#include "structures/text.h"
+#include "core/error.h"
+#include "core/text.h"
 
 namespace rtbench {
 namespace fs = std::filesystem;

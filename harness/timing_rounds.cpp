@@ -4,8 +4,8 @@
 #include <map>
 
 #include "statistics.h"
-#include "structures/error.h"
-#include "structures/input_file.h"
+#include "core/error.h"
+#include "core/input_file.h"
 #include "writers.h"
 
 namespace rtbench {

@@ -17,9 +17,9 @@
 #include <set>
 #include <sstream>
 
-#include "structures/error.h"
-#include "structures/input_file.h"
-#include "structures/text.h"
+#include "core/error.h"
+#include "core/input_file.h"
+#include "core/text.h"
 
 namespace rtbench {
 

@@ -51,7 +51,7 @@ void releaseFolder(const std::string& folder, int fd);
 
 // JSON files (nlohmann::json, keys kept in the order written): written atomically; a read that
 // fails names the file. CSV and JSON files are read only when regular and within
-// kMaxResultsFileBytes (structures/input_file.h).
+// kMaxResultsFileBytes (core/input_file.h).
 using Json = nlohmann::ordered_json;
 void writeJson(const std::string& path, const Json& json);
 Json readJson(const std::string& path);

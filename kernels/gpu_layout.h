@@ -131,7 +131,7 @@ RTBENCH_CONST kTriangleTestWatertight = 1;      // Woop, Benthin & Wald 2013
 RTBENCH_CONST kStateTraversing = 0;  // active: step through the structure
 RTBENCH_CONST kStateWaiting = 1;     // active: triangles of the current voxel or leaf to intersect
 RTBENCH_CONST kStateDoneHit = 2;     // done: nearest hit found
-RTBENCH_CONST kStateLeftGrid = 3;    // done: left the structure without a hit
+RTBENCH_CONST kStateLeftStructure = 3;    // done: left the structure without a hit
 RTBENCH_CONST kStateMissedBox = 4;   // done: never entered the structure's box
 
 // ---- multipass pass kinds (methods/multipass/multipass_schedule.h PassKind) ----

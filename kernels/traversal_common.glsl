@@ -139,7 +139,7 @@ HitRecord mpHitRecord(RayHitState hit, RayCounters counters) {
 }
 
 // A multipass ray with nothing left to visit: done with its hit, or done without one.
-uint mpDoneState(RayHitState hit) { return hit.primitive != kNoHit ? kStateDoneHit : kStateLeftGrid; }
+uint mpDoneState(RayHitState hit) { return hit.primitive != kNoHit ? kStateDoneHit : kStateLeftStructure; }
 
 // The read an unrolled intersect iteration makes for a ray already done, on hardware that cannot
 // skip it (Purcell §4.2): a list entry and the vertices of triangle `tri`, read, then discarded.

@@ -14,7 +14,7 @@
 #include "methods/path_megakernel/path_megakernel_strategy.h"
 #include "methods/ray_query/ray_query_strategy.h"
 #include "methods/wavefront/wavefront_strategy.h"
-#include "structures/error.h"
+#include "core/error.h"
 
 namespace rtbench {
 

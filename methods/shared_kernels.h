@@ -12,7 +12,7 @@
 
 #include "kernels/gpu_layout.h"
 #include "methods/cache/memory_trace.h"
-#include "structures/mesh.h"
+#include "scene/mesh.h"
 
 namespace rtbench {
 

@@ -16,7 +16,7 @@
 #include "methods/structure_kernels.h"
 #include "plan/columns.h"
 #include "plan/keys.h"
-#include "structures/mesh.h"
+#include "scene/mesh.h"
 
 namespace rtbench {
 

@@ -11,7 +11,7 @@
 
 #include "kernels/gpu_layout.h"
 #include "methods/ray_batch.h"
-#include "structures/error.h"
+#include "core/error.h"
 
 namespace rtbench {
 

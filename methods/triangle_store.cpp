@@ -6,7 +6,7 @@
 #include <limits>
 #include <string>
 
-#include "structures/error.h"
+#include "core/error.h"
 
 namespace rtbench {
 

@@ -10,7 +10,7 @@
 
 #include "kernels/gpu_layout.h"
 #include "methods/structure.h"
-#include "structures/mesh.h"
+#include "scene/mesh.h"
 
 namespace rtbench {
 

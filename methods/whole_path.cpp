@@ -3,7 +3,7 @@
 #include <algorithm>
 
 #include "methods/branching/branching_strategy.h"
-#include "structures/error.h"
+#include "core/error.h"
 
 namespace rtbench {
 

@@ -13,7 +13,7 @@
 #include <variant>
 #include <vector>
 
-#include "structures/input_file.h"  // fnv1a64
+#include "core/input_file.h"  // fnv1a64
 
 namespace rtbench {
 

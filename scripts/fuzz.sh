@@ -3,10 +3,10 @@
 # float-divide-by-zero): installs what is missing, configures and builds build-fuzz/ (CMake option
 # RTBENCH_FUZZ=ON, CXX=clang++), then runs one target.
 #   scripts/fuzz.sh TARGET SECONDS [libFuzzer flags...]
-#     TARGET   fuzz_mesh (structures/mesh_io.h readMeshFile; first byte picks .off/.obj/.ply/.stl)
+#     TARGET   fuzz_mesh (scene/mesh_io.h readMeshFile; first byte picks .off/.obj/.ply/.stl)
 #              fuzz_config (harness/config.h loadExperimentText)
 #              fuzz_results (a results folder's runs.csv, samples.csv, context.json; first byte picks)
-#              fuzz_scene (structures/scene_description.h readSceneDescription)
+#              fuzz_scene (scene/scene_description.h readSceneDescription)
 #   FUZZ_KEEP_GOING=1  after a finding, start libFuzzer again (same corpus) until SECONDS are up
 #   FUZZ_CLANG=N       clang version (default 16, from Debian 12's packages; Debian's default
 #                      clang 14 lacks C++20 that GCC 12 has: lambdas capturing structured bindings)

@@ -52,7 +52,8 @@ FIRST = [
     ("methods/metrics", "Metrics|EndToEnd"),
     ("methods/", "CostModel|TriangleStore|Metrics|Auto"),
     ("harness/", "Config|Check|Output|Exact|Image|EndToEnd|cli\\."),
-    ("structures/", "Mesh|Scene|Simplify|Corpus|Limits"),
+    ("scene/", "Mesh|Scene|Simplify|Corpus|Limits|Camera"),
+    ("core/", "Mesh|Scene|Config|Output|Writers"),
 ]
 
 

@@ -399,7 +399,7 @@ def purcell2002() -> list:
             f"{count(bunny.grid_res_z.iloc[0])} grid, {num(100 * bunny.hits.iloc[0] / bunny.rays.iloc[0])}% of the rays hit, "
             f"SIMD efficiency {num(100 * bunny.simd_efficiency_purcell.iloc[0])}% (his {num(100 * PURCELL_TABLE_2['bunny']['simd_efficiency_purcell'])}%).")
         out.append(f"- **Purcell's Table 2 scenes, rebuilt** ({size(views.iloc[0])}, K = M = 1; the bunny on a floor that "
-                   "makes his grid, Soda Hall and the forest invented to his description, `structures/procedural.h`), "
+                   "makes his grid, Soda Hall and the forest invented to his description, `scene/procedural.h`), "
                    "passes (traverse+intersect): " + "; ".join(parts) + "." + bunny_note)
     compute = arch[arch.instructions_total.notna()] if "instructions_total" in arch else arch.iloc[0:0]
     if not compute.empty:

@@ -3,7 +3,7 @@
 #pragma once
 #include <string>
 
-#include "structures/error.h"
+#include "core/error.h"
 
 namespace rtbench {
 

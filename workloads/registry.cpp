@@ -1,6 +1,6 @@
 #include "registry.h"
 
-#include "structures/error.h"
+#include "core/error.h"
 #include "workloads/ao/ao_rays.h"
 #include "workloads/camera/camera_rays.h"
 #include "workloads/path/path_rays.h"

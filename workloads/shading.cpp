@@ -4,7 +4,7 @@
 #include <limits>
 
 #include "device/embedded_kernels.h"
-#include "structures/error.h"
+#include "core/error.h"
 #include "workloads/shading_reference.h"
 
 namespace rtbench {

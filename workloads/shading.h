@@ -10,7 +10,7 @@
 
 #include "device/vulkan_context.h"
 #include "kernels/gpu_layout.h"
-#include "structures/mesh.h"
+#include "scene/mesh.h"
 
 namespace rtbench {
 

@@ -2,7 +2,7 @@
 
 #include "device/gpu_buffers.h"
 #include "methods/triangle_store.h"
-#include "structures/error.h"
+#include "core/error.h"
 #include "workloads/shading.h"
 
 namespace rtbench {

@@ -14,7 +14,7 @@
 #include "methods/structure.h"
 #include "plan/columns.h"
 #include "plan/keys.h"
-#include "structures/mesh.h"
+#include "scene/mesh.h"
 #include "workloads/shading.h"
 
 namespace rtbench {

@@ -3,7 +3,7 @@
 #include <limits>
 
 #include "methods/registry.h"
-#include "structures/error.h"
+#include "core/error.h"
 
 namespace rtbench {
 

@@ -6,8 +6,8 @@
 #include "device/embedded_kernels.h"
 #include "methods/cache/cache_replay.h"
 #include "methods/stream_batches.h"
-#include "structures/error.h"
-#include "structures/scene_limits.h"
+#include "core/error.h"
+#include "scene/scene_limits.h"
 #include "plan/warnings.h"
 
 namespace rtbench {

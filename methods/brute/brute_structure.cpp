@@ -6,7 +6,7 @@
 #include "methods/shared_source.h"
 #include "methods/triangle_store.h"
 #include "methods/brute/brute_layout.h"
-#include "structures/error.h"
+#include "core/error.h"
 
 namespace rtbench {
 

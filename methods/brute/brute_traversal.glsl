@@ -28,7 +28,7 @@ uint mpSetup(Ray ray, RT_OUT(BruteTraversalState) ts, RT_OUT(RayHitState) hit, R
     hit.u = 0.0f;
     hit.v = 0.0f;
     ts.next = uvec4(0u);
-    return params.counts.x == 0u ? kStateLeftGrid : kStateWaiting;
+    return params.counts.x == 0u ? kStateLeftStructure : kStateWaiting;
 }
 
 // No ray is ever traversing: a ray given to this pass anyway is done.

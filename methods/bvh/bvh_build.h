@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "bvh_layout.h"
-#include "structures/mesh.h"
+#include "scene/mesh.h"
 
 namespace rtbench {
 

@@ -4,7 +4,7 @@
 #include "bvh_reference.h"
 #include "methods/shared_source.h"
 #include "methods/triangle_store.h"
-#include "structures/error.h"
+#include "core/error.h"
 
 namespace rtbench {
 

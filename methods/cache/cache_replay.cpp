@@ -4,7 +4,7 @@
 
 #include "methods/cache/memory_trace.h"
 #include "methods/multipass/multipass_simulator.h"
-#include "structures/error.h"
+#include "core/error.h"
 
 namespace rtbench {
 

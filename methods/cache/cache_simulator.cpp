@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "structures/error.h"
+#include "core/error.h"
 
 namespace rtbench {
 

@@ -2,7 +2,7 @@
 
 #include <numeric>
 
-#include "structures/error.h"
+#include "core/error.h"
 
 namespace rtbench {
 

@@ -7,7 +7,7 @@
 #include "methods/shared_source.h"
 #include "methods/cost_model.h"
 #include "methods/triangle_store.h"
-#include "structures/error.h"
+#include "core/error.h"
 
 namespace rtbench {
 

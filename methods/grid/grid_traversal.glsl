@@ -72,7 +72,7 @@ float rtDdaVoxelExit(RtDda s) { return min(min(min(s.tMaxAxis.x, s.tMaxAxis.y), 
 // Ties (the ray crosses an edge or a corner) step the lowest axis first. Every step moves the
 // voxel one cell along an axis the ray moves along, so a walk takes at most resX + resY + resZ
 // steps; an axis it does not move along ends the walk (only a NaN distance, from inputs outside
-// structures/scene_limits.h, could pick one, and would otherwise loop forever).
+// scene/scene_limits.h, could pick one, and would otherwise loop forever).
 bool rtDdaStep(RT_INOUT(RtDda) s) {
     int axis = 0;
     if (s.tMaxAxis.y < s.tMaxAxis[axis]) axis = 1;

@@ -11,8 +11,8 @@
 #include <string>
 
 #include "methods/triangle_store.h"
-#include "structures/error.h"
-#include "structures/scene_limits.h"
+#include "core/error.h"
+#include "scene/scene_limits.h"
 
 namespace rtbench {
 

@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "grid_layout.h"
-#include "structures/mesh.h"
-#include "structures/scene_limits.h"
+#include "scene/mesh.h"
+#include "scene/scene_limits.h"
 
 namespace rtbench {
 
@@ -71,7 +71,7 @@ struct UniformGrid {
 // Builds the grid: each triangle's bounding box gives a candidate cell range (widened by one
 // cell where it lies on a boundary), and CGAL's exact triangle-box predicate decides membership
 // for every candidate (closed boxes: a triangle touching a voxel's face belongs to it).
-// Throws rtbench::Error when the scene is outside the range of structures/scene_limits.h or the
+// Throws rtbench::Error when the scene is outside the range of scene/scene_limits.h or the
 // cell count would exceed maxCells.
 // voxelMargin > 0 makes the grid conservative: the box grows by the margin on every side, and a
 // voxel lists every triangle within the margin of it (its box widened by the margin), so a walk

@@ -1,6 +1,6 @@
 #include "spirv_instructions.h"
 
-#include "structures/error.h"
+#include "core/error.h"
 
 namespace rtbench {
 

@@ -36,7 +36,7 @@ void main() {
     RtTraversalState ts;
     RayHitState hit;
     RayCounters c = RayCounters(0u, 0u, 0u, 0u);
-    uint state = kStateLeftGrid;  // lanes past the stream: done from the start
+    uint state = kStateLeftStructure;  // lanes past the stream: done from the start
     if (live) {
         ray = rays[rayIndex];
         MpEvents e = mpNoEvents();

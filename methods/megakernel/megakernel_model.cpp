@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <bit>
 
-#include "structures/error.h"
+#include "core/error.h"
 
 namespace rtbench {
 
@@ -44,7 +44,7 @@ MegakernelCounts countsOver(Kernels k, const std::vector<gpu::Ray>& rays, unsign
             std::uint64_t live = 0;
             for (unsigned l = 0; l < subgroupSize; ++l) {
                 const std::size_t ray = g * subgroupSize + l;
-                state[l] = gpu::kStateLeftGrid;  // lanes past the stream: done from the start
+                state[l] = gpu::kStateLeftStructure;  // lanes past the stream: done from the start
                 if (ray >= rays.size()) continue;
                 ++live;
                 typename Kernels::MpEvents e = k.mpNoEvents();

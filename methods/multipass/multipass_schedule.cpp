@@ -5,7 +5,7 @@
 
 #include "kernels/gpu_layout.h"
 
-#include "structures/error.h"
+#include "core/error.h"
 
 namespace rtbench {
 

@@ -8,7 +8,7 @@
 #include "methods/cache/cache_replay.h"
 #include "methods/stream_batches.h"
 #include "multipass_simulator.h"
-#include "structures/error.h"
+#include "core/error.h"
 
 namespace rtbench {
 

@@ -5,7 +5,7 @@
 #include "methods/branching/branching_strategy.h"
 #include "methods/metrics.h"
 #include "methods/whole_path.h"
-#include "structures/error.h"
+#include "core/error.h"
 
 namespace rtbench {
 

@@ -3,7 +3,7 @@
 #include "methods/branching/branching_strategy.h"
 #include "methods/branching/lane_counts.h"
 #include "methods/stream_batches.h"
-#include "structures/error.h"
+#include "core/error.h"
 
 namespace rtbench {
 

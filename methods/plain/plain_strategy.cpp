@@ -2,7 +2,7 @@
 
 #include "methods/branching/branching_strategy.h"
 #include "methods/ray_query/ray_query_strategy.h"
-#include "structures/error.h"
+#include "core/error.h"
 
 namespace rtbench {
 

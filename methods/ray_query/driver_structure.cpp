@@ -1,7 +1,7 @@
 #include "driver_structure.h"
 
 #include "methods/bvh/bvh_structure.h"
-#include "structures/error.h"
+#include "core/error.h"
 
 namespace rtbench {
 

@@ -6,7 +6,7 @@
 #include "driver_structure.h"
 #include "methods/branching/branching_strategy.h"
 #include "methods/stream_batches.h"
-#include "structures/error.h"
+#include "core/error.h"
 
 namespace rtbench {
 

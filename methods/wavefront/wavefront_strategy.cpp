@@ -7,7 +7,7 @@
 #include "methods/branching/lane_counts.h"
 #include "methods/metrics.h"
 #include "methods/whole_path.h"
-#include "structures/error.h"
+#include "core/error.h"
 
 namespace rtbench {
 

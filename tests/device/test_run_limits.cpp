@@ -15,13 +15,13 @@
 #include "device/gpu_buffers.h"
 #include "harness/runner.h"
 #include "tests/device/test_device.h"
-#include "structures/error.h"
+#include "core/error.h"
 #include "tests/harness/test_experiment.h"
 #include "tests/temp_dir.h"
 #include "tests/error_of.h"
 #include "methods/grid/grid_structure.h"
 #include "methods/grid/uniform_grid.h"
-#include "structures/procedural.h"
+#include "scene/procedural.h"
 
 namespace rtbench {
 namespace {

@@ -10,7 +10,7 @@
 #include "device/gpu_buffers.h"
 #include "methods/grid/grid_structure.h"
 #include "methods/grid/uniform_grid.h"
-#include "structures/procedural.h"
+#include "scene/procedural.h"
 #include "tests/device/test_device.h"
 
 namespace rtbench {

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "fuzz/fuzz_bodies.h"
-#include "structures/input_file.h"
+#include "core/input_file.h"
 #include "tests/temp_dir.h"
 
 namespace rtbench {

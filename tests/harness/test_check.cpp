@@ -12,7 +12,7 @@
 #include "harness/timing_rounds.h"
 #include "harness/embree_config.h"
 #include "harness/runner.h"
-#include "structures/error.h"
+#include "core/error.h"
 #include "tests/error_of.h"
 #include "tests/temp_dir.h"
 

@@ -13,7 +13,7 @@
 #include "harness/statistics.h"
 #include "harness/runner.h"
 #include "harness/timing_rounds.h"
-#include "structures/error.h"
+#include "core/error.h"
 #include "tests/device/test_device.h"
 #include "tests/temp_dir.h"
 

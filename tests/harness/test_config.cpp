@@ -7,8 +7,8 @@
 #include <set>
 
 #include "harness/config.h"
-#include "structures/error.h"
-#include "structures/input_file.h"
+#include "core/error.h"
+#include "core/input_file.h"
 #include "tests/error_of.h"
 #include "tests/temp_dir.h"
 

@@ -12,6 +12,7 @@
 #include "harness/check.h"
 #include "harness/images.h"
 #include "harness/runner.h"
+#include "harness/shard_merge.h"
 #include "tests/device/test_device.h"
 #include "tests/error_of.h"
 #include "tests/harness/test_experiment.h"

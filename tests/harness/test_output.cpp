@@ -15,9 +15,10 @@
 #include "harness/config.h"
 #include "harness/output_folder.h"
 #include "harness/runner.h"
+#include "harness/shard_merge.h"
 #include "harness/writers.h"
-#include "structures/error.h"
-#include "structures/text.h"
+#include "core/error.h"
+#include "core/text.h"
 #include "tests/error_of.h"
 #include "tests/temp_dir.h"
 

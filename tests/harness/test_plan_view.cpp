@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "harness/plan_view.h"
-#include "structures/mesh_io.h"
+#include "scene/mesh_io.h"
 #include "tests/error_of.h"
 #include "tests/temp_dir.h"
 

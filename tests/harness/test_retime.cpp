@@ -14,8 +14,8 @@
 #include "harness/retime.h"
 #include "harness/samples_check.h"
 #include "harness/timing_rounds.h"
-#include "structures/error.h"
-#include "structures/input_file.h"
+#include "core/error.h"
+#include "core/input_file.h"
 #include "tests/error_of.h"
 #include "tests/harness/test_experiment.h"
 

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "harness/run_verdict.h"
-#include "structures/error.h"
+#include "core/error.h"
 #include "tests/error_of.h"
 
 namespace rtbench {

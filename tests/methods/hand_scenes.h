@@ -20,7 +20,7 @@
 #include "methods/multipass/multipass_simulator.h"
 #include "methods/multipass/multipass_strategy.h"
 #include "methods/structure.h"
-#include "structures/mesh.h"
+#include "scene/mesh.h"
 
 namespace rtbench::hand {
 

@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "methods/branching/lane_counts.h"
-#include "structures/procedural.h"
+#include "scene/procedural.h"
 #include "tests/device/test_device.h"
 #include "tests/methods/hand_scenes.h"
 #include "tests/methods/test_rays.h"

@@ -9,7 +9,7 @@
 #include "methods/cost_model.h"
 #include "methods/grid/grid_structure.h"
 #include "methods/grid/uniform_grid.h"
-#include "structures/procedural.h"
+#include "scene/procedural.h"
 #include "tests/methods/test_rays.h"
 
 namespace rtbench {

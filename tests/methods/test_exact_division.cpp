@@ -13,8 +13,8 @@
 #include "methods/grid/grid_reference.h"
 #include "methods/grid/grid_structure.h"
 #include "methods/metrics.h"
-#include "structures/camera.h"
-#include "structures/procedural.h"
+#include "scene/camera.h"
+#include "scene/procedural.h"
 #include "tests/device/test_device.h"
 
 namespace rtbench {

@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "kernels/gpu_layout.h"
-#include "structures/mesh.h"
+#include "scene/mesh.h"
 
 namespace rtbench {
 

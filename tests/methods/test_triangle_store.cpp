@@ -12,7 +12,7 @@
 #include "methods/grid/uniform_grid.h"
 #include "methods/triangle_store.h"
 #include "tests/methods/test_rays.h"
-#include "structures/procedural.h"
+#include "scene/procedural.h"
 #include "tests/error_of.h"
 
 namespace rtbench {

@@ -1,5 +1,5 @@
 // Camera rays (rays.type = "primary"): one closest-hit ray through each pixel centre
-// (structures/camera.h), the ray casting of Purcell et al. 2002 and Christen 2005.
+// (scene/camera.h), the ray casting of Purcell et al. 2002 and Christen 2005.
 #pragma once
 #include "workloads/workload.h"
 

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "structures/error.h"
-#include "structures/scene_limits.h"
+#include "core/error.h"
+#include "scene/scene_limits.h"
 #include "workloads/shading.h"
 
 namespace rtbench {

@@ -15,7 +15,7 @@ const RayType& shadowRayType();
 glm::vec3 defaultLight(const Bounds3& box, glm::vec3 up);
 
 // A shadow ray's direction is light - point, unnormalised (it ends at the light, t = 1): each
-// component within kMaxDirectionComponent (structures/scene_limits.h) for every point of the
+// component within kMaxDirectionComponent (scene/scene_limits.h) for every point of the
 // scene's box, else rtbench::Error naming the light (`what`: "light.position", "[[light]] 2 of
 // the scene description") and the axis, before any ray is made.
 glm::vec3 reachableLight(glm::vec3 light, const Bounds3& box, const std::string& what);

@@ -1,6 +1,6 @@
 #include "whitted_rays.h"
 
-#include "structures/error.h"
+#include "core/error.h"
 #include "workloads/shadow/shadow_rays.h"
 
 namespace rtbench {

@@ -8,7 +8,7 @@
 // generation whitted.depth (whitted.rays = secondary) or the shadow rays of its hits
 // (whitted.rays = shadow, any hit); Purcell's Whitted cost is the sum over the batches of a depth.
 // Materials and lights come from a scene description ([[material]], [[light]];
-// structures/appearance.h), the rest of the scene taking whitted.surface, the lights else
+// scene/appearance.h), the rest of the scene taking whitted.surface, the lights else
 // light.position.
 #pragma once
 #include "workloads/workload.h"

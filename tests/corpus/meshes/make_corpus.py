@@ -5,7 +5,7 @@ Each case: a file name, its bytes, and its expected outcome for rtbench's reader
 (loads, N triangles) or `error TEXT` (an rtbench::Error whose message contains TEXT; the
 message begins with the file's path, so TEXT starts at the ':LINE:' or ': byte N:' after it).
 The assimp_* files are copied from Debian's assimp-testmodels (BSD-3-clause, see README.md) and
-only listed here. tests/structures/test_mesh_corpus.cpp runs the manifest.
+only listed here. tests/scene/test_mesh_corpus.cpp runs the manifest.
 """
 import struct
 

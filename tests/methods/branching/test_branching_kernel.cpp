@@ -10,10 +10,10 @@
 #include "methods/metrics.h"
 #include "methods/grid/uniform_grid.h"
 #include "methods/stream_batches.h"
-#include "structures/camera.h"
+#include "scene/camera.h"
 #include "methods/grid/grid_reference.h"
 #include "methods/grid/grid_structure.h"
-#include "structures/procedural.h"
+#include "scene/procedural.h"
 #include "tests/device/test_device.h"
 #include "tests/methods/test_rays.h"
 

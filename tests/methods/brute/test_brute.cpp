@@ -9,8 +9,8 @@
 #include "methods/bvh/bvh_structure.h"
 #include "methods/multipass/multipass_simulator.h"
 #include "methods/multipass/multipass_strategy.h"
-#include "structures/error.h"
-#include "structures/procedural.h"
+#include "core/error.h"
+#include "scene/procedural.h"
 #include "tests/device/test_device.h"
 #include "tests/methods/test_rays.h"
 

@@ -7,7 +7,7 @@
 
 #include "methods/branching/branching_strategy.h"
 #include "methods/cpu/cpu_strategy.h"
-#include "structures/procedural.h"
+#include "scene/procedural.h"
 #include "tests/error_of.h"
 #include "tests/harness/test_experiment.h"
 #include "tests/methods/hand_scenes.h"

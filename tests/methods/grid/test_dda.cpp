@@ -4,7 +4,7 @@
 #include <random>
 
 #include "methods/grid/grid_reference.h"
-#include "structures/procedural.h"
+#include "scene/procedural.h"
 
 namespace rtbench {
 namespace {

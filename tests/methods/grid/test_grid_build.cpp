@@ -4,7 +4,7 @@
 #include <random>
 #include <set>
 
-#include "structures/procedural.h"
+#include "scene/procedural.h"
 #include "methods/grid/uniform_grid.h"
 
 namespace rtbench {

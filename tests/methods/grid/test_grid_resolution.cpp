@@ -1,6 +1,6 @@
 #include <gtest/gtest.h>
 
-#include "structures/error.h"
+#include "core/error.h"
 #include "methods/grid/uniform_grid.h"
 
 namespace rtbench {

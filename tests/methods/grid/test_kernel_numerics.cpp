@@ -1,7 +1,7 @@
 // The kernels' arithmetic on lavapipe against the same source compiled as C++, on the inputs
 // most likely to expose a difference between the two machines (issue 7): long thin triangles
 // (slivers, nearly degenerate in float) and scenes at both ends of the range of
-// structures/scene_limits.h, with both ray-triangle tests. Hit records, per-ray counters and the
+// scene/scene_limits.h, with both ray-triangle tests. Hit records, per-ray counters and the
 // saved DDA state must be identical bit for bit.
 #include <gtest/gtest.h>
 
@@ -13,11 +13,11 @@
 #include "methods/multipass/multipass_strategy.h"
 #include "device/gpu_buffers.h"
 #include "methods/metrics.h"
-#include "structures/camera.h"
+#include "scene/camera.h"
 #include "methods/grid/grid_reference.h"
 #include "methods/grid/grid_structure.h"
 #include "methods/grid/uniform_grid.h"
-#include "structures/procedural.h"
+#include "scene/procedural.h"
 #include "tests/device/test_device.h"
 
 namespace rtbench {

@@ -8,9 +8,9 @@
 #include "methods/instructions/instruction_estimate.h"
 #include "methods/instructions/spirv_instructions.h"
 #include "methods/multipass/multipass_schedule.h"
-#include "structures/error.h"
+#include "core/error.h"
 #include "tests/error_of.h"
-#include "structures/procedural.h"
+#include "scene/procedural.h"
 #include "tests/harness/test_experiment.h"
 #include "tests/methods/hand_scenes.h"
 

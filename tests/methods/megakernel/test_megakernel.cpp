@@ -11,8 +11,8 @@
 #include "methods/bvh/bvh_structure.h"
 #include "methods/grid/grid_structure.h"
 #include "methods/megakernel/megakernel_model.h"
-#include "structures/camera.h"
-#include "structures/procedural.h"
+#include "scene/camera.h"
+#include "scene/procedural.h"
 #include "tests/device/test_device.h"
 #include "tests/methods/test_rays.h"
 

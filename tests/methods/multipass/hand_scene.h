@@ -8,13 +8,13 @@
 #include "methods/bvh/bvh_build.h"
 #include "methods/bvh/bvh_structure.h"
 #include "methods/grid/grid_structure.h"
-#include "structures/camera.h"
-#include "structures/procedural.h"
+#include "scene/camera.h"
+#include "scene/procedural.h"
 
 #include "kernels/gpu_layout.h"
 #include "methods/grid/uniform_grid.h"
 #include "methods/multipass/multipass_schedule.h"
-#include "structures/mesh.h"
+#include "scene/mesh.h"
 
 namespace rtbench::hand {
 

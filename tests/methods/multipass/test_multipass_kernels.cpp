@@ -15,8 +15,8 @@
 #include "methods/grid/uniform_grid.h"
 #include "methods/multipass/multipass_simulator.h"
 #include "methods/multipass/multipass_strategy.h"
-#include "structures/camera.h"
-#include "structures/procedural.h"
+#include "scene/camera.h"
+#include "scene/procedural.h"
 #include "tests/device/test_device.h"
 #include "tests/methods/multipass/hand_scene.h"
 

@@ -12,7 +12,7 @@
 #include "methods/path_megakernel/path_megakernel_strategy.h"
 #include "methods/wavefront/wavefront_strategy.h"
 #include "methods/whole_path.h"
-#include "structures/error.h"
+#include "core/error.h"
 #include "tests/device/test_device.h"
 #include "tests/error_of.h"
 #include "tests/methods/hand_scenes.h"

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <map>
 
-#include "error.h"
+#include "core/error.h"
 
 namespace rtbench {
 
@@ -237,7 +237,7 @@ TriangleMesh closedBox(int quadsPerEdge) {
                         q[k] = vertex(p);
                     }
                     // Counter-clockwise seen from outside: (b - a) x (c - a) points out of the box
-                    // (tests/structures/test_procedural.cpp checks it through appendMeshedBox).
+                    // (tests/scene/test_procedural.cpp checks it through appendMeshedBox).
                     const bool flip = side == 1;
                     mesh.triangles.push_back(flip ? glm::uvec3(q[0], q[1], q[2]) : glm::uvec3(q[0], q[2], q[1]));
                     mesh.triangles.push_back(flip ? glm::uvec3(q[0], q[2], q[3]) : glm::uvec3(q[0], q[3], q[2]));

@@ -2,7 +2,7 @@
 // (half height tan 45 = 1) on a 4 x 2 image, whose half width is the aspect ratio times that, 2.
 #include <gtest/gtest.h>
 
-#include "structures/camera.h"
+#include "scene/camera.h"
 
 namespace rtbench {
 namespace {

@@ -1,4 +1,4 @@
-// Edge-collapse simplification (structures/simplify.h): exact counts where a collapse can reach
+// Edge-collapse simplification (scene/simplify.h): exact counts where a collapse can reach
 // them, the reason where it cannot, non-manifold and degenerate input, determinism, and how far
 // the simplified surface strays from the original.
 #include <gmock/gmock.h>
@@ -10,8 +10,8 @@
 #include <cstring>
 #include <limits>
 
-#include "structures/procedural.h"
-#include "structures/simplify.h"
+#include "scene/procedural.h"
+#include "scene/simplify.h"
 #include "tests/error_of.h"
 
 namespace rtbench {

@@ -1,12 +1,12 @@
-// Scenes and rays outside the range every method handles (structures/scene_limits.h) are
+// Scenes and rays outside the range every method handles (scene/scene_limits.h) are
 // refused with that range named, before a grid, a camera fit or Embree sees them.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "structures/camera.h"
-#include "structures/procedural.h"
-#include "structures/scene_limits.h"
+#include "scene/camera.h"
+#include "scene/procedural.h"
+#include "scene/scene_limits.h"
 #include "methods/grid/uniform_grid.h"
 #include "tests/error_of.h"
 

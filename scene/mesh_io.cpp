@@ -20,7 +20,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "error.h"
+#include "core/error.h"
 #include "mesh_validate.h"
 #include "polygon_triangulation.h"
 

@@ -11,9 +11,9 @@
 #include <limits>
 #include <sstream>
 
-#include "structures/error.h"
-#include "structures/mesh_io.h"
-#include "structures/mesh_validate.h"
+#include "core/error.h"
+#include "scene/mesh_io.h"
+#include "scene/mesh_validate.h"
 #include "tests/temp_dir.h"
 
 namespace rtbench {

@@ -14,11 +14,11 @@
 #include <random>
 #include <sstream>
 
-#include "error.h"
+#include "core/error.h"
 #include "mesh_io.h"
 #include "procedural.h"
 #include "scene_limits.h"
-#include "text.h"
+#include "core/text.h"
 
 namespace rtbench {
 

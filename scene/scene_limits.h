@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "../kernels/gpu_layout.h"
-#include "error.h"
+#include "core/error.h"
 #include "mesh.h"
 
 namespace rtbench {

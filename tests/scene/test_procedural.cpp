@@ -1,4 +1,4 @@
-// Purcell 2002's scenes as rtbench rebuilds them (structures/procedural.h, scenes/purcell_bunny.toml):
+// Purcell 2002's scenes as rtbench rebuilds them (scene/procedural.h, scenes/purcell_bunny.toml):
 // their triangle counts from the parts by hand, their grids at his minimal dimension against his
 // Table 2 / §4.1 resolutions, and the meshed box's geometry by a second formulation (areas, normals).
 #include <gtest/gtest.h>
@@ -6,8 +6,8 @@
 #include <glm/glm.hpp>
 
 #include "methods/grid/uniform_grid.h"
-#include "structures/procedural.h"
-#include "structures/scene_description.h"
+#include "scene/procedural.h"
+#include "scene/scene_description.h"
 
 namespace rtbench {
 namespace {

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "appearance.h"
-#include "input_file.h"
+#include "core/input_file.h"
 
 namespace rtbench {
 

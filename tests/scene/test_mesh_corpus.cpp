@@ -11,8 +11,8 @@
 #include <set>
 #include <sstream>
 
-#include "structures/error.h"
-#include "structures/mesh_io.h"
+#include "core/error.h"
+#include "scene/mesh_io.h"
 
 namespace rtbench {
 namespace {

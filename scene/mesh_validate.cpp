@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <limits>
 
-#include "error.h"
+#include "core/error.h"
 
 namespace rtbench {
 namespace {

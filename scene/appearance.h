@@ -1,5 +1,5 @@
 // What a scene description says of its surfaces and lights ([[material]], [[light]]; see
-// structures/scene_description.h): all Whitted ray tracing (rays.type = whitted) reads beside the
+// scene/scene_description.h): all Whitted ray tracing (rays.type = whitted) reads beside the
 // triangles, and nothing more than its rays need. A surface is diffuse (a colour), a mirror (a
 // reflectance, the rest of its light diffuse: Christen 2005 eq. 5.1) or glass (an index of
 // refraction, reflecting and transmitting by Fresnel's equations).

@@ -1,4 +1,4 @@
-// Scene descriptions (structures/scene_description.h): transforms give hand-computed vertices,
+// Scene descriptions (scene/scene_description.h): transforms give hand-computed vertices,
 // scatters are deterministic and stay in their box, every error names the file and the line, the
 // committed scenes/ load with their triangle counts, and a config naming one runs end to end.
 #include <gmock/gmock.h>
@@ -9,9 +9,9 @@
 #include <cstring>
 
 #include "harness/runner.h"
-#include "structures/procedural.h"
-#include "structures/scene_description.h"
-#include "structures/scene_limits.h"
+#include "scene/procedural.h"
+#include "scene/scene_description.h"
+#include "scene/scene_limits.h"
 #include "tests/device/test_device.h"
 #include "tests/error_of.h"
 #include "tests/temp_dir.h"

@@ -13,8 +13,8 @@
 #include <cmath>
 #include <vector>
 
-#include "error.h"
-#include "text.h"
+#include "core/error.h"
+#include "core/text.h"
 
 namespace rtbench {
 namespace {

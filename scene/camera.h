@@ -20,7 +20,7 @@ PinholeCamera fitCamera(const Bounds3& bounds, float verticalFovDegrees = 45.0f)
 
 // Primary rays through pixel centres, row-major from the top-left pixel; tMin 0, tMax FLT_MAX.
 // Directions are not normalised, so distances are in units of |direction|. Throws rtbench::Error
-// for a position or look_at outside the ray range of structures/scene_limits.h.
+// for a position or look_at outside the ray range of scene/scene_limits.h.
 std::vector<gpu::Ray> generatePrimaryRays(const PinholeCamera& camera, unsigned width,
                                           unsigned height);
 

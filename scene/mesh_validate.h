@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-#include "text.h"
+#include "core/text.h"
 #include <string_view>
 #include <vector>
 
