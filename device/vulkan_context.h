@@ -26,7 +26,7 @@ struct DeviceInfo {
     std::uint64_t loopIterationLimit = 0;
     // Whether a subgroup's lanes run a loop in lock step, every lane of the subgroup at the same
     // iteration and reconverged after it: llvmpipe's subgroups are SIMD vectors, so its ballots
-    // count what branching's CPU lane model (methods/branching/lane_counts.h) counts. Elsewhere
+    // count what branching's CPU lane model (strategies/branching/lane_counts.h) counts. Elsewhere
     // (NVIDIA's independent thread scheduling) the lanes of a loop may run apart, and the model
     // is not the device's measure.
     bool lockStepSubgroups = false;

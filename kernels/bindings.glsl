@@ -1,6 +1,6 @@
 // Buffers, push constants and specialization constants of every kernel: the common slots of
 // kernels/gpu_layout.h (a strategy declares its own slots' buffers), then the structure's own
-// (structure_layout.glsl, found through the -I methods/<structure> CMake passes when it compiles
+// (structure_layout.glsl, found through the -I structures/<structure> CMake passes when it compiles
 // a kernel for that structure). One set layout per structure, so the host binds one descriptor set
 // for all of its kernels.
 #extension GL_EXT_shader_8bit_storage : require

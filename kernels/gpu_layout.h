@@ -1,7 +1,7 @@
 // GPU-visible layouts shared by every method: rays, triangles, hit records, the multipass ray
 // state and counters, the common binding slots and the specialization-constant ids. Included by
 // C++ (harness, methods, tests) and by GLSL (kernels/*.comp). Each structure adds its own layout
-// header (methods/<structure>/<structure>_layout.h) with its buffers in the slots from
+// header (structures/<structure>/<structure>_layout.h) with its buffers in the slots from
 // kBindingStructure on. Never retype these in a shader.
 // All structs use vec4/uvec4 or 4-byte scalars so that std430 and C++ agree byte for byte.
 #ifndef RTBENCH_GPU_LAYOUT_H
@@ -80,7 +80,7 @@ RTBENCH_CONST kSpecListPartitions = 22;  // multipass, control on the device: pa
 RTBENCH_CONST kSpecMaxFetches = 23;      // persistent threads: fetches a subgroup makes at most (0: until the stream is done)
 RTBENCH_CONST kSpecPersistentWorkgroups = 24;  // persistent threads: the workgroups asked for (a 2-D grid may pad beyond them)
 
-// ---- megakernel schedules (methods/megakernel/megakernel.comp; Parker et al. 2013 §5.1-5.2) ----
+// ---- megakernel schedules (strategies/megakernel/megakernel.comp; Parker et al. 2013 §5.1-5.2) ----
 RTBENCH_CONST kScheduleSwitch = 0;          // each lane runs its own state: the subgroup runs every state present, one after another
 RTBENCH_CONST kScheduleIntersectFirst = 1;  // one state per iteration: intersect if any lane waits, else traverse
 RTBENCH_CONST kScheduleTraverseFirst = 2;   // one state per iteration: traverse if any lane traverses, else intersect
@@ -134,7 +134,7 @@ RTBENCH_CONST kStateDoneHit = 2;     // done: nearest hit found
 RTBENCH_CONST kStateLeftStructure = 3;    // done: left the structure without a hit
 RTBENCH_CONST kStateMissedBox = 4;   // done: never entered the structure's box
 
-// ---- multipass pass kinds (methods/multipass/multipass_schedule.h PassKind) ----
+// ---- multipass pass kinds (strategies/multipass/multipass_schedule.h PassKind) ----
 RTBENCH_CONST kPassSetup = 0;
 RTBENCH_CONST kPassTraverse = 1;
 RTBENCH_CONST kPassIntersect = 2;
@@ -279,7 +279,7 @@ struct WholePathControl {
     ShadingParams passes[kPathMaxPasses];  // byte 128: passes[g] makes generation g + 1 from generation g
 };
 
-// The driver's ray query (methods/ray_query/kernels/ray_query.comp): binds kBindingRays and
+// The driver's ray query (strategies/ray_query/kernels/ray_query.comp): binds kBindingRays and
 // kBindingHits only; its push constants.
 struct RayQueryParams {
     uvec4 stream;      // byte 0: x = ray count, y = kQuery*, zw unused

@@ -1,5 +1,5 @@
 // Ray arithmetic shared by every structure's traversal: ONE source for the GPU kernels and the
-// CPU references (each includes it inside a C++ struct, see methods/grid/grid_reference.h), so
+// CPU references (each includes it inside a C++ struct, see structures/uniform_grid/grid_reference.h), so
 // both run the very same arithmetic, operation by operation.
 // Rules that keep the two bit-identical: float literals carry an `f`; every division through
 // rtDivide; dot/cross written out (the driver's built-ins may fuse to FMA); results marked
@@ -152,7 +152,7 @@ bool rtClipSlab(float o, float d, float invD, float lo, float hi, RT_INOUT(float
 }
 
 // The axes are written out rather than looped over: a device may count loop iterations against a
-// limit (llvmpipe: 65,535 per invocation, see methods/branching/lane_counts.h), and the BVH clips
+// limit (llvmpipe: 65,535 per invocation, see strategies/branching/lane_counts.h), and the BVH clips
 // two boxes per node.
 bool rtClipToBox(vec3 o, vec3 d, vec3 invD, float tMin, float tMax, vec3 boxMin, vec3 boxMax,
                  RT_OUT(float) tEnter, RT_OUT(float) tLeave) {

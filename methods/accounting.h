@@ -8,7 +8,7 @@
 #include "kernels/gpu_layout.h"
 #include "methods/instructions/instruction_estimate.h"
 #include "methods/metrics.h"
-#include "methods/multipass/multipass_schedule.h"
+#include "strategies/multipass/multipass_schedule.h"
 #include "methods/structure.h"
 
 namespace rtbench {

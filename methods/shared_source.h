@@ -6,7 +6,7 @@
 //   struct XKernels : KernelConstants { <buffers as pointers>; XParams params;
 //   #include "../../kernels/ray_math.glsl"  ... the structure's .glsl files ... };
 //   #include "methods/shared_source_end.h"
-// in methods/<x>/<x>_reference.h, list XKernels in methods/structure_kernels.h, and derive the
+// in structures/<x>/<x>_reference.h, list XKernels in methods/structure_kernels.h, and derive the
 // structure from SharedSourceStructure<XKernels>.
 #pragma once
 #include <cstdint>

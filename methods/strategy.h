@@ -1,5 +1,5 @@
 // The strategy half of a method's seam. A strategy (branching, multipass) runs any structure's
-// kernels on a Vulkan device: it lives in methods/<name>/ with its host side, its CPU model of
+// kernels on a Vulkan device: it lives in strategies/<name>/ with its host side, its CPU model of
 // what the device counts, its accounting, and its config keys and columns. It checks itself: the
 // device's hits and counts against the structure's CPU reference on the same rays.
 #pragma once

@@ -1,5 +1,5 @@
 // The structure half of a method's seam. A structure (uniform grid, BVH, brute force) lives in
-// its own folder, methods/<name>/: its build, its GPU layout (<name>_layout.h, shared by C++ and
+// its own folder, structures/<name>/: its build, its GPU layout (<name>_layout.h, shared by C++ and
 // GLSL), its per-ray traversal in GLSL (structure.glsl, which the generic kernels of kernels/
 // include: CMake compiles every kernel once per structure), its CPU reference (the same GLSL
 // compiled as C++), its accounting and its config keys and columns. A strategy

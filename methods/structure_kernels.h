@@ -4,9 +4,9 @@
 #pragma once
 #include <variant>
 
-#include "methods/brute/brute_reference.h"
-#include "methods/bvh/bvh_reference.h"
-#include "methods/grid/grid_reference.h"
+#include "structures/brute_force/brute_reference.h"
+#include "structures/bvh/bvh_reference.h"
+#include "structures/uniform_grid/grid_reference.h"
 
 namespace rtbench {
 

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "methods/branching/branching_strategy.h"
+#include "strategies/branching/branching_strategy.h"
 #include "core/error.h"
 
 namespace rtbench {

@@ -44,10 +44,10 @@ IGNORE = ("build", "build-*", ".git", "out", "__pycache__", "*.pyc")
 # Only an ordering: the rest of the suite runs after them when they all pass.
 FIRST = [
     ("kernels/", "TieRule|WatertightEdge|BvhHand|GridHand|KernelNumerics|BranchingKernel|MultipassKernels|Bvh|Brute|Dda"),
-    ("methods/bvh/", "BvhHand|TieRule|WatertightEdge|Bvh"),
-    ("methods/grid/", "GridHand|TieRule|WatertightEdge|Dda|Grid|KernelNumerics|MultipassKernels|BranchingKernel"),
-    ("methods/brute/", "TieRule|WatertightEdge|Brute"),
-    ("methods/multipass/", "MultipassKernels|BvhHand|GridHand|Multipass|Schedule"),
+    ("structures/bvh/", "BvhHand|TieRule|WatertightEdge|Bvh"),
+    ("structures/uniform_grid/", "GridHand|TieRule|WatertightEdge|Dda|Grid|KernelNumerics|MultipassKernels|BranchingKernel"),
+    ("structures/brute_force/", "TieRule|WatertightEdge|Brute"),
+    ("strategies/multipass/", "MultipassKernels|BvhHand|GridHand|Multipass|Schedule"),
     ("methods/accounting", "BvhHand|GridHand|MultipassKernels|Metrics"),
     ("methods/metrics", "Metrics|EndToEnd"),
     ("methods/", "CostModel|TriangleStore|Metrics|Auto"),

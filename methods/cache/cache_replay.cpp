@@ -3,7 +3,7 @@
 #include <variant>
 
 #include "methods/cache/memory_trace.h"
-#include "methods/multipass/multipass_simulator.h"
+#include "strategies/multipass/multipass_simulator.h"
 #include "core/error.h"
 
 namespace rtbench {

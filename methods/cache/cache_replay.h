@@ -12,7 +12,7 @@
 
 #include "methods/accounting.h"
 #include "methods/cache/cache_simulator.h"
-#include "methods/multipass/multipass_schedule.h"
+#include "strategies/multipass/multipass_schedule.h"
 #include "methods/structure.h"
 #include "plan/columns.h"
 #include "plan/keys.h"

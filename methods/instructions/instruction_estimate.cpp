@@ -1,7 +1,7 @@
 #include "instruction_estimate.h"
 
 #include "methods/instructions/spirv_instructions.h"
-#include "methods/multipass/multipass_schedule.h"
+#include "strategies/multipass/multipass_schedule.h"
 #include "methods/structure.h"
 
 namespace rtbench {

@@ -9,8 +9,8 @@
 #include <cmath>
 #include <sstream>
 
-#include "methods/branching/branching_strategy.h"
-#include "methods/multipass/multipass_strategy.h"
+#include "strategies/branching/branching_strategy.h"
+#include "strategies/multipass/multipass_strategy.h"
 #include "methods/stream_batches.h"
 #include "device/gpu_buffers.h"
 #include "harness/runner.h"
@@ -19,8 +19,8 @@
 #include "tests/harness/test_experiment.h"
 #include "tests/temp_dir.h"
 #include "tests/error_of.h"
-#include "methods/grid/grid_structure.h"
-#include "methods/grid/uniform_grid.h"
+#include "structures/uniform_grid/grid_structure.h"
+#include "structures/uniform_grid/uniform_grid.h"
 #include "scene/procedural.h"
 
 namespace rtbench {
@@ -215,10 +215,10 @@ TEST_F(KernelSpecs, AStrategyConstantThatRepeatsACommonIdIsRefused) {
                        multipassBuffers(rays.size(), sizeof(gpu::GridTraversalState), false));
     KernelSpec spec;
     spec.strategyConstants = {{gpu::kSpecQuery, gpu::kQueryAny}};
-    EXPECT_THAT(errorOf([&] { buffers.createKernel("grid_multipass_setup", spec); }),
-                HasSubstr("grid_multipass_setup: specialization constant " + std::to_string(gpu::kSpecQuery) + " given twice"));
+    EXPECT_THAT(errorOf([&] { buffers.createKernel("uniform_grid_multipass_setup", spec); }),
+                HasSubstr("uniform_grid_multipass_setup: specialization constant " + std::to_string(gpu::kSpecQuery) + " given twice"));
     spec.strategyConstants = {{gpu::kSpecTraverseSteps, 3}};
-    ComputePipeline pipeline = buffers.createKernel("grid_multipass_setup", spec);
+    ComputePipeline pipeline = buffers.createKernel("uniform_grid_multipass_setup", spec);
     vk_->destroy(pipeline);
 }
 

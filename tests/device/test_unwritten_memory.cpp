@@ -8,8 +8,8 @@
 #include <cstring>
 
 #include "device/gpu_buffers.h"
-#include "methods/grid/grid_structure.h"
-#include "methods/grid/uniform_grid.h"
+#include "structures/uniform_grid/grid_structure.h"
+#include "structures/uniform_grid/uniform_grid.h"
 #include "scene/procedural.h"
 #include "tests/device/test_device.h"
 

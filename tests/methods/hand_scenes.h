@@ -12,13 +12,13 @@
 #include <string>
 #include <vector>
 
-#include "methods/branching/branching_strategy.h"
-#include "methods/brute/brute_structure.h"
-#include "methods/bvh/bvh_structure.h"
-#include "methods/grid/grid_structure.h"
-#include "methods/grid/uniform_grid.h"
-#include "methods/multipass/multipass_simulator.h"
-#include "methods/multipass/multipass_strategy.h"
+#include "strategies/branching/branching_strategy.h"
+#include "structures/brute_force/brute_structure.h"
+#include "structures/bvh/bvh_structure.h"
+#include "structures/uniform_grid/grid_structure.h"
+#include "structures/uniform_grid/uniform_grid.h"
+#include "strategies/multipass/multipass_simulator.h"
+#include "strategies/multipass/multipass_strategy.h"
 #include "methods/structure.h"
 #include "scene/mesh.h"
 

@@ -6,7 +6,7 @@
 
 #include <cmath>
 
-#include "methods/branching/lane_counts.h"
+#include "strategies/branching/lane_counts.h"
 #include "scene/procedural.h"
 #include "tests/device/test_device.h"
 #include "tests/methods/hand_scenes.h"

@@ -4,11 +4,11 @@
 #include <gtest/gtest.h>
 
 #include "device/vulkan_context.h"
-#include "methods/auto/auto_structure.h"
-#include "methods/brute/brute_structure.h"
+#include "structures/auto/auto_structure.h"
+#include "structures/brute_force/brute_structure.h"
 #include "methods/cost_model.h"
-#include "methods/grid/grid_structure.h"
-#include "methods/grid/uniform_grid.h"
+#include "structures/uniform_grid/grid_structure.h"
+#include "structures/uniform_grid/uniform_grid.h"
 #include "scene/procedural.h"
 #include "tests/methods/test_rays.h"
 

@@ -9,9 +9,9 @@
 #include <limits>
 #include <random>
 
-#include "methods/branching/branching_strategy.h"
-#include "methods/grid/grid_reference.h"
-#include "methods/grid/grid_structure.h"
+#include "strategies/branching/branching_strategy.h"
+#include "structures/uniform_grid/grid_reference.h"
+#include "structures/uniform_grid/grid_structure.h"
 #include "methods/metrics.h"
 #include "scene/camera.h"
 #include "scene/procedural.h"

@@ -4,7 +4,7 @@
 
 #include "methods/accounting.h"
 #include "methods/metrics.h"
-#include "methods/multipass/multipass_schedule.h"
+#include "strategies/multipass/multipass_schedule.h"
 
 namespace rtbench {
 namespace {

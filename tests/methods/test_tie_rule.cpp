@@ -7,10 +7,10 @@
 // TESTED FIRST is kept. Which one is tested first is the structure's order:
 //   brute force  - ids in increasing order: the lowest id wins;
 //   uniform grid - voxels in the order the ray enters them, each voxel's list in increasing id
-//                  (a stable counting sort, methods/grid/uniform_grid.cpp): the first triangle met
+//                  (a stable counting sort, structures/uniform_grid/uniform_grid.cpp): the first triangle met
 //                  in an earlier voxel wins, even against a lower id met later;
 //   BVH          - the nearer child box first, child 0 when both are entered at the same distance
-//                  (rtBvhChildren), each leaf's ids increasing (methods/bvh/bvh_build.cpp).
+//                  (rtBvhChildren), each leaf's ids increasing (structures/bvh/bvh_build.cpp).
 // The exact reference (harness/exact_reference.h) accepts either triangle of a tie; the rule is
 // what makes a method's choice the same on every machine, and the golden counts depend on it.
 #include <gtest/gtest.h>

@@ -6,10 +6,10 @@
 #include <cstring>
 #include <random>
 
-#include "methods/bvh/bvh_build.h"
-#include "methods/bvh/bvh_structure.h"
-#include "methods/grid/grid_structure.h"
-#include "methods/grid/uniform_grid.h"
+#include "structures/bvh/bvh_build.h"
+#include "structures/bvh/bvh_structure.h"
+#include "structures/uniform_grid/grid_structure.h"
+#include "structures/uniform_grid/uniform_grid.h"
 #include "methods/triangle_store.h"
 #include "tests/methods/test_rays.h"
 #include "scene/procedural.h"

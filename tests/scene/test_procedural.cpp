@@ -5,7 +5,7 @@
 
 #include <glm/glm.hpp>
 
-#include "methods/grid/uniform_grid.h"
+#include "structures/uniform_grid/uniform_grid.h"
 #include "scene/procedural.h"
 #include "scene/scene_description.h"
 

@@ -7,7 +7,7 @@
 #include "scene/camera.h"
 #include "scene/procedural.h"
 #include "scene/scene_limits.h"
-#include "methods/grid/uniform_grid.h"
+#include "structures/uniform_grid/uniform_grid.h"
 #include "tests/error_of.h"
 
 namespace rtbench {

@@ -7,7 +7,7 @@
 
 #include "methods/cache/cache_replay.h"
 #include "methods/cache/memory_trace.h"
-#include "methods/multipass/multipass_simulator.h"
+#include "strategies/multipass/multipass_simulator.h"
 #include "core/error.h"
 #include "scene/procedural.h"
 #include "tests/error_of.h"

@@ -7,7 +7,7 @@
 #include "device/embedded_kernels.h"
 #include "methods/instructions/instruction_estimate.h"
 #include "methods/instructions/spirv_instructions.h"
-#include "methods/multipass/multipass_schedule.h"
+#include "strategies/multipass/multipass_schedule.h"
 #include "core/error.h"
 #include "tests/error_of.h"
 #include "scene/procedural.h"
@@ -160,7 +160,7 @@ TEST(InstructionEstimate, EachStructureNamesItsEventAndItsCounter) {
 // the branching kernel what it costs the multipass kernels (a second reading of the counts, module
 // by module, that a wrong function lookup or call walk would make disagree).
 TEST(InstructionEstimate, AFunctionCostsTheSameInEveryKernel) {
-    for (const auto& [prefix, step] : {std::pair<std::string, std::string>{"grid", "rtDdaStep"}, {"bvh", "rtBvhChildren"}}) {
+    for (const auto& [prefix, step] : {std::pair<std::string, std::string>{"uniform_grid", "rtDdaStep"}, {"bvh", "rtBvhChildren"}}) {
         SCOPED_TRACE(prefix);
         const SpirvInstructionCounts branching(embeddedKernel(prefix + "_branching")),
             traverse(embeddedKernel(prefix + "_multipass_traverse")),
