@@ -38,6 +38,22 @@ TEST(Check, EveryColumnHasTheKindItsValueHas) {
     EXPECT_THROW(columnSpec("hitz"), Error);
 }
 
+// A per-ray tolerance scales with the recorded run's rays: hit_miss_mismatches may move by 1e-4
+// per ray, so by 1 over 10,000 rays (within) but not over 1,000 (beyond: 0.1 allowed).
+TEST(Check, APerRayToleranceScalesWithTheRunsRays) {
+    const Row recorded = {{"run", "000"}, {"rays", "10000"}, {"hit_miss_mismatches", "5"}};
+    Row rerun = recorded;
+    rerun["hit_miss_mismatches"] = "6";
+    EXPECT_TRUE(deterministicDifferences(recorded, rerun).empty());
+    Row fewer = recorded, fewerRerun = rerun;
+    fewer["rays"] = fewerRerun["rays"] = "1000";
+    const std::vector<std::string> beyond = deterministicDifferences(fewer, fewerRerun);
+    ASSERT_EQ(beyond.size(), 1u);
+    EXPECT_THAT(beyond.front(), HasSubstr("reference (tolerance 0.1): BEYOND"));
+    rerun["hit_miss_mismatches"] = "7";  // 2 over 10,000 rays: beyond 1
+    EXPECT_EQ(deterministicDifferences(recorded, rerun).size(), 1u);
+}
+
 // A copy of results/golden to tamper with; the check runs from the source tree as CI does.
 class Golden : public ::testing::Test {
   protected:

@@ -7,9 +7,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <random>
+#include <set>
 
 #include "harness/exact_reference.h"
 #include "tests/device/test_device.h"
@@ -69,6 +71,44 @@ TEST(DiffuseRays, ThePcgHashAndItsRandomNumbersAreThoseOfASecondTranscription) {
         sum += r;
     }
     EXPECT_NEAR(sum / n, 0.5, 0.005);
+}
+
+// A diffuse ray's random key is (seed, path * fan-out + slot, bounce): every (path, slot) of a
+// generation draws its own numbers, so neighbouring paths never share a direction (a key of
+// path + slot would give path 1's slot 0 path 0's slot 1), another bounce or seed draws others,
+// and neighbouring paths' draws are uncorrelated.
+TEST(DiffuseRays, EveryPathSlotBounceAndSeedDrawsItsOwnDirection) {
+    shadingref::ShadingKernels k{};
+    const gpu::Material m = diffuseMaterial();
+    const glm::vec3 v0(0, 0, 0), v1(1, 0, 0), v2(0, 1, 0), incoming(0.1f, 0.2f, -1.0f);
+    auto direction = [&](std::uint32_t path, std::uint32_t slot, std::uint32_t fanOut, std::uint32_t bounce, std::uint32_t seed) {
+        gpu::ShadingParams params{};
+        params.pass = glm::uvec4(1024, gpu::kShadeDiffuse, fanOut, bounce);
+        params.seed = glm::uvec4(seed, 0, 0, 0);
+        params.values = glm::vec4(gpu::kNoHitT, 0, 0, 0);
+        gpu::Ray made{};
+        float weight = 0.0f;
+        EXPECT_TRUE(k.rtShade(params, m, glm::vec3(0.0f), v0, v1, v2, 0.25f, 0.25f, incoming, path, slot, 1.0f, made, weight));
+        return glm::vec3(made.directionTMax);
+    };
+    std::set<std::array<float, 3>> seen;
+    std::vector<double> zs;
+    for (std::uint32_t path = 0; path < 256; ++path)
+        for (std::uint32_t slot = 0; slot < 4; ++slot) {
+            const glm::vec3 d = direction(path, slot, 4, 1, 7);
+            EXPECT_TRUE(seen.insert({d.x, d.y, d.z}).second) << "path " << path << " slot " << slot << " repeats a direction";
+            if (slot == 0) zs.push_back(d.z);
+        }
+    EXPECT_NE(direction(3, 1, 4, 1, 7), direction(3, 1, 4, 2, 7));  // another bounce
+    EXPECT_NE(direction(3, 1, 4, 1, 7), direction(3, 1, 4, 1, 8));  // another seed
+    // Neighbouring paths' cos(theta): correlation near 0 (|r| < 4 / sqrt(n) ~ 0.25 for 255 pairs).
+    double mean = 0.0, cov = 0.0, var = 0.0;
+    for (double z : zs) mean += z / double(zs.size());
+    for (std::size_t i = 0; i + 1 < zs.size(); ++i) {
+        cov += (zs[i] - mean) * (zs[i + 1] - mean);
+        var += (zs[i] - mean) * (zs[i] - mean);
+    }
+    EXPECT_LT(std::abs(cov / var), 0.25);
 }
 
 // Duff et al.'s basis of unit normals (the six axes and 1000 random ones): orthonormal and
