@@ -12,7 +12,6 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -23,6 +22,7 @@
 #include <string>
 #include <typeinfo>
 
+#include "fuzz_bodies.h"
 #include "fuzz_common.h"
 #include "core/error.h"
 #include "scene/mesh_io.h"
@@ -100,15 +100,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             throw;
         }
         restoreStdout();
-        if (mesh.triangles.empty()) finding("a mesh without triangles was accepted");
-        for (const auto& t : mesh.triangles)
-            for (int i = 0; i < 3; ++i)
-                if (t[i] >= mesh.vertices.size())
-                    finding("triangle index " + std::to_string(t[i]) + " >= " +
-                            std::to_string(mesh.vertices.size()) + " vertices");
-        for (const auto& v : mesh.vertices)
-            for (int i = 0; i < 3; ++i)
-                if (!std::isfinite(v[i])) finding("a non-finite vertex coordinate was accepted");
+        if (const std::string problem = fuzz::meshProblem(mesh); !problem.empty()) finding(problem);
     });
     std::remove(path.c_str());
     return 0;

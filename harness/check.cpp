@@ -1,16 +1,11 @@
 #include "check.h"
 
-#include <unistd.h>
-
-#include <cerrno>
-#include <cstring>
 #include <algorithm>
-#include <set>
-
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "columns.h"
@@ -286,8 +281,7 @@ CheckResult checkResults(const std::string& folder, const CheckOptions& options,
     const std::string contextPath = (fs::path(folder) / "context.json").string();
     if (!fs::exists(contextPath))
         throw Error(contextPath + ": not found (is this a results folder?)");
-    if (const std::string pids = folderWriters(folder); !pids.empty())
-        throw Error(folder + ": being written by rtbench (pid " + pids + "): check it when that run ends");
+    refuseFolderBeingWritten(folder, "check");
     const Json context = readJson(contextPath);
     ExperimentPlan plan = recordedPlan(context, contextPath);
     const std::string csvPath = (fs::path(folder) / "runs.csv").string();
@@ -309,19 +303,12 @@ CheckResult checkResults(const std::string& folder, const CheckOptions& options,
     runner.quiet = true;
     runner.force = true;
     for (const Row& row : recorded) runner.onlyRuns.insert(row.at("run"));
-    // A private scratch folder (mkdtemp: a name no one else can have planted).
-    std::string pattern = (fs::temp_directory_path() / "rtbench-check-XXXXXX").string();
-    if (!::mkdtemp(pattern.data())) throw Error(pattern + ": cannot create the scratch folder: " + std::strerror(errno));
-    const fs::path scratch = pattern;
-    runner.outputOverride = scratch.string();
     ExperimentResult now;
-    try {
+    {
+        const ScratchFolder scratch("rtbench-check");
+        runner.outputOverride = scratch.path();
         now = runExperiment(plan, runner);
-    } catch (...) {
-        fs::remove_all(scratch);
-        throw;
     }
-    fs::remove_all(scratch);
 
     Differences found = compareRuns(recorded, now.rows, options, !newerKeys.empty());
     for (const std::string& problem : samplesProblems(folder, recorded, schema)) found.deterministic.push_back(problem);

@@ -32,8 +32,7 @@ struct Side {
 Side load(const std::string& folder) {
     std::error_code ec;
     if (!fs::is_directory(folder, ec)) throw Error(folder + ": not a results folder (no such folder)");
-    if (const std::string pids = folderWriters(folder); !pids.empty())
-        throw Error(folder + ": being written by rtbench (pid " + pids + "): compare it when that run ends");
+    refuseFolderBeingWritten(folder, "compare");
     const std::string csv = (fs::path(folder) / "runs.csv").string();
     if (!fs::exists(fs::symlink_status(csv, ec)))
         throw Error(csv + ": not found (not a results folder, or its shards are not merged yet)");

@@ -280,13 +280,9 @@ ConfigValue convert(const std::string& file, const KeySpec& spec, const toml::no
 // by spelling.
 struct SkipRule {
     std::string text, at;  // as written, and its file:line
-    std::vector<std::pair<std::string, ConfigValue>> conditions;
+    KeyConditions conditions;
     // A run lacking a key (one its structure or strategy does not read) does not match.
-    bool matches(const RunConfig& run) const {
-        return std::all_of(conditions.begin(), conditions.end(), [&](const auto& c) {
-            return run.has(c.first) && run.values.at(c.first) == c.second;
-        });
-    }
+    bool matches(const RunConfig& run) const { return runMatches(run, conditions); }
 };
 
 // Words split at spaces outside [...] and "...".
@@ -385,8 +381,13 @@ std::pair<std::string, const toml::node*> parseSetting(const std::string& settin
 
 }  // namespace
 
-std::vector<std::pair<std::string, ConfigValue>> parseKeyConditions(const std::string& at, const std::string& text) {
+KeyConditions parseKeyConditions(const std::string& at, const std::string& text) {
     return parseSkipRule("", at, text, configSchema(), "").conditions;
+}
+
+bool runMatches(const RunConfig& run, const KeyConditions& conditions) {
+    return std::all_of(conditions.begin(), conditions.end(),
+                       [&](const auto& c) { return run.has(c.first) && run.values.at(c.first) == c.second; });
 }
 
 ExperimentPlan loadExperiment(const std::string& path, const std::vector<std::string>& settings) {

@@ -45,14 +45,17 @@ ExperimentPlan loadExperimentText(const std::string& configText, const std::stri
 // where Embree's default ISA choice crashes); throws naming the option if the string is invalid.
 void overrideEmbreeConfig(ExperimentPlan& plan, const std::string& embreeConfig);
 
-// Sets `key` to `value` in every run (the command line's -d sets device.name, --validation
-// device.validation): the run's parameters, hash and identity record what ran. `option` names
-// the command-line option in errors; the value is checked as the config key would be.
 // "section.key=value ..." as a sweep.skip rule reads it: each value typed as its key's own (30 =
 // 30.0, [1, 0, 0]) and checked as the key would be; throws rtbench::Error naming `at` on an
 // unknown key, a value the key refuses, or no condition at all.
-std::vector<std::pair<std::string, ConfigValue>> parseKeyConditions(const std::string& at, const std::string& text);
+using KeyConditions = std::vector<std::pair<std::string, ConfigValue>>;
+KeyConditions parseKeyConditions(const std::string& at, const std::string& text);
+// True when the run has every key of `conditions` at its value (a key the run does not read: false).
+bool runMatches(const RunConfig& run, const KeyConditions& conditions);
 
+// Sets `key` to `value` in every run (the command line's -d sets device.name, --validation
+// device.validation): the run's parameters, hash and identity record what ran. `option` names
+// the command-line option in errors; the value is checked as the config key would be.
 void overrideKey(ExperimentPlan& plan, const std::string& key, const ConfigValue& value, const std::string& option);
 
 // Applies context.json's recorded "overrides" (key -> value as formatValue writes it).

@@ -63,20 +63,31 @@ void writePid(int fd, const std::string& path) {
         throw Error(path + ": cannot write the lock holder's pid: " + std::strerror(errno));
 }
 
-// The pids of the shard runs holding their locks in `folder` now.
-std::string runningShards(const std::string& folder) {
+// The pids of the processes whose lock on a lock file of `folder` (<prefix>*.lock) keeps
+// `operation` from being taken now: LOCK_EX, any holder; LOCK_SH, an exclusive one. A holder that
+// is ending holds its lock exclusively for a moment: a refusal is asked twice.
+std::string lockHolders(const std::string& folder, const std::string& prefix, int operation) {
     std::string pids;
     std::error_code ec;
     for (const auto& entry : fs::directory_iterator(folder, ec)) {
         const std::string name = entry.path().filename().string();
-        if (name.rfind(".rtbench.shard-", 0) != 0 || entry.is_symlink(ec)) continue;
+        const bool lockFile = name.rfind(prefix, 0) == 0 && name.size() > 5 && name.substr(name.size() - 5) == ".lock";
+        if (!lockFile || entry.is_symlink(ec)) continue;
         const int fd = ::open(entry.path().c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
         if (fd < 0) continue;
-        if (::flock(fd, LOCK_EX | LOCK_NB) != 0) pids += (pids.empty() ? "" : ", ") + pidIn(fd);
+        bool held = ::flock(fd, operation | LOCK_NB) != 0;
+        if (held) {
+            ::usleep(50000);
+            held = ::flock(fd, operation | LOCK_NB) != 0;
+        }
+        if (held) pids += (pids.empty() ? "" : ", ") + pidIn(fd);
         ::close(fd);
     }
     return pids;
 }
+
+// The pids of the shard runs holding their locks in `folder` now.
+std::string runningShards(const std::string& folder) { return lockHolders(folder, ".rtbench.shard-", LOCK_EX); }
 
 }  // namespace
 
@@ -243,25 +254,18 @@ void checkWritableFile(const std::string& path) {
         throw Error(path + ": not writable: " + std::strerror(errno));
 }
 
-std::string folderWriters(const std::string& folder) {
-    std::string pids;
+void refuseFolderBeingWritten(const std::string& folder, const std::string& command) {
+    if (const std::string pids = lockHolders(folder, ".rtbench.", LOCK_SH); !pids.empty())
+        throw Error(folder + ": being written by rtbench (pid " + pids + "): " + command + " it when that run ends");
+}
+
+ScratchFolder::ScratchFolder(const std::string& stem) : path_((fs::temp_directory_path() / (stem + "-XXXXXX")).string()) {
+    if (!::mkdtemp(path_.data())) throw Error(path_ + ": cannot create the scratch folder: " + std::strerror(errno));
+}
+
+ScratchFolder::~ScratchFolder() {
     std::error_code ec;
-    for (const auto& entry : fs::directory_iterator(folder, ec)) {
-        const std::string name = entry.path().filename().string();
-        const bool lockFile = name.rfind(".rtbench.", 0) == 0 && name.size() > 5 && name.substr(name.size() - 5) == ".lock";
-        if (!lockFile || entry.is_symlink(ec)) continue;
-        const int fd = ::open(entry.path().c_str(), O_RDONLY | O_NOFOLLOW | O_CLOEXEC);
-        if (fd < 0) continue;
-        // A holder that is ending holds its lock exclusively for a moment: ask twice.
-        bool held = ::flock(fd, LOCK_SH | LOCK_NB) != 0;
-        if (held) {
-            ::usleep(50000);
-            held = ::flock(fd, LOCK_SH | LOCK_NB) != 0;
-        }
-        if (held) pids += (pids.empty() ? "" : ", ") + pidIn(fd);
-        ::close(fd);
-    }
-    return pids;
+    fs::remove_all(path_, ec);
 }
 
 std::string supersededPrefix(const std::string& folder) {

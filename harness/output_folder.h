@@ -65,10 +65,23 @@ void refuseSymlinks(const std::string& folder);
 // replaced (checked before a run is computed, so a result is never computed and then lost).
 void checkWritableFile(const std::string& path);
 
-// The pids of the rtbench processes writing `folder` now (holding a lock of it exclusively: a
-// whole-plan run, a shard, a merge or a retime), "" when none. Reads only: check and compare ask
-// it so as never to judge a folder half-written.
-std::string folderWriters(const std::string& folder);
+// Throws rtbench::Error naming their pids when rtbench processes are writing `folder` now (holding
+// a lock of it exclusively: a whole-plan run, a shard, a merge or a retime). Reads only: check and
+// compare (`command`) ask it so as never to judge a folder half-written.
+void refuseFolderBeingWritten(const std::string& folder, const std::string& command);
+
+// A private scratch folder in the temporary directory (mkdtemp: a name no one else can have
+// planted), removed with all it holds when it goes: where check and retime re-run a folder's runs.
+class ScratchFolder {
+public:
+    explicit ScratchFolder(const std::string& stem);  // "<tmp>/<stem>-XXXXXX"
+    ~ScratchFolder();
+    ScratchFolder(const ScratchFolder&) = delete;
+    ScratchFolder& operator=(const ScratchFolder&) = delete;
+    const std::string& path() const { return path_; }
+private:
+    std::string path_;
+};
 
 // "<folder>/superseded-<UTC time>[-k]-": the prefix of what one invocation sets aside (rows,
 // samples, the context they were run under, their per-run files), names merge and resume never

@@ -17,21 +17,18 @@ namespace fs = std::filesystem;
 std::vector<const RunConfig*> filterRuns(const ExperimentPlan& plan, const std::vector<std::string>& filters) {
     // "section.key=value" is a typed condition, as a skip rule's (structure.type=BVH is refused,
     // camera.fov_deg=30 matches 30.0); anything else is text of the label.
-    std::vector<std::vector<std::pair<std::string, ConfigValue>>> conditions;
+    std::vector<KeyConditions> conditions;
     for (const std::string& f : filters) {
         if (f.find_first_not_of(" \t") == std::string::npos) throw Error("--filter '" + f + "': an empty filter selects nothing");
         const std::size_t eq = f.find('=');
         const bool keyed = eq != std::string::npos && f.substr(0, eq).find('.') != std::string::npos;
-        conditions.push_back(keyed ? parseKeyConditions("--filter " + f, f) : std::vector<std::pair<std::string, ConfigValue>>{});
+        conditions.push_back(keyed ? parseKeyConditions("--filter " + f, f) : KeyConditions{});
     }
     std::vector<const RunConfig*> kept;
     for (const RunConfig& run : plan.runs) {
         bool all = true;
         for (std::size_t i = 0; i < filters.size() && all; ++i)
-            all = conditions[i].empty() ? run.label().find(filters[i]) != std::string::npos
-                                        : std::all_of(conditions[i].begin(), conditions[i].end(), [&](const auto& c) {
-                                              return run.has(c.first) && run.values.at(c.first) == c.second;
-                                          });
+            all = conditions[i].empty() ? run.label().find(filters[i]) != std::string::npos : runMatches(run, conditions[i]);
         if (all) kept.push_back(&run);
     }
     return kept;

@@ -1,11 +1,7 @@
 #include "retime.h"
 
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -82,19 +78,11 @@ std::pair<std::vector<Row>, std::vector<Row>> reRun(const ExperimentPlan& plan, 
     runner.quiet = true;
     runner.force = true;
     runner.onlyRuns = runs;
-    std::string pattern = (fs::temp_directory_path() / "rtbench-retime-XXXXXX").string();
-    if (!::mkdtemp(pattern.data())) throw Error(pattern + ": cannot create the scratch folder: " + std::strerror(errno));
-    const fs::path scratch = pattern;
-    runner.outputOverride = scratch.string();
-    try {
-        ExperimentResult now = runExperiment(plan, runner);
-        std::vector<Row> samples = readSamplesCsv((fs::path(now.folder) / samplesFileName(runner)).string());
-        fs::remove_all(scratch);
-        return {std::move(now.rows), std::move(samples)};
-    } catch (...) {
-        fs::remove_all(scratch);
-        throw;
-    }
+    const ScratchFolder scratch("rtbench-retime");
+    runner.outputOverride = scratch.path();
+    ExperimentResult now = runExperiment(plan, runner);
+    std::vector<Row> samples = readSamplesCsv((fs::path(now.folder) / samplesFileName(runner)).string());
+    return {std::move(now.rows), std::move(samples)};
 }
 
 // What a try of a recorded run did: the deterministic differences (a failure), else whether it
@@ -216,18 +204,21 @@ RetimeResult retimeFlagged(const std::string& folderPath, const RetimeOptions& o
     requireSameIdentity(flagged, csvPath);
 
     std::map<std::string, Best> best;
-    for (const Row* row : flagged) best[runKey(*row)].conditioning = conditioning(*row);
+    std::map<std::string, const Row*> recordOf;  // flagged runs by run|config_hash
+    for (const Row* row : flagged) {
+        best[runKey(*row)].conditioning = conditioning(*row);
+        recordOf[runKey(*row)] = row;
+    }
     for (int attempt = 1; attempt <= options.tries; ++attempt) {
         std::set<std::string> still;  // runs without a clean try yet
-        for (const Row* row : flagged)
-            if (best[runKey(*row)].conditioning.warned) still.insert(cellText(*row, "run"));
+        for (const auto& [key, row] : recordOf)
+            if (best[key].conditioning.warned) still.insert(cellText(*row, "run"));
         if (still.empty()) break;
         out << "try " << attempt << " of " << options.tries << ": re-timing " << still.size() << " run(s)\n";
         const auto [fresh, freshSamples] = reRun(plan, still);
         for (const Row& row : fresh)
-            for (const Row* recorded : flagged)
-                if (runKey(*recorded) == runKey(row))
-                    judgeTry(*recorded, row, freshSamples, attempt, best[runKey(row)], result.differences, out);
+            if (const auto it = recordOf.find(runKey(row)); it != recordOf.end())
+                judgeTry(*it->second, row, freshSamples, attempt, best[it->first], result.differences, out);
         if (!result.differences.empty()) return result;  // a count moved: nothing is written
     }
     for (const auto& [key, b] : best) {

@@ -41,17 +41,6 @@ std::string parentOf(const std::string& path) {
     return parent.empty() ? "." : parent.string();
 }
 
-// The process's umask (files are created as 0666 & ~umask, as open(2) would; mkostemp's 0600
-// is widened to that).
-mode_t processUmask() {
-    static const mode_t mask = [] {
-        const mode_t m = ::umask(022);
-        ::umask(m);
-        return m;
-    }();
-    return mask;
-}
-
 // The results folders held open (holdFolder), by their lexically normal path.
 std::mutex heldMutex;
 std::map<std::string, std::vector<int>> heldFolders;
@@ -95,7 +84,7 @@ void refuseSymlinkAt(const Folder& dir, const std::string& path) {
 }
 
 // A new file of a unique name in `dir` (O_CREAT | O_EXCL | O_NOFOLLOW: never a planted file or
-// link): its descriptor, its name in `name`.
+// link), mode 0666 & ~umask as open(2) makes it: its descriptor, its name in `name`.
 int createTemporaryAt(const Folder& dir, const std::string& stem, std::string& name) {
     static std::atomic<unsigned> counter{0};
     for (int attempt = 0; attempt < 100; ++attempt) {
@@ -146,7 +135,7 @@ void writeFileAtomically(const std::string& path, const std::string& text) {
     std::string tmp;
     const int fd = createTemporaryAt(dir, nameOf(path), tmp);
     if (fd < 0) throw Error(path + ": cannot create a temporary file beside it: " + std::strerror(errno));
-    const bool written = ::fchmod(fd, 0666 & ~processUmask()) == 0 && writeAll(fd, text) && ::fsync(fd) == 0;
+    const bool written = writeAll(fd, text) && ::fsync(fd) == 0;
     const int why = errno;
     if (::close(fd) != 0 || !written) {
         ::unlinkat(dir.fd, tmp.c_str(), 0);  // never leave a partial file behind

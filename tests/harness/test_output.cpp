@@ -3,6 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <csignal>
 #include <filesystem>
@@ -11,6 +13,7 @@
 #include <sstream>
 
 #include "harness/columns.h"
+#include "harness/compare.h"
 #include "harness/interrupt_note.h"
 #include "harness/config.h"
 #include "harness/output_folder.h"
@@ -115,6 +118,31 @@ TEST(OutputFolder, WritesGoIntoTheHeldFolderAfterItIsSwappedForALink) {
     EXPECT_EQ(readCsv(moved + "/runs.csv").size(), 3u);
     EXPECT_TRUE(fs::exists(moved + "/context.json"));
     EXPECT_THAT(errorOf([&] { held.check(); }), HasSubstr("symlink"));
+}
+
+// check and compare never judge a folder a run is writing: its lock held exclusively names the pid.
+TEST(OutputFolder, CheckAndCompareRefuseAFolderBeingWritten) {
+    TempDir dir;
+    const std::string folder = dir.file("out");
+    fs::create_directories(folder);
+    {
+        const OutputFolderLock lock(folder);
+        EXPECT_THAT(errorOf([&] { refuseFolderBeingWritten(folder, "check"); }),
+                    HasSubstr("being written by rtbench (pid " + std::to_string(::getpid()) + "): check it when that run ends"));
+        EXPECT_THAT(errorOf([&] { compareFolders(folder, folder, {}); }), HasSubstr("compare it when that run ends"));
+    }
+    EXPECT_EQ(errorOf([&] { refuseFolderBeingWritten(folder, "check"); }), "(no error)");
+}
+
+// A written file has the mode open(2) gives a new file: 0666 less the umask.
+TEST(Writers, AWrittenFileHasTheModeOfTheUmask) {
+    TempDir dir;
+    const mode_t saved = ::umask(027);
+    writeFileAtomically(dir.file("runs.csv"), "run\n");
+    ::umask(saved);
+    struct stat st {};
+    ASSERT_EQ(::stat(dir.file("runs.csv").c_str(), &st), 0);
+    EXPECT_EQ(st.st_mode & 0777, 0640u);
 }
 
 // merge --missing-as-failed writes its reason into every missing run's error: a control

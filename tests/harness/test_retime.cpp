@@ -89,8 +89,9 @@ TEST(Retime, AFlaggedRunIsRetimedItsCleanTryKeptWithTheReasonAndTheRecordSetAsid
         const std::string name = entry.path().filename().string();
         if (name.rfind("superseded-", 0) != 0) continue;
         ++aside;
-        if (name.size() > 8 && name.substr(name.size() - 8) == "runs.csv")
+        if (name.size() > 8 && name.substr(name.size() - 8) == "runs.csv") {
             EXPECT_THAT(fileText(entry.path().string()), HasSubstr("(forged)"));
+        }
     }
     EXPECT_EQ(aside, 2);
     EXPECT_THAT(fileText((fs::path(result.folder) / "context.json").string()), HasSubstr("\"runs_replaced\""));
