@@ -140,7 +140,8 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
             since5(m + "_ms_ci_high", K::Timing, "ms", who + ", 95% interval of the median (as _ci_low): high end");
         };
         add("kernel_ms_median", K::Timing, "ms",
-            "GPU time of the kernel(s), median of the repetitions");
+            "GPU time of the kernel(s), median of the repetitions (multipass with strategy.control = host, "
+            "since results schema 25: host wall time of its live pass loop, the oracle's read-back after every pass)");
         add("kernel_ms_min", K::Timing, "ms", "GPU time, fastest repetition");
         add("kernel_ms_max", K::Timing, "ms", "GPU time, slowest repetition");
         spread("kernel", "GPU time");

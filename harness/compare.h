@@ -38,7 +38,7 @@ struct ComparedRun {
     std::vector<std::string> countDifferences;  // "column: a -> b"
     std::string accuracyA, accuracyB;          // exact_wrong_ppm
     bool failed = false;                       // failed on a side: no times compared
-    bool flagged = false;                      // a timing warning on a side
+    bool flagged = false;                      // a timing warning on a side, or kernel_ms measured two ways
 };
 
 struct CompareResult {

@@ -87,7 +87,10 @@ struct ColumnSpec {
 //        bootstrap at any n); *_ms_std and _cv empty for one repetition (before: 0), and one
 //        repetition is a timing_warning.
 //  24  + retimed (rtbench retime re-times the runs with a timing warning).
-constexpr int kSchemaVersion = 24;
+//  25  kernel_ms_* of multipass with strategy.control = host: the live pass loop's host wall time,
+//        the oracle's read-back after every pass (before: the replayed passes' GPU time, now
+//        kernel_ms_replay).
+constexpr int kSchemaVersion = 25;
 
 // The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".
 std::string paramColumn(const std::string& key);

@@ -13,7 +13,7 @@ import sys
 
 import pandas as pd
 
-from rtbench_results import (command_text, division_names, embree_speed_caption, failed_rows, fmt, open_results,
+from rtbench_results import (command_text, division_names, embree_speed_caption, failed_rows, fmt, interval_of, interval_text, open_results,
                              structure_names, write_tables, wrong_rays)
 
 
@@ -50,7 +50,7 @@ def main() -> int:
         growth = r.ns_per_ray / small if r.size == "2048x2048" else float("nan")
         differing = getattr(r, "plain_cpu_differing", float("nan"))
         lines.append(f"| {r.structure} | {int(r.rays):,} | {r.kernel} | {fmt(r.speed_ratio_vs_embree1)} | "
-                     f"[{fmt(r.speed_ratio_ci_low)}, {fmt(r.speed_ratio_ci_high)}] | {fmt(over_plain)} | "
+                     f"{interval_text(interval_of(r, 'speed_ratio'))} | {fmt(over_plain)} | "
                      f"{fmt(over_double)} | {fmt(r.ns_per_ray, 1)} | "
                      f"{fmt(growth, 2)} | {'' if pd.isna(differing) else int(differing)} | {int(r.wrong)} |")
     return write_tables(folder, lines + failed_rows(failed, "structure", lambda r: r.structure_type))

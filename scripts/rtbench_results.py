@@ -257,10 +257,24 @@ def open_results(doc: str):
     return folder, runs.copy(), failed, context, device
 
 
+def live_headline(runs: pd.DataFrame) -> bool:
+    """Whether host-controlled multipass's kernel_ms is its live loop (results schema 25 on, where
+    kernel_ms_replay holds the replayed passes' GPU time) rather than the replay."""
+    return "kernel_ms_replay" in runs and runs.kernel_ms_replay.notna().any()
+
+
+def passes_gpu_ms(runs: pd.DataFrame) -> pd.Series:
+    """Multipass: the GPU time of a frame's passes, without the host's read-backs (kernel_ms_replay where
+    the headline is the live loop, else kernel_ms_median)."""
+    if "kernel_ms_replay" not in runs:
+        return runs.kernel_ms_median
+    return runs.kernel_ms_replay.where(runs.kernel_ms_replay.notna(), runs.kernel_ms_median)
+
+
 def masking_share(runs: pd.DataFrame) -> pd.Series:
     """Multipass: the state test alone (kernel_ms_stencil_pass) times the traverse and intersect passes,
-    over the frame's time: an upper bound on the share of a frame the ray-state test costs."""
-    return runs.kernel_ms_stencil_pass * (runs.passes_traverse + runs.passes_intersect) / runs.kernel_ms_median
+    over the frame's passes' GPU time: an upper bound on the share of a frame the ray-state test costs."""
+    return runs.kernel_ms_stencil_pass * (runs.passes_traverse + runs.passes_intersect) / passes_gpu_ms(runs)
 
 
 def command_text(context: dict) -> str:

@@ -209,6 +209,34 @@ TEST_F(Compare, MachineDriftIsSameRelativeToEmbree) {
     EXPECT_THROW(compare({.relativeTo = "embree16x"}), Error);
 }
 
+// Host-controlled multipass's kernel_ms is its live loop from results schema 25 on, its replayed
+// passes before: across that line the two are different measures, UNSURE with the reason, never
+// SLOWER (the live loop is the longer); multipass with the oracle on the device is compared.
+TEST_F(Compare, HostMultipassAcrossResultsSchema25IsUnsure) {
+    writeSamples(0.2);
+    for (const std::string& folder : {a_, b_}) {
+        std::vector<Row> rows = readCsv(folder + "/runs.csv");
+        for (std::size_t i = 0; i < rows.size(); ++i) {
+            rows[i]["strategy_type"] = "multipass";
+            rows[i]["strategy_control"] = i == 0 ? "host" : "device";
+        }
+        std::vector<std::string> columns = runColumns();
+        if (folder == a_) {  // A as results schema 24 wrote it: no kernel_ms_replay
+            std::erase(columns, std::string("kernel_ms_replay"));
+            for (Row& row : rows) row.erase("kernel_ms_replay");
+        }
+        writeCsv(folder + "/runs.csv", columns, rows);
+    }
+    CompareResult r = compare();
+    EXPECT_EQ(r.runs[0].verdict, Verdict::Unsure);
+    EXPECT_THAT(r.runs[0].why, HasSubstr("A: schema 24, B: 25"));
+    EXPECT_EQ(r.slower, 0);
+    EXPECT_EQ(r.runs[1].verdict, Verdict::Same) << "the oracle on the device: kernel_ms measured alike";
+    writeCsv(a_ + "/runs.csv", runColumns(), readCsv(a_ + "/runs.csv"));  // both schema 25
+    r = compare();
+    EXPECT_EQ(r.runs[0].verdict, Verdict::Slower);
+}
+
 // No run matches when the folders differ in a key: exit 2, the key named; --ignore matches across it.
 TEST_F(Compare, NoMatchIsExitTwoNamingTheKeyAndIgnoreMatches) {
     writeSamples(0.0);

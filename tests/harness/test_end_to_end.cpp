@@ -283,7 +283,9 @@ TEST_F(EndToEnd, SamplesHoldEveryRepetitionOfEveryRoundAndTheRowSummarizesThem) 
         std::set<std::string> methods;
         for (const auto& [m, ms] : byMethod) methods.insert(m);
         std::set<std::string> expected = {"kernel", "embree1", "embree16"};
-        if (multipass) expected.insert({"kernel_setup", "kernel_traverse", "kernel_intersect", "kernel_write", "kernel_stencil_pass", "multipass_live"});
+        if (multipass)
+            expected.insert({"kernel_setup", "kernel_traverse", "kernel_intersect", "kernel_write", "kernel_stencil_pass",
+                             "kernel_replay", "multipass_live"});
         EXPECT_EQ(methods, expected) << row.at("run");
         for (const auto& [m, ms] : byMethod) {
             EXPECT_EQ(ms.size(), m == "multipass_live" ? 2u : 8u) << m;  // the live loop once per round
@@ -388,7 +390,7 @@ TEST_F(EndToEnd, SamplesWithoutTheirRowAreSetAsideOnResume) {
                 EXPECT_GE(s.at("run"), "003");
                 ++asideSamples;
             }
-    EXPECT_EQ(asideSamples, 5u * 3u + 3u * 6u);  // 5 runs x 3 methods, 3 multipass runs' 5 parts and live loop
+    EXPECT_EQ(asideSamples, 5u * 3u + 3u * 7u);  // 5 runs x 3 methods, 3 multipass runs' 5 parts, replay and live loop
     std::set<std::string> runs;
     for (const Row& s : readCsv(full.folder + "/samples.csv")) runs.insert(s.at("run"));
     EXPECT_EQ(runs.size(), 8u);

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <map>
 #include <random>
 
 #include "methods/accounting.h"
@@ -197,6 +198,36 @@ TEST_F(MultipassKernels, CountsAreDeterministic) {
     const MultipassRun b = run(sceneGrid, rays, oracle(0.2, 2, 2));
     EXPECT_TRUE(a.counts == b.counts);
     EXPECT_EQ(recordMismatches(a.hits, b.hits), 0u);
+}
+
+// With the oracle on the host a repetition's headline time is the live loop, read-backs included
+// (Christen 2005 §4.3.4), and the replayed passes' GPU time is the part "replay": the sum of the
+// pass kinds' parts, the state-test pass left out. With the oracle on the device the headline is
+// the device's loop itself, the oracle's part in it, and there is no replay.
+TEST_F(MultipassKernels, HostControlTimesTheLiveLoopAndKeepsTheReplayAsAPart) {
+    for (bool device : {false, true}) {
+        SCOPED_TRACE(device ? "device control" : "host control");
+        MultipassOptions o = oracle(0.2);
+        o.deviceControl = device;
+        const MultipassRun r = run(handGrid(), handRays(), o);
+        const TimedBatch batch = r.timer->time(1, 3);
+        ASSERT_EQ(batch.ms.size(), 3u);
+        std::map<std::string, std::vector<double>> parts(batch.parts.begin(), batch.parts.end());
+        EXPECT_EQ(parts.count("replay"), device ? 0u : 1u);
+        EXPECT_EQ(parts.count("oracle"), device ? 1u : 0u);
+        EXPECT_EQ(parts.count("stencil_pass"), device ? 0u : 1u);
+        for (std::size_t i = 0; i < 3; ++i) {
+            double passes = 0.0;
+            for (const char* kind : {"setup", "traverse", "intersect", "write", "oracle"})
+                if (parts.count(kind)) passes += parts[kind].at(i);
+            EXPECT_GT(batch.ms[i], 0.0);
+            if (device)
+                EXPECT_DOUBLE_EQ(batch.ms[i], passes);
+            else
+                EXPECT_DOUBLE_EQ(parts["replay"].at(i), passes);
+        }
+        r.timer->checkHits();  // the live loops' hits are the instrumented run's
+    }
 }
 
 TEST_F(MultipassKernels, PassCapTurnsARunawayIntoAClearError) {
