@@ -18,6 +18,7 @@
 #include "harness/config.h"
 #include "harness/images.h"
 #include "harness/retime.h"
+#include "harness/unpack.h"
 #include "harness/plan_view.h"
 #include "harness/runner.h"
 #include "harness/shard_merge.h"
@@ -161,6 +162,11 @@ static int runCommand(int argc, char** argv) {
     retime->add_option("results_dir", retimeFolder, "results folder recorded by this binary on this machine")->required();
     retime->add_option("--tries", retimeOptions.tries, "re-runs of each flagged run at most (default 3; a run stops once it times clean)");
 
+    std::string unpackArchive, unpackDir;
+    CLI::App* unpack = app.add_subcommand("unpack", "Unpack a GPU campaign's archive (scripts/gpu_campaign.sh run) into a folder, trusting nothing in it: CONFIG/FILE regular files and plain folders only, names and modes checked, sizes capped; exit 1 naming the first refused entry, nothing unpacked");
+    unpack->add_option("archive", unpackArchive, "the campaign's tar archive (.tar, .tar.gz, .tar.xz)")->required();
+    unpack->add_option("dir", unpackDir, "the folder to unpack into (made if absent; never a link)")->required();
+
     std::string compareA, compareB;
     rtbench::CompareOptions compareOptions;
     CLI::App* compare = app.add_subcommand("compare", "Compare two results folders run by run: a verdict SAME, FASTER, SLOWER or UNSURE from the kernel's median change, its interval and a Holm-corrected Mann-Whitney p-value; counts exactly (exit 1 on SLOWER or a count difference, 2 when no run matched)");
@@ -280,6 +286,11 @@ static int runCommand(int argc, char** argv) {
         if (*check) {
             const rtbench::CheckResult result = rtbench::checkResults(checkFolder, checkOptions, std::cout);
             return result.failed() ? 1 : 0;
+        }
+        if (*unpack) {
+            const std::vector<std::string> files = rtbench::unpackCampaign(unpackArchive, unpackDir);
+            std::cout << unpackDir << ": " << files.size() << " file(s) unpacked\n";
+            return 0;
         }
         if (*retime) {
             const rtbench::RetimeResult result = rtbench::retimeFlagged(retimeFolder, retimeOptions, std::cout);

@@ -15,7 +15,8 @@
 #                                           leave $OUT/campaign.tar.xz (runs.csv, samples.csv,
 #                                           context.json per config) and $OUT/campaign.log
 #   scripts/gpu_campaign.sh unpack TARBALL DIR
-#                                           here: the results folders into DIR (e.g. results/nvidia-h200),
+#                                           here: the results folders into DIR (e.g. results/nvidia-h200)
+#                                           by `rtbench unpack` (BIN, default build/rtbench),
 #                                           then `scripts/records.sh --charts DIR` draws their charts
 #   scripts/gpu_campaign.sh dry-run         here, on lavapipe (CI): bundle and run with this machine's
 #                                           build and libraries, MAX_RUNS runs of each config
@@ -172,8 +173,10 @@ case "${1:-}" in
     tarball=$(cd "$called_from" && realpath -m "${2:?usage: gpu_campaign.sh unpack TARBALL DIR}")
     dir=$(cd "$called_from" && realpath -m "${3:?usage: gpu_campaign.sh unpack TARBALL DIR}")
     # The tarball comes back from a borrowed machine: plain folders and files only, capped, written
-    # with our own modes (scripts/campaign_unpack.py says what it refuses).
-    /usr/bin/python3 scripts/campaign_unpack.py "$tarball" "$dir"
+    # with our own modes (`rtbench unpack`, harness/unpack.h, says what it refuses).
+    bin=build/rtbench
+    [ -z "${BIN:-}" ] || bin=$(cd "$called_from" && realpath -m "$BIN")
+    "$bin" unpack "$tarball" "$dir"
     ls "$dir"
     ;;
   dry-run)

@@ -11,7 +11,7 @@ rm -rf "$work" && mkdir -p "$work/out"
 configs=(${CONFIGS:-bunny structures purcell2002 stability accuracy raytypes wavefront})
 OUT="$work/out" BIN="$bin" CONFIGS="${configs[*]}" bash scripts/gpu_campaign.sh dry-run
 cat "$work/out/campaign.log"
-bash scripts/gpu_campaign.sh unpack "$work/out/campaign.tar.xz" "$work/results" > /dev/null
+BIN="$bin" bash scripts/gpu_campaign.sh unpack "$work/out/campaign.tar.xz" "$work/results" > /dev/null
 for config in "${configs[@]}"; do
   folder="$work/results/$config"
   planned=$("$bin" plan "configs/$config.toml" -o "$work/none" | sed -n 's/^\([0-9][0-9]*\) run(s).*/\1/p')

@@ -335,6 +335,26 @@ TEST_F(DiffuseRuns, PathAndAmbientOcclusionRaysAgreeWithEmbreeAndTheExactReferen
     }
 }
 
+// ao.radius is in the scene's own units: under scene.scale = 4 (the camera moves with the scene)
+// the rays are 4 x 0.5 = 2 long, and, every coordinate scaled by a power of two, the same rays
+// are occluded as at scale 1. A radius left unscaled (0.5 in the 4x scene) would occlude fewer.
+TEST_F(DiffuseRuns, AoRadiusScalesWithTheScene) {
+    const ExperimentResult result =
+        run("[scene]\nsource = \"procedural:christen_b\"\nscale = [1.0, 4.0]\n[camera]\nwidth = 24\nheight = 16\n"
+            "position = [0, 3, 9.5]\nlook_at = [0, 2.5, 0]\n[rays]\ntype = \"ao\"\n[ao]\nsamples = 2\nradius = 0.5\n");
+    ASSERT_EQ(result.rows.size(), 2u);
+    const Row& one = result.rows[0].at("scene_scale") == "1" ? result.rows[0] : result.rows[1];
+    const Row& four = &one == &result.rows[0] ? result.rows[1] : result.rows[0];
+    ASSERT_EQ(one.at("status"), "ok") << one.at("error");
+    ASSERT_EQ(four.at("status"), "ok") << four.at("error");
+    EXPECT_EQ(one.at("ao_radius_traced"), "0.5");
+    EXPECT_EQ(four.at("ao_radius_traced"), "2");
+    EXPECT_EQ(four.at("rays"), one.at("rays"));
+    EXPECT_GT(std::stoul(one.at("hits")), 0u);
+    EXPECT_LT(std::stoul(one.at("hits")), std::stoul(one.at("rays")));
+    EXPECT_EQ(four.at("hits"), one.at("hits"));
+}
+
 TEST_F(DiffuseRuns, ZeroSamplesANegativeRadiusOrABounceWithNoRaysIsAnErrorNamingTheKey) {
     const std::string tetrahedron = "[scene]\nsource = \"procedural:tetrahedron\"\n";
     EXPECT_THAT(errorOf([&] { run(tetrahedron + "[rays]\ntype = \"path\"\n[path]\nsamples = 0\n"); }), HasSubstr("path.samples"));

@@ -206,7 +206,9 @@ void expectSceneBsCameraRaysRightOnEveryWorkgroupGrid() {
         ASSERT_EQ(row.at("status"), "ok") << row.at("error");
         EXPECT_EQ(row.at("rays_traced"), "16384");
         EXPECT_EQ(row.at("cpu_reference_mismatches"), "0");
-        if (testDeviceName() == "llvmpipe") EXPECT_NE(row.at("persistent_max_fetches"), "0");
+        if (testDeviceName() == "llvmpipe") {
+            EXPECT_NE(row.at("persistent_max_fetches"), "0");
+        }
     }
 }
 

@@ -3,6 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "methods/accounting.h"
+#include "methods/triangle_store.h"
 #include "strategies/branching/branching_strategy.h"
 #include "strategies/branching/lane_counts.h"
 #include "structures/brute_force/brute_structure.h"
@@ -64,6 +66,27 @@ TEST_F(BruteKernels, BothStrategiesEqualTheCpuReferenceAndTheBvhsNearestHits) {
 
     BvhBuildOptions bvhOptions;
     EXPECT_EQ(differentNearestHits(cpu, bvhStructure(buildBvh(mesh, bvhOptions))->trace(rays)), 0u);
+}
+
+// Packed vertices (scene.vertex_bits): each triangle a brute-force ray tests reads its five
+// packed words, 20 bytes, where float vertices read three vec4s, 48: bytes_vertices is every
+// test times that (1,000 rays x 2,004 triangles), and the packed triangles trace as the floats.
+TEST_F(BruteKernels, PackedVerticesCostTwentyBytesATestAndTraceAsTheFloats) {
+    const TriangleMesh packed = snapToLattice(christenSceneB(), 10);
+    TriangleMesh floats = packed;
+    floats.lattice = VertexLattice{};
+    DeviceInfo device;
+    device.maxStorageBufferRange = 1u << 27;
+    const auto packedBrute = bruteStructureType().build(packed, std::vector<gpu::Ray>(1000), bruteRun(1e9), device);
+    const auto floatBrute = bruteStructureType().build(floats, std::vector<gpu::Ray>(1000), bruteRun(1e9), device);
+    ASSERT_EQ(packedBrute->vertexLattice().bits, 10u);
+    EXPECT_EQ(packedBrute->costs().bytesPerTriangle, 20u);
+    EXPECT_EQ(floatBrute->costs().bytesPerTriangle, 48u);
+    const std::vector<gpu::Ray> rays = randomRays(packed.bounds(), 1000, 23);
+    const BranchingRun run = runBranching(*vk_, *packedBrute, rays, {64, 0, 1});
+    expectIdentical(run.hits, floatBrute->trace(rays));
+    const ArchitectureMetrics m = branchingMetrics(run.hits, run.activeLanes, run.laneSlots, packedBrute->costs());
+    EXPECT_EQ(m.bytes.vertices, 1000u * 2004u * 20u);
 }
 
 }  // namespace

@@ -154,6 +154,34 @@ TEST_F(GridHandKernels, VoxelsTestsAndStepsOfEachRayByHandInBothTests) {
     }
 }
 
+// A hit on the exit face of the voxel being walked ends the walk there (grid_traversal.glsl's and
+// grid_multipass.glsl's hit.t <= the voxel's exit). Grid [0,2] x [0,1] x [0,1] of 2x1x1 unit voxels
+// (bounds set by 0, a corner at z = 0 in voxel 0, and 1, a corner at z = 1 in voxel 1); triangle 2
+// lies in the face x = 1 and so in both voxels: lists {0, 2} and {1, 2}. The ray
+// o = (-1, 0.375, 0.375), d = (1, 0, 0) enters voxel 0 at t = 1, misses 0 (parallel), hits 2 at
+// t = 2 (Moller-Trumbore: det -0.25, u = v = 0.25, all exact), where it leaves voxel 0: voxels 1,
+// tests 2, steps 0. A walk that went on would enter voxel 1 and test 1 and 2 again: voxels 2, tests 4.
+TEST_F(GridHandKernels, AHitOnTheVoxelsExitFaceEndsTheWalkInEveryStrategy) {
+    const TriangleMesh scene = meshOf({
+        {glm::vec3(0, 0, 0), glm::vec3(0.25f, 0, 0), glm::vec3(0, 0.25f, 0)},
+        {glm::vec3(2, 1, 1), glm::vec3(1.75f, 1, 1), glm::vec3(2, 0.75f, 1)},
+        {glm::vec3(1, 0.25f, 0.25f), glm::vec3(1, 0.75f, 0.25f), glm::vec3(1, 0.25f, 0.75f)},
+    });
+    const UniformGrid grid = gridOf(scene, {2, 1, 1});
+    ASSERT_EQ(grid.cellOffsets, (std::vector<std::uint32_t>{0, 2, 4}));
+    for (std::uint32_t test : {gpu::kTriangleTestMollerTrumbore, gpu::kTriangleTestWatertight}) {
+        SCOPED_TRACE(testName(test));
+        const std::unique_ptr<Structure> s = gridStructure(grid);
+        s->setTriangleTest(test);
+        const std::vector<gpu::Ray> rays = {ray({-1, 0.375f, 0.375f}, {1, 0, 0})};
+        const Expect onTheFace{2, 2.0f, 1, 2, 0};
+        expectAnswers(answersOf(*vk_, *s, rays), 0, onTheFace);
+        MultipassOptions o;
+        o.deviceControl = true;
+        expectRecord(runMultipass(*vk_, *s, rays, o, {64, 0, 1}).hits[0], onTheFace, "multipass, the oracle on the device");
+    }
+}
+
 // Multipass on ray A alone, K = M = 1, oracle 0: S (enters (0,0): waits) I (triangle 0; the list
 // ends: traversing) T (-> (1,0): waits) I (2) T (-> (1,1): waits) I (1) I (4: a hit at 2.5 within
 // the voxel: done) W. Offsets read: 2 per voxel entered (3) + 1 per intersect pass served (4) = 10;
