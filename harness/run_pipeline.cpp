@@ -1,0 +1,310 @@
+#include "run_pipeline.h"
+
+#include <filesystem>
+
+#include "core/error.h"
+#include "device/gpu_buffers.h"
+#include "device/vulkan_context.h"
+#include "harness/embree_reference.h"
+#include "harness/exact_reference.h"
+#include "harness/images.h"
+#include "harness/run_metrics.h"
+#include "harness/path_check.h"
+#include "harness/run_verdict.h"
+#include "methods/registry.h"
+#include "methods/tile_order.h"
+#include "plan/warnings.h"
+#include "scene/camera.h"
+#include "workloads/registry.h"
+
+namespace rtbench {
+namespace fs = std::filesystem;
+
+namespace {
+
+// The methods a run's rounds time: the kernel (its KernelTimer) and Embree rtcIntersect1 and
+// rtcIntersect16 (any hit: rtcOccluded1 and 16) on the same rays (every generation of the path, for
+// a strategy that traces it whole); the single rays' hits of the batch go to `embreeHits`, the
+// rays each repetition traced to `embreeRays`.
+std::vector<TimedMethod> timedMethods(KernelTimer& kernel, EmbreeReference& embree, const RayBatch& batch,
+                                      std::vector<gpu::HitRecord>& embreeHits, std::vector<gpu::HitRecord>& scratch,
+                                      std::uint64_t& embreeRays) {
+    std::vector<TimedMethod> methods;
+    methods.push_back({"kernel", [&kernel](int warmups, int repetitions) { return kernel.time(warmups, repetitions); }});
+    for (EmbreeMode mode : {EmbreeMode::Intersect1, EmbreeMode::Intersect16})
+        methods.push_back({mode == EmbreeMode::Intersect1 ? "embree1" : "embree16",
+                           [&embree, &batch, &embreeHits, &scratch, &embreeRays, mode](int warmups, int repetitions) {
+                               // What the kernel traced: the batch, or (RayBatch::path) every generation of its path,
+                               // those before the batch as closest-hit queries.
+                               auto trace = [&](std::vector<gpu::HitRecord>& hits) {
+                                   double ms = 0.0;
+                                   embreeRays = batch.rays.size();
+                                   if (batch.path)
+                                       for (std::size_t g = 0; g + 1 < batch.path->generations.size(); ++g) {
+                                           ms += embree.trace(*batch.path->generations[g].rays, mode, scratch, gpu::kQueryClosest);
+                                           embreeRays += batch.path->generations[g].rays->size();
+                                       }
+                                   return ms + embree.trace(batch.rays, mode, hits, batch.query);
+                               };
+                               TimedBatch timed;
+                               for (int i = 0; i < warmups; ++i) timed.warmupMs += trace(scratch);
+                               for (int i = 0; i < repetitions; ++i)
+                                   timed.ms.push_back(trace(mode == EmbreeMode::Intersect1 ? embreeHits : scratch));
+                               return timed;
+                           }});
+    return methods;
+}
+
+// A record naming a triangle the scene lacks (a kernel gone wrong) is no hit to judge, shade or
+// shoot rays from: the run fails here, before anything reads the scene at that index.
+void refuseForeignTriangles(const std::vector<gpu::HitRecord>& hits, std::size_t triangles) {
+    for (std::size_t i = 0; i < hits.size(); ++i)
+        if (hits[i].primitive != gpu::kNoHit && hits[i].primitive >= triangles)
+            throw Error("the kernel's record of ray " + std::to_string(i) + " names triangle " +
+                        std::to_string(hits[i].primitive) + ", but the scene has " + std::to_string(triangles));
+}
+
+// Scene and camera rays: the run's scene (simplified, snapped as the run asks) and its camera's
+// rays; returns the camera. Refuses before allocating: the per-ray buffers on the device, together
+// (a binding holds one batch: the strategies trace a longer stream in batches, and check the
+// batches' structure copies and the largest traversal state again), and the per-ray host data.
+PinholeCamera prepareSceneAndRays(RunInProgress& p, const ExperimentPlan& plan, const StrategyType& strategy, Caches& caches,
+                                  Row& row) {
+    const RunConfig& run = *p.run;
+    const VulkanContext& vk = *p.vk;
+    const RunScene& scene = p.scene.emplace(sceneFor(plan, run, caches, row));
+    const PinholeCamera camera = cameraFor(run, scene.full);  // the same rays at every simplification
+    for (int a = 0; a < 3; ++a) {
+        const char axis[2] = {char('x' + a), 0};
+        row[std::string("camera_eye_") + axis] = formatNumber(camera.position[a], 9);
+        row[std::string("camera_target_") + axis] = formatNumber(camera.lookAt[a], 9);
+    }
+    p.width = unsigned(run.getInt("camera.width"));
+    p.height = unsigned(run.getInt("camera.height"));
+    const std::uint64_t streamRays = std::uint64_t(p.width) * p.height;
+    std::vector<BufferSize> perRay = rayBufferSizes(streamRays);
+    if (strategy.ownBytesPerRay)
+        perRay.push_back({strategy.name + "'s own per-ray buffers", streamRays * strategy.ownBytesPerRay});
+    refuseOversizedTotal(vk.info(), perRay);
+    refuseOversizedRayStream(std::uint64_t(p.width) * p.height);
+    p.cameraRays = generatePrimaryRays(camera, p.width, p.height);
+    validateRays(p.cameraRays);
+    return camera;
+}
+
+// The structure, built for the camera rays (brute force refuses by their count, auto chooses by its
+// prediction for them), with the run's triangle arithmetic, and put on the device.
+void buildStructure(RunInProgress& p, const StructureType& kind, const TriangleMesh& mesh) {
+    const RunConfig& run = *p.run;
+    VulkanContext& vk = *p.vk;
+    p.structure = kind.build(mesh, p.cameraRays, run, vk.info());
+    Structure& structure = *p.structure;
+    structure.setArithmetic({run.getString("intersection.test") == "watertight" ? gpu::kTriangleTestWatertight
+                                                                                : gpu::kTriangleTestMollerTrumbore,
+                             run.getString("intersection.division") == "integer" ? gpu::kDivisionInteger
+                                                                                 : gpu::kDivisionDouble});
+    structure.buildOnDevice(vk);
+}
+
+// The batch of rays the run measures (rays.type), from the camera rays and, after the first hit,
+// from the structure's hits of them; its columns and the structure's.
+void makeWorkload(RunInProgress& p, const StrategyType& strategy, const RayType& rayKind, const PinholeCamera& camera,
+                  Row& row) {
+    const RunConfig& run = *p.run;
+    VulkanContext& vk = *p.vk;
+    const TriangleMesh& mesh = p.scene->traced;
+    Structure& structure = *p.structure;
+    const WorkloadInputs inputs{run, mesh, p.cameraRays, structure, camera.up,
+                                [&run](glm::vec3 point) { return sceneTransform(run, point); }};
+    p.workload = rayKind.make(inputs, row);
+    if (const std::string query = run.getString("rays.query"); query != "own")
+        p.workload.batch.query = query == "any" ? gpu::kQueryAny : gpu::kQueryClosest;
+    if (strategy.tracesPath)  // the whole path on the device: the generations before the batch and the passes
+        p.workload.batch.path = std::make_shared<const BatchPath>(batchPath(p.workload, p.cameraRays, mesh));
+    const RayBatch& batch = p.workload.batch;
+    const std::vector<gpu::Ray>& rays = batch.rays;
+    validateRays(rays);
+    p.shadingMismatch = checkShadingOnDevice(vk, unsigned(run.getInt("strategy.workgroup_size")), mesh, p.cameraRays,
+                                              p.workload, row);
+    row["rays"] = std::to_string(rays.size());
+    row["query"] = queryName(batch.query);
+    structure.writeColumns(row);
+    row["structure_bytes"] = std::to_string(structure.memoryBytes);
+    row["structure_bytes_per_triangle"] = formatNumber(double(structure.memoryBytes) / double(std::max<std::size_t>(mesh.triangles.size(), 1)));
+    row["structure_build_ms"] = formatNumber(structure.buildMs, 4);
+    const double predicted = structure.predictedWork(rays);
+    row["predicted_work_per_ray"] = predicted < 0 ? "" : formatNumber(predicted / double(rays.size()));
+}
+
+// The method: the strategy runs the structure's kernels once, instrumented, and checks them against
+// its CPU reference; their hits in the batch's order, the architecture's columns.
+void runMethod(RunInProgress& p, const StrategyType& strategy, Row& row) {
+    const RunConfig& run = *p.run;
+    VulkanContext& vk = *p.vk;
+    const TriangleMesh& mesh = p.scene->traced;
+    Structure& structure = *p.structure;
+    const RayBatch& batch = p.workload.batch;
+    const std::vector<gpu::Ray>& rays = batch.rays;
+    TimingOptions timing;
+    timing.workgroupSize = unsigned(run.getInt("strategy.workgroup_size"));
+    timing.warmups = timing.repetitions = 0;  // timed in rounds with Embree
+    // camera.tile (Purcell §5.3): the method traces the rays tile by tile; its records come back
+    // in the batch's order. Embree traces them row by row.
+    const unsigned tile = run.has("camera.tile") ? unsigned(run.getInt("camera.tile")) : 0u;  // camera rays only
+    if (tile && strategy.tracesPath)
+        throw Error("camera.tile: strategy.type = " + strategy.name + " traces the camera rays in the order they are made");
+    const std::vector<std::uint32_t> order = tileOrder(p.width, p.height, tile);
+    if (!order.empty()) p.tiled = inTileOrder(batch, order);
+    p.method = strategy.run(vk, structure, order.empty() ? batch : p.tiled, run, timing, row);
+    if (!order.empty()) p.method.hits = inBatchOrder(p.method.hits, order);
+    row["cpu_reference_mismatches"] = p.method.cpuCompared ? std::to_string(p.method.cpuMismatches) : "";
+    refuseForeignTriangles(p.method.hits, mesh.triangles.size());
+    row["cpu_counts_match"] = !p.method.countsCompared ? "" : p.method.countsMismatch.empty() ? "1" : "0";
+    writeArchitectureColumns(p.method.metrics, structure, rays.size(), row);
+}
+
+// The run's image from the batch's hits: the rays' own hits shaded on `shadedOn` (camera rays,
+// reflections, ...), or the camera hits changed by the batch's (shadow rays, ...); where the hits
+// differ from Embree's.
+struct RunImage {
+    const RunInProgress& p;
+    bool ownHits() const { return p.workload.fromCamera() || p.workload.image == BatchImage::Hits; }
+    HitImage operator()(const std::vector<gpu::HitRecord>& hits, const TriangleMesh& shadedOn) const {
+        const Workload& w = p.workload;
+        return ownHits() ? makeHitImage(p.width, p.height, w.batch.rays, shadedOn, hits, p.embreeHits, w.pixels)
+                         : makeBatchImage(p.width, p.height, p.cameraRays, w.cameraHits, p.scene->traced, w.pixels, hits,
+                                          p.embreeHits);
+    }
+};
+
+// Ground truth: the exact first hits of a sample of the rays on the full scene, for the kernel and
+// for Embree; the shaded pixels of those rays against the exact render.
+void judgeAgainstExact(const RunInProgress& p, const RunImage& imageOf, const HitImage& image, Caches& caches, Row& row) {
+    const RunConfig& run = *p.run;
+    const RunScene& scene = *p.scene;
+    const TriangleMesh& mesh = scene.traced;
+    const Workload& workload = p.workload;
+    const std::vector<gpu::Ray>& rays = workload.batch.rays;
+    const std::uint32_t query = workload.batch.query;
+    const StrategyRun& method = p.method;
+    const unsigned width = p.width, height = p.height;
+    const bool ownHits = imageOf.ownHits();
+    const ExactHits& exact = traceExact(run, scene.full, rays, caches, row);
+    const ExactAccuracy kernelAccuracy = compareExact(method.hits, exact, scene.sameTriangles, query);
+    row["exact_ties"] = std::to_string(kernelAccuracy.ties);
+    writeExactColumns("exact_", kernelAccuracy, row);
+    writeExactColumns("embree_exact_", compareExact(p.embreeHits, exact, scene.sameTriangles, query), row);
+    // The exact render: the exact hits' own triangles of the full scene, or the camera hits (the
+    // traced scene's, as the kernel's image) changed by the exact hits. When only some rays are
+    // sampled, each sampled ray's own value (as if it alone made its pixel), one row of them.
+    const std::vector<gpu::HitRecord> exactHits = exactInPlace(method.hits, exact, scene.sameTriangles, query);
+    if (exact.rays.size() == rays.size()) {
+        writeImageAccuracy(image.shade, imageOf(exactHits, scene.full).shade, width, height, row);
+    } else {
+        auto rayShade = [&](std::uint32_t r, const gpu::HitRecord& hit, const TriangleMesh& shadedOn) {
+            if (ownHits) return shadeHit(shadedOn, hit.primitive, rays[r]);
+            const std::uint32_t pixel = workload.pixels[r];
+            return litShade(shadeHit(mesh, workload.cameraHits[pixel].primitive, p.cameraRays[pixel]),
+                            hit.primitive == gpu::kNoHit ? 1.0f : 0.0f);
+        };
+        std::vector<float> shades, exactShades;
+        for (std::uint32_t r : exact.rays) {
+            shades.push_back(rayShade(r, method.hits[r], mesh));
+            exactShades.push_back(rayShade(r, exactHits[r], scene.full));
+        }
+        writeImageAccuracy(shades, exactShades, unsigned(shades.size()), 1u, row);
+    }
+    if (!workload.fromCamera())  // the sampled rays' camera rays, judged too: did they leave from the exact scene's surface?
+        row["exact_parent_wrong"] = std::to_string(pathsLeavingWrongHits(exactReferenceFor(run, scene.full, caches), p.cameraRays,
+                                                                         workload, exact.rays, scene.sameTriangles));
+}
+
+// Agreement with Embree on the same rays.
+void writeAgreement(const RunInProgress& p, Row& row) {
+    const StrategyRun& method = p.method;
+    const Agreement a = compareHits(method.hits, p.embreeHits, p.workload.batch.query);
+    row["hits"] = std::to_string(method.metrics.work.hits);
+    row["hit_miss_agreement"] = formatNumber(a.hitMissAgreement, 8);
+    row["hit_miss_mismatches"] = std::to_string(a.hitMissMismatches);
+    if (a.primitivesCompared) {
+        row["same_primitive_agreement"] = formatNumber(a.samePrimitiveAgreement, 8);
+        row["rel_distance_error_mean"] = formatNumber(a.relDistanceErrorMean, 4);
+        row["rel_distance_error_max"] = formatNumber(a.relDistanceErrorMax, 4);
+        row["primitive_mismatches"] = std::to_string(a.primitiveMismatches);
+    }
+}
+
+// The run's files: its images, or the per-ray records to make them later.
+void writeRunFiles(const RunConfig& run, const FolderIdentity& folder, const HitImage& image, Row& row) {
+    folder.check();  // still the folder the sweep opened
+    const std::string prefix = (fs::path(folder.path()) / ("run-" + row["run"])).string();
+    const bool wantImages = run.getBool("output.images");
+    if (run.getBool("output.hit_records") || (wantImages && !imagesSupported())) writeHitRecords(prefix + ".hits", image, row["run"], row["config_hash"]);
+    if (wantImages && imagesSupported()) writeImages(prefix, image, run.getBool("output.exr"));
+    if (wantImages && !imagesSupported() && run.getBool("output.exr"))
+        addWarning(row, "output.exr: built without OpenImageIO, no EXR written (rtbench images makes PNGs only)");
+}
+
+}  // namespace
+
+std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunConfig& run, Caches& caches, Row& row) {
+    auto p = std::make_unique<RunInProgress>();
+    p->run = &run;
+    p->started = sampleCpuTimes();
+    VulkanContext& vk = deviceFor(run, caches);
+    p->vk = &vk;
+    p->messagesBefore = vk.validationMessages().size();
+    const StructureType& structureKind = structureType(run.getString("structure.type"));
+    const StrategyType& strategy = strategyType(run.getString("strategy.type"));
+    const RayType& rayKind = rayType(run.getString("rays.type"));
+    refuseUnpaired(structureKind, strategy);
+    if (strategy.refusal)
+        if (const std::string why = strategy.refusal(vk.info()); !why.empty()) throw Error(why);
+    const PinholeCamera camera = prepareSceneAndRays(*p, plan, strategy, caches, row);
+    buildStructure(*p, structureKind, p->scene->traced);
+    makeWorkload(*p, strategy, rayKind, camera, row);
+    runMethod(*p, strategy, row);
+    // Time: the kernel, uninstrumented, and Embree on the same rays, in rounds.
+    EmbreeReference& embree = embreeFor(run, *p->scene, caches, row);
+    KernelTimer& kernel = *p->method.timer;
+    p->rounds = std::make_unique<Rounds>(timedMethods(kernel, embree, p->workload.batch, p->embreeHits, p->scratch, p->embreeRays),
+                                         [&kernel] { return kernel.timeHostLoops(); }, roundsOptions(run), caches.started);
+    return p;
+}
+
+void finishRun(RunInProgress& p, const FolderIdentity& folder, Caches& caches, Row& row, std::vector<TimingSample>& samples) {
+    const RunConfig& run = *p.run;
+    VulkanContext& vk = *p.vk;
+    const std::vector<gpu::Ray>& rays = p.workload.batch.rays;
+    samples = p.rounds->result().samples;
+    writeTimingResults(run, vk, p.workload.batch.path ? p.workload.batch.path->rays() : rays.size(), p.rounds->result(), p.started,
+                       row);
+    row["embree_rays"] = std::to_string(p.embreeRays);
+    checkTimedRecords(p.method, p.shadingMismatch, rays.size());
+    const RunImage imageOf{p};
+    const HitImage image = imageOf(p.method.hits, p.scene->traced);
+    judgeAgainstExact(p, imageOf, image, caches, row);
+    writeAgreement(p, row);
+    writeRunFiles(run, folder, image, row);
+    if (vk.validationMessages().size() != p.messagesBefore)
+        throw Error("the Vulkan validation layer reported: " + vk.validationMessages()[p.messagesBefore]);
+    // The row is complete; a kernel that disagrees with its CPU reference fails it all the same.
+    const std::string failure = instrumentedRunFailure(p.method, p.shadingMismatch, rays.size());
+    if (!failure.empty()) throw Error(failure);
+}
+
+void executeRun(const ExperimentPlan& plan, const RunConfig& run, const FolderIdentity& folder, Caches& caches, Row& row,
+                std::vector<TimingSample>& samples) {
+    const std::unique_ptr<RunInProgress> p = prepareRun(plan, run, caches, row);
+    while (!p->rounds->done()) p->rounds->runRound();
+    finishRun(*p, folder, caches, row, samples);
+}
+
+std::string failureReason(const std::exception& e) {
+    if (dynamic_cast<const std::bad_alloc*>(&e))
+        return std::string("out of host memory (") + e.what() +
+               "): the run needs more than the machine, or the process's address-space limit (ulimit -v), allows";
+    return e.what();
+}
+
+}  // namespace rtbench
