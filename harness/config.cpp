@@ -118,6 +118,13 @@ const std::vector<KeySpec>& configSchema() {
         // Each structure's and strategy's own keys, read only when it is chosen (methods/registry.cpp).
         auto addMethodKeys = [&](const std::string& typeKey, const std::string& name, const std::vector<KeySpec>& keys) {
             for (KeySpec k : keys) {
+                // A key two types read (light.position: shadow and whitted rays) is declared by each
+                // and applies to both.
+                const auto same = std::find_if(s.begin(), s.end(), [&](const KeySpec& e) { return e.name == k.name; });
+                if (same != s.end() && !same->appliesWhen.empty() && same->appliesWhen.front().rfind(typeKey + "=", 0) == 0) {
+                    same->appliesWhen.front() += "|" + name;
+                    continue;
+                }
                 k.appliesWhen.insert(k.appliesWhen.begin(), typeKey + "=" + name);
                 add(std::move(k));
             }
@@ -153,12 +160,6 @@ const std::vector<KeySpec>& configSchema() {
         add({"rays.query", ValueType::String, "what the rays ask: own (the ray type's: any for shadow and ao, closest for the others), closest (the nearest hit: what a shadow ray costs without early termination) or any (the walk ends at its first hit)", std::string("own"), false, -1e300, 1e300, {"own", "closest", "any"}});
         s.back().since = 7;
         for (const RayType* t : rayTypes()) addMethodKeys("rays.type", t->name, t->keys);
-        {
-            KeySpec light{"light.position", ValueType::Float3, "shadow and whitted rays: the point light, in the scene's own coordinates (moves with scene.scale and scene.translate; default: above the scene box's centre along camera.up, one box diagonal away; whitted: a scene description's [[light]]s instead, when it has them)", {}};
-            light.appliesWhen = {"rays.type=shadow|whitted"};
-            light.since = 7;
-            add(std::move(light));
-        }
         add({"intersection.test", ValueType::String, "ray-triangle test of every structure and strategy, on the GPU and in the CPU reference: moller_trumbore (Moller & Trumbore 1997) or watertight (Woop, Benthin & Wald 2013: no ray slips between triangles sharing an edge)", std::string("moller_trumbore"), false, -1e300, 1e300, {"moller_trumbore", "watertight"}});
         add({"intersection.division", ValueType::String, "how every kernel and CPU reference divides, both giving IEEE's correctly rounded float quotient bit for bit: double (the double quotient rounded to float: one double division, which consumer GPUs run at 1/64 rate) or integer (the device's own quotient corrected with 32-bit integer arithmetic, no double on the common path; slower than double on llvmpipe, where double division is the CPU's own: results/division); the plain strategy divides as the device does either way", std::string("double"), false, -1e300, 1e300, {"double", "integer"}});
         s.back().since = 18;

@@ -35,16 +35,8 @@ std::string contextField(const Json& context, const fs::path& path, const char* 
     return it->is_string() ? it->get<std::string>() : it->dump();
 }
 
-}  // namespace
-
-std::vector<Row> mergeShards(const std::string& folder, const std::string& missingReason) {
-    refuseControlCharacters("--missing-as-failed: ", missingReason);  // it goes into every missing run's error
-    std::error_code ec;
-    if (!fs::is_directory(folder, ec)) throw Error(folder + ": not a results folder");
-    refuseSymlinks(folder);  // before the lock file is made
-    const OutputFolderLock lock(folder);  // no shard is running
-    const FolderIdentity held(folder);     // the writes below go into this folder, whatever its path names later
-    // runs.shard-<i>-of-<n>.csv with its context.shard-<i>-of-<n>.json.
+// runs.shard-<i>-of-<n>.csv with its context.shard-<i>-of-<n>.json, every one, of one split.
+std::map<std::string, ShardFiles> findShards(const std::string& folder) {
     std::map<std::string, ShardFiles> shards;
     const std::regex csvName(R"(runs\.(shard-[0-9]+-of-[0-9]+)\.csv)"), contextName(R"(context\.(shard-[0-9]+-of-[0-9]+)\.json)");
     for (const auto& entry : fs::directory_iterator(folder)) {
@@ -62,7 +54,12 @@ std::vector<Row> mergeShards(const std::string& folder, const std::string& missi
         counts.insert(shard.substr(shard.rfind("-of-") + 4));
     }
     if (counts.size() > 1) throw Error(folder + ": shards of different splits (of-" + *counts.begin() + " and of-" + *counts.rbegin() + ")");
-    // The shards must be parts of one experiment: the same config text, overrides, plan and commit.
+    return shards;
+}
+
+// The shards must be parts of one experiment: the same config text, overrides, plan and commit.
+// Returns the plan's runs: run -> config_hash.
+std::map<std::string, std::string> onePlan(const std::string& folder, const std::map<std::string, ShardFiles>& shards) {
     const ShardFiles& reference = shards.begin()->second;
     for (const auto& [shard, files] : shards)
         for (const char* key : {"config_text", "overrides", "settings", "plan", "git_commit"}) {
@@ -78,7 +75,7 @@ std::vector<Row> mergeShards(const std::string& folder, const std::string& missi
                             files.context.filename().string() + " " + what + "; they cannot be merged");
             }
         }
-    std::map<std::string, std::string> planned;  // run -> config_hash
+    std::map<std::string, std::string> planned;
     try {
         for (const Json& run : reference.json.at("plan"))
             planned[run.at("run").get<std::string>()] = run.at("config_hash").get<std::string>();
@@ -86,9 +83,14 @@ std::vector<Row> mergeShards(const std::string& folder, const std::string& missi
         throw Error(reference.context.string() + ": no valid \"plan\" list: " + e.what());
     }
     if (planned.empty()) throw Error(reference.context.string() + ": its plan lists no runs");
-    const std::string commit = contextField(reference.json, reference.context, "git_commit");
+    return planned;
+}
+
+// Every shard's rows by run: each in the plan, at the shards' commit, in one shard only. `complete`
+// is false unless every shard says it is.
+std::map<std::string, Row> shardRows(const std::string& folder, const std::map<std::string, ShardFiles>& shards,
+                                     std::map<std::string, std::string>& planned, const std::string& commit, bool& complete) {
     std::map<std::string, Row> byRun;
-    bool complete = true;
     for (const auto& [shard, files] : shards) {
         const auto it = files.json.find("complete");
         if (it == files.json.end() || !it->is_boolean()) throw Error(files.context.string() + ": no boolean \"complete\" field");
@@ -101,33 +103,34 @@ std::vector<Row> mergeShards(const std::string& folder, const std::string& missi
             if (!byRun.emplace(run, row).second) throw Error(folder + ": " + name + " appears in more than one shard");
         }
     }
-    std::vector<std::string> missing;  // runs no shard finished: failed rows, and none of their samples
-    for (const auto& [run, hash] : planned)
-        if (!byRun.count(run)) missing.push_back(run);
-    if (!missing.empty() && missingReason.empty()) throw Error(folder + ": run " + missing.front() + " is missing from the shards");
-    if (!missing.empty()) {
-        // Failed rows for the runs no shard finished, as the runner would have begun them.
-        const ExperimentPlan plan = recordedPlan(reference.json, reference.context.string());
-        std::string device, driver, cpu = contextField(reference.json, reference.context, "cpu");
-        if (!byRun.empty()) {
-            const Row& any = byRun.begin()->second;
-            device = any.at("device"), driver = any.at("driver"), cpu = any.at("cpu");
-        } else if (const auto d = reference.json.find("devices"); d != reference.json.end() && d->is_array() && d->size() == 1) {
-            device = d->at(0).value("name", ""), driver = d->at(0).value("driver", "");
-        }
-        for (const std::string& run : missing) {
-            const auto it = std::find_if(plan.runs.begin(), plan.runs.end(), [&](const RunConfig& r) { return runNumber(r) == run; });
-            if (it == plan.runs.end() || it->hash() != planned[run])
-                throw Error(reference.context.string() + ": run " + run + " of its plan is not the run its config text gives");
-            Row row = identityRow(*it, commit, device, driver, cpu);
-            for (const std::string& column : runColumns()) row.emplace(column, "");  // every cell, as a read row has
-            row["status"] = "failed";
-            row["error"] = "no row from its shard: " + missingReason;
-            byRun.emplace(run, std::move(row));
-        }
-        complete = false;
+    return byRun;
+}
+
+// Failed rows for the runs no shard finished, as the runner would have begun them.
+void addMissingRuns(const ShardFiles& reference, const std::vector<std::string>& missing, std::map<std::string, std::string>& planned,
+                    const std::string& commit, const std::string& missingReason, std::map<std::string, Row>& byRun) {
+    const ExperimentPlan plan = recordedPlan(reference.json, reference.context.string());
+    std::string device, driver, cpu = contextField(reference.json, reference.context, "cpu");
+    if (!byRun.empty()) {
+        const Row& any = byRun.begin()->second;
+        device = any.at("device"), driver = any.at("driver"), cpu = any.at("cpu");
+    } else if (const auto d = reference.json.find("devices"); d != reference.json.end() && d->is_array() && d->size() == 1) {
+        device = d->at(0).value("name", ""), driver = d->at(0).value("driver", "");
     }
-    // One device, and one content of each scene's files, across the shards.
+    for (const std::string& run : missing) {
+        const auto it = std::find_if(plan.runs.begin(), plan.runs.end(), [&](const RunConfig& r) { return runNumber(r) == run; });
+        if (it == plan.runs.end() || it->hash() != planned[run])
+            throw Error(reference.context.string() + ": run " + run + " of its plan is not the run its config text gives");
+        Row row = identityRow(*it, commit, device, driver, cpu);
+        for (const std::string& column : runColumns()) row.emplace(column, "");  // every cell, as a read row has
+        row["status"] = "failed";
+        row["error"] = "no row from its shard: " + missingReason;
+        byRun.emplace(run, std::move(row));
+    }
+}
+
+// One device, and one content of each scene's files, across the shards.
+void refuseMixedInputs(const std::string& folder, const std::map<std::string, Row>& byRun) {
     std::map<std::string, const Row*> byScene;
     const Row* firstRow = &byRun.begin()->second;
     for (const auto& [run, row] : byRun) {
@@ -142,25 +145,31 @@ std::vector<Row> mergeShards(const std::string& folder, const std::string& missi
             throw Error(folder + ": runs " + it->second->at("run") + " and " + run + " read other contents of scene.source '" + scene +
                         "' (" + it->second->at("input_files") + " against " + row.at("input_files") + ")");
     }
-    std::vector<Row> merged;
-    for (const auto& [run, row] : byRun) merged.push_back(row);
-    // Merging again is fine; replacing other results is not.
-    auto refuseToReplace = [&](const std::string& path, auto read, const std::vector<Row>& merge) {
-        checkWritableFile(path);
-        if (!fs::exists(fs::symlink_status(path, ec))) return;
-        std::vector<Row> existing;
-        try {
-            existing = read(path);
-        } catch (const Error& e) {
-            throw Error(path + ": exists and is not the merge of these shards (" + e.what() + "); move it away first");
-        }
-        if (existing != merge)
-            throw Error(path + ": exists and differs from the merge of these shards (" + std::to_string(existing.size()) +
-                        " rows against " + std::to_string(merge.size()) + "); move it away first");
-    };
-    const std::string csvPath = (fs::path(folder) / "runs.csv").string();
-    refuseToReplace(csvPath, [](const std::string& path) { return readRunsCsv(path); }, merged);
-    // The shards' timing samples, of the merged rows only, in run order.
+}
+
+// A merged file may replace the same merge (merging again), never other results.
+template <typename Read>
+void refuseToReplace(const std::string& path, Read read, const std::vector<Row>& merge) {
+    std::error_code ec;
+    checkWritableFile(path);
+    if (!fs::exists(fs::symlink_status(path, ec))) return;
+    std::vector<Row> existing;
+    try {
+        existing = read(path);
+    } catch (const Error& e) {
+        throw Error(path + ": exists and is not the merge of these shards (" + e.what() + "); move it away first");
+    }
+    if (existing != merge)
+        throw Error(path + ": exists and differs from the merge of these shards (" + std::to_string(existing.size()) +
+                    " rows against " + std::to_string(merge.size()) + "); move it away first");
+}
+
+// The shards' timing samples, of the merged rows only, in run order (none: no shard has a
+// samples file); every ok row's repetitions are there: as many kernel, Embree 1 and Embree 16
+// samples as it says it took.
+std::vector<Row> shardSamples(const std::string& folder, const std::map<std::string, ShardFiles>& shards,
+                              const std::map<std::string, Row>& byRun, const std::vector<std::string>& missing, bool& withAny) {
+    std::error_code ec;
     std::vector<Row> samples;
     std::size_t withSamples = 0;
     for (const auto& [shard, files] : shards) {
@@ -195,6 +204,40 @@ std::vector<Row> mergeShards(const std::string& folder, const std::string& missi
         }
     }
     std::stable_sort(samples.begin(), samples.end(), [](const Row& a, const Row& b) { return a.at("run") < b.at("run"); });
+    withAny = withSamples > 0;
+    return samples;
+}
+
+}  // namespace
+
+std::vector<Row> mergeShards(const std::string& folder, const std::string& missingReason) {
+    refuseControlCharacters("--missing-as-failed: ", missingReason);  // it goes into every missing run's error
+    std::error_code ec;
+    if (!fs::is_directory(folder, ec)) throw Error(folder + ": not a results folder");
+    refuseSymlinks(folder);  // before the lock file is made
+    const OutputFolderLock lock(folder);  // no shard is running
+    const FolderIdentity held(folder);     // the writes below go into this folder, whatever its path names later
+    const std::map<std::string, ShardFiles> shards = findShards(folder);
+    std::map<std::string, std::string> planned = onePlan(folder, shards);  // run -> config_hash
+    const ShardFiles& reference = shards.begin()->second;
+    const std::string commit = contextField(reference.json, reference.context, "git_commit");
+    bool complete = true;
+    std::map<std::string, Row> byRun = shardRows(folder, shards, planned, commit, complete);
+    std::vector<std::string> missing;  // runs no shard finished: failed rows, and none of their samples
+    for (const auto& [run, hash] : planned)
+        if (!byRun.count(run)) missing.push_back(run);
+    if (!missing.empty() && missingReason.empty()) throw Error(folder + ": run " + missing.front() + " is missing from the shards");
+    if (!missing.empty()) {
+        addMissingRuns(reference, missing, planned, commit, missingReason, byRun);
+        complete = false;
+    }
+    refuseMixedInputs(folder, byRun);
+    std::vector<Row> merged;
+    for (const auto& [run, row] : byRun) merged.push_back(row);
+    const std::string csvPath = (fs::path(folder) / "runs.csv").string();
+    refuseToReplace(csvPath, [](const std::string& path) { return readRunsCsv(path); }, merged);
+    bool withSamples = false;
+    const std::vector<Row> samples = shardSamples(folder, shards, byRun, missing, withSamples);
     const std::string samplesPath = (fs::path(folder) / "samples.csv").string();
     if (withSamples)
         refuseToReplace(samplesPath, readSamplesCsv, samples);

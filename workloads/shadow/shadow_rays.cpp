@@ -51,13 +51,19 @@ Workload shadowWorkload(const WorkloadInputs& in, Row& row) {
 
 }  // namespace
 
+KeySpec lightPositionKey() {
+    KeySpec light{"light.position", ValueType::Float3, "shadow and whitted rays: the point light, in the scene's own coordinates (moves with scene.scale and scene.translate; default: above the scene box's centre along camera.up, one box diagonal away; whitted: a scene description's [[light]]s instead, when it has them)", {}};
+    light.since = 7;
+    return light;
+}
+
 const RayType& shadowRayType() {
     static const RayType type = [] {
         using K = ColumnKind;
         RayType t;
         t.name = "shadow";
         t.help = "one any-hit ray from each camera ray's hit toward the point light (shadow casting)";
-        // Its light is light.position (harness/config.cpp: whitted reads it too).
+        t.keys = {lightPositionKey()};  // whitted reads it too
         t.columns = {
             {"camera_rays", K::Exact, "rays", "shadow: camera rays (one per pixel) whose hits the shadow rays leave from"},
             {"camera_rays_hit", K::Exact, "rays", "shadow: camera rays that hit (by the run's structure)"},

@@ -10,6 +10,9 @@ namespace rtbench {
 
 const RayType& shadowRayType();
 
+// light.position, the point light of shadow rays and of Whitted rays' shadow rays (results schema 7).
+KeySpec lightPositionKey();
+
 // Where the light is when light.position is not given: above the scene box's centre along the
 // camera's up vector, one box diagonal away.
 glm::vec3 defaultLight(const Bounds3& box, glm::vec3 up);

@@ -138,6 +138,7 @@ const RayType& whittedRayType() {
         };
         t.make = whittedWorkload;
         setSince(t, 10);
+        t.keys.push_back(lightPositionKey());  // the shadow rays' light, since results schema 7
         return t;
     }();
     return type;
