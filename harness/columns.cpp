@@ -9,7 +9,7 @@
 #include "config.h"
 #include "methods/cache/cache_replay.h"
 #include "methods/registry.h"
-#include "workloads/registry.h"
+#include "rays/registry.h"
 #include "core/error.h"
 #include "core/input_file.h"
 
@@ -84,7 +84,7 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         add("query", K::Exact, "", "what the rays ask: closest (the nearest hit) or any (whether anything is hit in [tMin, tMax): the walk ends at its first hit; Embree's rtcOccluded)");
         s.back().since = 7;
         // The shading passes that made the rays after the first hit, run again on the device
-        // (workloads/workload.h checkShadingOnDevice); 0 and empty for camera rays.
+        // (rays/workload.h checkShadingOnDevice); 0 and empty for camera rays.
         auto since9 = [&](std::string name, K kind, std::string unit, std::string help) {
             add(std::move(name), kind, std::move(unit), std::move(help));
             s.back().since = 9;

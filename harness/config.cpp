@@ -15,7 +15,7 @@
 #include "methods/cache/cache_replay.h"
 #include "methods/registry.h"
 #include "core/text.h"
-#include "workloads/registry.h"
+#include "rays/registry.h"
 #include "output_folder.h"
 #include "core/error.h"
 #include "core/input_file.h"
@@ -147,7 +147,7 @@ const std::vector<KeySpec>& configSchema() {
         add({"strategy.workgroup_size", ValueType::Int, "invocations per workgroup (specialization constant)", std::int64_t(64), false, 1, 1024});
         for (const StrategyType* t : strategyTypes()) addMethodKeys("strategy.type", t->name, t->keys);
         for (const KeySpec& k : cacheKeys()) add(k);  // Purcell 2002 Fig. 9's cache, for branching and multipass
-        // What the run traces (workloads/registry.cpp), and each ray type's own keys.
+        // What the run traces (rays/registry.cpp), and each ray type's own keys.
         std::vector<std::string> rayTypeNames;
         std::string rayTypeHelp = "the rays the run measures:";
         for (const RayType* t : rayTypes()) {

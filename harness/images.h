@@ -37,7 +37,7 @@ HitImage makeHitImage(std::uint32_t width, std::uint32_t height, const std::vect
                       const TriangleMesh& mesh, const std::vector<gpu::HitRecord>& kernel,
                       const std::vector<gpu::HitRecord>& embree, const std::vector<std::uint32_t>& pixels = {});
 
-// A batch of rays after the first hit (workloads/workload.h), in the camera's pixels: each pixel
+// A batch of rays after the first hit (rays/workload.h), in the camera's pixels: each pixel
 // is shaded as its camera ray's hit (cameraHits), times kUnlitShade where its batch ray hit (a
 // shadow ray: occluded) or where it has none (a hit the light does not face); a pixel of several
 // rays (ambient occlusion) gets kUnlitShade + (1 - kUnlitShade) x the fraction of them that hit

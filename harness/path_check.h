@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "harness/exact_reference.h"
-#include "workloads/workload.h"
+#include "rays/workload.h"
 
 namespace rtbench {
 

@@ -15,7 +15,7 @@
 #include "methods/tile_order.h"
 #include "plan/warnings.h"
 #include "scene/camera.h"
-#include "workloads/registry.h"
+#include "rays/registry.h"
 
 namespace rtbench {
 namespace fs = std::filesystem;

@@ -16,7 +16,7 @@
 #include "harness/timing_rounds.h"
 #include "methods/strategy.h"
 #include "methods/structure.h"
-#include "workloads/workload.h"
+#include "rays/workload.h"
 
 namespace rtbench {
 

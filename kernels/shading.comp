@@ -1,6 +1,6 @@
 // The shading pass (Purcell et al. 2002 §3's shading kernel): from a generation's rays and their
 // hits, the rays of the next generation, each parent's params.pass.z slots by the rule of
-// kernels/shading.glsl rtShade, the one source the CPU compiles too (workloads/shading.h). Slot
+// kernels/shading.glsl rtShade, the one source the CPU compiles too (rays/shading.h). Slot
 // parent * fan-out + s is written whether or not it made a ray (made[] says), so the result is
 // the same on every device and in the same order as the CPU's; the host keeps the made ones.
 #version 450

@@ -1,4 +1,4 @@
-// A batch of rays as a workload (workloads/workload.h) hands it to a method: the rays, and the query
+// A batch of rays as a workload (rays/workload.h) hands it to a method: the rays, and the query
 // they ask of the scene. The method knows no ray type; the query is all it needs of one (and, for
 // a strategy that traces the whole path, the path: the rays before the batch and the passes).
 #pragma once
@@ -11,7 +11,7 @@
 
 namespace rtbench {
 
-// One generation of the path a batch ends, as the CPU made it (workloads/workload.h Generation):
+// One generation of the path a batch ends, as the CPU made it (rays/workload.h Generation):
 // each ray, its hit by the run's structure, the ray of the generation before it came from, its
 // path (the key of its random numbers) and weight. The camera rays have no parents, paths or
 // weights (ray i: parent i, path i, weight 1); the batch has no hits (the method's to find).

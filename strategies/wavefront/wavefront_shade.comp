@@ -2,7 +2,7 @@
 // the queue's slots (ray j / fan-out, its slot j % fan-out) gets the ray kernels/shading.glsl
 // rtShade makes from that ray's hit, with a made flag, its parent, its path and its weight; each
 // workgroup writes how many rays it made, for the scan. Nothing is appended here: the compaction
-// puts the made rays in slot order, the CPU's (workloads/shading.h ShadedRays).
+// puts the made rays in slot order, the CPU's (rays/shading.h ShadedRays).
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require  // gpu_layout.h's 64-bit counters

@@ -39,7 +39,7 @@ inline TriangleMesh meshOf(const std::vector<Tri>& tris) {
 }
 
 // Two parallel mirrors, a floor y = 0 (triangles 0, 1) and a ceiling y = 4 (2, 3), both over
-// x, z in [-8, 8] (tests/workloads/test_reflection_rays.cpp derives their iterations by hand).
+// x, z in [-8, 8] (tests/rays/test_reflection_rays.cpp derives their iterations by hand).
 inline TriangleMesh parallelMirrors() {
     return meshOf({{glm::vec3(-8, 0, -8), glm::vec3(8, 0, -8), glm::vec3(-8, 0, 8)},
                    {glm::vec3(8, 0, -8), glm::vec3(8, 0, 8), glm::vec3(-8, 0, 8)},

@@ -17,10 +17,10 @@
 #include "tests/error_of.h"
 #include "tests/methods/hand_scenes.h"
 #include "tests/methods/test_rays.h"
-#include "tests/workloads/workload_runs.h"
-#include "workloads/path/path_rays.h"
-#include "workloads/reflection/reflection_rays.h"
-#include "workloads/shading.h"
+#include "tests/rays/workload_runs.h"
+#include "rays/path/path_rays.h"
+#include "rays/reflection/reflection_rays.h"
+#include "rays/shading.h"
 
 namespace rtbench {
 namespace {

@@ -1,0 +1,27 @@
+#include "primary_rays.h"
+
+namespace rtbench {
+
+namespace {
+
+Workload cameraRays(const WorkloadInputs& in, Row&) {
+    Workload w;
+    w.batch.rays = in.cameraRays;
+    w.batch.query = gpu::kQueryClosest;
+    return w;
+}
+
+}  // namespace
+
+const RayType& cameraRayType() {
+    static const RayType type = [] {
+        RayType t;
+        t.name = "primary";
+        t.help = "one closest-hit ray from the camera through each pixel (ray casting)";
+        t.make = cameraRays;
+        return t;
+    }();
+    return type;
+}
+
+}  // namespace rtbench
