@@ -11,8 +11,10 @@
 #include <functional>
 #include <map>
 #include <regex>
+#include <set>
 
 #include "core/error.h"
+#include "core/text.h"
 
 namespace rtbench {
 namespace {
@@ -27,10 +29,12 @@ struct Entry {
     bool operator==(const Entry&) const = default;
 };
 
+// The entry named as the archive stores it, control characters escaped.
 class Refused : public Error {
 public:
-    Refused(const std::string& entry, const std::string& why) : Error("'" + entry + "': " + why) {}
+    Refused(const std::string& entry, const std::string& why) : Error("'" + printable(entry) + "': " + why) {}
 };
+
 
 // A descriptor closed when it goes out of scope.
 struct Fd {
@@ -43,15 +47,24 @@ struct Fd {
 
 std::string systemError() { return std::strerror(errno); }
 
+std::string archiveError(archive* a) {
+    const char* text = archive_error_string(a);
+    return text ? text : "(no reason given)";
+}
+
 // The archive read from an open descriptor, from its start, as libarchive walks it.
 class ArchiveReader {
 public:
     explicit ArchiveReader(int fd) : a_(archive_read_new()) {
+        if (!a_) throw Error("libarchive: out of memory");
         archive_read_support_filter_gzip(a_);
         archive_read_support_filter_xz(a_);
         archive_read_support_format_tar(a_);
-        if (::lseek(fd, 0, SEEK_SET) != 0 || archive_read_open_fd(a_, fd, 1 << 16) != ARCHIVE_OK)
-            throw Error(std::string("not a readable tar archive: ") + archive_error_string(a_));
+        if (::lseek(fd, 0, SEEK_SET) != 0 || archive_read_open_fd(a_, fd, 1 << 16) != ARCHIVE_OK) {
+            const std::string why = "not a readable tar archive: " + archiveError(a_);
+            archive_read_free(a_);
+            throw Error(why);
+        }
     }
     ~ArchiveReader() { archive_read_free(a_); }
     ArchiveReader(const ArchiveReader&) = delete;
@@ -61,7 +74,7 @@ public:
         archive_entry* entry = nullptr;
         const int status = archive_read_next_header(a_, &entry);
         if (status == ARCHIVE_EOF) return nullptr;
-        if (status != ARCHIVE_OK) throw Error(std::string("unreadable: ") + archive_error_string(a_));
+        if (status != ARCHIVE_OK) throw Error("unreadable: " + archiveError(a_));
         return entry;
     }
     // The current entry's bytes, chunk by chunk; their count. A truncated archive throws.
@@ -69,7 +82,7 @@ public:
         char buffer[1 << 16];
         std::uint64_t total = 0;
         for (la_ssize_t n; (n = archive_read_data(a_, buffer, sizeof buffer)) != 0;) {
-            if (n < 0) throw Error(std::string("unreadable: ") + archive_error_string(a_));
+            if (n < 0) throw Error("unreadable: " + archiveError(a_));
             sink(buffer, std::size_t(n));
             total += std::uint64_t(n);
         }
@@ -91,7 +104,7 @@ std::vector<std::string> plainParts(const std::string& path) {
         const std::string part = path.substr(start, slash - start);
         if (part == "..") throw Refused(path, "'..' leaves the folder");
         if (!part.empty() && part != ".") {
-            if (!std::regex_match(part, plain)) throw Refused(path, "'" + part + "' is not a plain name");
+            if (!std::regex_match(part, plain)) throw Refused(path, "'" + printable(part) + "' is not a plain name");
             parts.push_back(part);
         }
         start = slash + 1;
@@ -125,10 +138,10 @@ Entry checkedEntry(archive_entry* entry) {
     if (const std::string kind = specialKind(entry); !kind.empty()) throw Refused(path, kind);
     e.folder = archive_entry_filetype(entry) == AE_IFDIR;
     const mode_t mode = archive_entry_perm(entry);
-    if (mode & (S_ISUID | S_ISGID | S_ISVTX | S_IWGRP | S_IWOTH)) {
+    if (mode & (S_ISUID | S_ISGID | S_ISVTX | S_IWOTH)) {
         char octal[8];
         std::snprintf(octal, sizeof octal, "%04o", unsigned(mode & 07777));
-        throw Refused(path, std::string("mode ") + octal + ": setuid, setgid, sticky or writable by others");
+        throw Refused(path, std::string("mode ") + octal + ": setuid, setgid, sticky or world-writable");
     }
     if (e.folder && e.parts.size() == 2) throw Refused(path, "a folder inside a config's folder");
     if (!e.folder && e.parts.size() != 2) throw Refused(path, "a file outside a config's folder");
@@ -141,8 +154,12 @@ std::vector<Entry> checkArchive(int fd, const UnpackLimits& limits) {
     std::vector<Entry> plan;
     std::map<std::string, bool> seen;  // name -> folder
     std::uint64_t total = 0;
+    std::set<std::string> configs;  // the config folders, given as entries or as the folders of files
     while (archive_entry* entry = reader.next()) {
         Entry e = checkedEntry(entry);
+        if (plan.size() == limits.entries) throw Refused(e.name(), "over " + std::to_string(limits.entries) + " entries");
+        if (!e.parts.empty() && configs.insert(e.parts[0]).second && configs.size() > limits.folders)
+            throw Refused(e.name(), "over " + std::to_string(limits.folders) + " config folders");
         const auto [it, fresh] = seen.emplace(e.name(), e.folder);
         if (!fresh && !(it->second && e.folder)) throw Refused(e.name(), "a second entry of this name");
         const la_int64_t declared = archive_entry_size_is_set(entry) ? archive_entry_size(entry) : -1;
@@ -198,15 +215,25 @@ public:
     // A new temporary for CONFIG/FILE, 0644, never an existing file or link.
     int create(const Entry& e) {
         const int folderFd = folder(e.parts[0]);
-        const std::string temporary = "." + e.parts[1] + ".unpack-" + std::to_string(::getpid()) + ".tmp";
+        const std::string temporary =
+            ".unpack-" + std::to_string(::getpid()) + "-" + std::to_string(temporaries_.size()) + ".tmp";  // never a FILE name
         const int fd = ::openat(folderFd, temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
         if (fd < 0) throw Error(dir_ + "/" + e.parts[0] + "/" + temporary + ": cannot create: " + systemError());
         temporaries_.push_back({e.parts[0], temporary, e.parts[1]});
-        if (::fchmod(fd, 0644) != 0) throw Error(dir_ + "/" + e.name() + ": cannot set its mode: " + systemError());
+        if (::fchmod(fd, 0644) != 0) {
+            ::close(fd);
+            throw Error(dir_ + "/" + e.name() + ": cannot set its mode: " + systemError());
+        }
         return fd;
     }
-    // Every temporary renamed over its name.
+    // Every temporary renamed over its name, once every name is checked to be free or a regular
+    // file (a folder or anything else there refuses the whole unpack before any rename).
     void commit() {
+        for (const auto& t : temporaries_) {
+            struct stat st {};
+            if (::fstatat(folders_.at(t.config)->fd, t.name.c_str(), &st, AT_SYMLINK_NOFOLLOW) == 0 && !S_ISREG(st.st_mode))
+                throw Error(dir_ + "/" + t.config + "/" + t.name + ": exists and is not a regular file; refusing to replace it");
+        }
         for (const auto& t : temporaries_) {
             const int fd = folders_.at(t.config)->fd;
             if (::renameat(fd, t.temporary.c_str(), fd, t.name.c_str()) != 0)
@@ -250,7 +277,11 @@ void writeArchive(int fd, const std::vector<Entry>& plan, const std::string& dir
         }
         const Fd out(staging.create(e));
         const std::string path = dir + "/" + e.name();
-        e.bytes = reader.data([&](const char* bytes, std::size_t n) { writeAll(out.fd, bytes, n, path); });
+        std::uint64_t written = 0;
+        e.bytes = reader.data([&](const char* bytes, std::size_t n) {
+            if ((written += n) > plan[i].bytes) throw Error("the archive changed while it was unpacked (" + e.name() + ")");
+            writeAll(out.fd, bytes, n, path);
+        });
         if (e.bytes != plan[i].bytes) throw Error("the archive changed while it was unpacked (" + e.name() + ")");
         if (::fsync(out.fd) != 0) throw Error(path + ": cannot sync: " + systemError());
     }

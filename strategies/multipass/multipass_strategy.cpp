@@ -132,10 +132,10 @@ MultipassCounts runDeviceLoop(VulkanContext& vk, GpuBuffers& buffers, Pipelines&
         throw Error("multipass (device): a ray list held more rays than the stream's " + std::to_string(buffers.rayCount()) +
                     " after pass " + std::to_string(control.current.w) + " (a kernel filed rays twice)");
     if (control.status.z) {  // the oracle kernel ended the loop at the cap (multipass_oracle.comp)
-        const gpu::PassLogEntry& last = log.back();
+        const std::uint64_t active = log.empty() ? 0 : std::uint64_t(log.back().kindLists.y) + log.back().kindLists.z;
         throw Error("multipass (device): the oracle kernel stopped the loop at the pass cap of " + std::to_string(cap) +
-                    " after " + std::to_string(control.current.w) + " passes, with " +
-                    std::to_string(std::uint64_t(last.kindLists.y) + last.kindLists.z) + " rays still active");
+                    " after " + std::to_string(control.current.w) + " passes, with " + std::to_string(active) +
+                    " rays still active");
     }
     vk.dispatch(pipelines.byKind[int(PassKind::Write)], buffers.descriptorSet(pipelines.byKind[int(PassKind::Write)]),
                 buffers.pushConstants(), buffers.rayCount());

@@ -87,14 +87,14 @@ protected:
 
 TEST_F(Unpack, ACampaignUnpacksWholeWithItsOwnModes) {
     const std::string samples(200000, 'x');
-    writeArchive(archive_, {folder("./"), folder("./bunny"), file("./bunny/runs.csv"), {"./bunny/samples.csv", samples, AE_IFREG, 0600},
+    writeArchive(archive_, {folder("./"), folder("./bunny"), file("./bunny/runs.csv"), {"./bunny/samples.csv", samples, AE_IFREG, 0664},
                             folder("./strategies"), file("./strategies/context.json", "{}\n")});
     const std::vector<std::string> files = unpackCampaign(archive_, out_);
     EXPECT_EQ(files, (std::vector<std::string>{"bunny/runs.csv", "bunny/samples.csv", "strategies/context.json"}));
     EXPECT_EQ(slurp(out_ + "/bunny/runs.csv"), "run,status\n000,ok\n");
     EXPECT_EQ(slurp(out_ + "/bunny/samples.csv"), samples);
     EXPECT_EQ(slurp(out_ + "/strategies/context.json"), "{}\n");
-    EXPECT_EQ(fs::status(out_ + "/bunny/samples.csv").permissions(), fs::perms(0644)) << "ours, not the archive's 0600";
+    EXPECT_EQ(fs::status(out_ + "/bunny/samples.csv").permissions(), fs::perms(0644)) << "ours, not the archive's 0664 (umask 002)";
     EXPECT_EQ(fs::status(out_ + "/bunny").permissions(), fs::perms(0755));
     EXPECT_EQ(filesIn(out_), 3u) << "no temporary left";
     // Unpacked again over itself: the same files, replaced whole.
@@ -111,7 +111,8 @@ TEST_F(Unpack, EachHostileEntryIsRefusedByNameAndNothingIsWritten) {
         {{"bunny/pipe", "", AE_IFIFO, 0644}, "'bunny/pipe': a FIFO"},
         {{"bunny/suid", "x", AE_IFREG, 04755}, "'bunny/suid': mode 4755: setuid"},
         {{"bunny/sgid", "x", AE_IFREG, 02755}, "'bunny/sgid': mode 2755"},
-        {{"bunny/open", "x", AE_IFREG, 0666}, "'bunny/open': mode 0666"},
+        {{"bunny/open", "x", AE_IFREG, 0666}, "'bunny/open': mode 0666: setuid, setgid, sticky or world-writable"},
+        {{"bunny/\x1b[2Jx", "x"}, "'bunny/\\x1B[2Jx': '\\x1B[2Jx' is not a plain name"},  // escaped, never raw
         {{"bunny/../../escape", "x"}, "'..' leaves the folder"},
         {{"/etc/cron.d/x", "x"}, "'/etc/cron.d/x': an absolute"},
         {{"bunny/deep/runs.csv", "x"}, "deeper than CONFIG/FILE"},
@@ -138,6 +139,30 @@ TEST_F(Unpack, TheCapsCountTheBytesRead) {
     EXPECT_THAT(refusal({folder("a"), file("a/one", std::string(600, 'x')), file("a/two", std::string(600, 'x'))}, {1000, 1000}),
                 HasSubstr("'a/two': the archive unpacks to over 1000 bytes"));
     EXPECT_EQ(refusal({folder("a"), file("a/one", std::string(1000, 'x'))}, {1000, 1000}), "") << "at the cap: allowed";
+}
+
+TEST_F(Unpack, EntryAndFolderCapsCountTheArchive) {
+    EXPECT_THAT(refusal({folder("a"), file("a/1"), file("a/2"), file("a/3")}, {1000, 10000, 3, 10}),
+                HasSubstr("'a/3': over 3 entries"));
+    EXPECT_THAT(refusal({folder("a"), folder("b"), file("c/1")}, {1000, 10000, 10, 2}), HasSubstr("'c/1': over 2 config folders"))
+        << "a file's folder counts, listed or not";
+    EXPECT_THAT(refusal({folder("a"), folder("b"), folder("c")}, {1000, 10000, 10, 2}), HasSubstr("'c': over 2 config folders"));
+}
+
+// A name in DIR that is a folder (or anything but a regular file) refuses the whole unpack before
+// any file is put in place: the archive's other files are not half there.
+TEST_F(Unpack, ATargetThatIsNoFileRefusesBeforeAnyRename) {
+    writeArchive(archive_, {folder("bunny"), file("bunny/a.csv"), file("bunny/runs.csv")});
+    fs::create_directories(out_ + "/bunny/runs.csv");
+    try {
+        unpackCampaign(archive_, out_);
+        FAIL() << "unpacked over a folder";
+    } catch (const Error& e) {
+        EXPECT_THAT(e.what(), HasSubstr("bunny/runs.csv: exists and is not a regular file"));
+        EXPECT_THAT(e.what(), HasSubstr("nothing unpacked"));
+    }
+    EXPECT_FALSE(fs::exists(out_ + "/bunny/a.csv"));
+    EXPECT_EQ(filesIn(out_), 0u) << "no temporary left";
 }
 
 TEST_F(Unpack, ATruncatedArchiveWritesNothing) {
