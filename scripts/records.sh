@@ -9,9 +9,10 @@
 #   CHARTS=0              run only (a machine without Python); later `scripts/records.sh --charts OUT`
 #                         draws the charts and tables here
 #   RETIME=2              re-time each config's flagged runs up to this many tries (0: none)
+#   CONFIGS="bunny ..."   only these configs of record (default: all)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-configs=(bunny structures purcell2002 stability accuracy raytypes strategies multipass_device division christen2005 wavefront)
+configs=(${CONFIGS:-bunny structures purcell2002 stability accuracy raytypes strategies multipass_device division christen2005 wavefront})
 bin=${RTBENCH_BIN:-build/rtbench}
 
 charts() {
