@@ -336,7 +336,7 @@ const char* columnValueType(const ColumnSpec& column) {
     static const std::set<std::string> text = {"run", "label", "sweep", "status", "error", "warnings", "config_hash",
                                                "inputs_hash", "input_files", "git_commit", "device", "driver", "cpu",
                                                "embree_isa", "timing_stop", "timing_warning", "auto_choice", "auto_predictions",
-                                               "query", "whitted_light_positions"};
+                                               "query", "whitted_light_positions", "retimed"};
     if (text.count(column.name)) return "text";
     if (column.name == "cpu_counts_match") return "integer";  // 1 or 0
     static const std::set<std::string> countedUnits = {"rays", "triangles", "bytes", "passes", "cells", "references", "nodes",

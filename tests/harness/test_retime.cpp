@@ -78,6 +78,8 @@ TEST(Retime, AFlaggedRunIsRetimedItsCleanTryKeptWithTheReasonAndTheRecordSetAsid
     EXPECT_EQ(cellText(fresh, "timing_warning"), "");
     EXPECT_THAT(cellText(fresh, "retimed"), HasSubstr("try 1 of 2 kept (timing warning cleared"));
     EXPECT_THAT(cellText(fresh, "retimed"), HasSubstr("(forged)"));
+    // columns.csv types the note as text: the scripts read it so (a number type fails them).
+    EXPECT_EQ(columnValueType(columnSpec("retimed")), std::string("text"));
     EXPECT_TRUE(deterministicDifferences(run(before, "001"), fresh).empty());
     // The kept samples are the row's own (what check and compare demand).
     const std::vector<Row> samples = readSamplesCsv((fs::path(result.folder) / "samples.csv").string());
