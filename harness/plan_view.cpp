@@ -9,6 +9,7 @@
 
 #include "columns.h"
 #include "output_folder.h"
+#include "samples_check.h"
 #include "core/error.h"
 
 namespace rtbench {
@@ -57,7 +58,7 @@ std::map<std::string, double> earlierWallSeconds(const std::vector<Row>& rows) {
         if (it == row.end() || it->second.empty() || !row.count("run") || !row.count("config_hash")) continue;
         char* end = nullptr;
         const double s = std::strtod(it->second.c_str(), &end);
-        if (*end == '\0' && s >= 0.0) seconds[row.at("run") + "|" + row.at("config_hash")] = s;
+        if (*end == '\0' && s >= 0.0) seconds[runKey(row)] = s;
     }
     return seconds;
 }

@@ -107,7 +107,7 @@ void matchEarlier(const ExperimentPlan& plan, const std::vector<const RunConfig*
         const RunConfig& run = *mine[k];
         const VulkanContext& vk = deviceFor(run, caches);
         Row& row = resumed.rows[k] = identityRow(run, gitCommit(), vk.info().name, vk.info().driver, cpuModel());
-        if (!earlier.okRuns.count(row["run"] + "|" + row["config_hash"])) continue;
+        if (!earlier.okRuns.count(runKey(row))) continue;
         Row withInputs = row;
         try {
             writeInputColumns(*fullScene(plan, run, caches), withInputs);
@@ -131,7 +131,7 @@ void matchEarlier(const ExperimentPlan& plan, const std::vector<const RunConfig*
 // Why an earlier row does not stand, first reason first. `now`: this invocation's row of its run (null: none).
 const char* whyNotKept(const Row& row, const Row* now, const std::set<std::string>& planned, const Earlier& earlier, bool force) {
     auto differs = [&](const char* column) { return now->at(column) != (row.count(column) ? row.at(column) : ""); };
-    return !planned.count(row.at("run") + "|" + row.at("config_hash")) ? "no longer in the plan"
+    return !planned.count(runKey(row)) ? "no longer in the plan"
            : row.at("status") != "ok"                                   ? "failed"
            : force                                                      ? "--force"
            : now == nullptr                                             ? "another shard's"
@@ -148,15 +148,15 @@ const char* whyNotKept(const Row& row, const Row* now, const std::set<std::strin
 // before its row was written) are returned to be set aside.
 std::vector<Row> sortSamples(const ExperimentPlan& plan, const RunnerOptions& options, Earlier& earlier, Resumed& resumed) {
     std::set<std::string> keptRuns, rowRuns, toRun;
-    for (const Row* row : earlier.keptRows) keptRuns.insert(row->at("run") + "|" + row->at("config_hash"));
-    for (const Row& row : earlier.rows) rowRuns.insert(row.at("run") + "|" + row.at("config_hash"));
+    for (const Row* row : earlier.keptRows) keptRuns.insert(runKey(*row));
+    for (const Row& row : earlier.rows) rowRuns.insert(runKey(row));
     const bool interleaved = plan.runs.front().getString("experiment.order") == "interleaved";
     for (std::size_t k = 0; k < resumed.rows.size(); ++k)
         if (!resumed.kept[k] && interleaved && !options.force)
-            toRun.insert(resumed.rows[k].at("run") + "|" + resumed.rows[k].at("config_hash"));
+            toRun.insert(runKey(resumed.rows[k]));
     std::vector<Row> aside;
     for (Row& sample : earlier.samples) {
-        const std::string key = sample.at("run") + "|" + sample.at("config_hash");
+        const std::string key = runKey(sample);
         if (keptRuns.count(key)) resumed.samples.push_back(std::move(sample));
         else if (toRun.count(key) && !rowRuns.count(key)) resumed.rounds[key].push_back(std::move(sample));
         else aside.push_back(std::move(sample));
@@ -175,7 +175,7 @@ void setAsideEarlier(const ExperimentPlan& plan, const SweepFiles& files, const 
     for (const Row& row : resumed.rows) planRow[row.at("run")] = &row;
     if (!options.filters.empty())  // --filter: the earlier rows of the runs it leaves out stand as they are
         for (const Row& row : earlier.rows)
-            if (planned.count(row.at("run") + "|" + row.at("config_hash")) && !planRow.count(row.at("run"))) {
+            if (planned.count(runKey(row)) && !planRow.count(row.at("run"))) {
                 resumed.carried.push_back(row);
                 earlier.keptRows.insert(&row);
             }
@@ -219,7 +219,7 @@ Resumed resumeSweep(const ExperimentPlan& plan, const std::vector<const RunConfi
         for (const Row& row : earlier.rows)
             if (row.at("status") == "ok") {
                 earlier.okByIdentity[identity(row)] = &row;
-                earlier.okRuns.insert(row.at("run") + "|" + row.at("config_hash"));
+                earlier.okRuns.insert(runKey(row));
             }
     Resumed resumed;
     matchEarlier(plan, mine, caches, earlier, resumed);

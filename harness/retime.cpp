@@ -11,6 +11,7 @@
 #include "check.h"
 #include "columns.h"
 #include "output_folder.h"
+#include "samples_check.h"
 #include "runner.h"
 #include "timing_rounds.h"
 #include "version.h"
@@ -51,7 +52,6 @@ Conditioning conditioning(const Row& row) {
     return c;
 }
 
-std::string runKey(const Row& row) { return cellText(row, "run") + "|" + cellText(row, "config_hash"); }
 
 // The best try of one flagged run so far.
 struct Best {

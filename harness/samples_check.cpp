@@ -9,9 +9,11 @@
 
 namespace rtbench {
 
+std::string runKey(const Row& row) { return cellText(row, "run") + "|" + cellText(row, "config_hash"); }
+
 std::map<std::string, std::vector<const Row*>> samplesByRun(const std::vector<Row>& samples) {
     std::map<std::string, std::vector<const Row*>> byRun;
-    for (const Row& s : samples) byRun[s.at("run") + "|" + s.at("config_hash")].push_back(&s);
+    for (const Row& s : samples) byRun[runKey(s)].push_back(&s);
     return byRun;
 }
 
@@ -46,7 +48,7 @@ std::string methodProblem(const Row& row, const std::string& method, const std::
 std::string samplesProblem(const Row& row, const std::map<std::string, std::vector<const Row*>>& byRun) {
     if (cellText(row, "status") != "ok" || cellText(row, "timing_repetitions").empty()) return "";
     const double repetitions = cellNumber(cellText(row, "timing_repetitions"));
-    const auto found = byRun.find(cellText(row, "run") + "|" + cellText(row, "config_hash"));
+    const auto found = byRun.find(runKey(row));
     if (found == byRun.end()) return "no samples of its run and config hash";
     for (const char* method : {"kernel", "embree1", "embree16"}) {
         if (cellText(row, std::string(method) + "_ms_median").empty()) continue;

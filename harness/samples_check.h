@@ -11,7 +11,10 @@
 
 namespace rtbench {
 
-// samples.csv rows grouped by "run|config_hash".
+// A run's key across runs.csv and samples.csv rows: "run|config_hash".
+std::string runKey(const Row& row);
+
+// samples.csv rows grouped by runKey.
 std::map<std::string, std::vector<const Row*>> samplesByRun(const std::vector<Row>& samples);
 
 // Why `row`'s samples are not its own, "" when they are (or the row has no timing to back: a

@@ -9,6 +9,7 @@
 #include "harness/interrupt_note.h"
 #include "harness/plan_view.h"
 #include "harness/run_pipeline.h"
+#include "harness/samples_check.h"
 #include "harness/writers.h"
 
 namespace rtbench {
@@ -50,7 +51,7 @@ public:
         // re-run, another commit), the mean of the runs run so far for the others.
         const std::map<std::string, double> earlierWall = earlierWallSeconds(s.resumed.earlierRows);
         for (std::size_t k = 0; k < s.mine.size(); ++k) {
-            const auto it = earlierWall.find(rows_[k].at("run") + "|" + rows_[k].at("config_hash"));
+            const auto it = earlierWall.find(runKey(rows_[k]));
             if (it != earlierWall.end()) tookBefore_[k] = it->second;
         }
     }
@@ -161,7 +162,7 @@ void prepareAll(Sweep& s, Recorder& recorder, Interleaved& in) {
         try {
             Row& row = recorder.row(k);
             in.running[k] = prepareRun(s.plan, *s.mine[k], s.caches, row);
-            const auto resumed = s.resumed.rounds.find(row.at("run") + "|" + row.at("config_hash"));
+            const auto resumed = s.resumed.rounds.find(runKey(row));
             if (resumed != s.resumed.rounds.end()) {
                 in.running[k]->rounds->resume(timingSamples(resumed->second));
                 in.appended[k] = resumed->second.size();

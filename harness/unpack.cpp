@@ -15,6 +15,7 @@
 
 #include "core/error.h"
 #include "core/text.h"
+#include "harness/writers.h"
 
 namespace rtbench {
 namespace {
@@ -252,15 +253,6 @@ private:
     bool committed_ = false;
 };
 
-void writeAll(int fd, const char* bytes, std::size_t n, const std::string& path) {
-    while (n > 0) {
-        const ssize_t written = ::write(fd, bytes, n);
-        if (written < 0 && errno == EINTR) continue;
-        if (written <= 0) throw Error(path + ": cannot write: " + systemError());
-        bytes += written, n -= std::size_t(written);
-    }
-}
-
 // Pass two: the archive read again, each entry equal to pass one's, each file to a temporary;
 // all renamed into place at the end.
 void writeArchive(int fd, const std::vector<Entry>& plan, const std::string& dir, int dirFd) {
@@ -280,7 +272,7 @@ void writeArchive(int fd, const std::vector<Entry>& plan, const std::string& dir
         std::uint64_t written = 0;
         e.bytes = reader.data([&](const char* bytes, std::size_t n) {
             if ((written += n) > plan[i].bytes) throw Error("the archive changed while it was unpacked (" + e.name() + ")");
-            writeAll(out.fd, bytes, n, path);
+            if (!writeAll(out.fd, std::string_view(bytes, n))) throw Error(path + ": cannot write: " + systemError());
         });
         if (e.bytes != plan[i].bytes) throw Error("the archive changed while it was unpacked (" + e.name() + ")");
         if (::fsync(out.fd) != 0) throw Error(path + ": cannot sync: " + systemError());

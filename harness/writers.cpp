@@ -96,6 +96,9 @@ int createTemporaryAt(const Folder& dir, const std::string& stem, std::string& n
     return -1;
 }
 
+
+}  // namespace
+
 // Writes all of `bytes` to fd; false (errno set) on failure.
 bool writeAll(int fd, std::string_view bytes) {
     std::size_t done = 0;
@@ -110,8 +113,6 @@ bool writeAll(int fd, std::string_view bytes) {
     }
     return true;
 }
-
-}  // namespace
 
 void holdFolder(const std::string& folder, int fd) {
     std::lock_guard<std::mutex> lock(heldMutex);

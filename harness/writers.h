@@ -5,6 +5,7 @@
 
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "plan/columns.h"
@@ -41,6 +42,9 @@ std::vector<Row> parseCsv(const std::string& text, const std::string& path);
 // never a planted file or symlink), synced and renamed over path; refuses a path that is a
 // symlink. On failure the temporary is removed and path unchanged.
 void writeFileAtomically(const std::string& path, const std::string& text);
+
+// Writes all of `bytes` to fd, through short writes and EINTR; false (errno set) on failure.
+bool writeAll(int fd, std::string_view bytes);
 
 // A results folder held open (output_folder.h FolderIdentity, O_DIRECTORY | O_NOFOLLOW): while
 // held, writeFileAtomically and appendCsvRows into it (a path whose parent is `folder`) create,
