@@ -205,62 +205,47 @@ DeviceInfo describe(VkPhysicalDevice device) {
     return info;
 }
 
-}  // namespace
-
-std::vector<DeviceInfo> VulkanContext::listDevices() {
-    VkInstance instance = createInstance(false, nullptr, nullptr);
-    std::vector<DeviceInfo> infos;
-    for (VkPhysicalDevice d : physicalDevices(instance)) infos.push_back(describe(d));
-    vkDestroyInstance(instance, nullptr);
-    return infos;
+// The device chosen: a name substring, or auto = discrete GPU > CPU (lavapipe) > the first.
+VkPhysicalDevice choosePhysicalDevice(VkInstance instance, const std::string& deviceChoice) {
+    const std::vector<VkPhysicalDevice> devices = physicalDevices(instance);
+    if (devices.empty()) throw Error("Vulkan: no physical device (install mesa-vulkan-drivers)");
+    if (deviceChoice == "auto" || deviceChoice.empty()) {
+        auto rank = [](const DeviceInfo& i) { return i.type == "discrete" ? 0 : i.type == "cpu" ? 1 : i.type == "integrated" ? 2 : 3; };
+        return *std::min_element(devices.begin(), devices.end(), [&](auto a, auto b) { return rank(describe(a)) < rank(describe(b)); });
+    }
+    std::string available;
+    for (VkPhysicalDevice d : devices) {
+        if (lower(describe(d).name).find(lower(deviceChoice)) != std::string::npos) return d;
+        available += (available.empty() ? "" : ", ") + describe(d).name;
+    }
+    throw Error("Vulkan: no device matches '" + deviceChoice + "' (available: " + available + ")");
 }
 
-VulkanContext::VulkanContext(const std::string& deviceChoice, bool validation) : poisonNewBuffers_(validation) {
-    instance_ = createInstance(validation, &messages_, &messenger_);
-
-    // Device choice: a name substring, or auto = discrete GPU > CPU (lavapipe) > the first.
-    const std::vector<VkPhysicalDevice> devices = physicalDevices(instance_);
-    if (devices.empty()) throw Error("Vulkan: no physical device (install mesa-vulkan-drivers)");
-    std::string available;
-    for (VkPhysicalDevice d : devices) available += (available.empty() ? "" : ", ") + describe(d).name;
-    if (deviceChoice == "auto" || deviceChoice.empty()) {
-        auto rank = [](const DeviceInfo& i) {
-            return i.type == "discrete" ? 0 : i.type == "cpu" ? 1 : i.type == "integrated" ? 2 : 3;
-        };
-        physical_ = *std::min_element(devices.begin(), devices.end(), [&](auto a, auto b) {
-            return rank(describe(a)) < rank(describe(b));
-        });
-    } else {
-        for (VkPhysicalDevice d : devices)
-            if (lower(describe(d).name).find(lower(deviceChoice)) != std::string::npos) {
-                physical_ = d;
-                break;
-            }
-        if (!physical_)
-            throw Error("Vulkan: no device matches '" + deviceChoice + "' (available: " + available + ")");
-    }
-    info_ = describe(physical_);
-    vkGetPhysicalDeviceMemoryProperties(physical_, &memoryProperties_);
-
-    // A queue family with compute.
+// The first queue family with compute.
+std::uint32_t computeQueueFamily(VkPhysicalDevice physical, const std::string& name, std::uint32_t& timestampValidBits) {
     std::uint32_t familyCount = 0;
-    vkGetPhysicalDeviceQueueFamilyProperties(physical_, &familyCount, nullptr);
+    vkGetPhysicalDeviceQueueFamilyProperties(physical, &familyCount, nullptr);
     std::vector<VkQueueFamilyProperties> families(familyCount);
-    vkGetPhysicalDeviceQueueFamilyProperties(physical_, &familyCount, families.data());
-    bool found = false;
-    for (std::uint32_t f = 0; f < familyCount && !found; ++f)
-        if (families[f].queueFlags & VK_QUEUE_COMPUTE_BIT) queueFamily_ = f, found = true;
-    if (!found) throw Error("Vulkan: " + info_.name + " has no compute queue");
-    timestampValidBits_ = families[queueFamily_].timestampValidBits;
-    info_.timestampsSupported = info_.timestampsSupported || timestampValidBits_ > 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(physical, &familyCount, families.data());
+    for (std::uint32_t f = 0; f < familyCount; ++f)
+        if (families[f].queueFlags & VK_QUEUE_COMPUTE_BIT) {
+            timestampValidBits = families[f].timestampValidBits;
+            return f;
+        }
+    throw Error("Vulkan: " + name + " has no compute queue");
+}
 
+// The logical device with one compute queue and the features the kernels need: 8-bit storage,
+// 64-bit integers, atomics and floats, and the driver's ray tracing where the device has it
+// (methods/ray_query: its extensions and features, and buffer device addresses for its builds).
+VkDevice createLogicalDevice(VkPhysicalDevice physical, std::uint32_t queueFamily, const DeviceInfo& info) {
+    if (!info.missingFeatures.empty())
+        throw Error("Vulkan: " + info.name + " lacks features the kernels need: " + info.missingFeatures);
     const float priority = 1.0f;
     VkDeviceQueueCreateInfo queueInfo{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
-    queueInfo.queueFamilyIndex = queueFamily_;
+    queueInfo.queueFamilyIndex = queueFamily;
     queueInfo.queueCount = 1;
     queueInfo.pQueuePriorities = &priority;
-    if (!info_.missingFeatures.empty())
-        throw Error("Vulkan: " + info_.name + " lacks features the kernels need: " + info_.missingFeatures);
     VkPhysicalDeviceVulkan12Features v12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
     v12.storageBuffer8BitAccess = VK_TRUE;
     v12.shaderInt8 = VK_TRUE;
@@ -269,13 +254,10 @@ VulkanContext::VulkanContext(const std::string& deviceChoice, bool validation) :
     features.pNext = &v12;
     features.features.shaderInt64 = VK_TRUE;
     features.features.shaderFloat64 = VK_TRUE;
-    // The driver's ray tracing, where the device has it (methods/ray_query): its extensions and
-    // features, and buffer device addresses for its builds.
     VkPhysicalDeviceRayQueryFeaturesKHR rayQuery{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_RAY_QUERY_FEATURES_KHR};
-    VkPhysicalDeviceAccelerationStructureFeaturesKHR structures{
-        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
+    VkPhysicalDeviceAccelerationStructureFeaturesKHR structures{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_ACCELERATION_STRUCTURE_FEATURES_KHR};
     std::vector<const char*> extensions;
-    if (info_.rayQuery) {
+    if (info.rayQuery) {
         rayQuery.rayQuery = VK_TRUE;
         structures.accelerationStructure = VK_TRUE;
         structures.pNext = &rayQuery;
@@ -289,7 +271,29 @@ VulkanContext::VulkanContext(const std::string& deviceChoice, bool validation) :
     deviceInfo.ppEnabledExtensionNames = extensions.data();
     deviceInfo.queueCreateInfoCount = 1;
     deviceInfo.pQueueCreateInfos = &queueInfo;
-    VK_CHECK(vkCreateDevice(physical_, &deviceInfo, nullptr, &device_));
+    VkDevice device = VK_NULL_HANDLE;
+    VK_CHECK(vkCreateDevice(physical, &deviceInfo, nullptr, &device));
+    return device;
+}
+
+}  // namespace
+
+std::vector<DeviceInfo> VulkanContext::listDevices() {
+    VkInstance instance = createInstance(false, nullptr, nullptr);
+    std::vector<DeviceInfo> infos;
+    for (VkPhysicalDevice d : physicalDevices(instance)) infos.push_back(describe(d));
+    vkDestroyInstance(instance, nullptr);
+    return infos;
+}
+
+VulkanContext::VulkanContext(const std::string& deviceChoice, bool validation) : poisonNewBuffers_(validation) {
+    instance_ = createInstance(validation, &messages_, &messenger_);
+    physical_ = choosePhysicalDevice(instance_, deviceChoice);
+    info_ = describe(physical_);
+    vkGetPhysicalDeviceMemoryProperties(physical_, &memoryProperties_);
+    queueFamily_ = computeQueueFamily(physical_, info_.name, timestampValidBits_);
+    info_.timestampsSupported = info_.timestampsSupported || timestampValidBits_ > 0;
+    device_ = createLogicalDevice(physical_, queueFamily_, info_);
     vkGetDeviceQueue(device_, queueFamily_, 0, &queue_);
 
     VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};

@@ -39,247 +39,305 @@ int addedInSchema(const std::string& column) {
     return it == added.end() ? 1 : it->second;
 }
 
+// The columns of runs.csv as they are declared, in their order.
+struct ColumnList {
+    std::vector<ColumnSpec> specs;
+
+    ColumnSpec& add(std::string name, ColumnKind kind, std::string unit, std::string help, double tolerance = 0.0,
+                    bool perRay = false) {
+        specs.push_back({std::move(name), kind, std::move(unit), std::move(help), tolerance, perRay});
+        return specs.back();
+    }
+    // A column whose cells name or explain (a label, a hash, a reason).
+    ColumnSpec& text(std::string name, ColumnKind kind, std::string help) {
+        return specs.emplace_back(textColumn({std::move(name), kind, "", std::move(help)}));
+    }
+    // A structure's, ray type's or strategy's own columns, written only by its runs (`typeKey` =
+    // `name`). A column several methods write (rays_cut_short, the lane model's lanes_model_*) is
+    // declared by each, alike: its condition names them all.
+    void addMethod(const std::string& typeKey, const std::string& name, const std::vector<ColumnSpec>& columns) {
+        for (ColumnSpec c : columns) {
+            auto same = std::find_if(specs.begin(), specs.end(), [&](const ColumnSpec& d) { return d.name == c.name; });
+            if (same != specs.end() && !same->appliesWhen.empty() && same->appliesWhen.front().rfind(typeKey + "=", 0) == 0 &&
+                same->help == c.help && same->kind == c.kind && same->unit == c.unit && same->since == c.since &&
+                same->type == c.type) {
+                same->appliesWhen.front() += "|" + name;
+                continue;
+            }
+            c.appliesWhen.insert(c.appliesWhen.begin(), typeKey + "=" + name);
+            specs.push_back(std::move(c));
+        }
+    }
+};
+
+ColumnType keyColumnType(ValueType type) {
+    switch (type) {
+        case ValueType::Int:
+        case ValueType::Int3: return ColumnType::Integer;
+        case ValueType::Float:
+        case ValueType::Float3: return ColumnType::Number;
+        case ValueType::Bool: return ColumnType::Boolean;
+        case ValueType::String: break;
+    }
+    return ColumnType::Text;
+}
+
+// One column per config key (a 3-vector key: three), of the key's type.
+void addKeyColumns(ColumnList& s) {
+    for (const KeySpec& key : configSchema()) {
+        const std::vector<std::string> columns = keyColumns(key);
+        for (std::size_t a = 0; a < columns.size(); ++a) {
+            ColumnSpec& c = s.add(columns[a], key.name == "experiment.output" ? ColumnKind::Context : ColumnKind::Parameter, "",
+                                  columns.size() == 1 ? key.help : key.help + " (" + "xyz"[a] + ")");
+            c.appliesWhen = key.appliesWhen;
+            c.since = std::max(key.since, addedInSchema(paramColumn(key.name)));
+            c.type = keyColumnType(key.type);
+        }
+    }
+}
+
+// Identity and outcome.
+void addIdentityColumns(ColumnList& s) {
+    using K = ColumnKind;
+    s.text("run", K::Parameter, "run number in the plan (000, 001, ...)");
+    s.text("label", K::Parameter, "the swept parameters of the run");
+    s.text("sweep", K::Parameter, "the name of the [[sweep]] the run comes from (empty: the base config)").since = 5;
+    s.text("status", K::Exact, "ok or failed");
+    s.text("error", K::Exact, "why the run failed");
+    s.text("warnings", K::Exact, "what the run did that may surprise (e.g. triangles degenerate in float)");
+    s.text("config_hash", K::Parameter, "FNV-1a 64 of the run's parameters (the command line's -d, --validation and --embree-config included)");
+    s.text("inputs_hash", K::Parameter, "FNV-1a 64 over the contents of every file the scene was made from (mesh files, the scene description and its meshes, a cgal: mesh's cached file; none for procedural scenes): with config_hash, git_commit, device, driver and cpu, the run's identity");
+    s.text("input_files", K::Context, "those files: path (bytes, FNV-1a 64 of the contents), in reading order");
+    s.text("git_commit", K::Context, "commit of the binary");
+    s.text("device", K::Context, "Vulkan device name");
+    s.text("driver", K::Context, "Vulkan driver name and version");
+    s.text("cpu", K::Context, "the host's CPU model (what lavapipe and Embree ran on)");
+}
+
+// Scene, rays, the shading passes that made them, and the structure.
+void addSceneColumns(ColumnList& s) {
+    using K = ColumnKind;
+    s.add("scene_triangles", K::Exact, "triangles", "triangles after triangulation");
+    s.add("scene_degenerate", K::Exact, "triangles", "zero-area triangles in float (never hit)");
+    s.add("scene_full_triangles", K::Exact, "triangles", "triangles of the scene before scene.simplify_*: what the exact reference traces");
+    s.add("scene_simplify_ms", K::Timing, "ms", "scene.simplify_*: wall time of the edge collapses");
+    s.add("vertex_lattice_step", K::Exact, "scene units", "intersection.vertex_bits < 32: the spacing of the vertex lattice");
+    s.add("vertex_snap_error_max", K::Exact, "scene units", "intersection.vertex_bits < 32: the largest distance a vertex moved to its lattice point (not simplified scenes)");
+    s.add("rays", K::Exact, "rays", "rays traced: the batch of rays.type the run measures");
+    s.text("query", K::Exact, "what the rays ask: closest (the nearest hit) or any (whether anything is hit in [tMin, tMax): the walk ends at its first hit; Embree's rtcOccluded)").since = 7;
+    // The shading passes that made the rays after the first hit, run again on the device
+    // (rays/workload.h checkShadingOnDevice); 0 and empty for camera rays.
+    s.add("shading_passes", K::Exact, "passes", "shading passes (kernels/shading.comp) that made the generations after the camera rays: 1 for shadow rays, k for reflection iteration k").since = 9;
+    s.add("shading_rays", K::Exact, "rays", "rays those passes made on the device, all generations together").since = 9;
+    s.add("shading_ms", K::Timing, "ms", "GPU time of those passes together (one dispatch each, not in kernel_ms)").since = 9;
+    s.add("shading_device_mismatches", K::Exact, "rays", "rays the device's shading passes made that differ from the CPU's in a bit, their parent or their path (a failed run)").since = 9;
+    for (const char* axis : {"x", "y", "z"})
+        s.add(std::string("camera_eye_") + axis, K::Exact, "scene units", std::string("the camera the rays came from (fitted to the scene, or as given, moved with it): eye position, ") + axis).since = 5;
+    for (const char* axis : {"x", "y", "z"})
+        s.add(std::string("camera_target_") + axis, K::Exact, "scene units", std::string("the camera's point looked at, ") + axis).since = 5;
+    s.add("structure_bytes", K::Exact, "bytes", "device memory of the structure (its buffers, triangle vertices included; the driver's: its two levels' storage)");
+    s.add("structure_bytes_per_triangle", K::Exact, "bytes", "structure_bytes / scene_triangles");
+    s.add("structure_build_ms", K::Timing, "ms", "CPU build time of the structure (the driver's: its builds on the device, GPU timestamps)");
+    s.add("predicted_work_per_ray", K::Exact, "operations",
+          "cost model: cells or nodes visited + triangles tested per ray, predicted from the structure alone (SAH-style, no early termination)");
+}
+
+// How the timing went, and the noise guard's judgement of it (harness/timing_rounds.h).
+void addNoiseGuardColumns(ColumnList& s) {
+    using K = ColumnKind;
+    s.add("timing_repetitions", K::Timing, "repetitions", "timed repetitions of each method (kernel, Embree 1, Embree 16)").since = 5;
+    s.add("timing_rounds", K::Timing, "rounds", "rounds they were timed in, each the kernel then Embree 1 then Embree 16").since = 5;
+    s.text("timing_stop", K::Timing, "why the timing stopped: repetitions (experiment.repetitions, fixed), converged (every interval within experiment.target_ci), max_repetitions, time_budget").since = 5;
+    s.add("timing_s", K::Timing, "s", "wall time of the timed rounds (with experiment.target_ci, the judging after each included: what experiment.time_budget_s bounds)").since = 5;
+    s.text("timing_warning", K::Context, "noise guard: why the run's timings are not results of record (a coefficient of variation above experiment.noise_cv, other processes above experiment.noise_other_cpu, one repetition: noise not measured); empty when clean").since = 5;
+    s.text("retimed", K::Context, "rtbench retime: when the run was re-timed, which try's timings were kept and why (no timing warning beats one, then the lower largest CV), or that none was better conditioned; empty when never re-timed").since = 24;
+    s.add("other_cpu_fraction", K::Timing, "fraction", "noise guard: CPU time other processes took while the run ran (from its scene to the end of its timing), over cores x wall time (Linux /proc/stat, hypervisor steal included); empty when that window held under 100 clock ticks of the machine").since = 5;
+    s.add("load_average", K::Timing, "", "noise guard: 1-minute load average when the timing ended").since = 5;
+    s.add("device_host_threads", K::Context, "threads", "threads the device runs on the host's cores (lavapipe: LP_NUM_THREADS, else one per core up to 32; 0 for a GPU), beside embree_threads, against the machine's cores (context.json cpu_threads)").since = 5;
+}
+
+// A timed method's spread: mean, std, CV and the median's interval (harness/timing_rounds.h).
+void addSpreadColumns(ColumnList& s, const std::string& m, const std::string& who) {
+    using K = ColumnKind;
+    s.add(m + "_ms_mean", K::Timing, "ms", who + ", mean of the repetitions").since = 5;
+    s.add(m + "_ms_std", K::Timing, "ms", who + ", sample standard deviation of the repetitions (empty for one)").since = 5;
+    s.add(m + "_ms_cv", K::Timing, "", who + ", coefficient of variation (std / mean; empty for one repetition)").since = 5;
+    s.add(m + "_ms_ci_low", K::Timing, "ms", who + ", 95% interval of the median from the order statistics "
+          "(distribution-free, coverage at least 95%; empty below 6 repetitions; before results schema 23: "
+          "percentile bootstrap): low end").since = 5;
+    s.add(m + "_ms_ci_high", K::Timing, "ms", who + ", 95% interval of the median (as _ci_low): high end").since = 5;
+}
+
+// Time: the kernel's and Embree's on the same rays (every sample is in samples.csv).
+void addTimingColumns(ColumnList& s) {
+    using K = ColumnKind;
+    s.add("kernel_ms_median", K::Timing, "ms",
+          "GPU time of the kernel(s), median of the repetitions (multipass with strategy.control = host, "
+          "since results schema 25: host wall time of its live pass loop, the oracle's read-back after every pass)");
+    s.add("kernel_ms_min", K::Timing, "ms", "GPU time, fastest repetition");
+    s.add("kernel_ms_max", K::Timing, "ms", "GPU time, slowest repetition");
+    addSpreadColumns(s, "kernel", "GPU time");
+    s.add("kernel_mrays_s", K::Timing, "Mrays/s", "rays / median GPU time (the rays of every generation for a strategy that traces the whole path: whole_path_rays)");
+    for (const std::string m : {"embree1", "embree16"}) {
+        s.add(m + "_ms_median", K::Timing, "ms", "Embree " + m + " on the same rays, median");
+        s.add(m + "_ms_min", K::Timing, "ms", "Embree " + m + ", fastest repetition");
+        s.add(m + "_ms_max", K::Timing, "ms", "Embree " + m + ", slowest repetition");
+        addSpreadColumns(s, m, "Embree " + m);
+        s.add(m + "_mrays_s", K::Timing, "Mrays/s", "rays / Embree's median time");
+    }
+    s.add("embree_rays", K::Exact, "rays",
+          "rays Embree traced per repetition: the batch's, or beside a strategy that traces the whole path (wavefront, "
+          "path_megakernel) every generation's, as the kernel did").since = 19;
+    s.add("embree_threads", K::Context, "threads", "TBB threads Embree ran on");
+    s.text("embree_isa", K::Context, "Embree's native packet width (its ISA path)");
+    s.add("embree_build_ms", K::Timing, "ms", "Embree BVH build time");
+    s.add("speed_ratio_vs_embree1", K::Timing, "ratio", "kernel Mrays/s / Embree rtcIntersect1 Mrays/s");
+    s.add("speed_ratio_ci_low", K::Timing, "ratio", "speed_ratio_vs_embree1: 95% interval, from each median's 97.5% "
+          "order-statistic interval (both hold at once with at least 95%; empty below 7 repetitions; before results "
+          "schema 23: percentile bootstrap), low end").since = 5;
+    s.add("speed_ratio_ci_high", K::Timing, "ratio", "speed_ratio_vs_embree1: 95% interval (as _ci_low), high end").since = 5;
+    addNoiseGuardColumns(s);
+}
+
+// Agreement with Embree (a second view of accuracy: depends on Embree's floating-point path),
+// accuracy against the exact reference (harness/exact_reference.h: the kernels' counts are
+// deterministic, Embree's depend on its ISA path), and the image against the exact render.
+void addAccuracyColumns(ColumnList& s) {
+    using K = ColumnKind;
+    s.add("hits", K::Exact, "rays", "rays the kernel hit");
+    s.add("hit_miss_agreement", K::Reference, "fraction", "rays whose hit/miss equals Embree's", 1e-4);
+    s.add("same_primitive_agreement", K::Reference, "fraction", "rays both hit on the same triangle", 1e-4);
+    s.add("rel_distance_error_mean", K::Reference, "", "|t - t_Embree| / t_Embree, mean over rays both hit", 1e-6);
+    s.add("rel_distance_error_max", K::Reference, "", "|t - t_Embree| / t_Embree, max", 1e-6);
+    s.add("hit_miss_mismatches", K::Reference, "rays", "rays where one hit and the other missed", 1e-4, true);
+    s.add("primitive_mismatches", K::Reference, "rays", "rays both hit on different triangles", 1e-4, true);
+    s.add("exact_rays", K::Exact, "rays", "rays traced by the exact reference (accuracy.exact_rays)");
+    s.add("exact_ties", K::Exact, "rays", "of those, rays whose exact first hit is shared by several triangles (each is correct)");
+    s.add("exact_ms", K::Timing, "ms", "wall time of the exact reference on those rays");
+    s.add("exact_parent_wrong", K::Exact, "rays", "rays after the first hit: of the exact_rays, those with a ray earlier on their path (the camera ray, an earlier reflection) whose hit is not an exact first hit (they leave from another surface than the exact scene's; still judged as the rays they are)").since = 7;
+    for (const bool embree : {false, true}) {
+        const std::string p = embree ? "embree_exact_" : "exact_";
+        const std::string who = embree ? "Embree" : "the kernel";
+        const K kind = embree ? K::Reference : K::Exact;
+        s.add(p + "false_misses", kind, "rays", "the exact ray hits, " + who + " missed (a leak)", 1e-4, true);
+        s.add(p + "false_hits", kind, "rays", "the exact ray misses, " + who + " hit", 1e-4, true);
+        s.add(p + "wrong_primitive", kind, "rays", "both hit; " + who + "'s triangle is not one the exact ray hits first (empty for a simplified scene: other triangles, and for any-hit rays: any triangle answers)", 1e-4, true);
+        s.add(p + "wrong_ppm", kind, "ppm", "false misses + false hits + wrong primitive, per million exact_rays (of primary rays: wrong pixels)", 100.0);
+        s.add(p + "distance_error_mean", kind, "", "|t - t_exact| / t_exact, mean over rays both hit", 1e-6);
+        s.add(p + "distance_error_max", kind, "", "|t - t_exact| / t_exact, max", 1e-6);
+    }
+    // Image-level accuracy, as OpenImageIO's idiff measures it, on the pixels of the exact_rays.
+    s.add("image_psnr_db", K::Exact, "dB", "shaded pixels (8-bit grey, as the PNG) of the run's image against the same image made with the exact hits on the full scene (rays after the first hit: the batch's image, of its rays' own hits or of the camera hits they change; since results schema 10): PSNR, 20 log10(1 / RMS error) on [0, 1]; inf when equal");
+    s.add("image_error_mean", K::Exact, "", "shaded pixels against the exact render: mean |difference|");
+    s.add("image_error_max", K::Exact, "", "shaded pixels against the exact render: largest |difference|");
+    s.add("image_pixels_differ", K::Exact, "pixels", "shaded pixels whose 8-bit grey differs from the exact render's");
+}
+
+// Work and accounting (exact, from instrumented kernels; equal to the CPU reference).
+void addWorkColumns(ColumnList& s) {
+    using K = ColumnKind;
+    s.add("work_per_ray_mean", K::Exact, "operations", "cells or nodes visited + triangles tested per ray, measured: what predicted_work_per_ray predicts");
+    s.add("triangles_per_ray_mean", K::Exact, "tests", "ray-triangle tests per ray, mean");
+    s.add("triangles_per_ray_max", K::Exact, "tests", "ray-triangle tests per ray, max");
+    s.add("traversal_steps_per_ray_mean", K::Exact, "steps", "traversal step attempts per ray (grid: DDA steps; BVH: references visited, inner nodes and leaves), mean");
+    s.add("traversal_steps_per_ray_max", K::Exact, "steps", "traversal step attempts per ray, max");
+    s.add("passes_total", K::Exact, "passes", "kernel dispatches over the ray stream");
+    s.add("simd_efficiency", K::Exact, "fraction",
+          "the strategy's own measure, as written before schema 14 (two measures in one column; read the two below): "
+          "simd_lane_utilisation for branching, persistent and the megakernel; for multipass Purcell's over the stream "
+          "(control = host) or over its compacted lists (control = device: 1)");
+    ColumnSpec& lanes = s.add("simd_lane_utilisation", K::Exact, "fraction",
+          "branching, persistent, megakernel: active lanes / lane slots over the kernel's subgroup ballots (Aila & Laine "
+          "2009), counted only where some lane of a subgroup still works (rays that miss at once are left out)");
+    lanes.since = 14;
+    lanes.appliesWhen = {"strategy.type=branching|persistent|megakernel"};
+    s.add("simd_efficiency_purcell", K::Exact, "fraction",
+          "Purcell et al. 2002 Table 2's SIMD efficiency, the average fraction of the stream's rays doing useful work in a "
+          "pass, misses included: multipass, rays served / (rays x traverse and intersect passes), whatever the control; "
+          "branching, persistent, megakernel, the stream run in lock step one traversal step or triangle test at a time: "
+          "sum of (steps + tests) / (rays x the most steps + tests of one ray)").since = 14;
+    s.add("bytes_stencil", K::Exact, "bytes", "ray-state byte reads and writes");
+    s.add("bytes_state", K::Exact, "bytes", "per-ray state saved and restored");
+    s.add("bytes_stack", K::Exact, "bytes", "multipass: node-stack entries pushed and popped, 4 bytes each (BVH; its stack stays in memory)");
+    s.add("bytes_compaction", K::Exact, "bytes", "multipass with strategy.control = device: compacted ray-list entries read and appended, 4 bytes each").since = 13;
+    s.add("bytes_triangle_list", K::Exact, "bytes", "triangle-list entries read");
+    s.add("bytes_vertices", K::Exact, "bytes", "triangle vertices read");
+    s.add("bytes_output", K::Exact, "bytes", "hit records written");
+    s.add("bytes_total", K::Exact, "bytes", "all categories");
+    s.add("bytes_per_ray", K::Exact, "bytes", "bytes_total / rays");
+}
+
+// Purcell Table 1 / Fig. 7's compute, estimated (methods/instructions/instruction_estimate.h):
+// branching and multipass runs, since results schema 17.
+void addInstructionColumns(ColumnList& s) {
+    const std::string estimate = "estimate: static SPIR-V instructions (glslang, unoptimised; every branch counted) ";
+    auto add = [&](std::string name, std::string unit, std::string help) {
+        ColumnSpec& c = s.add(std::move(name), ColumnKind::Exact, std::move(unit), std::move(help));
+        c.since = 17;
+        c.appliesWhen = {"strategy.type=branching|multipass"};
+    };
+    add("instructions_per_step", "instructions",
+        estimate + "of one traversal event (grid: rtDdaStep, a DDA step; BVH: rtBvhChildren, an inner node)");
+    add("instructions_per_test", "instructions", estimate + "of one ray-triangle test (rtIntersectStored, the run's test)");
+    add("instructions_traverse", "instructions",
+        estimate + "x exact counts: traversal (Fig. 7's traverser): steps x instructions_per_step, and for multipass "
+        "each ray a traverse pass serves x the traverse kernel's other instructions");
+    add("instructions_intersect", "instructions",
+        estimate + "x exact counts: intersection (Fig. 7's intersector): tests x instructions_per_test, and for "
+        "multipass each ray an intersect pass serves x the intersect kernel's other instructions");
+    add("instructions_other", "instructions",
+        estimate + "x rays: the rest of the kernel (branching) or the setup and write kernels (multipass); rays the "
+        "stencil turns away cost none (Purcell's early fragment kill)");
+    add("instructions_total", "instructions", "instructions_traverse + instructions_intersect + instructions_other");
+    add("instructions_per_byte", "ratio", "instructions_total / bytes_total: compute against bandwidth (Purcell §4.2)");
+}
+
+// Self-checks (a mismatch fails the run), and the run's wall time.
+void addSelfCheckColumns(ColumnList& s) {
+    using K = ColumnKind;
+    s.add("cpu_reference_mismatches", K::Exact, "rays",
+          "rays whose GPU hit record differs from the CPU reference's (empty for the driver's ray query: another's arithmetic, judged by the exact reference)");
+    s.add("cpu_counts_match", K::Exact, "",
+          "1 when pass and lane counts equal the CPU reference's (lane counts only on a device whose subgroups run "
+          "in lock step; empty for branching elsewhere, where they are not compared)").type = ColumnType::Integer;
+    s.add("wall_s", K::Timing, "s", "wall time of the whole run");
+}
+
+// A column of inferred type: an integer when its unit counts things and it is not a mean or a
+// per-something ratio (a per-ray maximum is a count), else a number.
+ColumnType inferredType(const ColumnSpec& column) {
+    static const std::set<std::string> countedUnits = {"rays", "triangles", "bytes", "passes", "cells", "references", "nodes",
+                                                       "leaves", "levels", "voxels", "tests", "steps", "pixels", "threads", "lights",
+                                                       "materials", "repetitions", "rounds", "generations"};
+    const std::string& n = column.name;
+    const bool averaged = n.find("_mean") != std::string::npos || (n.find("_per_") != std::string::npos && !n.ends_with("_max"));
+    return countedUnits.count(column.unit) && !averaged ? ColumnType::Integer : ColumnType::Number;
+}
+
 }  // namespace
 
 const std::vector<ColumnSpec>& runColumnSpecs() {
     static const std::vector<ColumnSpec> specs = [] {
-        using K = ColumnKind;
-        std::vector<ColumnSpec> s;
-        for (const KeySpec& key : configSchema()) {
-            const std::vector<std::string> columns = keyColumns(key);
-            for (std::size_t a = 0; a < columns.size(); ++a)
-                s.push_back({columns[a], key.name == "experiment.output" ? K::Context : K::Parameter, "",
-                             columns.size() == 1 ? key.help : key.help + " (" + "xyz"[a] + ")", 0.0, false,
-                             key.appliesWhen, std::max(key.since, addedInSchema(paramColumn(key.name)))});
-        }
-        auto add = [&](std::string name, K kind, std::string unit, std::string help,
-                       double tolerance = 0.0, bool perRay = false) {
-            s.push_back(
-                {std::move(name), kind, std::move(unit), std::move(help), tolerance, perRay});
-        };
-        // Identity and outcome.
-        add("run", K::Parameter, "", "run number in the plan (000, 001, ...)");
-        add("label", K::Parameter, "", "the swept parameters of the run");
-        add("sweep", K::Parameter, "", "the name of the [[sweep]] the run comes from (empty: the base config)");
-        s.back().since = 5;
-        add("status", K::Exact, "", "ok or failed");
-        add("error", K::Exact, "", "why the run failed");
-        add("warnings", K::Exact, "",
-            "what the run did that may surprise (e.g. triangles degenerate in float)");
-        add("config_hash", K::Parameter, "", "FNV-1a 64 of the run's parameters (the command line's -d, --validation and --embree-config included)");
-        add("inputs_hash", K::Parameter, "", "FNV-1a 64 over the contents of every file the scene was made from (mesh files, the scene description and its meshes, a cgal: mesh's cached file; none for procedural scenes): with config_hash, git_commit, device, driver and cpu, the run's identity");
-        add("input_files", K::Context, "", "those files: path (bytes, FNV-1a 64 of the contents), in reading order");
-        add("git_commit", K::Context, "", "commit of the binary");
-        add("device", K::Context, "", "Vulkan device name");
-        add("driver", K::Context, "", "Vulkan driver name and version");
-        add("cpu", K::Context, "", "the host's CPU model (what lavapipe and Embree ran on)");
-        // Scene, rays, structure.
-        add("scene_triangles", K::Exact, "triangles", "triangles after triangulation");
-        add("scene_degenerate", K::Exact, "triangles", "zero-area triangles in float (never hit)");
-        add("scene_full_triangles", K::Exact, "triangles", "triangles of the scene before scene.simplify_*: what the exact reference traces");
-        add("scene_simplify_ms", K::Timing, "ms", "scene.simplify_*: wall time of the edge collapses");
-        add("vertex_lattice_step", K::Exact, "scene units", "intersection.vertex_bits < 32: the spacing of the vertex lattice");
-        add("vertex_snap_error_max", K::Exact, "scene units", "intersection.vertex_bits < 32: the largest distance a vertex moved to its lattice point (not simplified scenes)");
-        add("rays", K::Exact, "rays", "rays traced: the batch of rays.type the run measures");
-        add("query", K::Exact, "", "what the rays ask: closest (the nearest hit) or any (whether anything is hit in [tMin, tMax): the walk ends at its first hit; Embree's rtcOccluded)");
-        s.back().since = 7;
-        // The shading passes that made the rays after the first hit, run again on the device
-        // (rays/workload.h checkShadingOnDevice); 0 and empty for camera rays.
-        auto since9 = [&](std::string name, K kind, std::string unit, std::string help) {
-            add(std::move(name), kind, std::move(unit), std::move(help));
-            s.back().since = 9;
-        };
-        since9("shading_passes", K::Exact, "passes", "shading passes (kernels/shading.comp) that made the generations after the camera rays: 1 for shadow rays, k for reflection iteration k");
-        since9("shading_rays", K::Exact, "rays", "rays those passes made on the device, all generations together");
-        since9("shading_ms", K::Timing, "ms", "GPU time of those passes together (one dispatch each, not in kernel_ms)");
-        since9("shading_device_mismatches", K::Exact, "rays", "rays the device's shading passes made that differ from the CPU's in a bit, their parent or their path (a failed run)");
-        for (const char* axis : {"x", "y", "z"}) {
-            add(std::string("camera_eye_") + axis, K::Exact, "scene units", std::string("the camera the rays came from (fitted to the scene, or as given, moved with it): eye position, ") + axis);
-            s.back().since = 5;
-        }
-        for (const char* axis : {"x", "y", "z"}) {
-            add(std::string("camera_target_") + axis, K::Exact, "scene units", std::string("the camera's point looked at, ") + axis);
-            s.back().since = 5;
-        }
-        add("structure_bytes", K::Exact, "bytes", "device memory of the structure (its buffers, triangle vertices included; the driver's: its two levels' storage)");
-        add("structure_bytes_per_triangle", K::Exact, "bytes", "structure_bytes / scene_triangles");
-        add("structure_build_ms", K::Timing, "ms", "CPU build time of the structure (the driver's: its builds on the device, GPU timestamps)");
-        add("predicted_work_per_ray", K::Exact, "operations",
-            "cost model: cells or nodes visited + triangles tested per ray, predicted from the structure alone (SAH-style, no early termination)");
-        // Each structure's and strategy's own columns (methods/registry.cpp), written only by its runs.
-        auto addMethodColumns = [&](const std::string& typeKey, const std::string& name,
-                                    const std::vector<ColumnSpec>& columns) {
-            for (ColumnSpec c : columns) {
-                // A column several methods write (rays_cut_short, the lane model's lanes_model_*) is
-                // declared by each, alike: its condition names them all.
-                auto same = std::find_if(s.begin(), s.end(), [&](const ColumnSpec& d) { return d.name == c.name; });
-                if (same != s.end() && !same->appliesWhen.empty() &&
-                    same->appliesWhen.front().rfind(typeKey + "=", 0) == 0 && same->help == c.help &&
-                    same->kind == c.kind && same->unit == c.unit && same->since == c.since) {
-                    same->appliesWhen.front() += "|" + name;
-                    continue;
-                }
-                c.appliesWhen.insert(c.appliesWhen.begin(), typeKey + "=" + name);
-                s.push_back(std::move(c));
-            }
-        };
-        for (const StructureType* t : structureTypes()) addMethodColumns("structure.type", t->name, t->columns);
-        for (const RayType* t : rayTypes()) addMethodColumns("rays.type", t->name, t->columns);
-        // Time (harness/timing_rounds.h: every sample is in samples.csv).
-        auto since5 = [&](std::string name, K kind, std::string unit, std::string help) {
-            add(std::move(name), kind, std::move(unit), std::move(help));
-            s.back().since = 5;
-        };
-        auto spread = [&](const std::string& m, const std::string& who) {
-            since5(m + "_ms_mean", K::Timing, "ms", who + ", mean of the repetitions");
-            since5(m + "_ms_std", K::Timing, "ms", who + ", sample standard deviation of the repetitions (empty for one)");
-            since5(m + "_ms_cv", K::Timing, "", who + ", coefficient of variation (std / mean; empty for one repetition)");
-            since5(m + "_ms_ci_low", K::Timing, "ms", who + ", 95% interval of the median from the order statistics "
-                   "(distribution-free, coverage at least 95%; empty below 6 repetitions; before results schema 23: "
-                   "percentile bootstrap): low end");
-            since5(m + "_ms_ci_high", K::Timing, "ms", who + ", 95% interval of the median (as _ci_low): high end");
-        };
-        add("kernel_ms_median", K::Timing, "ms",
-            "GPU time of the kernel(s), median of the repetitions (multipass with strategy.control = host, "
-            "since results schema 25: host wall time of its live pass loop, the oracle's read-back after every pass)");
-        add("kernel_ms_min", K::Timing, "ms", "GPU time, fastest repetition");
-        add("kernel_ms_max", K::Timing, "ms", "GPU time, slowest repetition");
-        spread("kernel", "GPU time");
-        add("kernel_mrays_s", K::Timing, "Mrays/s", "rays / median GPU time (the rays of every generation for a strategy that traces the whole path: whole_path_rays)");
-        for (const char* mode : {"embree1", "embree16"}) {
-            const std::string m = mode;
-            add(m + "_ms_median", K::Timing, "ms", "Embree " + m + " on the same rays, median");
-            add(m + "_ms_min", K::Timing, "ms", "Embree " + m + ", fastest repetition");
-            add(m + "_ms_max", K::Timing, "ms", "Embree " + m + ", slowest repetition");
-            spread(m, "Embree " + m);
-            add(m + "_mrays_s", K::Timing, "Mrays/s", "rays / Embree's median time");
-        }
-        add("embree_rays", K::Exact, "rays",
-            "rays Embree traced per repetition: the batch's, or beside a strategy that traces the whole path (wavefront, "
-            "path_megakernel) every generation's, as the kernel did");
-        s.back().since = 19;
-        add("embree_threads", K::Context, "threads", "TBB threads Embree ran on");
-        add("embree_isa", K::Context, "", "Embree's native packet width (its ISA path)");
-        add("embree_build_ms", K::Timing, "ms", "Embree BVH build time");
-        add("speed_ratio_vs_embree1", K::Timing, "ratio",
-            "kernel Mrays/s / Embree rtcIntersect1 Mrays/s");
-        since5("speed_ratio_ci_low", K::Timing, "ratio", "speed_ratio_vs_embree1: 95% interval, from each median's 97.5% "
-               "order-statistic interval (both hold at once with at least 95%; empty below 7 repetitions; before results "
-               "schema 23: percentile bootstrap), low end");
-        since5("speed_ratio_ci_high", K::Timing, "ratio", "speed_ratio_vs_embree1: 95% interval (as _ci_low), high end");
-        since5("timing_repetitions", K::Timing, "repetitions", "timed repetitions of each method (kernel, Embree 1, Embree 16)");
-        since5("timing_rounds", K::Timing, "rounds", "rounds they were timed in, each the kernel then Embree 1 then Embree 16");
-        since5("timing_stop", K::Timing, "", "why the timing stopped: repetitions (experiment.repetitions, fixed), converged (every interval within experiment.target_ci), max_repetitions, time_budget");
-        since5("timing_s", K::Timing, "s", "wall time of the timed rounds (with experiment.target_ci, the judging after each included: what experiment.time_budget_s bounds)");
-        since5("timing_warning", K::Context, "", "noise guard: why the run's timings are not results of record (a coefficient of variation above experiment.noise_cv, other processes above experiment.noise_other_cpu, one repetition: noise not measured); empty when clean");
-        add("retimed", K::Context, "", "rtbench retime: when the run was re-timed, which try's timings were kept and why (no timing warning beats one, then the lower largest CV), or that none was better conditioned; empty when never re-timed");
-        s.back().since = 24;
-        since5("other_cpu_fraction", K::Timing, "fraction", "noise guard: CPU time other processes took while the run ran (from its scene to the end of its timing), over cores x wall time (Linux /proc/stat, hypervisor steal included); empty when that window held under 100 clock ticks of the machine");
-        since5("load_average", K::Timing, "", "noise guard: 1-minute load average when the timing ended");
-        since5("device_host_threads", K::Context, "threads", "threads the device runs on the host's cores (lavapipe: LP_NUM_THREADS, else one per core up to 32; 0 for a GPU), beside embree_threads, against the machine's cores (context.json cpu_threads)");
-        // Agreement with Embree, a second view of accuracy: depends on Embree's floating-point path.
-        add("hits", K::Exact, "rays", "rays the kernel hit");
-        add("hit_miss_agreement", K::Reference, "fraction", "rays whose hit/miss equals Embree's",
-            1e-4);
-        add("same_primitive_agreement", K::Reference, "fraction",
-            "rays both hit on the same triangle", 1e-4);
-        add("rel_distance_error_mean", K::Reference, "",
-            "|t - t_Embree| / t_Embree, mean over rays both hit", 1e-6);
-        add("rel_distance_error_max", K::Reference, "", "|t - t_Embree| / t_Embree, max", 1e-6);
-        add("hit_miss_mismatches", K::Reference, "rays", "rays where one hit and the other missed",
-            1e-4, true);
-        add("primitive_mismatches", K::Reference, "rays", "rays both hit on different triangles",
-            1e-4, true);
-        // Accuracy against the exact reference (harness/exact_reference.h): the kernels' counts are
-        // deterministic; Embree's depend on its ISA path.
-        add("exact_rays", K::Exact, "rays", "rays traced by the exact reference (accuracy.exact_rays)");
-        add("exact_ties", K::Exact, "rays", "of those, rays whose exact first hit is shared by several triangles (each is correct)");
-        add("exact_ms", K::Timing, "ms", "wall time of the exact reference on those rays");
-        add("exact_parent_wrong", K::Exact, "rays", "rays after the first hit: of the exact_rays, those with a ray earlier on their path (the camera ray, an earlier reflection) whose hit is not an exact first hit (they leave from another surface than the exact scene's; still judged as the rays they are)");
-        s.back().since = 7;
-        for (const bool embree : {false, true}) {
-            const std::string p = embree ? "embree_exact_" : "exact_";
-            const std::string who = embree ? "Embree" : "the kernel";
-            const K kind = embree ? K::Reference : K::Exact;
-            add(p + "false_misses", kind, "rays", "the exact ray hits, " + who + " missed (a leak)", 1e-4, true);
-            add(p + "false_hits", kind, "rays", "the exact ray misses, " + who + " hit", 1e-4, true);
-            add(p + "wrong_primitive", kind, "rays", "both hit; " + who + "'s triangle is not one the exact ray hits first (empty for a simplified scene: other triangles, and for any-hit rays: any triangle answers)", 1e-4, true);
-            add(p + "wrong_ppm", kind, "ppm", "false misses + false hits + wrong primitive, per million exact_rays (of primary rays: wrong pixels)", 100.0);
-            add(p + "distance_error_mean", kind, "", "|t - t_exact| / t_exact, mean over rays both hit", 1e-6);
-            add(p + "distance_error_max", kind, "", "|t - t_exact| / t_exact, max", 1e-6);
-        }
-        // Image-level accuracy, as OpenImageIO's idiff measures it, on the pixels of the exact_rays.
-        add("image_psnr_db", K::Exact, "dB", "shaded pixels (8-bit grey, as the PNG) of the run's image against the same image made with the exact hits on the full scene (rays after the first hit: the batch's image, of its rays' own hits or of the camera hits they change; since results schema 10): PSNR, 20 log10(1 / RMS error) on [0, 1]; inf when equal");
-        add("image_error_mean", K::Exact, "", "shaded pixels against the exact render: mean |difference|");
-        add("image_error_max", K::Exact, "", "shaded pixels against the exact render: largest |difference|");
-        add("image_pixels_differ", K::Exact, "pixels", "shaded pixels whose 8-bit grey differs from the exact render's");
-        // Work and accounting (exact, from instrumented kernels; equal to the CPU reference).
-        add("work_per_ray_mean", K::Exact, "operations",
-            "cells or nodes visited + triangles tested per ray, measured: what predicted_work_per_ray predicts");
-        add("triangles_per_ray_mean", K::Exact, "tests", "ray-triangle tests per ray, mean");
-        add("triangles_per_ray_max", K::Exact, "tests", "ray-triangle tests per ray, max");
-        add("traversal_steps_per_ray_mean", K::Exact, "steps", "traversal step attempts per ray (grid: DDA steps; BVH: references visited, inner nodes and leaves), mean");
-        add("traversal_steps_per_ray_max", K::Exact, "steps", "traversal step attempts per ray, max");
-        add("passes_total", K::Exact, "passes", "kernel dispatches over the ray stream");
-        add("simd_efficiency", K::Exact, "fraction",
-            "the strategy's own measure, as written before schema 14 (two measures in one column; read the two below): "
-            "simd_lane_utilisation for branching, persistent and the megakernel; for multipass Purcell's over the stream "
-            "(control = host) or over its compacted lists (control = device: 1)");
-        add("simd_lane_utilisation", K::Exact, "fraction",
-            "branching, persistent, megakernel: active lanes / lane slots over the kernel's subgroup ballots (Aila & Laine "
-            "2009), counted only where some lane of a subgroup still works (rays that miss at once are left out)");
-        s.back().since = 14;
-        s.back().appliesWhen = {"strategy.type=branching|persistent|megakernel"};
-        add("simd_efficiency_purcell", K::Exact, "fraction",
-            "Purcell et al. 2002 Table 2's SIMD efficiency, the average fraction of the stream's rays doing useful work in a "
-            "pass, misses included: multipass, rays served / (rays x traverse and intersect passes), whatever the control; "
-            "branching, persistent, megakernel, the stream run in lock step one traversal step or triangle test at a time: "
-            "sum of (steps + tests) / (rays x the most steps + tests of one ray)");
-        s.back().since = 14;
-        add("bytes_stencil", K::Exact, "bytes", "ray-state byte reads and writes");
-        add("bytes_state", K::Exact, "bytes", "per-ray state saved and restored");
-        add("bytes_stack", K::Exact, "bytes", "multipass: node-stack entries pushed and popped, 4 bytes each (BVH; its stack stays in memory)");
-        add("bytes_compaction", K::Exact, "bytes", "multipass with strategy.control = device: compacted ray-list entries read and appended, 4 bytes each");
-        s.back().since = 13;
-        add("bytes_triangle_list", K::Exact, "bytes", "triangle-list entries read");
-        add("bytes_vertices", K::Exact, "bytes", "triangle vertices read");
-        add("bytes_output", K::Exact, "bytes", "hit records written");
-        add("bytes_total", K::Exact, "bytes", "all categories");
-        add("bytes_per_ray", K::Exact, "bytes", "bytes_total / rays");
-        // Purcell Table 1 / Fig. 7's compute, estimated (methods/instructions/instruction_estimate.h).
-        const std::string estimate = "estimate: static SPIR-V instructions (glslang, unoptimised; every branch counted) ";
-        add("instructions_per_step", K::Exact, "instructions",
-            estimate + "of one traversal event (grid: rtDdaStep, a DDA step; BVH: rtBvhChildren, an inner node)");
-        add("instructions_per_test", K::Exact, "instructions", estimate + "of one ray-triangle test (rtIntersectStored, the run's test)");
-        add("instructions_traverse", K::Exact, "instructions",
-            estimate + "x exact counts: traversal (Fig. 7's traverser): steps x instructions_per_step, and for multipass "
-            "each ray a traverse pass serves x the traverse kernel's other instructions");
-        add("instructions_intersect", K::Exact, "instructions",
-            estimate + "x exact counts: intersection (Fig. 7's intersector): tests x instructions_per_test, and for "
-            "multipass each ray an intersect pass serves x the intersect kernel's other instructions");
-        add("instructions_other", K::Exact, "instructions",
-            estimate + "x rays: the rest of the kernel (branching) or the setup and write kernels (multipass); rays the "
-            "stencil turns away cost none (Purcell's early fragment kill)");
-        add("instructions_total", K::Exact, "instructions", "instructions_traverse + instructions_intersect + instructions_other");
-        add("instructions_per_byte", K::Exact, "ratio", "instructions_total / bytes_total: compute against bandwidth (Purcell §4.2)");
-        for (auto it = s.end() - 7; it != s.end(); ++it) {
-            it->since = 17;
-            it->appliesWhen = {"strategy.type=branching|multipass"};
-        }
-        for (const StrategyType* t : strategyTypes()) addMethodColumns("strategy.type", t->name, t->columns);
-        for (const ColumnSpec& c : cacheColumns()) s.push_back(c);  // cache.simulate
-        // Self-checks (a mismatch fails the run).
-        add("cpu_reference_mismatches", K::Exact, "rays",
-            "rays whose GPU hit record differs from the CPU reference's (empty for the driver's ray query: another's arithmetic, judged by the exact reference)");
-        add("cpu_counts_match", K::Exact, "",
-            "1 when pass and lane counts equal the CPU reference's (lane counts only on a device whose subgroups run "
-            "in lock step; empty for branching elsewhere, where they are not compared)");
-        add("wall_s", K::Timing, "s", "wall time of the whole run");
-        for (ColumnSpec& c : s) c.since = std::max(c.since, addedInSchema(c.name));
+        ColumnList s;
+        addKeyColumns(s);
+        addIdentityColumns(s);
+        addSceneColumns(s);
+        for (const StructureType* t : structureTypes()) s.addMethod("structure.type", t->name, t->columns);
+        for (const RayType* t : rayTypes()) s.addMethod("rays.type", t->name, t->columns);
+        addTimingColumns(s);
+        addAccuracyColumns(s);
+        addWorkColumns(s);
+        addInstructionColumns(s);
+        for (const StrategyType* t : strategyTypes()) s.addMethod("strategy.type", t->name, t->columns);
+        for (const ColumnSpec& c : cacheColumns()) s.specs.push_back(c);  // cache.simulate
+        addSelfCheckColumns(s);
         std::set<std::string> names;
-        for (const ColumnSpec& c : s)
+        for (ColumnSpec& c : s.specs) {
+            c.since = std::max(c.since, addedInSchema(c.name));
+            if (c.type == ColumnType::Inferred) c.type = inferredType(c);
             if (!names.insert(c.name).second) throw Error("column '" + c.name + "' is declared twice");
-        return s;
+        }
+        return s.specs;
     }();
     return specs;
 }
@@ -316,35 +374,14 @@ std::string columnsMarkdown() {
 }
 
 const char* columnValueType(const ColumnSpec& column) {
-    static const std::map<std::string, const char*> keyTypes = [] {
-        std::map<std::string, const char*> m;
-        for (const KeySpec& key : configSchema()) {
-            const char* type = "text";
-            switch (key.type) {
-                case ValueType::Int:
-                case ValueType::Int3: type = "integer"; break;
-                case ValueType::Float:
-                case ValueType::Float3: type = "number"; break;
-                case ValueType::Bool: type = "boolean"; break;
-                case ValueType::String: type = "text"; break;
-            }
-            for (const std::string& c : keyColumns(key)) m[c] = type;
-        }
-        return m;
-    }();
-    if (const auto it = keyTypes.find(column.name); it != keyTypes.end()) return it->second;
-    static const std::set<std::string> text = {"run", "label", "sweep", "status", "error", "warnings", "config_hash",
-                                               "inputs_hash", "input_files", "git_commit", "device", "driver", "cpu",
-                                               "embree_isa", "timing_stop", "timing_warning", "auto_choice", "auto_predictions",
-                                               "query", "whitted_light_positions", "retimed"};
-    if (text.count(column.name)) return "text";
-    if (column.name == "cpu_counts_match") return "integer";  // 1 or 0
-    static const std::set<std::string> countedUnits = {"rays", "triangles", "bytes", "passes", "cells", "references", "nodes",
-                                                       "leaves", "levels", "voxels", "tests", "steps", "pixels", "threads", "lights", "materials",
-                                                       "repetitions", "rounds", "generations"};
-    const std::string& n = column.name;
-    const bool averaged = n.find("_mean") != std::string::npos || (n.find("_per_") != std::string::npos && !n.ends_with("_max"));
-    return countedUnits.count(column.unit) && !averaged ? "integer" : "number";
+    switch (column.type == ColumnType::Inferred ? inferredType(column) : column.type) {
+        case ColumnType::Integer: return "integer";
+        case ColumnType::Boolean: return "boolean";
+        case ColumnType::Text: return "text";
+        case ColumnType::Number:
+        case ColumnType::Inferred: break;
+    }
+    return "number";
 }
 
 std::string columnsCsv() {

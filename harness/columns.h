@@ -31,9 +31,9 @@ std::vector<Row> readRunsCsv(const std::string& path, int* schema = nullptr);
 std::vector<Row> parseRunsCsv(const std::string& text, const std::string& path, int* schema = nullptr);
 
 // What a column's cells hold, for readers that type them (pandas: Int64, float64, boolean,
-// string): integer, number (inf and nan included), boolean ("true"/"false") or text. A config
-// key's column has its key's type; a metric is an integer when its unit counts things and it is
-// not a mean, ratio or fraction; text when it names or explains (run "000", hashes, labels).
+// string): integer, number (inf and nan included), boolean ("true"/"false") or text: the
+// column's ColumnSpec::type (a config key's column has its key's type; a column that names or
+// explains declares text where it is declared; the rest are inferred from the unit, plan/columns.h).
 // Empty cells (a column a run does not write) are missing values of any type.
 const char* columnValueType(const ColumnSpec& column);
 

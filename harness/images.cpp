@@ -183,9 +183,11 @@ void writeHitRecords(const std::string& path, const HitImage& image, const std::
     writeFileAtomically(path, bytes);
 }
 
-HitImage readHitRecords(const std::string& path) {
-    const std::string at = printable(path) + ": ";
-    FileDescriptor file;
+namespace {
+
+// The hit-record file opened for reading: a regular file (never through a link), of a size a
+// hit-record file can have.
+std::uint64_t openHitRecords(const std::string& path, const std::string& at, FileDescriptor& file) {
     // O_NOFOLLOW: a link is refused (ELOOP); O_NONBLOCK: a FIFO does not block the open.
     file.fd = ::open(path.c_str(), O_RDONLY | O_NOFOLLOW | O_NONBLOCK | O_CLOEXEC);
     if (file.fd < 0)
@@ -201,10 +203,34 @@ HitImage readHitRecords(const std::string& path) {
                     " x " + std::to_string(kHitsMaxSide) + ")");
     if (size < 16)
         throw Error(at + "truncated: " + std::to_string(size) + " bytes, shorter than a hit-record header (16 bytes)");
+    return size;
+}
+
+// Version 2's two length-prefixed strings after the 16 fixed bytes: the run number, the config
+// hash. Returns the header's length.
+std::uint64_t readHeaderIds(const unsigned char* header, std::size_t headerRead, const std::string& at, HitImage& image) {
+    std::uint64_t headerBytes = 16;
+    for (std::string* id : {&image.run, &image.configHash}) {
+        const char* what = id == &image.run ? "run number" : "config hash";
+        if (headerBytes + 2 > headerRead) throw Error(at + "truncated: the file ends in the header, before its " + what);
+        const std::uint16_t length = getU16(header + headerBytes);
+        headerBytes += 2;
+        if (length == 0 || length > kHitsMaxIdBytes)
+            throw Error(at + "the header's " + what + " has " + std::to_string(length) + " bytes (allowed: 1 to " +
+                        std::to_string(kHitsMaxIdBytes) + ")");
+        if (headerBytes + length > headerRead) throw Error(at + "truncated: the file ends in the header, inside its " + what);
+        id->assign(reinterpret_cast<const char*>(header + headerBytes), length);
+        headerBytes += length;
+        if (!plainId(*id)) throw Error(at + "the header's " + what + " '" + printable(*id) + "' is not printable ASCII");
+    }
+    return headerBytes;
+}
+
+// The header: magic, size and (version 2) ids into `image`. Returns the header's length.
+std::uint64_t readHitHeader(int fd, std::uint64_t size, const std::string& at, HitImage& image) {
     unsigned char header[kHitsMaxHeaderBytes];
     const std::size_t headerRead = std::size_t(std::min<std::uint64_t>(size, kHitsMaxHeaderBytes));
-    if (!readFully(file.fd, header, headerRead)) throw Error(at + "read error in the header");
-    HitImage image;
+    if (!readFully(fd, header, headerRead)) throw Error(at + "read error in the header");
     if (std::memcmp(header, kMagicV2, 8) == 0)
         image.fileVersion = 2;
     else if (std::memcmp(header, kMagicV1, 8) == 0)
@@ -218,25 +244,41 @@ HitImage readHitRecords(const std::string& path) {
     if (image.width == 0 || image.height == 0 || image.width > kHitsMaxSide || image.height > kHitsMaxSide)
         throw Error(at + "the header claims " + std::to_string(image.width) + " x " + std::to_string(image.height) +
                     " pixels (allowed: 1 to " + std::to_string(kHitsMaxSide) + " a side, as camera.width and camera.height)");
-    std::uint64_t headerBytes = 16;
-    if (image.fileVersion == 2) {
-        // Two length-prefixed strings: the run number, the config hash.
-        for (std::string* id : {&image.run, &image.configHash}) {
-            const char* what = id == &image.run ? "run number" : "config hash";
-            if (headerBytes + 2 > headerRead)
-                throw Error(at + "truncated: the file ends in the header, before its " + what);
-            const std::uint16_t length = getU16(header + headerBytes);
-            headerBytes += 2;
-            if (length == 0 || length > kHitsMaxIdBytes)
-                throw Error(at + "the header's " + what + " has " + std::to_string(length) + " bytes (allowed: 1 to " +
-                            std::to_string(kHitsMaxIdBytes) + ")");
-            if (headerBytes + length > headerRead)
-                throw Error(at + "truncated: the file ends in the header, inside its " + what);
-            id->assign(reinterpret_cast<const char*>(header + headerBytes), length);
-            headerBytes += length;
-            if (!plainId(*id)) throw Error(at + "the header's " + what + " '" + printable(*id) + "' is not printable ASCII");
-        }
+    return image.fileVersion == 2 ? readHeaderIds(header, headerRead, at, image) : 16;
+}
+
+// The pixels after the header (the file's size known to match): shades and diffs, each in range.
+void readHitPixels(int fd, std::uint64_t headerBytes, const std::string& at, HitImage& image) {
+    if (::lseek(fd, off_t(headerBytes), SEEK_SET) != off_t(headerBytes))
+        throw Error(at + "cannot seek past the header: " + std::strerror(errno));
+    const std::size_t n = std::size_t(image.width) * image.height;
+    std::vector<unsigned char> raw(n * 4);
+    image.shade.resize(n);
+    image.diff.resize(n);
+    if (!readFully(fd, raw.data(), raw.size()) || !readFully(fd, image.diff.data(), n))
+        throw Error(at + "truncated while reading (did the file change?)");
+    auto pixel = [&](std::size_t i) {
+        return "pixel " + std::to_string(i) + " (x " + std::to_string(i % image.width) + ", y " + std::to_string(i / image.width) + ")";
+    };
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::uint32_t bits = getU32(raw.data() + 4 * i);
+        std::memcpy(&image.shade[i], &bits, 4);
+        const float s = image.shade[i];
+        if (!(s >= -1.0f && s <= kMaxShade))
+            throw Error(at + pixel(i) + " has shade " + std::to_string(s) + " (allowed: -1 for a miss, 0 to 1 for a hit)");
+        if (image.diff[i] > std::uint8_t(HitDiff::OnlyEmbreeHit))
+            throw Error(at + pixel(i) + " has diff value " + std::to_string(image.diff[i]) + " (allowed: 0 to 4)");
     }
+}
+
+}  // namespace
+
+HitImage readHitRecords(const std::string& path) {
+    const std::string at = printable(path) + ": ";
+    FileDescriptor file;
+    const std::uint64_t size = openHitRecords(path, at, file);
+    HitImage image;
+    const std::uint64_t headerBytes = readHitHeader(file.fd, size, at, image);
     const std::uint64_t pixels = std::uint64_t(image.width) * image.height;
     const std::uint64_t expected = headerBytes + pixels * 5;
     if (size != expected)
@@ -245,27 +287,7 @@ HitImage readHitRecords(const std::string& path) {
                     " pixels needs exactly " + std::to_string(headerBytes) + " + 5 x " + std::to_string(pixels) +
                     " = " + std::to_string(expected));
     // Only now, with the size known to match, the pixels.
-    if (::lseek(file.fd, off_t(headerBytes), SEEK_SET) != off_t(headerBytes))
-        throw Error(at + "cannot seek past the header: " + std::strerror(errno));
-    const std::size_t n = std::size_t(pixels);
-    std::vector<unsigned char> raw(n * 4);
-    image.shade.resize(n);
-    image.diff.resize(n);
-    if (!readFully(file.fd, raw.data(), raw.size()) || !readFully(file.fd, image.diff.data(), n))
-        throw Error(at + "truncated while reading (did the file change?)");
-    for (std::size_t i = 0; i < n; ++i) {
-        const std::uint32_t bits = getU32(raw.data() + 4 * i);
-        std::memcpy(&image.shade[i], &bits, 4);
-        const float s = image.shade[i];
-        if (!(s >= -1.0f && s <= kMaxShade))
-            throw Error(at + "pixel " + std::to_string(i) + " (x " + std::to_string(i % image.width) + ", y " +
-                        std::to_string(i / image.width) + ") has shade " + std::to_string(s) +
-                        " (allowed: -1 for a miss, 0 to 1 for a hit)");
-        if (image.diff[i] > std::uint8_t(HitDiff::OnlyEmbreeHit))
-            throw Error(at + "pixel " + std::to_string(i) + " (x " + std::to_string(i % image.width) + ", y " +
-                        std::to_string(i / image.width) + ") has diff value " + std::to_string(image.diff[i]) +
-                        " (allowed: 0 to 4)");
-    }
+    readHitPixels(file.fd, headerBytes, at, image);
     return image;
 }
 

@@ -21,6 +21,12 @@ enum class ColumnKind { Parameter, Exact, Reference, Timing, Context, Scheduled 
 
 const char* columnKindName(ColumnKind kind);
 
+// What a column's cells hold, as readers type them (pandas: Int64, float64, boolean, string).
+// Inferred: from the unit, when the columns are gathered (harness/columns.cpp): an integer when
+// the unit counts things and the column is not a mean or a per-something ratio, else a number.
+// A column that names or explains (a label, a hash, a reason) declares Text where it is declared.
+enum class ColumnType { Inferred, Integer, Number, Boolean, Text };
+
 struct ColumnSpec {
     std::string name;
     ColumnKind kind;
@@ -37,7 +43,14 @@ struct ColumnSpec {
     // The results schema (kSchemaVersion) that added the column: a runs CSV of an older schema
     // lacks it, and stays readable (harness/columns.h).
     int since = 1;
+    ColumnType type = ColumnType::Inferred;
 };
+
+// The column `c` as one whose cells are text.
+inline ColumnSpec textColumn(ColumnSpec c) {
+    c.type = ColumnType::Text;
+    return c;
+}
 
 // The schema of a results folder: which columns its runs.csv holds. Recorded in context.json as
 // "schema_version" from 5 on; older folders are known by their columns (harness/columns.cpp).

@@ -1,6 +1,7 @@
 #include "mesh_validate.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <charconv>
 #include <cmath>
@@ -114,6 +115,76 @@ std::string_view withoutBom(std::string_view bytes, const std::string& name) {
     return bytes;
 }
 
+// The element lines of an OFF file: each line with something before any '#'.
+struct OffElements {
+    LineReader lines;
+    Line line;
+    std::vector<std::string_view> tokens;
+    bool next() {
+        while (lines.next(line))
+            if (tokens = split(uncommented(line.text)); !tokens.empty()) return true;
+        return false;
+    }
+};
+
+// The keyword (a variant with 3D vertices) and the counts "vertices faces [edges]".
+std::array<std::uint64_t, 2> readOffHeader(OffElements& e, std::uint64_t size, const std::string& name) {
+    const std::string notOff = "not an ASCII OFF file (no 'OFF' header with vertex and face counts)";
+    if (!e.next()) fail(name, notOff);
+    const std::string_view keyword = e.tokens[0];
+    if (!keyword.ends_with("OFF")) fail(name, notOff);
+    std::string_view prefix = keyword.substr(0, keyword.size() - 3);
+    if (prefix.starts_with("ST")) prefix.remove_prefix(2);
+    if (prefix.starts_with("C")) prefix.remove_prefix(1);
+    if (prefix.starts_with("N")) prefix.remove_prefix(1);
+    const bool binary = e.tokens.size() > 1 && e.tokens[1] == "BINARY";
+    if (!prefix.empty() || binary)
+        fail(atLine(name, e.line.number), "unsupported OFF variant " + quote(keyword) + (binary ? " BINARY" : "") +
+                                              " (allowed: ASCII OFF, COFF, NOFF, CNOFF, STOFF with 3D vertices)");
+    e.tokens.erase(e.tokens.begin());
+    if (e.tokens.empty() && !e.next()) fail(name, notOff);
+    std::uint64_t counts[3] = {0, 0, 0};
+    for (std::size_t k = 0; k < e.tokens.size(); ++k)
+        if (e.tokens.size() > 3 || !parse(e.tokens[k], counts[k]))
+            fail(atLine(name, e.line.number),
+                 "the OFF header's counts must be 'vertices faces [edges]', non-negative integers; found " + quote(e.line.text));
+    if (e.tokens.size() < 2) fail(atLine(name, e.line.number), notOff);
+    const std::uint64_t nv = counts[0], nf = counts[1];
+    const std::uint64_t available = size - e.line.end;
+    const std::string at = atLine(name, e.line.number);
+    checkDeclared(nv, 2, available, at, "vertices");
+    checkDeclared(nf, 2, available, at, "faces");
+    checkDeclared(nv + nf, 2, available, at, "vertices and faces");
+    if (nf == 0)
+        fail(name, nv ? "no faces, " + n(nv) + " vertices: a point cloud? (rtbench needs faces)"
+                      : std::string("no vertices and no faces (an empty mesh)"));
+    return {nv, nf};
+}
+
+// Face f's line: a vertex count of at least 3, that many indices below nv, at most a color after.
+// Returns the count.
+std::size_t checkOffFace(const std::vector<std::string_view>& tokens, std::uint64_t f, std::uint64_t nv, const std::string& at) {
+    const std::string what = "face " + n(f);
+    std::int64_t count = 0;
+    if (!parse(tokens[0], count) || count < 0) fail(at, what + ": " + quote(tokens[0]) + " is not a vertex count");
+    if (count < 3) fail(at, what + " has " + n(count) + " vertices (at least 3 needed)");
+    if (tokens.size() < std::size_t(count) + 1) fail(at, what + " lists fewer than " + n(count) + " vertices");
+    for (std::size_t k = 1; k <= std::size_t(count); ++k) {
+        std::int64_t index = 0;
+        if (!parse(tokens[k], index)) fail(at, what + ": vertex index " + quote(tokens[k]) + " is not an integer");
+        if (index < 0 || std::uint64_t(index) >= nv)
+            fail(at, what + " references vertex " + std::to_string(index) + ", but the file has " + n(nv) +
+                         " vertices (allowed: 0 to " + std::to_string(std::int64_t(nv) - 1) + ")");
+    }
+    const std::size_t extra = tokens.size() - 1 - std::size_t(count);
+    double value = 0.0;
+    for (std::size_t k = std::size_t(count) + 1; k < tokens.size(); ++k)
+        if (extra > 4 || !parse(tokens[k], value))
+            fail(at, what + " has " + n(extra) + " values after its " + n(count) +
+                         " vertex indices (allowed: a color of at most 4 numbers)");
+    return std::size_t(count);
+}
+
 // ---- OFF (Geomview): [ST][C][N]OFF, "nv nf [ne]", nv vertex lines, nf face lines ----------
 // One element per line, as assimp reads it; the edge count, which some writers omit, is not
 // used. CGAL gets a plain OFF copy: the header with all three counts (its scanner reads three
@@ -122,105 +193,75 @@ std::string_view withoutBom(std::string_view bytes, const std::string& name) {
 // of [0, 255] to unsigned char (undefined behaviour, File_scanner_OFF.h).
 ValidatedMesh validateOff(std::string_view file, const std::string& name) {
     const std::string_view bytes = withoutBom(file, name);
-    const std::string notOff =
-        "not an ASCII OFF file (no 'OFF' header with vertex and face counts)";
+    OffElements e{LineReader(bytes)};
+    const auto [nv, nf] = readOffHeader(e, bytes.size(), name);
     ValidatedMesh mesh;
     mesh.format = MeshFormat::Off;
-    LineReader lines(bytes);
-    Line line;
-    std::vector<std::string_view> tokens;
-    auto nextElement = [&] {  // next line with something before any '#'
-        while (lines.next(line))
-            if (tokens = split(uncommented(line.text)); !tokens.empty()) return true;
-        return false;
-    };
-    if (!nextElement()) fail(name, notOff);
-    const std::string_view keyword = tokens[0];
-    if (!keyword.ends_with("OFF")) fail(name, notOff);
-    std::string_view prefix = keyword.substr(0, keyword.size() - 3);
-    if (prefix.starts_with("ST")) prefix.remove_prefix(2);
-    if (prefix.starts_with("C")) prefix.remove_prefix(1);
-    if (prefix.starts_with("N")) prefix.remove_prefix(1);
-    if (!prefix.empty() || (tokens.size() > 1 && tokens[1] == "BINARY"))
-        fail(atLine(name, line.number),
-             "unsupported OFF variant " + quote(keyword) +
-                 (tokens.size() > 1 && tokens[1] == "BINARY" ? " BINARY" : "") +
-                 " (allowed: ASCII OFF, COFF, NOFF, CNOFF, STOFF with 3D vertices)");
-    tokens.erase(tokens.begin());
-    if (tokens.empty() && !nextElement()) fail(name, notOff);
-    std::uint64_t counts[3] = {0, 0, 0};
-    for (std::size_t k = 0; k < tokens.size(); ++k)
-        if (tokens.size() > 3 || !parse(tokens[k], counts[k]))
-            fail(atLine(name, line.number),
-                 "the OFF header's counts must be 'vertices faces [edges]', non-negative integers; "
-                 "found " +
-                     quote(line.text));
-    if (tokens.size() < 2) fail(atLine(name, line.number), notOff);
-    const std::uint64_t nv = counts[0], nf = counts[1];
-    const std::uint64_t available = bytes.size() - line.end;
-    checkDeclared(nv, 2, available, atLine(name, line.number), "vertices");
-    checkDeclared(nf, 2, available, atLine(name, line.number), "faces");
-    checkDeclared(nv + nf, 2, available, atLine(name, line.number), "vertices and faces");
-    if (nf == 0)
-        fail(name, nv ? "no faces, " + n(nv) + " vertices: a point cloud? (rtbench needs faces)"
-                      : std::string("no vertices and no faces (an empty mesh)"));
     mesh.vertices = nv;
     mesh.faces = nf;
     mesh.normalized = "OFF\n" + n(nv) + " " + n(nf) + " 0\n";
     auto copy = [&](std::size_t count) {
-        for (std::size_t k = 0; k < count; ++k)
-            (mesh.normalized += tokens[k]) += k + 1 < count ? ' ' : '\n';
+        for (std::size_t k = 0; k < count; ++k) (mesh.normalized += e.tokens[k]) += k + 1 < count ? ' ' : '\n';
     };
-
     auto truncated = [&](std::uint64_t held) {
-        fail(name, "truncated: the header declares " + n(nv) + " vertices and " + n(nf) +
-                       " faces, the file holds " + n(held) + " element lines");
+        fail(name, "truncated: the header declares " + n(nv) + " vertices and " + n(nf) + " faces, the file holds " + n(held) +
+                       " element lines");
     };
     for (std::uint64_t i = 0; i < nv; ++i) {
-        if (!nextElement()) truncated(i);
-        const std::string at = atLine(name, line.number), what = "vertex " + n(i);
-        if (tokens.size() < 3) fail(at, what + " has fewer than 3 coordinates");
-        for (std::size_t k = 0; k < tokens.size(); ++k) {
+        if (!e.next()) truncated(i);
+        const std::string at = atLine(name, e.line.number), what = "vertex " + n(i);
+        if (e.tokens.size() < 3) fail(at, what + " has fewer than 3 coordinates");
+        for (std::size_t k = 0; k < e.tokens.size(); ++k) {
             double value = 0.0;
-            if (!parse(tokens[k], value))
-                fail(at, what + ": " + quote(tokens[k]) + " is not a number");
-            if (k < 3) checkCoordinate(value, tokens[k], at, what);
+            if (!parse(e.tokens[k], value)) fail(at, what + ": " + quote(e.tokens[k]) + " is not a number");
+            if (k < 3) checkCoordinate(value, e.tokens[k], at, what);
         }
         copy(3);
     }
     mesh.faceAt.reserve(nf);
     for (std::uint64_t f = 0; f < nf; ++f) {
-        if (!nextElement()) truncated(nv + f);
-        const std::string at = atLine(name, line.number), what = "face " + n(f);
-        std::int64_t count = 0;
-        if (!parse(tokens[0], count) || count < 0)
-            fail(at, what + ": " + quote(tokens[0]) + " is not a vertex count");
-        if (count < 3) fail(at, what + " has " + n(count) + " vertices (at least 3 needed)");
-        if (tokens.size() < std::size_t(count) + 1)
-            fail(at, what + " lists fewer than " + n(count) + " vertices");
-        for (std::size_t k = 1; k <= std::size_t(count); ++k) {
-            std::int64_t index = 0;
-            if (!parse(tokens[k], index))
-                fail(at, what + ": vertex index " + quote(tokens[k]) + " is not an integer");
-            if (index < 0 || std::uint64_t(index) >= nv)
-                fail(at, what + " references vertex " + std::to_string(index) +
-                             ", but the file has " + n(nv) + " vertices (allowed: 0 to " +
-                             std::to_string(std::int64_t(nv) - 1) + ")");
-        }
-        const std::size_t extra = tokens.size() - 1 - std::size_t(count);
-        double value = 0.0;
-        for (std::size_t k = std::size_t(count) + 1; k < tokens.size(); ++k)
-            if (extra > 4 || !parse(tokens[k], value))
-                fail(at, what + " has " + n(extra) + " values after its " + n(count) +
-                             " vertex indices (allowed: a color of at most 4 numbers)");
-        copy(std::size_t(count) + 1);
-        mesh.faceAt.push_back(line.number);
+        if (!e.next()) truncated(nv + f);
+        copy(checkOffFace(e.tokens, f, nv, atLine(name, e.line.number)) + 1);
+        mesh.faceAt.push_back(e.line.number);
     }
-    if (nextElement())
-        fail(atLine(name, line.number), "data after the last of the " + n(nf) +
-                                            " faces the header declares: " + quote(line.text) +
-                                            " (is the face count too low?)");
+    if (e.next())
+        fail(atLine(name, e.line.number), "data after the last of the " + n(nf) + " faces the header declares: " +
+                                              quote(e.line.text) + " (is the face count too low?)");
     return mesh;
+}
+
+// A 'v' line: at least 3 numbers, the first 3 coordinates in range. Returns CGAL's copy.
+std::string objVertex(const std::vector<std::string_view>& tokens, const std::string& at, ValidatedMesh& mesh) {
+    const std::string what = "vertex " + n(mesh.vertices);
+    if (tokens.size() < 4) fail(at, what + " has fewer than 3 coordinates");
+    for (std::size_t k = 1; k < tokens.size(); ++k) {
+        double value = 0.0;
+        if (!parse(tokens[k], value)) fail(at, what + ": " + quote(tokens[k]) + " is not a number");
+        if (k < 4) checkCoordinate(value, tokens[k], at, what);
+    }
+    ++mesh.vertices;
+    return "v " + std::string(tokens[1]) + " " + std::string(tokens[2]) + " " + std::string(tokens[3]);
+}
+
+// An 'f' line: at least 3 corners, each v, v/vt, v/vt/vn or v//vn; v counts from 1, or back from
+// the last vertex read when negative. Returns CGAL's copy, with absolute indices.
+std::string objFace(const std::vector<std::string_view>& tokens, const std::string& at, std::uint64_t totalVertices,
+                    ValidatedMesh& mesh) {
+    const std::string what = "face " + n(mesh.faces);
+    if (tokens.size() < 4) fail(at, what + " has " + n(tokens.size() - 1) + " vertices (at least 3 needed)");
+    std::string copy = "f";
+    for (std::size_t k = 1; k < tokens.size(); ++k) {
+        const std::string_view corner = tokens[k].substr(0, tokens[k].find('/'));
+        std::int64_t index = 0;
+        if (!parse(corner, index)) fail(at, what + ": vertex index " + quote(corner) + " is not an integer");
+        const std::int64_t absolute = index < 0 ? std::int64_t(mesh.vertices) + index + 1 : index;
+        if (index == 0 || absolute < 1 || std::uint64_t(absolute) > totalVertices)
+            fail(at, what + ": vertex index " + std::to_string(index) + " is out of range (the file has " + n(totalVertices) +
+                         " vertices; allowed: 1 to " + n(totalVertices) + ", or -1 back to -" + n(mesh.vertices) + " at this line)");
+        copy += " " + std::to_string(absolute);
+    }
+    ++mesh.faces;
+    return copy;
 }
 
 // ---- OBJ (Wavefront): v, f and other statements, one per line ------------------------------
@@ -253,40 +294,10 @@ ValidatedMesh validateObj(std::string_view file, const std::string& name) {
         std::string copy;  // CGAL's copy of a v or f line
         if (tokens.empty()) {
         } else if (tokens[0] == "v") {
-            const std::string what = "vertex " + n(mesh.vertices);
-            if (tokens.size() < 4) fail(at, what + " has fewer than 3 coordinates");
-            for (std::size_t k = 1; k < tokens.size(); ++k) {
-                double value = 0.0;
-                if (!parse(tokens[k], value))
-                    fail(at, what + ": " + quote(tokens[k]) + " is not a number");
-                if (k < 4) checkCoordinate(value, tokens[k], at, what);
-            }
-            copy = "v " + std::string(tokens[1]) + " " + std::string(tokens[2]) + " " +
-                   std::string(tokens[3]);
-            ++mesh.vertices;
+            copy = objVertex(tokens, at, mesh);
         } else if (tokens[0] == "f") {
-            // Each corner is v, v/vt, v/vt/vn or v//vn; v counts from 1, or back from the last
-            // vertex read when negative.
-            const std::string what = "face " + n(mesh.faces);
-            if (tokens.size() < 4)
-                fail(at, what + " has " + n(tokens.size() - 1) + " vertices (at least 3 needed)");
-            copy = "f";
-            for (std::size_t k = 1; k < tokens.size(); ++k) {
-                const std::string_view corner = tokens[k].substr(0, tokens[k].find('/'));
-                std::int64_t index = 0;
-                if (!parse(corner, index))
-                    fail(at, what + ": vertex index " + quote(corner) + " is not an integer");
-                const std::int64_t absolute =
-                    index < 0 ? std::int64_t(mesh.vertices) + index + 1 : index;
-                if (index == 0 || absolute < 1 || std::uint64_t(absolute) > totalVertices)
-                    fail(at, what + ": vertex index " + std::to_string(index) +
-                                 " is out of range (the file has " + n(totalVertices) +
-                                 " vertices; allowed: 1 to " + n(totalVertices) +
-                                 ", or -1 back to -" + n(mesh.vertices) + " at this line)");
-                copy += " " + std::to_string(absolute);
-            }
+            copy = objFace(tokens, at, totalVertices, mesh);
             mesh.faceAt.push_back(line.number);
-            ++mesh.faces;
         } else if (tokens[0] == "l" || tokens[0] == "p") {
             ++(tokens[0] == "l" ? lineElements : pointElements);
         } else if (tokens[0] != "vt" && tokens[0] != "vn" &&
@@ -398,20 +409,49 @@ void refuseRepeatedProperty(const PlyElement& element, std::string_view property
                          " (allowed: each property name once)");
 }
 
-ValidatedMesh validatePly(std::string_view bytes, const std::string& name) {
-    ValidatedMesh mesh;
-    LineReader lines(bytes);
-    Line line;
+// The PLY header: its elements and format, up to 'end_header' (the line after it starts the body).
+struct PlyHeader {
+    std::vector<PlyElement> elements;
+    bool binary = false, bigEndian = false;
+    std::size_t bodyStart = 0;
+};
+
+// One header line into the header (the 'format' line checked by the caller).
+void readPlyHeaderLine(const std::vector<std::string_view>& t, const Line& line, const std::string& at, PlyHeader& h) {
+    if (t[0] == "format" && t.size() == 3 && t[2] == "1.0" &&
+        (t[1] == "ascii" || t[1] == "binary_little_endian" || t[1] == "binary_big_endian")) {
+        h.binary = t[1] != "ascii";
+        h.bigEndian = t[1] == "binary_big_endian";
+    } else if (t[0] == "element" && t.size() == 3) {
+        h.elements.push_back({std::string(t[1]), 0, line.number, {}});
+        if (!parse(t[2], h.elements.back().count))
+            fail(at, "element " + quote(t[1]) + ": count " + quote(t[2]) + " is not a non-negative integer");
+    } else if (t[0] == "property" && !h.elements.empty() && t.size() == 3 && t[1] != "list") {
+        refuseRepeatedProperty(h.elements.back(), t[2], at);
+        h.elements.back().properties.push_back({std::string(t[2]), plyType(t[1], at), nullptr});
+    } else if (t[0] == "property" && !h.elements.empty() && t.size() == 5 && t[1] == "list") {
+        const PlyType* count = plyType(t[2], at);
+        if (!count->integer) fail(at, "list " + quote(t[4]) + " has a non-integer count type");
+        refuseRepeatedProperty(h.elements.back(), t[4], at);
+        h.elements.back().properties.push_back({std::string(t[4]), plyType(t[3], at), count});
+    } else if (t[0] == "format" || t[0] == "element" || t[0] == "property") {
+        fail(at, "malformed PLY header line " + quote(line.text) +
+                     " (allowed: format ascii|binary_little_endian|binary_big_endian 1.0, "
+                     "element NAME COUNT, property TYPE NAME, property list TYPE TYPE NAME, "
+                     "after an element line)");
+    }  // other lines (e.g. Blender 2.47's comment without 'comment') carry no data: ignored
+}
+
+PlyHeader readPlyHeader(LineReader& lines, Line& line, const std::string& name) {
     if (!lines.next(line) || split(line.text) != std::vector<std::string_view>{"ply"})
         fail(name, "not a PLY file (its first line is not 'ply')");
-    std::vector<PlyElement> elements;
-    bool sawFormat = false, binary = false, bigEndian = false, sawEnd = false;
+    PlyHeader h;
+    bool sawFormat = false, sawEnd = false;
     while (!sawEnd && lines.next(line)) {
         const auto t = split(line.text);
         const std::string at = atLine(name, line.number);
         // CGAL's header parser stops at an empty line and reads nothing.
-        if (t.empty())
-            fail(at, "empty line in the PLY header (allowed: header lines up to 'end_header', no blank one)");
+        if (t.empty()) fail(at, "empty line in the PLY header (allowed: header lines up to 'end_header', no blank one)");
         // CGAL's reader takes the line after 'ply' for the format line, whatever it is.
         if (!sawFormat && t[0] != "format")
             fail(at, "expected the 'format' line right after 'ply', found " + quote(line.text) +
@@ -420,201 +460,299 @@ ValidatedMesh validatePly(std::string_view bytes, const std::string& name) {
         if (t[0] == "comment" || t[0] == "obj_info") continue;
         if (t[0] == "end_header") {
             sawEnd = true;
-        } else if (t[0] == "format" && t.size() == 3 && t[2] == "1.0" &&
-                   (t[1] == "ascii" || t[1] == "binary_little_endian" ||
-                    t[1] == "binary_big_endian")) {
-            sawFormat = true;
-            binary = t[1] != "ascii";
-            bigEndian = t[1] == "binary_big_endian";
-        } else if (t[0] == "element" && t.size() == 3) {
-            elements.push_back({std::string(t[1]), 0, line.number, {}});
-            if (!parse(t[2], elements.back().count))
-                fail(at, "element " + quote(t[1]) + ": count " + quote(t[2]) +
-                             " is not a non-negative integer");
-        } else if (t[0] == "property" && !elements.empty() && t.size() == 3 && t[1] != "list") {
-            refuseRepeatedProperty(elements.back(), t[2], at);
-            elements.back().properties.push_back({std::string(t[2]), plyType(t[1], at), nullptr});
-        } else if (t[0] == "property" && !elements.empty() && t.size() == 5 && t[1] == "list") {
-            const PlyType* count = plyType(t[2], at);
-            if (!count->integer) fail(at, "list " + quote(t[4]) + " has a non-integer count type");
-            refuseRepeatedProperty(elements.back(), t[4], at);
-            elements.back().properties.push_back({std::string(t[4]), plyType(t[3], at), count});
-        } else if (t[0] == "format" || t[0] == "element" || t[0] == "property") {
-            fail(at, "malformed PLY header line " + quote(line.text) +
-                         " (allowed: format ascii|binary_little_endian|binary_big_endian 1.0, "
-                         "element NAME COUNT, property TYPE NAME, property list TYPE TYPE NAME, "
-                         "after an element line)");
-        }  // other lines (e.g. Blender 2.47's comment without 'comment') carry no data: ignored
+            continue;
+        }
+        readPlyHeaderLine(t, line, at, h);
+        sawFormat = sawFormat || t[0] == "format";
     }
     if (!sawEnd) fail(name, "the PLY header has no 'end_header' line");
     if (!sawFormat) fail(name, "the PLY header has no 'format' line");
-    mesh.format = binary ? MeshFormat::PlyBinary : MeshFormat::PlyAscii;
-    const std::size_t bodyStart = line.end;
-    const std::string_view body = bytes.substr(bodyStart);
+    h.bodyStart = line.end;
+    return h;
+}
 
-    // Declared counts against the size: a binary item takes at least its fixed-size properties
-    // (a list at least its count), an ASCII value at least a digit and a separator.
-    std::uint64_t available = body.size();
-    const PlyElement *vertex = nullptr, *face = nullptr;
+// The elements the reader takes: the vertices (x, y, z as float or double) and the faces' index
+// list (int or uint items).
+struct PlyLayout {
+    const PlyElement* vertex = nullptr;
+    const PlyElement* face = nullptr;
+    const PlyProperty* indices = nullptr;
+};
+
+// Declared counts against the body's size (a binary item takes at least its fixed-size
+// properties, a list at least its count; an ASCII value at least a digit and a separator), one
+// vertex element with float or double x, y, z, and one face element.
+PlyLayout plyElements(const PlyHeader& h, std::uint64_t bodyBytes, const std::string& name) {
+    PlyLayout layout;
+    std::uint64_t available = bodyBytes;
     std::string skipped;
-    for (const PlyElement& e : elements) {
+    for (const PlyElement& e : h.elements) {
         std::uint64_t minBytes = 0;
-        for (const PlyProperty& p : e.properties)
-            minBytes += binary ? (p.countType ? p.countType->size : p.type->size) : 2;
-        if (minBytes == 0)
-            fail(atLine(name, e.line), "element " + quote(e.name) + " has no properties");
-        checkDeclared(e.count, minBytes, available, atLine(name, e.line),
-                      "'" + printable(e.name) + "' elements");
+        for (const PlyProperty& p : e.properties) minBytes += h.binary ? (p.countType ? p.countType->size : p.type->size) : 2;
+        if (minBytes == 0) fail(atLine(name, e.line), "element " + quote(e.name) + " has no properties");
+        checkDeclared(e.count, minBytes, available, atLine(name, e.line), "'" + printable(e.name) + "' elements");
         available -= e.count * minBytes;
         // CGAL's reader takes the items of every element of these names; validation checks one.
         const bool isVertex = e.name == "vertex" || e.name == "vertices", isFace = e.name == "face" || e.name == "faces";
-        if ((isVertex && vertex) || (isFace && face))
-            fail(atLine(name, e.line), "a second " + std::string(isVertex ? "vertex" : "face") + " element " +
-                                           quote(e.name) + " (the first, " + quote((isVertex ? vertex : face)->name) +
-                                           ", is at line " + n((isVertex ? vertex : face)->line) +
+        const PlyElement* first = isVertex ? layout.vertex : layout.face;
+        if ((isVertex || isFace) && first)
+            fail(atLine(name, e.line), "a second " + std::string(isVertex ? "vertex" : "face") + " element " + quote(e.name) +
+                                           " (the first, " + quote(first->name) + ", is at line " + n(first->line) +
                                            "; allowed: one of each)");
         if (isVertex)
-            vertex = &e;
+            layout.vertex = &e;
         else if (isFace)
-            face = &e;
+            layout.face = &e;
         else if (e.count)
             skipped += (skipped.empty() ? "" : ", ") + n(e.count) + " '" + printable(e.name) + "'";
     }
-    if (!vertex) fail(name, "no 'vertex' element in the PLY header");
+    if (!layout.vertex) fail(name, "no 'vertex' element in the PLY header");
     for (const char* axis : {"x", "y", "z"}) {
-        auto p = std::find_if(vertex->properties.begin(), vertex->properties.end(),
-                              [&](const PlyProperty& q) { return q.name == axis; });
-        if (p == vertex->properties.end() || p->countType || p->type->integer)
-            fail(atLine(name, vertex->line),
-                 std::string("vertex property '") + axis +
-                     "' must be a float or double scalar (the reader takes no other)");
+        const std::vector<PlyProperty>& properties = layout.vertex->properties;
+        auto p = std::find_if(properties.begin(), properties.end(), [&](const PlyProperty& q) { return q.name == axis; });
+        if (p == properties.end() || p->countType || p->type->integer)
+            fail(atLine(name, layout.vertex->line),
+                 std::string("vertex property '") + axis + "' must be a float or double scalar (the reader takes no other)");
     }
-    if (!face || face->count == 0)
-        fail(name, "no faces, " + n(vertex->count) + " vertices: a point cloud? (rtbench needs a " +
-                       "'face' element" +
+    if (!layout.face || layout.face->count == 0)
+        fail(name, "no faces, " + n(layout.vertex->count) + " vertices: a point cloud? (rtbench needs a " + "'face' element" +
                        (skipped.empty() ? ")" : "; the file has " + skipped + ")"));
-    const PlyProperty* indices = nullptr;
-    for (const PlyProperty& p : face->properties)
+    return layout;
+}
+
+// The face index list the reader takes.
+void plyIndices(PlyLayout& layout, const std::string& name) {
+    for (const PlyProperty& p : layout.face->properties)
         if ((p.name == "vertex_indices" || p.name == "vertex_index") && p.countType) {
-            if (indices)
-                fail(atLine(name, face->line),
+            if (layout.indices)
+                fail(atLine(name, layout.face->line),
                      "the face element has two index lists, 'vertex_indices' and 'vertex_index' (allowed: one)");
-            indices = &p;
+            layout.indices = &p;
         }
+    const PlyProperty* indices = layout.indices;
     if (!indices || !indices->type->integer || indices->type->size != 4)
-        fail(atLine(name, face->line),
+        fail(atLine(name, layout.face->line),
              "the face element needs a list property 'vertex_indices' or 'vertex_index' of int or "
              "uint items (the reader takes no other)" +
-                 (indices ? ", found items of type " + std::string(indices->type->names[0])
-                          : std::string()));
-    mesh.vertices = vertex->count;
-    mesh.faces = face->count;
-    mesh.faceAt.reserve(face->count);
+                 (indices ? ", found items of type " + std::string(indices->type->names[0]) : std::string()));
+}
 
-    // Every value of every element, checked as the reader will take it.
+// Reads the values of a PLY body one by one, each checked as the reader will take it: a binary
+// body from its bytes, an ASCII one from the tokens of the item's line.
+struct PlyCursor {
+    std::string_view bytes, body;
+    bool binary = false, bigEndian = false;
     std::size_t pos = 0;  // binary: offset in body
-    for (const PlyElement& e : elements) {
-        const bool isVertex = &e == vertex, isFace = &e == face;
+    std::vector<std::string_view> tokens;
+    std::size_t token = 0;
+    std::string at, what;  // the item's place and name, for errors
+
+    // The next value of type t, checked for presence, number and (integer) type.
+    PlyValue next(const PlyType& t, bool coordinate) {
+        PlyValue v;
+        if (binary) {
+            if (body.size() - pos < t.size) fail(at, "truncated: " + what + " ends at byte " + n(bytes.size()) + ", inside its values");
+            v = readBinary(reinterpret_cast<const unsigned char*>(body.data()) + pos, t, bigEndian);
+            pos += t.size;
+            if (coordinate) checkCoordinate(v.real, std::to_string(v.real), at, what);
+            return v;
+        }
+        if (token >= tokens.size()) fail(at, what + " has fewer values than its properties declare");
+        // Each value must fit its type: CGAL's stream extraction fails otherwise.
+        const std::string_view word = tokens[token++];
+        if (coordinate) {
+            if (!parse(word, v.real)) fail(at, what + ": " + quote(word) + " is not a number");
+            checkCoordinate(v.real, word, at, what);
+            return v;
+        }
+        const int bits = 8 * t.size - (t.isSigned ? 1 : 0);
+        const bool fits = t.integer ? parse(word, v.integer) && v.integer < (std::int64_t(1) << bits) &&
+                                          v.integer >= (t.isSigned ? -(std::int64_t(1) << bits) : 0)
+                                    : parse(word, v.real) && std::isfinite(v.real) && (t.size == 8 || std::abs(v.real) <= kFloatMax);
+        if (!fits)
+            fail(at, what + ": " + quote(word) + " is not " + (t.integer ? "an integer" : "a finite number") + " of type " +
+                         std::string(t.names[0]));
+        if (t.integer) v.real = double(v.integer);
+        return v;
+    }
+};
+
+// One item's properties: coordinates checked, list lengths against the file, face indices
+// against the vertex count.
+void readPlyItem(PlyCursor& cursor, const PlyElement& e, std::uint64_t item, const PlyLayout& layout) {
+    const bool isVertex = &e == layout.vertex;
+    for (const PlyProperty& p : e.properties) {
+        if (!p.countType) {
+            cursor.next(*p.type, isVertex && (p.name == "x" || p.name == "y" || p.name == "z"));
+            continue;
+        }
+        const std::int64_t count = cursor.next(*p.countType, false).integer;
+        const std::string& at = cursor.at;
+        if (count < 0) fail(at, cursor.what + ": list '" + printable(p.name) + "' has a negative length " + std::to_string(count));
+        if (cursor.binary && std::uint64_t(count) > (cursor.body.size() - cursor.pos) / p.type->size)
+            fail(at, "truncated: " + cursor.what + "'s list '" + printable(p.name) + "' declares " + std::to_string(count) +
+                         " items, more than the rest of the file holds");
+        if (&p == layout.indices && count < 3)
+            fail(at, "face " + n(item) + " has " + std::to_string(count) + " vertices (at least 3 needed)");
+        for (std::int64_t k = 0; k < count; ++k) {
+            const std::int64_t index = cursor.next(*p.type, false).integer;
+            const std::uint64_t vertices = layout.vertex->count;
+            if (&p == layout.indices && (index < 0 || std::uint64_t(index) >= vertices))
+                fail(at, "face " + n(item) + " references vertex " + std::to_string(index) + ", but the file has " + n(vertices) +
+                             " vertices (allowed: 0 to " + std::to_string(std::int64_t(vertices) - 1) + ")");
+        }
+    }
+}
+
+// Every value of every element, and nothing after the last.
+void readPlyBody(const PlyHeader& h, const PlyLayout& layout, std::string_view bytes, LineReader& lines, Line& line,
+                 const std::string& name, ValidatedMesh& mesh) {
+    PlyCursor cursor{bytes, bytes.substr(h.bodyStart), h.binary, h.bigEndian};
+    for (const PlyElement& e : h.elements)
         for (std::uint64_t item = 0; item < e.count; ++item) {
-            const std::string what = printable(e.name) + " " + n(item);
-            std::vector<std::string_view> tokens;
-            std::string at;
-            const std::size_t itemStart = pos;
-            if (binary) {
-                at = atByte(name, bodyStart + pos);
+            cursor.what = printable(e.name) + " " + n(item);
+            const std::size_t itemStart = cursor.pos;
+            if (h.binary) {
+                cursor.at = atByte(name, h.bodyStart + cursor.pos);
             } else {
                 do {
                     if (!lines.next(line))
-                        fail(name, "truncated: element '" + printable(e.name) + "' declares " +
-                                       n(e.count) + " items, the file ends before item " + n(item));
-                    tokens = split(line.text);
-                } while (tokens.empty());
-                at = atLine(name, line.number);
+                        fail(name, "truncated: element '" + printable(e.name) + "' declares " + n(e.count) +
+                                       " items, the file ends before item " + n(item));
+                    cursor.tokens = split(line.text);
+                } while (cursor.tokens.empty());
+                cursor.at = atLine(name, line.number);
+                cursor.token = 0;
             }
-            std::size_t token = 0;
-            // The next value of type t, checked for presence, number and (integer) type.
-            auto next = [&](const PlyType& t, bool coordinate) {
-                PlyValue v;
-                if (binary) {
-                    if (body.size() - pos < t.size)
-                        fail(at, "truncated: " + what + " ends at byte " + n(bytes.size()) +
-                                     ", inside its values");
-                    v = readBinary(reinterpret_cast<const unsigned char*>(body.data()) + pos, t,
-                                   bigEndian);
-                    pos += t.size;
-                    if (coordinate) checkCoordinate(v.real, std::to_string(v.real), at, what);
-                    return v;
-                }
-                if (token >= tokens.size())
-                    fail(at, what + " has fewer values than its properties declare");
-                // Each value must fit its type: CGAL's stream extraction fails otherwise.
-                const std::string_view word = tokens[token++];
-                if (coordinate) {
-                    if (!parse(word, v.real))
-                        fail(at, what + ": " + quote(word) + " is not a number");
-                    checkCoordinate(v.real, word, at, what);
-                    return v;
-                }
-                const int bits = 8 * t.size - (t.isSigned ? 1 : 0);
-                const bool fits =
-                    t.integer ? parse(word, v.integer) && v.integer < (std::int64_t(1) << bits) &&
-                                    v.integer >= (t.isSigned ? -(std::int64_t(1) << bits) : 0)
-                              : parse(word, v.real) && std::isfinite(v.real) &&
-                                    (t.size == 8 || std::abs(v.real) <= kFloatMax);
-                if (!fits)
-                    fail(at, what + ": " + quote(word) + " is not " +
-                                 (t.integer ? "an integer" : "a finite number") + " of type " +
-                                 std::string(t.names[0]));
-                if (t.integer) v.real = double(v.integer);
-                return v;
-            };
-            for (const PlyProperty& p : e.properties) {
-                if (!p.countType) {
-                    next(*p.type, isVertex && (p.name == "x" || p.name == "y" || p.name == "z"));
-                    continue;
-                }
-                const std::int64_t count = next(*p.countType, false).integer;
-                if (count < 0)
-                    fail(at, what + ": list '" + printable(p.name) + "' has a negative length " +
-                                 std::to_string(count));
-                if (binary && std::uint64_t(count) > (body.size() - pos) / p.type->size)
-                    fail(at, "truncated: " + what + "'s list '" + printable(p.name) +
-                                 "' declares " + std::to_string(count) +
-                                 " items, more than the rest of the file holds");
-                if (&p == indices && count < 3)
-                    fail(at, "face " + n(item) + " has " + std::to_string(count) +
-                                 " vertices (at least 3 needed)");
-                for (std::int64_t k = 0; k < count; ++k) {
-                    const std::int64_t index = next(*p.type, false).integer;
-                    if (&p == indices && (index < 0 || std::uint64_t(index) >= vertex->count))
-                        fail(at, "face " + n(item) + " references vertex " + std::to_string(index) +
-                                     ", but the file has " + n(vertex->count) +
-                                     " vertices (allowed: 0 to " +
-                                     std::to_string(std::int64_t(vertex->count) - 1) + ")");
-                }
-            }
-            if (!binary && token != tokens.size())
-                fail(at, what + " has " + n(tokens.size()) + " values, its properties declare " +
-                             n(token));
-            if (isFace) mesh.faceAt.push_back(binary ? bodyStart + itemStart : line.number);
+            readPlyItem(cursor, e, item, layout);
+            if (!h.binary && cursor.token != cursor.tokens.size())
+                fail(cursor.at, cursor.what + " has " + n(cursor.tokens.size()) + " values, its properties declare " + n(cursor.token));
+            if (&e == layout.face) mesh.faceAt.push_back(h.binary ? h.bodyStart + itemStart : line.number);
         }
-    }
-    if (binary && pos != body.size())
-        fail(atByte(name, bodyStart + pos),
-             n(body.size() - pos) + " bytes of data after the last element the header declares");
-    if (!binary)
+    if (h.binary && cursor.pos != cursor.body.size())
+        fail(atByte(name, h.bodyStart + cursor.pos), n(cursor.body.size() - cursor.pos) + " bytes of data after the last element the header declares");
+    if (!h.binary)
         while (lines.next(line))
             if (!split(line.text).empty())
-                fail(atLine(name, line.number),
-                     "data after the last element the header declares: " + quote(line.text));
+                fail(atLine(name, line.number), "data after the last element the header declares: " + quote(line.text));
+}
+
+ValidatedMesh validatePly(std::string_view bytes, const std::string& name) {
+    LineReader lines(bytes);
+    Line line;
+    const PlyHeader header = readPlyHeader(lines, line, name);
+    PlyLayout layout = plyElements(header, bytes.size() - header.bodyStart, name);
+    plyIndices(layout, name);
+    ValidatedMesh mesh;
+    mesh.format = header.binary ? MeshFormat::PlyBinary : MeshFormat::PlyAscii;
+    mesh.vertices = layout.vertex->count;
+    mesh.faces = layout.face->count;
+    mesh.faceAt.reserve(layout.face->count);
+    readPlyBody(header, layout, bytes, lines, line, name, mesh);
     return mesh;
 }
 
 // ---- STL: ASCII ("solid", facets, "endsolid") or binary (80-byte header, uint32 count, 50
 // bytes per triangle). Binary iff the size is exactly 84 + 50 * count: text can match only by
 // accident (bytes 80-83 of an ASCII file would have to encode that count). -------------------
-ValidatedMesh validateStl(std::string_view bytes, const std::string& name) {
+// A binary STL of `count` triangles (the size matched): every coordinate finite.
+ValidatedMesh validateBinaryStl(std::string_view bytes, std::uint32_t count, const std::string& name) {
     ValidatedMesh mesh;
+    mesh.format = MeshFormat::StlBinary;
+    if (count == 0) fail(name, "no triangles (the binary STL header's count is 0)");
+    mesh.faces = count;
+    mesh.faceAt.reserve(count);
+    for (std::uint64_t i = 0; i < count; ++i) {
+        const std::uint64_t record = 84 + 50 * i;
+        for (int k = 0; k < 9; ++k) {  // after the 12-byte normal, 3 vertices of 3 floats
+            float value;
+            std::memcpy(&value, bytes.data() + record + 12 + 4 * k, 4);
+            if (!std::isfinite(value))
+                fail(atByte(name, record + 12 + 4 * k), "triangle " + n(i) + " has a NaN or infinite coordinate (allowed: finite numbers)");
+        }
+        mesh.faceAt.push_back(record);
+    }
+    return mesh;
+}
+
+// The words of an ASCII STL, line by line.
+struct StlWords {
+    LineReader lines;
+    const std::string& name;
+    Line line;
+    std::vector<std::string_view> tokens;
+    std::size_t token = 0;
+
+    bool atEnd() {  // no word left in the file
+        while (token >= tokens.size()) {
+            if (!lines.next(line)) return true;
+            tokens = split(line.text);
+            token = 0;
+        }
+        return false;
+    }
+    std::string_view next() {
+        if (atEnd()) fail(name, "truncated: the file ends inside a solid (expected 'endsolid')");
+        return tokens[token++];
+    }
+    void expect(std::string_view word) {
+        if (const std::string_view got = next(); got != word)
+            fail(atLine(name, line.number), "expected '" + std::string(word) + "', found " + quote(got));
+    }
+    std::string_view number(const std::string& what, bool coordinate) {
+        const std::string_view word = next();
+        double value = 0.0;
+        if (!parse(word, value)) fail(atLine(name, line.number), what + ": " + quote(word) + " is not a number");
+        if (coordinate) checkCoordinate(value, word, atLine(name, line.number), what);
+        return word;
+    }
+    void skipLine() { token = tokens.size(); }
+};
+
+// One facet (after its 'facet'), written to the normalized text CGAL reads.
+void readStlFacet(StlWords& words, ValidatedMesh& mesh) {
+    const std::string what = "facet " + n(mesh.faces);
+    mesh.faceAt.push_back(words.line.number);
+    words.expect("normal");
+    for (int k = 0; k < 3; ++k) words.number(what + "'s normal", false);
+    words.expect("outer");
+    words.expect("loop");
+    mesh.normalized += "facet normal 0 0 0\nouter loop\n";
+    for (int v = 0; v < 3; ++v) {
+        words.expect("vertex");
+        mesh.normalized += "vertex";
+        for (int k = 0; k < 3; ++k) (mesh.normalized += ' ') += words.number(what + " vertex " + std::to_string(v), true);
+        mesh.normalized += '\n';
+    }
+    words.expect("endloop");
+    words.expect("endfacet");
+    mesh.normalized += "endloop\nendfacet\n";
+    ++mesh.faces;
+}
+
+// ASCII: solid NAME { facet normal n n n outer loop (vertex x y z)x3 endloop endfacet }
+// endsolid [NAME], possibly several solids. CGAL gets one solid of the facets' vertices:
+// its parser reads words, and would take a name's words ("solid", "facet") for keywords.
+ValidatedMesh validateAsciiStl(std::string_view bytes, const std::string& name) {
+    ValidatedMesh mesh;
+    mesh.format = MeshFormat::StlAscii;
+    mesh.normalized = "solid\n";
+    StlWords words{LineReader(bytes), name};
+    while (!words.atEnd()) {
+        words.expect("solid");
+        words.skipLine();  // the rest of the line is the solid's name
+        for (std::string_view word = words.next(); word != "endsolid"; word = words.next()) {
+            if (word != "facet") fail(atLine(name, words.line.number), "expected 'facet' or 'endsolid', found " + quote(word));
+            readStlFacet(words, mesh);
+        }
+        words.skipLine();  // the rest of the line repeats the name
+    }
+    if (mesh.faces == 0) fail(name, "no facets in the ASCII STL file");
+    mesh.normalized += "endsolid\n";
+    return mesh;
+}
+
+ValidatedMesh validateStl(std::string_view bytes, const std::string& name) {
     const std::string allowed =
         "allowed: ASCII STL beginning with 'solid', or binary STL: an 80-byte header, a "
         "little-endian uint32 triangle count, 50 bytes per triangle";
@@ -623,114 +761,19 @@ ValidatedMesh validateStl(std::string_view bytes, const std::string& name) {
     if (bytes.size() >= 84) std::memcpy(&count, bytes.data() + 80, 4);  // little-endian hosts
     static_assert(std::endian::native == std::endian::little);
     const std::uint64_t binarySize = 84 + 50 * std::uint64_t(count);
-    const std::string_view text =
-        bytes.substr(std::min(bytes.find_first_not_of(std::string(kSpace) + "\n"), bytes.size()));
-    const bool looksAscii =
-        text.starts_with("solid") &&
-        (text.size() == 5 || kSpace.find(text[5]) != std::string_view::npos || text[5] == '\n') &&
-        bytes.find('\0') == std::string_view::npos;
-    if (bytes.size() >= 84 && bytes.size() == binarySize) {
-        mesh.format = MeshFormat::StlBinary;
-        if (count == 0) fail(name, "no triangles (the binary STL header's count is 0)");
-        mesh.faces = count;
-        mesh.faceAt.reserve(count);
-        for (std::uint64_t i = 0; i < count; ++i) {
-            const std::uint64_t record = 84 + 50 * i;
-            for (int k = 0; k < 9; ++k) {  // after the 12-byte normal, 3 vertices of 3 floats
-                float value;
-                std::memcpy(&value, bytes.data() + record + 12 + 4 * k, 4);
-                if (!std::isfinite(value))
-                    fail(atByte(name, record + 12 + 4 * k),
-                         "triangle " + n(i) +
-                             " has a NaN or infinite coordinate (allowed: finite numbers)");
-            }
-            mesh.faceAt.push_back(record);
-        }
-        return mesh;
-    }
-    if (!looksAscii) {
-        if (bytes.size() < 84)
-            fail(name, "too short for a binary STL (" + n(bytes.size()) +
-                           " bytes) and does not begin with 'solid' (" + allowed + ")");
-        const std::int64_t difference = std::int64_t(bytes.size()) - std::int64_t(binarySize);
-        fail(atByte(name, 80), "binary STL: the header declares " + n(count) +
-                                   " triangles, which take 84 + 50 x " + n(count) + " = " +
-                                   n(binarySize) + " bytes, but the file has " + n(bytes.size()) +
-                                   " (" + n(std::uint64_t(std::abs(difference))) +
-                                   (difference > 0 ? " bytes more" : " bytes fewer") +
-                                   "; the size must match exactly)");
-    }
-
-    // ASCII: solid NAME { facet normal n n n outer loop (vertex x y z)x3 endloop endfacet }
-    // endsolid [NAME], possibly several solids. CGAL gets one solid of the facets' vertices:
-    // its parser reads words, and would take a name's words ("solid", "facet") for keywords.
-    mesh.format = MeshFormat::StlAscii;
-    mesh.normalized = "solid\n";
-    LineReader lines(bytes);
-    Line line;
-    std::vector<std::string_view> tokens;
-    std::size_t token = 0;
-    auto next = [&]() -> std::string_view {
-        while (token >= tokens.size()) {
-            if (!lines.next(line))
-                fail(name, "truncated: the file ends inside a solid (expected 'endsolid')");
-            tokens = split(line.text);
-            token = 0;
-        }
-        return tokens[token++];
-    };
-    auto expect = [&](std::string_view word) {
-        if (const std::string_view got = next(); got != word)
-            fail(atLine(name, line.number),
-                 "expected '" + std::string(word) + "', found " + quote(got));
-    };
-    auto number = [&](const std::string& what, bool coordinate) {
-        const std::string_view word = next();
-        double value = 0.0;
-        if (!parse(word, value))
-            fail(atLine(name, line.number), what + ": " + quote(word) + " is not a number");
-        if (coordinate) checkCoordinate(value, word, atLine(name, line.number), what);
-        return word;
-    };
-    auto atEnd = [&] {  // no token left in the file
-        while (token >= tokens.size()) {
-            if (!lines.next(line)) return true;
-            tokens = split(line.text);
-            token = 0;
-        }
-        return false;
-    };
-    while (!atEnd()) {
-        expect("solid");
-        token = tokens.size();  // the rest of the line is the solid's name
-        for (std::string_view word = next(); word != "endsolid"; word = next()) {
-            if (word != "facet")
-                fail(atLine(name, line.number),
-                     "expected 'facet' or 'endsolid', found " + quote(word));
-            const std::string what = "facet " + n(mesh.faces);
-            mesh.faceAt.push_back(line.number);
-            expect("normal");
-            for (int k = 0; k < 3; ++k) number(what + "'s normal", false);
-            expect("outer");
-            expect("loop");
-            mesh.normalized += "facet normal 0 0 0\nouter loop\n";
-            for (int v = 0; v < 3; ++v) {
-                expect("vertex");
-                mesh.normalized += "vertex";
-                for (int k = 0; k < 3; ++k)
-                    (mesh.normalized += ' ') += number(what + " vertex " + std::to_string(v), true);
-                mesh.normalized += '\n';
-            }
-            expect("endloop");
-            expect("endfacet");
-            mesh.normalized += "endloop\nendfacet\n";
-            ++mesh.faces;
-        }
-        token = tokens.size();  // the rest of the line repeats the name
-    }
-    if (mesh.faces == 0) fail(name, "no facets in the ASCII STL file");
-    mesh.normalized += "endsolid\n";
-    return mesh;
+    const std::string_view text = bytes.substr(std::min(bytes.find_first_not_of(std::string(kSpace) + "\n"), bytes.size()));
+    const bool looksAscii = text.starts_with("solid") &&
+                            (text.size() == 5 || kSpace.find(text[5]) != std::string_view::npos || text[5] == '\n') &&
+                            bytes.find('\0') == std::string_view::npos;
+    if (bytes.size() >= 84 && bytes.size() == binarySize) return validateBinaryStl(bytes, count, name);
+    if (looksAscii) return validateAsciiStl(bytes, name);
+    if (bytes.size() < 84)
+        fail(name, "too short for a binary STL (" + n(bytes.size()) + " bytes) and does not begin with 'solid' (" + allowed + ")");
+    const std::int64_t difference = std::int64_t(bytes.size()) - std::int64_t(binarySize);
+    fail(atByte(name, 80), "binary STL: the header declares " + n(count) + " triangles, which take 84 + 50 x " + n(count) +
+                               " = " + n(binarySize) + " bytes, but the file has " + n(bytes.size()) + " (" +
+                               n(std::uint64_t(std::abs(difference))) + (difference > 0 ? " bytes more" : " bytes fewer") +
+                               "; the size must match exactly)");
 }
 
 }  // namespace

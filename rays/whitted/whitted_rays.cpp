@@ -124,8 +124,8 @@ const RayType& whittedRayType() {
         };
         t.columns = {
             {"whitted_lights", K::Exact, "lights", "whitted: point lights (each diffuse hit makes a shadow ray toward each)"},
-            {"whitted_light_positions", K::Exact, "scene units",
-             "whitted: the point lights in the traced scene, \"x y z\" each, separated by \"; \""},
+            textColumn({"whitted_light_positions", K::Exact, "scene units",
+                        "whitted: the point lights in the traced scene, \"x y z\" each, separated by \"; \""}),
             {"whitted_materials", K::Exact, "materials", "whitted: materials (whitted.surface and the description's)"},
             {"whitted_parent_rays", K::Exact, "rays", "whitted: rays of the generation the batch was made from"},
             {"whitted_parent_hits", K::Exact, "rays", "whitted: of those, the rays that hit"},

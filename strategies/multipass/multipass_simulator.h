@@ -33,71 +33,84 @@ inline std::uint64_t multipassPassCap(const Structure& structure, const Multipas
     return multipassPassCap(b.maxCellsPerRay, b.maxTrianglesPerCell, options);
 }
 
-// Throws rtbench::Error when `cap` passes have run with rays still active. With a `trace`, the
-// passes run ray after ray on this thread, as "a single pixel wide graphics pipeline" (Purcell et
-// al. 2002 §4.1), and every read and write goes to it (the kernels' own through TracedArray,
-// the stream's here: the stencil, ray, traversal and hit state of the bandwidth accounting).
+// One run of the multipass passes over a stream of rays on the CPU: the stream's buffers (the
+// stencil, the traversal and hit state, the records) and the passes over them.
 template <class Kernels>
-MultipassResult simulateMultipassOver(Kernels base, const std::vector<gpu::Ray>& rays,
-                                      const MultipassOptions& options, std::uint64_t cap, MemoryTrace* trace = nullptr) {
-    base.traverseStepsPerPass = options.traverseStepsPerPass;
-    base.intersectionsPerPass = options.intersectionsPerPass;
-    base.suppressFinishedReads = options.suppressFinishedReads ? 1u : 0u;
+class MultipassSimulation {
+  public:
     using State = typename Kernels::RtTraversalState;
-    const std::size_t n = rays.size();
-    std::vector<std::uint8_t> stencil(n);
-    std::vector<State> traversal(n);
-    std::vector<gpu::RayHitState> hitState(n);
-    std::vector<gpu::RayCounters> counters(n, gpu::RayCounters{0, 0, 0, 0});
-    MultipassResult result;
-    result.hits.resize(n);
+
+    MultipassSimulation(Kernels base, const std::vector<gpu::Ray>& rays, const MultipassOptions& options, MemoryTrace* trace)
+        : base_(std::move(base)), rays_(rays), trace_(trace), n_(rays.size()), stencil_(n_), traversal_(n_), hitState_(n_),
+          counters_(n_, gpu::RayCounters{0, 0, 0, 0}) {
+        base_.traverseStepsPerPass = options.traverseStepsPerPass;
+        base_.intersectionsPerPass = options.intersectionsPerPass;
+        base_.suppressFinishedReads = options.suppressFinishedReads ? 1u : 0u;
+        result_.hits.resize(n_);
+        if (trace_) {
+            kernelReads_.emplace(*trace_);  // the kernels' own reads, through TracedArray
+            for (const auto& [data, bytes] : std::initializer_list<std::pair<const void*, std::uint64_t>>{
+                     {rays_.data(), n_ * sizeof(gpu::Ray)}, {stencil_.data(), n_}, {traversal_.data(), n_ * sizeof(State)},
+                     {hitState_.data(), n_ * sizeof(gpu::RayHitState)}, {result_.hits.data(), n_ * sizeof(gpu::HitRecord)}})
+                trace_->place(data, bytes);
+        }
+    }
+
+    MultipassResult run(const MultipassOptions& options, std::uint64_t cap) {
+        result_.counts = runPassLoop(options, cap, n_, [&](PassKind kind) {
+            return kind == PassKind::Write ? PassSums{} : runPass(kind);  // the write pass is below
+        });
+        // The write pass: every ray's hit state to its record.
+        Kernels write = base_;
+        for (std::size_t i = 0; i < n_; ++i) {
+            if (trace_) {
+                trace_->read(MemoryKind::State, &hitState_[i], sizeof(gpu::RayHitState));
+                trace_->write(MemoryKind::Output, &result_.hits[i], bytes::kOutput);
+            }
+            result_.hits[i] = write.mpHitRecord(hitState_[i], counters_[i]);
+        }
+        return std::move(result_);
+    }
+
+  private:
     // The traversal state each pass moves whole; a node stack (BVH: its tail) stays in memory, and
     // the kernels' accessors report the entries a pass pushes or pops (bvh_reference.h).
-    const std::uint64_t movedBytes = sizeof(State) - Kernels::kTraversalStackBytes;
-    auto moveTraversal = [&](std::size_t i, bool write) {
-        if (write) trace->write(MemoryKind::State, &traversal[i], movedBytes);
-        else trace->read(MemoryKind::State, &traversal[i], movedBytes);
-    };
-    std::optional<MemoryTrace::Scope> kernelReads;  // the kernels' own, through TracedArray
-    if (trace) {
-        kernelReads.emplace(*trace);
-        for (const auto& [data, bytes] : std::initializer_list<std::pair<const void*, std::uint64_t>>{
-                 {rays.data(), n * sizeof(gpu::Ray)}, {stencil.data(), n}, {traversal.data(), n * sizeof(State)},
-                 {hitState.data(), n * sizeof(gpu::RayHitState)}, {result.hits.data(), n * sizeof(gpu::HitRecord)}})
-            trace->place(data, bytes);
+    void moveTraversal(std::size_t i, bool write) {
+        const std::uint64_t movedBytes = sizeof(State) - Kernels::kTraversalStackBytes;
+        if (write) trace_->write(MemoryKind::State, &traversal_[i], movedBytes);
+        else trace_->read(MemoryKind::State, &traversal_[i], movedBytes);
+    }
+
+    // The kernel of `kind` on ray i (its stencil matched): the ray's new state.
+    std::uint32_t runKernel(Kernels& k, std::size_t i, PassKind kind, typename Kernels::MpEvents& e) {
+        if (kind == PassKind::Setup) return k.mpSetup(rays_[i], traversal_[i], hitState_[i], e);
+        if (kind == PassKind::Traverse) return k.mpTraverse(rays_[i], traversal_[i], hitState_[i], e);
+        return k.mpIntersect(rays_[i], traversal_[i], hitState_[i], e);
     }
 
     // Ray i's part of a pass of `kind`: rays whose stencil matches it do its work.
-    auto serve = [&](Kernels& k, std::size_t i, PassKind kind, PassSums& sums) {
-        if (trace && kind != PassKind::Setup) trace->read(MemoryKind::Stencil, &stencil[i], 1);
+    void serve(Kernels& k, std::size_t i, PassKind kind, PassSums& sums) {
+        if (trace_ && kind != PassKind::Setup) trace_->read(MemoryKind::Stencil, &stencil_[i], 1);
         const bool setup = kind == PassKind::Setup;
-        const bool traverse = kind == PassKind::Traverse && stencil[i] == gpu::kStateTraversing;
-        const bool intersect = kind == PassKind::Intersect && stencil[i] == gpu::kStateWaiting;
+        const bool traverse = kind == PassKind::Traverse && stencil_[i] == gpu::kStateTraversing;
+        const bool intersect = kind == PassKind::Intersect && stencil_[i] == gpu::kStateWaiting;
         if (!setup && !traverse && !intersect) return;  // the stencil test: other rays exit at once
-        if (trace) {
-            trace->read(MemoryKind::State, &rays[i], sizeof(gpu::Ray));
+        if (trace_) {
+            trace_->read(MemoryKind::State, &rays_[i], sizeof(gpu::Ray));
             if (!setup) {
                 moveTraversal(i, false);
-                trace->read(MemoryKind::State, &hitState[i], sizeof(gpu::RayHitState));
+                trace_->read(MemoryKind::State, &hitState_[i], sizeof(gpu::RayHitState));
             }
         }
         typename Kernels::MpEvents e = k.mpNoEvents();
-        std::uint32_t oldState = 0xFF, state = 0;
-        if (setup) {
-            state = k.mpSetup(rays[i], traversal[i], hitState[i], e);
-        } else if (traverse) {
-            oldState = gpu::kStateTraversing;
-            state = k.mpTraverse(rays[i], traversal[i], hitState[i], e);
-        } else {
-            oldState = gpu::kStateWaiting;
-            state = k.mpIntersect(rays[i], traversal[i], hitState[i], e);
-        }
-        if (trace) {
+        const std::uint32_t oldState = setup ? 0xFF : traverse ? gpu::kStateTraversing : gpu::kStateWaiting;
+        const std::uint32_t state = runKernel(k, i, kind, e);
+        if (trace_) {
             moveTraversal(i, true);
-            if (!traverse) trace->write(MemoryKind::State, &hitState[i], sizeof(gpu::RayHitState));
-            if (state != oldState) trace->write(MemoryKind::Stencil, &stencil[i], 1);
+            if (!traverse) trace_->write(MemoryKind::State, &hitState_[i], sizeof(gpu::RayHitState));
+            if (state != oldState) trace_->write(MemoryKind::Stencil, &stencil_[i], 1);
         }
-        stencil[i] = static_cast<std::uint8_t>(state);
+        stencil_[i] = static_cast<std::uint8_t>(state);
         sums.traversing += state == gpu::kStateTraversing;
         sums.waiting += state == gpu::kStateWaiting;
         sums.useful += 1;
@@ -105,41 +118,50 @@ MultipassResult simulateMultipassOver(Kernels base, const std::vector<gpu::Ray>&
         sums.structureReads += e.structureReads;
         sums.triangleReads += e.triangleReads;
         sums.stackEntries += e.stackEntries;
-        counters[i].cellsVisited += e.visited;
-        counters[i].trianglesTested += e.tested;
-        counters[i].traversalSteps += e.steps;
-    };
+        counters_[i].cellsVisited += e.visited;
+        counters_[i].trianglesTested += e.tested;
+        counters_[i].traversalSteps += e.steps;
+    }
+
     // One pass over the stream: in parallel, or with a trace ray after ray.
-    auto runPass = [&](PassKind kind) {
-        if (trace) {
-            Kernels k = base;
+    PassSums runPass(PassKind kind) {
+        if (trace_) {
+            Kernels k = base_;
             PassSums sums;
-            for (std::size_t i = 0; i < n; ++i) serve(k, i, kind, sums);
-            trace->endPass();  // what the pass rendered is the next pass's texture
+            for (std::size_t i = 0; i < n_; ++i) serve(k, i, kind, sums);
+            trace_->endPass();  // what the pass rendered is the next pass's texture
             return sums;
         }
         return tbb::parallel_reduce(
-            tbb::blocked_range<std::size_t>(0, n, 2048), PassSums{},
+            tbb::blocked_range<std::size_t>(0, n_, 2048), PassSums{},
             [&](const tbb::blocked_range<std::size_t>& range, PassSums sums) {
-                Kernels k = base;
+                Kernels k = base_;
                 for (std::size_t i = range.begin(); i != range.end(); ++i) serve(k, i, kind, sums);
                 return sums;
             },
             [](PassSums a, const PassSums& b) { return a += b; });
-    };
-    result.counts = runPassLoop(options, cap, n, [&](PassKind kind) {
-        return kind == PassKind::Write ? PassSums{} : runPass(kind);  // the write pass is below
-    });
-    // The write pass: every ray's hit state to its record.
-    Kernels write = base;
-    for (std::size_t i = 0; i < n; ++i) {
-        if (trace) {
-            trace->read(MemoryKind::State, &hitState[i], sizeof(gpu::RayHitState));
-            trace->write(MemoryKind::Output, &result.hits[i], bytes::kOutput);
-        }
-        result.hits[i] = write.mpHitRecord(hitState[i], counters[i]);
     }
-    return result;
+
+    Kernels base_;
+    const std::vector<gpu::Ray>& rays_;
+    MemoryTrace* trace_;
+    std::size_t n_;
+    std::vector<std::uint8_t> stencil_;
+    std::vector<State> traversal_;
+    std::vector<gpu::RayHitState> hitState_;
+    std::vector<gpu::RayCounters> counters_;
+    MultipassResult result_;
+    std::optional<MemoryTrace::Scope> kernelReads_;
+};
+
+// Throws rtbench::Error when `cap` passes have run with rays still active. With a `trace`, the
+// passes run ray after ray on this thread, as "a single pixel wide graphics pipeline" (Purcell et
+// al. 2002 §4.1), and every read and write goes to it (the kernels' own through TracedArray,
+// the stream's here: the stencil, ray, traversal and hit state of the bandwidth accounting).
+template <class Kernels>
+MultipassResult simulateMultipassOver(Kernels base, const std::vector<gpu::Ray>& rays,
+                                      const MultipassOptions& options, std::uint64_t cap, MemoryTrace* trace = nullptr) {
+    return MultipassSimulation<Kernels>(std::move(base), rays, options, trace).run(options, cap);
 }
 
 // The multipass passes on the CPU for a structure and a query (gpu::kQuery*), capped as the

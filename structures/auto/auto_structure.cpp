@@ -92,9 +92,9 @@ const StructureType& autoStructureType() {
         t.name = "auto";
         t.help = "the structure the cost model predicts the least work for (each candidate built with its default keys)";
         t.columns = {
-            {"auto_choice", K::Exact, "", "auto: the structure chosen"},
-            {"auto_predictions", K::Exact, "operations",
-             "auto: every candidate's predicted work per ray (predicted_work_per_ray), or refused"},
+            textColumn({"auto_choice", K::Exact, "", "auto: the structure chosen"}),
+            textColumn({"auto_predictions", K::Exact, "operations",
+                        "auto: every candidate's predicted work per ray (predicted_work_per_ray), or refused"}),
         };
         t.build = buildAuto;
         return t;

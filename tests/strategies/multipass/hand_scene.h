@@ -15,6 +15,7 @@
 #include "structures/uniform_grid/uniform_grid.h"
 #include "strategies/multipass/multipass_schedule.h"
 #include "scene/mesh.h"
+#include "tests/methods/hand_scenes.h"
 
 namespace rtbench::hand {
 
@@ -22,33 +23,20 @@ namespace rtbench::hand {
 // 1 corner at x=4, 2-3 a quad at x=2.5 split along y+z=1, 4-5 the same at x=3.5.
 // Voxel lists: v0 {0}, v1 {}, v2 {2,3}, v3 {1,4,5}.
 inline TriangleMesh handScene() {
-    TriangleMesh m;
-    m.name = "hand";
-    auto tri = [&](glm::vec3 a, glm::vec3 b, glm::vec3 c) {
-        const unsigned base = unsigned(m.vertices.size());
-        m.vertices.insert(m.vertices.end(), {a, b, c});
-        m.triangles.emplace_back(base, base + 1, base + 2);
-    };
-    tri({0, 0.8f, 0.8f}, {0, 1, 0.8f}, {0, 0.8f, 1});
-    tri({4, 0.8f, 0.8f}, {4, 1, 0.8f}, {4, 0.8f, 1});
+    std::vector<Tri> tris = {{glm::vec3(0, 0.8f, 0.8f), glm::vec3(0, 1, 0.8f), glm::vec3(0, 0.8f, 1)},
+                             {glm::vec3(4, 0.8f, 0.8f), glm::vec3(4, 1, 0.8f), glm::vec3(4, 0.8f, 1)}};
     for (float x : {2.5f, 3.5f}) {
-        tri({x, 0, 0}, {x, 1, 0}, {x, 0, 1});  // y + z <= 1
-        tri({x, 1, 0}, {x, 1, 1}, {x, 0, 1});  // y + z >= 1
+        tris.push_back({glm::vec3(x, 0, 0), glm::vec3(x, 1, 0), glm::vec3(x, 0, 1)});  // y + z <= 1
+        tris.push_back({glm::vec3(x, 1, 0), glm::vec3(x, 1, 1), glm::vec3(x, 0, 1)});  // y + z >= 1
     }
-    return m;
+    return meshOf(tris);
 }
 
-inline UniformGrid handGrid() {
-    GridResolutionRule rule;
-    rule.kind = GridResolutionRule::Kind::Explicit;
-    rule.resolution = {4, 1, 1};
-    return buildUniformGrid(handScene(), rule);
-}
+inline UniformGrid handGrid() { return gridOf(handScene(), {4, 1, 1}); }
 
 // Ray 0 from x=-1 along +x hits triangle 2 at t=3.5; ray 1 misses the box; ray 2 from x=5
 // along -x hits triangle 4 at t=1.5.
 inline std::vector<gpu::Ray> handRays() {
-    auto ray = [](glm::vec3 o, glm::vec3 d) { return gpu::Ray{glm::vec4(o, 0.0f), glm::vec4(d, gpu::kNoHitT)}; };
     return {ray({-1, 0.25f, 0.25f}, {1, 0, 0}), ray({-1, 5, 0.5f}, {1, 0, 0}), ray({5, 0.25f, 0.25f}, {-1, 0, 0})};
 }
 
