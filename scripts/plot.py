@@ -31,8 +31,8 @@ import pandas as pd  # noqa: E402
 from matplotlib import ticker, transforms  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 from matplotlib.patches import Patch  # noqa: E402
-from rtbench_results import (AXES, VECTOR_KEYS, christen_iterations, host_against_device, load, method_name, scene_name,  # noqa: E402
-                             UnsafePath, write_file_atomically, wrong_rays)
+from rtbench_results import (AXES, VECTOR_KEYS, christen_iterations, host_against_device, live_headline, load, method_name,  # noqa: E402
+                             scene_name, UnsafePath, write_file_atomically, wrong_rays)
 # One palette for every chart: a colour family per acceleration structure (shades for its
 # resolutions, in numeric order), a colour per strategy apart from all of them, Embree in black.
 # A colour means the same thing in every file.
@@ -1023,7 +1023,9 @@ def structures_time(runs, device, folder, written):
         embree = part.groupby("scene").embree1_ms_median.median()  # a line across each scene's bars
         row[0].hlines(embree.values, [scenes.index(s) - 0.42 for s in embree.index],
                       [scenes.index(s) + 0.42 for s in embree.index], color="k", lw=1.6, zorder=3)
-        row[0].set_ylabel("GPU time per frame (ms, median, log)")
+        live = strategy == "multipass" and live_headline(part)  # host control: the live loop's wall time
+        row[0].set_ylabel("time per frame (ms, median, log):\nthe live pass loop's host wall time" if live
+                          else "GPU time per frame (ms, median, log)")
         row[0].set_title(f"{strategy}: time per scene")
         missing |= grouped_bars(row[1], part, "speed_ratio_vs_embree1", scenes, methods)
         row[1].axhline(1.0, color="k", lw=1, ls="--")
