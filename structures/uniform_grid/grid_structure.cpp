@@ -160,7 +160,7 @@ const StructureType& gridStructureType() {
             {"grid_max_refs_in_cell", K::Exact, "references", "largest voxel list"},
             {"grid_bytes", K::Exact, "bytes", "grid memory (offsets, lists, vertices)"},
             {"grid_voxel_margin", K::Exact, "scene units", "structure.conservative: how far beyond its box a voxel lists triangles (0: exact voxels)"},
-            {"grid_build_ms", K::Timing, "ms", "CPU build time of the grid"},
+            {"grid_build_ms", K::Timing, "ms", "CPU build time of the grid: wall time, the triangles binned in parallel on TBB's threads, as Embree builds its BVH"},
             {"voxels_per_ray_mean", K::Exact, "voxels", "voxels visited per ray, mean"},
             {"voxels_per_ray_max", K::Exact, "voxels", "voxels visited per ray, max"},
             {"bytes_voxel", K::Exact, "bytes", "voxel offsets read"},

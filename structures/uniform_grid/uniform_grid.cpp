@@ -10,7 +10,10 @@
 #include <limits>
 #include <string>
 
+#include <tbb/parallel_for.h>
+
 #include "methods/triangle_store.h"
+#include "triangle_box_filter.h"
 #include "core/error.h"
 #include "scene/scene_limits.h"
 
@@ -107,22 +110,152 @@ VoxelBox UniformGrid::voxelBounds(unsigned x, unsigned y, unsigned z) const {
     return b;
 }
 
-bool triangleOverlapsBox(const gpu::Triangle& t, const VoxelBox& box, float margin) {
-    const Kernel::Triangle_3 triangle(Kernel::Point_3(t.v0.x, t.v0.y, t.v0.z),
-                                      Kernel::Point_3(t.v1.x, t.v1.y, t.v1.z),
-                                      Kernel::Point_3(t.v2.x, t.v2.y, t.v2.z));
-    const double m = margin;
-    const CGAL::Bbox_3 bbox(box.min.x - m, box.min.y - m, box.min.z - m, box.max.x + m, box.max.y + m, box.max.z + m);
-    if (triangle.is_degenerate()) {  // CGAL's triangle-box test requires a proper triangle
-        const Kernel::Segment_3 s0(triangle[0], triangle[1]), s1(triangle[1], triangle[2]),
-            s2(triangle[0], triangle[2]);
-        if (s0.is_degenerate() && s1.is_degenerate())
-            return CGAL::do_intersect(bbox, triangle[0]);
-        return (!s0.is_degenerate() && CGAL::do_intersect(bbox, s0)) ||
-               (!s1.is_degenerate() && CGAL::do_intersect(bbox, s1)) ||
+namespace {
+
+// The CGAL triangle of a grid triangle, and whether it is degenerate (a segment or a point).
+Kernel::Triangle_3 cgalTriangle(const gpu::Triangle& t) {
+    return Kernel::Triangle_3(Kernel::Point_3(t.v0.x, t.v0.y, t.v0.z), Kernel::Point_3(t.v1.x, t.v1.y, t.v1.z),
+                              Kernel::Point_3(t.v2.x, t.v2.y, t.v2.z));
+}
+
+// CGAL's exact test of the closed triangle against the closed box.
+bool exactOverlap(const Kernel::Triangle_3& triangle, bool degenerate, const CGAL::Bbox_3& bbox) {
+    if (degenerate) {  // CGAL's triangle-box test requires a proper triangle
+        const Kernel::Segment_3 s0(triangle[0], triangle[1]), s1(triangle[1], triangle[2]), s2(triangle[0], triangle[2]);
+        if (s0.is_degenerate() && s1.is_degenerate()) return CGAL::do_intersect(bbox, triangle[0]);
+        return (!s0.is_degenerate() && CGAL::do_intersect(bbox, s0)) || (!s1.is_degenerate() && CGAL::do_intersect(bbox, s1)) ||
                (!s2.is_degenerate() && CGAL::do_intersect(bbox, s2));
     }
     return CGAL::do_intersect(triangle, bbox);
+}
+
+// A voxel's box widened by the margin, as both tests see it.
+CGAL::Bbox_3 widenedBox(const VoxelBox& box, float margin) {
+    const double m = margin;
+    return CGAL::Bbox_3(box.min.x - m, box.min.y - m, box.min.z - m, box.max.x + m, box.max.y + m, box.max.z + m);
+}
+
+// The grid's box (the scene's, widened by the margin), resolution and cell size.
+gpu::GridParams gridFrame(const TriangleMesh& mesh, const GridResolutionRule& rule, std::uint64_t maxCells, float voxelMargin) {
+    const Bounds3 sceneBounds = mesh.bounds();
+    Bounds3 box = gridBounds(sceneBounds);
+    box.min -= glm::vec3(voxelMargin);
+    box.max += glm::vec3(voxelMargin);
+    const std::array<unsigned, 3> res = chooseGridResolution(sceneBounds, mesh.triangles.size(), rule);
+    const std::uint64_t cells = std::uint64_t(res[0]) * res[1] * res[2];
+    if (cells > maxCells)
+        throw Error("grid: resolution " + std::to_string(res[0]) + "x" + std::to_string(res[1]) + "x" + std::to_string(res[2]) +
+                    " = " + std::to_string(cells) + " cells exceeds the limit of " + std::to_string(maxCells) + " cells");
+    gpu::GridParams p{};
+    p.boundsMin = glm::vec4(box.min, 0.0f);
+    p.boundsMax = glm::vec4(box.max, 0.0f);
+    for (int a = 0; a < 3; ++a) {
+        p.cellSize[a] = box.extent()[a] / static_cast<float>(res[a]);
+        p.invCellSize[a] = 1.0f / p.cellSize[a];
+    }
+    p.resolution = glm::uvec4(res[0], res[1], res[2], 0u);
+    return p;
+}
+
+using CellPairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;  // (cell, triangle)
+
+// Voxels tested, and those CGAL decided.
+struct TestCounts {
+    std::uint64_t voxels = 0, exact = 0;
+};
+
+// Appends triangle i's (cell, i) pairs: every voxel of its candidate range that it meets. The
+// float filter decides where it is sure (triangle_box_filter.h); CGAL's exact test the rest, so
+// the cells are the exact test's.
+void binTriangle(const UniformGrid& grid, std::uint32_t i, float voxelMargin, CellPairs& pairs, TestCounts& counts) {
+    const gpu::Triangle& t = grid.triangles[i];
+    const gpu::GridParams& p = grid.params;
+    glm::ivec3 lo, hi;
+    for (int a = 0; a < 3; ++a) {
+        const float vmin = std::min({t.v0[a], t.v1[a], t.v2[a]});
+        const float vmax = std::max({t.v0[a], t.v1[a], t.v2[a]});
+        candidateRange(vmin - voxelMargin, vmax + voxelMargin, p.boundsMin[a], p.invCellSize[a], p.resolution[a], lo[a], hi[a]);
+    }
+    const Kernel::Triangle_3 triangle = cgalTriangle(t);
+    const bool degenerate = triangle.is_degenerate();
+    const FilterTriangle filter({glm::dvec3(t.v0), glm::dvec3(t.v1), glm::dvec3(t.v2)});
+    for (int z = lo.z; z <= hi.z; ++z)
+        for (int y = lo.y; y <= hi.y; ++y)
+            for (int x = lo.x; x <= hi.x; ++x) {
+                const CGAL::Bbox_3 box = widenedBox(grid.voxelBounds(x, y, z), voxelMargin);
+                Overlap overlap = degenerate ? Overlap::Unsure
+                                             : filteredTriangleBoxOverlap(filter, {box.xmin(), box.ymin(), box.zmin()},
+                                                                          {box.xmax(), box.ymax(), box.zmax()});
+                ++counts.voxels;
+                if (overlap == Overlap::Unsure) {
+                    ++counts.exact;
+                    overlap = exactOverlap(triangle, degenerate, box) ? Overlap::Yes : Overlap::No;
+                }
+                if (overlap == Overlap::Yes)
+                    pairs.emplace_back(std::uint32_t(x + p.resolution.x * (y + std::uint64_t(p.resolution.y) * z)), i);
+            }
+}
+
+// Pass 1, on the machine's cores (TBB): the (cell, triangle) pairs of fixed chunks of triangles,
+// each chunk's in triangle order, so the result does not depend on the scheduling.
+std::vector<CellPairs> binTriangles(UniformGrid& grid, float voxelMargin) {
+    constexpr std::size_t kChunk = 64;  // small: a few large triangles (a floor, a wall) are much of the work
+    const std::size_t count = grid.triangles.size();
+    std::vector<CellPairs> chunks((count + kChunk - 1) / kChunk);
+    std::vector<TestCounts> counts(chunks.size());
+    tbb::parallel_for(std::size_t(0), chunks.size(), [&](std::size_t c) {
+        CellPairs& pairs = chunks[c];
+        pairs.reserve(kChunk * 8);
+        for (std::size_t i = c * kChunk; i < std::min(count, (c + 1) * kChunk); ++i) {
+            binTriangle(grid, std::uint32_t(i), voxelMargin, pairs, counts[c]);
+            if (pairs.size() > std::numeric_limits<std::uint32_t>::max()) break;  // refused below
+        }
+    });
+    std::uint64_t references = 0;
+    for (std::size_t c = 0; c < chunks.size(); ++c) {
+        references += chunks[c].size();
+        grid.stats.voxelTests += counts[c].voxels;
+        grid.stats.exactTests += counts[c].exact;
+    }
+    if (references > std::numeric_limits<std::uint32_t>::max())  // the cell offsets are uint32
+        throw Error("grid: resolution " +
+                    resolutionText({double(grid.params.resolution.x), double(grid.params.resolution.y), double(grid.params.resolution.z)}) +
+                    " gives more than 4294967295 triangle references, more than its 32-bit offsets hold");
+    return chunks;
+}
+
+// Pass 2: a counting sort of the pairs by cell (stable: ids ascend within a voxel), and the stats.
+void sortByCell(UniformGrid& grid, const std::vector<CellPairs>& chunks) {
+    const std::uint64_t cells = std::uint64_t(grid.params.resolution.x) * grid.params.resolution.y * grid.params.resolution.z;
+    grid.cellOffsets.assign(cells + 1, 0);
+    for (const CellPairs& pairs : chunks)
+        for (const auto& [cell, tri] : pairs) ++grid.cellOffsets[cell + 1];
+    std::uint32_t maxInCell = 0;
+    std::uint64_t emptyCells = 0;
+    for (std::uint64_t c = 0; c < cells; ++c) {
+        maxInCell = std::max(maxInCell, grid.cellOffsets[c + 1]);
+        emptyCells += grid.cellOffsets[c + 1] == 0;
+        grid.cellOffsets[c + 1] += grid.cellOffsets[c];
+    }
+    grid.triangleList.resize(grid.cellOffsets.back());
+    std::vector<std::uint32_t> cursor(grid.cellOffsets.begin(), grid.cellOffsets.end() - 1);
+    for (const CellPairs& pairs : chunks)
+        for (const auto& [cell, tri] : pairs) grid.triangleList[cursor[cell]++] = tri;
+    GridStats& s = grid.stats;
+    s.resolution = {grid.params.resolution.x, grid.params.resolution.y, grid.params.resolution.z};
+    s.cells = cells;
+    s.emptyFraction = static_cast<double>(emptyCells) / static_cast<double>(cells);
+    s.references = grid.triangleList.size();
+    s.referencesPerTriangle = static_cast<double>(s.references) / static_cast<double>(grid.triangles.size());
+    s.maxReferencesInCell = maxInCell;
+    s.bytes = grid.cellOffsets.size() * 4 + grid.triangleList.size() * 4 + grid.triangles.size() * triangleVertexBytes(grid.lattice);
+}
+
+}  // namespace
+
+bool triangleOverlapsBox(const gpu::Triangle& t, const VoxelBox& box, float margin) {
+    const Kernel::Triangle_3 triangle = cgalTriangle(t);
+    return exactOverlap(triangle, triangle.is_degenerate(), widenedBox(box, margin));
 }
 
 float conservativeVoxelMargin(const Bounds3& gridBox, const std::vector<gpu::Ray>& rays,
@@ -140,26 +273,7 @@ UniformGrid buildUniformGrid(const TriangleMesh& mesh, const GridResolutionRule&
     const auto start = std::chrono::steady_clock::now();
     validateSceneRange(mesh);
     UniformGrid grid;
-    const Bounds3 sceneBounds = mesh.bounds();
-    Bounds3 box = gridBounds(sceneBounds);
-    box.min -= glm::vec3(voxelMargin);
-    box.max += glm::vec3(voxelMargin);
-    const std::array<unsigned, 3> res = chooseGridResolution(sceneBounds, mesh.triangles.size(), rule);
-    const std::uint64_t cells = std::uint64_t(res[0]) * res[1] * res[2];
-    if (cells > maxCells)
-        throw Error("grid: resolution " + std::to_string(res[0]) + "x" + std::to_string(res[1]) +
-                    "x" + std::to_string(res[2]) + " = " + std::to_string(cells) +
-                    " cells exceeds the limit of " + std::to_string(maxCells) + " cells");
-
-    gpu::GridParams& p = grid.params;
-    p.boundsMin = glm::vec4(box.min, 0.0f);
-    p.boundsMax = glm::vec4(box.max, 0.0f);
-    for (int a = 0; a < 3; ++a) {
-        p.cellSize[a] = box.extent()[a] / static_cast<float>(res[a]);
-        p.invCellSize[a] = 1.0f / p.cellSize[a];
-    }
-    p.resolution = glm::uvec4(res[0], res[1], res[2], 0u);
-
+    grid.params = gridFrame(mesh, rule, maxCells, voxelMargin);
     grid.lattice = mesh.lattice;
     grid.triangles.resize(mesh.triangles.size());
     for (std::size_t i = 0; i < mesh.triangles.size(); ++i) {
@@ -167,54 +281,9 @@ UniformGrid buildUniformGrid(const TriangleMesh& mesh, const GridResolutionRule&
         grid.triangles[i] = {glm::vec4(mesh.vertices[t[0]], 0.0f), glm::vec4(mesh.vertices[t[1]], 0.0f),
                              glm::vec4(mesh.vertices[t[2]], 0.0f)};
     }
-
-    // Pass 1: (cell, triangle) pairs from the exact test over each triangle's candidate range.
-    std::vector<std::pair<std::uint32_t, std::uint32_t>> pairs;
-    pairs.reserve(mesh.triangles.size() * 4);
-    for (std::uint32_t i = 0; i < grid.triangles.size(); ++i) {
-        const gpu::Triangle& t = grid.triangles[i];
-        glm::ivec3 lo, hi;
-        for (int a = 0; a < 3; ++a) {
-            const float vmin = std::min({t.v0[a], t.v1[a], t.v2[a]});
-            const float vmax = std::max({t.v0[a], t.v1[a], t.v2[a]});
-            candidateRange(vmin - voxelMargin, vmax + voxelMargin, p.boundsMin[a], p.invCellSize[a], res[a], lo[a],
-                           hi[a]);
-        }
-        for (int z = lo.z; z <= hi.z; ++z)
-            for (int y = lo.y; y <= hi.y; ++y)
-                for (int x = lo.x; x <= hi.x; ++x)
-                    if (triangleOverlapsBox(t, grid.voxelBounds(x, y, z), voxelMargin))
-                        pairs.emplace_back(
-                            static_cast<std::uint32_t>(x + res[0] * (y + std::uint64_t(res[1]) * z)), i);
-        if (pairs.size() > std::numeric_limits<std::uint32_t>::max())  // the cell offsets are uint32
-            throw Error("grid: resolution " + resolutionText({double(res[0]), double(res[1]), double(res[2])}) +
-                        " gives more than 4294967295 triangle references, more than its 32-bit offsets hold");
-    }
-    // Pass 2: counting sort by cell (stable: ids ascend within a voxel).
-    grid.cellOffsets.assign(cells + 1, 0);
-    for (const auto& [cell, tri] : pairs) ++grid.cellOffsets[cell + 1];
-    std::uint32_t maxInCell = 0;
-    std::uint64_t emptyCells = 0;
-    for (std::uint64_t c = 0; c < cells; ++c) {
-        maxInCell = std::max(maxInCell, grid.cellOffsets[c + 1]);
-        emptyCells += grid.cellOffsets[c + 1] == 0;
-        grid.cellOffsets[c + 1] += grid.cellOffsets[c];
-    }
-    grid.triangleList.resize(pairs.size());
-    std::vector<std::uint32_t> cursor(grid.cellOffsets.begin(), grid.cellOffsets.end() - 1);
-    for (const auto& [cell, tri] : pairs) grid.triangleList[cursor[cell]++] = tri;
-
-    GridStats& s = grid.stats;
-    s.resolution = res;
-    s.cells = cells;
-    s.emptyFraction = static_cast<double>(emptyCells) / static_cast<double>(cells);
-    s.references = pairs.size();
-    s.referencesPerTriangle = static_cast<double>(pairs.size()) / static_cast<double>(grid.triangles.size());
-    s.maxReferencesInCell = maxInCell;
-    s.bytes = grid.cellOffsets.size() * 4 + grid.triangleList.size() * 4 +
-              grid.triangles.size() * triangleVertexBytes(grid.lattice);
-    s.voxelMargin = voxelMargin;
-    s.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    sortByCell(grid, binTriangles(grid, voxelMargin));
+    grid.stats.voxelMargin = voxelMargin;
+    grid.stats.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return grid;
 }
 
