@@ -205,7 +205,8 @@ DeviceInfo describe(VkPhysicalDevice device) {
     return info;
 }
 
-// The device chosen: a name substring, or auto = discrete GPU > CPU (lavapipe) > the first.
+// The device chosen: auto = discrete GPU > CPU (lavapipe) > the first; else the first whose name or
+// driver holds the text (two lavapipes share a name: "Mesa 25" picks by the driver's version).
 VkPhysicalDevice choosePhysicalDevice(VkInstance instance, const std::string& deviceChoice) {
     const std::vector<VkPhysicalDevice> devices = physicalDevices(instance);
     if (devices.empty()) throw Error("Vulkan: no physical device (install mesa-vulkan-drivers)");
@@ -215,8 +216,9 @@ VkPhysicalDevice choosePhysicalDevice(VkInstance instance, const std::string& de
     }
     std::string available;
     for (VkPhysicalDevice d : devices) {
-        if (lower(describe(d).name).find(lower(deviceChoice)) != std::string::npos) return d;
-        available += (available.empty() ? "" : ", ") + describe(d).name;
+        const DeviceInfo info = describe(d);
+        if (lower(info.name + " " + info.driver).find(lower(deviceChoice)) != std::string::npos) return d;
+        available += (available.empty() ? "" : ", ") + info.name + " (" + info.driver + ")";
     }
     throw Error("Vulkan: no device matches '" + deviceChoice + "' (available: " + available + ")");
 }
@@ -287,6 +289,15 @@ std::vector<DeviceInfo> VulkanContext::listDevices() {
 }
 
 VulkanContext::VulkanContext(const std::string& deviceChoice, bool validation) : poisonNewBuffers_(validation) {
+    try {
+        create(deviceChoice, validation);
+    } catch (...) {
+        release();  // what the failed creation made so far (no device matching the choice, ...)
+        throw;
+    }
+}
+
+void VulkanContext::create(const std::string& deviceChoice, bool validation) {
     instance_ = createInstance(validation, &messages_, &messenger_);
     physical_ = choosePhysicalDevice(instance_, deviceChoice);
     info_ = describe(physical_);
@@ -319,7 +330,9 @@ VulkanContext::VulkanContext(const std::string& deviceChoice, bool validation) :
     VK_CHECK(vkCreateFence(device_, &fenceInfo, nullptr, &fence_));
 }
 
-VulkanContext::~VulkanContext() {
+VulkanContext::~VulkanContext() { release(); }
+
+void VulkanContext::release() {
     if (device_) {
         vkDeviceWaitIdle(device_);
         vkDestroyFence(device_, fence_, nullptr);

@@ -168,6 +168,8 @@ public:
     const std::vector<std::string>& validationMessages() const { return messages_; }
 
 private:
+    void create(const std::string& deviceChoice, bool validation);
+    void release();  // everything made, in reverse (a member not made yet is a null handle)
     std::uint32_t findMemoryType(std::uint32_t typeBits, VkMemoryPropertyFlags required,
                                  VkMemoryPropertyFlags preferred) const;
     Buffer createBuffer(VkDeviceSize size, VkBufferUsageFlags usage,

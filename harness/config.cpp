@@ -187,7 +187,7 @@ void addRunKeys(KeyList& s) {
     s.add({"intersection.vertex_bits", ValueType::Int, "32: float vertices; 1..16: every vertex snapped to a lattice of 2^bits points per axis over the scene's box and stored packed (20 bytes a triangle instead of 48); every method traces the snapped scene, the exact reference the original", std::int64_t(32), false, 1, 32, vertexBitsChoices()});
     s.add({"baseline.embree_config", ValueType::String, "Embree device config string, e.g. \"isa=avx2\" (keys isa, max_isa, threads, start_threads, set_affinity, verbose)", std::string(""), false, -1e300, 1e300, {}, {}, checkEmbreeConfig});
     s.add({"accuracy.exact_rays", ValueType::Int, "rays checked against the exact reference (CGAL, exact arithmetic): an even stride over the image from ray 0; 0 = every ray", std::int64_t(1048576), false, 0, 4294967295.0});
-    s.add({"device.name", ValueType::String, "\"auto\" (discrete GPU, else lavapipe) or a substring of the device name", std::string("auto")});
+    s.add({"device.name", ValueType::String, "\"auto\" (discrete GPU, else lavapipe) or a substring of the device name or of its driver (\"Mesa 25\": the backports lavapipe when the loader sees it, VK_ADD_DRIVER_FILES)", std::string("auto")});
     s.add({"device.validation", ValueType::Bool, "enable the Vulkan validation layer (a run fails on any message) and fill each new device buffer with NaNs, so that a read of memory nothing wrote fails every time", false});
     s.add({"output.images", ValueType::Bool, "write PNGs (needs OpenImageIO; else hit records are kept)", true});
     {

@@ -144,7 +144,7 @@ void addRun(CLI::App& app, Commands& commands, const std::string& commandLine) {
     CLI::App* run = app.add_subcommand("run", "Run every run of an experiment config (list-valued keys sweep)");
     run->add_option("config", o->config, "experiment config (TOML), e.g. configs/bunny.toml")->required();
     run->add_option("-o,--output", o->runner.outputOverride, "output folder (overrides experiment.output)");
-    run->add_option("-d,--device", o->device, "Vulkan device: auto or a name substring (overrides device.name)");
+    run->add_option("-d,--device", o->device, "Vulkan device: auto, or a substring of its name or driver, e.g. \"Mesa 25\" (overrides device.name)");
     run->add_flag("--validation", o->validation, "enable the Vulkan validation layer (a run fails on any message) and fill new device buffers with NaNs");
     run->add_flag("-q,--quiet", o->runner.quiet, "print only the summary table");
     run->add_flag("-f,--force", o->runner.force, "re-run runs whose rows (same run, config hash, commit) already exist");
