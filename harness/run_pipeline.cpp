@@ -121,6 +121,8 @@ void makeWorkload(RunInProgress& p, const StrategyType& strategy, const RayType&
         p.workload.batch.query = query == "any" ? gpu::kQueryAny : gpu::kQueryClosest;
     if (strategy.tracesPath)  // the whole path on the device: the generations before the batch and the passes
         p.workload.batch.path = std::make_shared<const BatchPath>(batchPath(p.workload, p.cameraRays, mesh));
+    if (p.workload.fromCamera())  // the camera rays, as a kernel that makes them itself makes them
+        p.workload.batch.camera = std::make_shared<const CameraFrame>(cameraFrame(camera, p.width, p.height));
     const RayBatch& batch = p.workload.batch;
     const std::vector<gpu::Ray>& rays = batch.rays;
     validateRays(rays);

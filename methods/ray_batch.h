@@ -11,6 +11,8 @@
 
 namespace rtbench {
 
+struct CameraFrame;  // scene/camera.h
+
 // One generation of the path a batch ends, as the CPU made it (rays/workload.h Generation):
 // each ray, its hit by the run's structure, the ray of the generation before it came from, its
 // path (the key of its random numbers) and weight. The camera rays have no parents, paths or
@@ -47,6 +49,9 @@ struct RayBatch {
     std::uint32_t query = gpu::kQueryClosest;  // gpu::kQuery*: closest hit or any hit
     // Set by the runner for a strategy that traces the whole path (null for the others).
     std::shared_ptr<const BatchPath> path;
+    // The camera's frame when the batch is its camera rays in their order, row by row (null
+    // otherwise): a strategy that makes the camera rays itself (the control) makes them from it.
+    std::shared_ptr<const CameraFrame> camera;
 };
 
 // The query's name, as the rays.query column and the messages write it.

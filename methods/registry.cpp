@@ -2,6 +2,7 @@
 
 #include "structures/auto/auto_structure.h"
 #include "strategies/branching/branching_strategy.h"
+#include "strategies/control/control_strategy.h"
 #include "structures/brute_force/brute_structure.h"
 #include "strategies/cpu/cpu_strategy.h"
 #include "structures/bvh/bvh_structure.h"
@@ -29,7 +30,7 @@ const std::vector<const StrategyType*>& strategyTypes() {
                                                                  &persistentStrategyType(), &megakernelStrategyType(),
                                                                  &rayQueryStrategyType(), &plainStrategyType(),
                                                                  &cpuStrategyType(), &wavefrontStrategyType(),
-                                                                 &pathMegakernelStrategyType()};
+                                                                 &pathMegakernelStrategyType(), &controlStrategyType()};
     return types;
 }
 

@@ -103,7 +103,9 @@ inline ColumnSpec textColumn(ColumnSpec c) {
 //  25  kernel_ms_* of multipass with strategy.control = host: the live pass loop's host wall time,
 //        the oracle's read-back after every pass (before: the replayed passes' GPU time, now
 //        kernel_ms_replay).
-constexpr int kSchemaVersion = 25;
+//  26  + the control (strategy.type = control, control_cpu_differing): a plain grid ray caster
+//        making its own camera rays, what the branching kernel's speed is judged against.
+constexpr int kSchemaVersion = 26;
 
 // The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".
 std::string paramColumn(const std::string& key);

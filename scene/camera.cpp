@@ -20,8 +20,7 @@ PinholeCamera fitCamera(const Bounds3& bounds, float verticalFovDegrees) {
     return camera;
 }
 
-std::vector<gpu::Ray> generatePrimaryRays(const PinholeCamera& camera, unsigned width,
-                                          unsigned height) {
+CameraFrame cameraFrame(const PinholeCamera& camera, unsigned width, unsigned height) {
     // Range first: beyond it the view direction itself overflows (and would read as a bad `up`).
     auto inRange = [](glm::vec3 p) { return glm::all(glm::lessThanEqual(glm::abs(p), glm::vec3(kMaxRayOrigin))); };
     if (!inRange(camera.position) || !inRange(camera.lookAt))
@@ -31,27 +30,39 @@ std::vector<gpu::Ray> generatePrimaryRays(const PinholeCamera& camera, unsigned 
                     rayRangeText());
     if (!std::isfinite(glm::length(camera.up)) || glm::length(camera.up) == 0.0f)
         throw Error("camera: up must be a finite, non-zero vector");
-    const glm::vec3 forward = camera.lookAt - camera.position;
-    if (glm::length(forward) == 0.0f) throw Error("camera: position equals look_at");
-    const glm::vec3 w = glm::normalize(forward);
-    const glm::vec3 u = glm::cross(w, camera.up);
+    const glm::vec3 view = camera.lookAt - camera.position;
+    if (glm::length(view) == 0.0f) throw Error("camera: position equals look_at");
+    CameraFrame frame;
+    frame.eye = camera.position;
+    frame.forward = glm::normalize(view);
+    const glm::vec3 u = glm::cross(frame.forward, camera.up);
     if (glm::length(u) == 0.0f) throw Error("camera: up is parallel to the view direction");
-    const glm::vec3 right = glm::normalize(u);
-    const glm::vec3 down = glm::cross(w, right);  // image rows grow downwards
+    frame.right = glm::normalize(u);
+    frame.down = glm::cross(frame.forward, frame.right);  // image rows grow downwards
     const float halfHeight = std::tan(glm::radians(0.5f * camera.verticalFovDegrees));
     const float halfWidth = halfHeight * static_cast<float>(width) / static_cast<float>(height);
-    std::vector<gpu::Ray> rays(static_cast<std::size_t>(width) * height);
-    for (unsigned y = 0; y < height; ++y) {
-        for (unsigned x = 0; x < width; ++x) {
-            const float sx = (2.0f * (static_cast<float>(x) + 0.5f) / width - 1.0f) * halfWidth;
-            const float sy = (2.0f * (static_cast<float>(y) + 0.5f) / height - 1.0f) * halfHeight;
-            const glm::vec3 d = w + sx * right + sy * down;
-            gpu::Ray& ray = rays[static_cast<std::size_t>(y) * width + x];
-            ray.originTMin = glm::vec4(camera.position, 0.0f);
+    for (unsigned x = 0; x < width; ++x)
+        frame.columnOffsets.push_back((2.0f * (static_cast<float>(x) + 0.5f) / width - 1.0f) * halfWidth);
+    for (unsigned y = 0; y < height; ++y)
+        frame.rowOffsets.push_back((2.0f * (static_cast<float>(y) + 0.5f) / height - 1.0f) * halfHeight);
+    return frame;
+}
+
+std::vector<gpu::Ray> generatePrimaryRays(const CameraFrame& frame) {
+    std::vector<gpu::Ray> rays(static_cast<std::size_t>(frame.width()) * frame.height());
+    for (unsigned y = 0; y < frame.height(); ++y) {
+        for (unsigned x = 0; x < frame.width(); ++x) {
+            const glm::vec3 d = frame.forward + frame.columnOffsets[x] * frame.right + frame.rowOffsets[y] * frame.down;
+            gpu::Ray& ray = rays[static_cast<std::size_t>(y) * frame.width() + x];
+            ray.originTMin = glm::vec4(frame.eye, 0.0f);
             ray.directionTMax = glm::vec4(d, gpu::kNoHitT);
         }
     }
     return rays;
+}
+
+std::vector<gpu::Ray> generatePrimaryRays(const PinholeCamera& camera, unsigned width, unsigned height) {
+    return generatePrimaryRays(cameraFrame(camera, width, height));
 }
 
 }  // namespace rtbench

@@ -40,7 +40,7 @@ STRUCTURE_CMAPS = {"grid": "Blues", "grid conservative": "GnBu", "bvh": "Reds", 
                    "auto": "Purples", "ray_query": "RdPu"}
 STRATEGY_COLORS = {"branching": "#1b9e77", "multipass": "#d95f02", "megakernel": "#e6ab02", "persistent": "#66a61e",
                    "wavefront": "#17becf", "path_megakernel": "#bcbd22", "plain": "#fb9a99", "cpu": "#b15928",
-                   "ray_query": "#e7298a"}
+                   "ray_query": "#e7298a", "control": "#7570b3"}
 EMBREE_COLOR = "k"
 COLORS = dict(STRATEGY_COLORS, **{"Embree rtcIntersect1": EMBREE_COLOR})
 
@@ -311,7 +311,7 @@ def method_label(run) -> str:
 
 # Markers per strategy in speed_vs_accuracy (squares are Embree's, x the Pareto front's).
 STRATEGY_MARKERS = {"branching": "o", "multipass": "P", "megakernel": "^", "persistent": "h", "wavefront": "p",
-                    "path_megakernel": "*", "plain": "8", "cpu": "X", "ray_query": ">"}
+                    "path_megakernel": "*", "plain": "8", "cpu": "X", "ray_query": ">", "control": "v"}
 # Markers per scene variant, (Moller-Trumbore, watertight).
 VARIANT_MARKERS = {"": ("o", "^"), "packed": ("D", "d"), "simplified": ("v", "<")}
 

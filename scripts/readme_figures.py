@@ -782,6 +782,49 @@ def division() -> list:
     return out + [""]
 
 
+def control() -> list:
+    if not (folder_of("control") / "runs.csv").exists():
+        return []
+    runs, context = load("control")
+    ok = runs[runs.status == "ok"].copy()
+    ok["structure"] = structure_names(ok.structure_type)
+    tiled = ok.camera_tile.fillna(0) > 0 if "camera_tile" in ok else pd.Series(False, index=ok.index)
+    ok["kernel"] = [f"{t} tiles" if tile else t for t, tile in zip(ok.strategy_type, tiled)]
+    by_kernel = ok.set_index(["structure", "rays", "kernel"])
+    ratio = by_kernel.speed_ratio_vs_embree1
+    kernels = ["branching", "branching tiles", "plain", "control"]
+    out = ["### `results/control/`: what the branching kernel's generality costs", "", provenance("control", runs, context),
+           "", "The bunny at Purcell's min_dim 64 (grid) and over the BVH. The control (`strategy.type = \"control\"`) is a "
+           "plain grid ray caster of the branching kernel's walk and test that makes its camera rays itself in 8×8 pixel "
+           "tiles, writes 8 bytes a ray, divides as the device does and counts nothing; \"branching tiles\" is the "
+           "branching kernel fed its rays in 8×8 tiles (`camera.tile = 8`), \"plain\" its twin dividing as the device "
+           "does. Each cell: the speed over Embree rtcIntersect1's on the same rays in the same run, the median and its "
+           "95% interval; † a run the noise guard flagged (`timing_warning`); a ratio between two columns is a ratio of "
+           "ratios. " + embree_speed_caption(ok), "",
+           "| structure | rays | × Embree: " + " | ".join(kernels) + " | branching / control |",
+           "|---|---|" + "---|" * (len(kernels) + 1)]
+
+    def cell(structure, rays, kernel):
+        if (structure, rays, kernel) not in by_kernel.index:
+            return "—"
+        r = by_kernel.loc[(structure, rays, kernel)]
+        flagged = " †" if isinstance(r.get("timing_warning"), str) and r.timing_warning else ""
+        return f"{num(r.speed_ratio_vs_embree1)} {interval(r.speed_ratio_ci_low, r.speed_ratio_ci_high)}{flagged}"
+
+    over_control = []
+    for (structure, rays), _ in ok.groupby(["structure", "rays"]):
+        share = ratio.get((structure, rays, "branching"), float("nan")) / ratio.get((structure, rays, "control"), float("nan"))
+        if pd.notna(share):
+            over_control.append(share)
+        out.append(f"| {structure} | {count(rays)} | " + " | ".join(cell(structure, rays, k) for k in kernels) +
+                   f" | {num(share, 3)} |")
+    if over_control:
+        headline("control", "Is the branching kernel as fast as a plain one?",
+                 f"over the grid it runs at {span(min(over_control), max(over_control))}× the speed of the control, a "
+                 "plain ray caster of the same walk (ratios of Embree ratios, 512²–2048²)", context)
+    return out + [""]
+
+
 def fastest_grid(g) -> tuple:
     """The grid size whose 95% interval of time lies wholly below every other's, in full ("10³ (3.51 ms
     [2.9, 4.59])") and short ("10³"); else the tie ("tie: 10³ [2.9, 4.59], 20³ [3.9, 5.23]", "tie of 10³,
@@ -889,7 +932,7 @@ def results_page() -> str:
            "is called faster than another (or the fastest) only where their 95% intervals do not overlap; where they "
            "overlap it is a tie, given with both intervals; a run without an interval (one timed repetition) is not "
            "ranked.", ""]
-    for part in (bunny, structures, purcell2002, stability, accuracy, raytypes, strategies, multipass_device, wavefront, division, christen2005, golden, h200):
+    for part in (bunny, structures, purcell2002, stability, accuracy, raytypes, strategies, multipass_device, wavefront, division, control, christen2005, golden, h200):
         lines = part()
         if lines:
             ANCHORS[re.search(r"`results/([^/`]+)/`", lines[0]).group(1)] = anchor(lines[0].lstrip("# "))

@@ -1,8 +1,8 @@
 #!/bin/bash
 # Runs the configs of record and makes their charts and tables: results/bunny, results/structures,
-# results/purcell2002, results/stability, results/accuracy, results/raytypes, results/strategies, results/multipass_device, results/division, results/christen2005, results/wavefront (or under OUT, e.g. results/nvidia-h200 on a GPU machine; DEVICE picks the
+# results/purcell2002, results/stability, results/accuracy, results/raytypes, results/strategies, results/multipass_device, results/division, results/control, results/christen2005, results/wavefront (or under OUT, e.g. results/nvidia-h200 on a GPU machine; DEVICE picks the
 # Vulkan device by a name substring).
-#   scripts/records.sh [OUT] [DEVICE]        (about 85 minutes on 2 cores with lavapipe; purcell2002 alone 41)
+#   scripts/records.sh [OUT] [DEVICE]        (about 3.5 hours on 2 cores with lavapipe; purcell2002 alone 112 minutes)
 # Environment:
 #   RTBENCH_BIN=path      the rtbench binary (default build/rtbench)
 #   EMBREE_CONFIG=isa=avx2  Embree device config for every run (where its default ISA crashes)
@@ -12,12 +12,13 @@
 #   CONFIGS="bunny ..."   only these configs of record (default: all)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-configs=(${CONFIGS:-bunny structures purcell2002 stability accuracy raytypes strategies multipass_device division christen2005 wavefront})
+configs=(${CONFIGS:-bunny structures purcell2002 stability accuracy raytypes strategies multipass_device division control christen2005 wavefront})
 bin=${RTBENCH_BIN:-build/rtbench}
 
 charts() {
   local out=$1
   for config in "${configs[@]}"; do
+    [ -f "$out/$config/runs.csv" ] || { echo "== $config: no $out/$config/runs.csv: no charts"; continue; }
     # PNGs from the hit records that a binary built without OpenImageIO writes instead
     if compgen -G "$out/$config/*.hits" > /dev/null; then "$bin" images "$out/$config"; fi
     "$bin" plot "$out/$config"
@@ -56,4 +57,4 @@ for config in "${configs[@]}"; do
   echo "== $config: $(( $(date +%s) - start )) s"
 done
 [ "${CHARTS:-1}" = 0 ] || charts "$out"
-echo "== done: $out/{bunny,structures,purcell2002,stability,accuracy,raytypes,strategies,multipass_device,division,christen2005,wavefront}"
+echo "== done: $out/{bunny,structures,purcell2002,stability,accuracy,raytypes,strategies,multipass_device,division,control,christen2005,wavefront}"
