@@ -742,6 +742,16 @@ def wavefront() -> list:
     return out + [""]
 
 
+def ratio_cell(by_key, key) -> str:
+    """A × Embree cell of the run at `key` of `by_key`: its speed_ratio_vs_embree1 and 95% interval, † where
+    the noise guard flagged it (`timing_warning`); "—" where no run has that key."""
+    if key not in by_key.index:
+        return "—"
+    r = by_key.loc[key]
+    flagged = " †" if isinstance(r.get("timing_warning"), str) and r.timing_warning else ""
+    return f"{num(r.speed_ratio_vs_embree1)} {interval(r.speed_ratio_ci_low, r.speed_ratio_ci_high)}{flagged}"
+
+
 def division() -> list:
     runs, context = load("division")
     ok = runs[runs.status == "ok"].copy()
@@ -760,13 +770,6 @@ def division() -> list:
            "| structure | rays | × Embree: integer | double | plain | integer / double | integer / plain |",
            "|---|---|---|---|---|---|---|"]
 
-    def cell(structure, rays, kernel):
-        if (structure, rays, kernel) not in by_kernel.index:
-            return "—"
-        r = by_kernel.loc[(structure, rays, kernel)]
-        flagged = " †" if "timing_warning" in r and isinstance(r.timing_warning, str) and r.timing_warning else ""
-        return f"{num(r.speed_ratio_vs_embree1)} {interval(r.speed_ratio_ci_low, r.speed_ratio_ci_high)}{flagged}"
-
     over_plain = [ratio.get((st, n, "integer"), float("nan")) / ratio.get((st, n, "plain"), float("nan"))
                   for (st, n), _ in ok.groupby(["structure", "rays"])]
     over_plain = [x for x in over_plain if pd.notna(x)]
@@ -776,8 +779,8 @@ def division() -> list:
                  "(device division; ratios of Embree ratios)", context)
     for (structure, rays), _ in ok.groupby(["structure", "rays"]):
         get = lambda kernel: ratio.get((structure, rays, kernel), float("nan"))
-        out.append(f"| {structure} | {count(rays)} | {cell(structure, rays, 'integer')} | {cell(structure, rays, 'double')} | "
-                   f"{cell(structure, rays, 'plain')} | {num(get('integer') / get('double'), 3)} | "
+        out.append(f"| {structure} | {count(rays)} | {ratio_cell(by_kernel, (structure, rays, 'integer'))} | {ratio_cell(by_kernel, (structure, rays, 'double'))} | "
+                   f"{ratio_cell(by_kernel, (structure, rays, 'plain'))} | {num(get('integer') / get('double'), 3)} | "
                    f"{num(get('integer') / get('plain'), 3)} |")
     return out + [""]
 
@@ -804,19 +807,12 @@ def control() -> list:
            "| structure | rays | × Embree: " + " | ".join(kernels) + " | branching / control |",
            "|---|---|" + "---|" * (len(kernels) + 1)]
 
-    def cell(structure, rays, kernel):
-        if (structure, rays, kernel) not in by_kernel.index:
-            return "—"
-        r = by_kernel.loc[(structure, rays, kernel)]
-        flagged = " †" if isinstance(r.get("timing_warning"), str) and r.timing_warning else ""
-        return f"{num(r.speed_ratio_vs_embree1)} {interval(r.speed_ratio_ci_low, r.speed_ratio_ci_high)}{flagged}"
-
     over_control = []
     for (structure, rays), _ in ok.groupby(["structure", "rays"]):
         share = ratio.get((structure, rays, "branching"), float("nan")) / ratio.get((structure, rays, "control"), float("nan"))
         if pd.notna(share):
             over_control.append(share)
-        out.append(f"| {structure} | {count(rays)} | " + " | ".join(cell(structure, rays, k) for k in kernels) +
+        out.append(f"| {structure} | {count(rays)} | " + " | ".join(ratio_cell(by_kernel, (structure, rays, k)) for k in kernels) +
                    f" | {num(share, 3)} |")
     if over_control:
         headline("control", "Is the branching kernel as fast as a plain one?",

@@ -5,6 +5,7 @@
 
 #include "device/embedded_kernels.h"
 #include "core/error.h"
+#include "methods/dispatch_timer.h"
 #include "scene/camera.h"
 #include "strategies/branching/branching_strategy.h"
 #include "strategies/control/kernels/control_layout.h"
@@ -136,21 +137,6 @@ void ControlDispatch::create(const Structure& grid, const CameraFrame& frame) {
     set_ = vk_.createDescriptorSet(pipeline_, {&cells_, &list_, &triangles_, &camera_, &hits_});
 }
 
-class ControlTimer : public KernelTimer {
-public:
-    ControlTimer(VulkanContext& vk, std::unique_ptr<ControlDispatch> dispatch, std::vector<gpu::HitRecord> first)
-        : vk_(vk), dispatch_(std::move(dispatch)), first_(std::move(first)) {}
-    TimedBatch time(int warmups, int repetitions) override {
-        return splitWarmups(vk_.dispatchAll(std::vector(std::size_t(warmups + repetitions), dispatch_->call())), warmups);
-    }
-    void checkHits() override { expectSameHits(dispatch_->hits(), first_, "control kernel"); }
-
-private:
-    VulkanContext& vk_;
-    std::unique_ptr<ControlDispatch> dispatch_;
-    std::vector<gpu::HitRecord> first_;
-};
-
 StrategyRun runControl(VulkanContext& vk, const Structure& structure, const RayBatch& batch, const RunConfig&,
                        const TimingOptions& timing, Row& row) {
     if (const std::string why = controlRefusal(structure, batch, timing); !why.empty()) throw Error(why);
@@ -170,7 +156,7 @@ StrategyRun runControl(VulkanContext& vk, const Structure& structure, const RayB
     StrategyRun run;
     run.hits = dispatch->hits();
     row["control_cpu_differing"] = std::to_string(hitPointMismatches(run.hits, cpu));
-    run.timer = std::make_unique<ControlTimer>(vk, std::move(dispatch), run.hits);
+    run.timer = std::make_unique<DispatchTimer<ControlDispatch>>(vk, std::move(dispatch), run.hits, "control kernel");
     judgeByTheExactReference(batch.rays, run, "the control kernel");
     return run;
 }

@@ -5,6 +5,7 @@
 #include "device/embedded_kernels.h"
 #include "structures/driver/driver_structure.h"
 #include "strategies/branching/branching_strategy.h"
+#include "methods/dispatch_timer.h"
 #include "methods/stream_batches.h"
 #include "core/error.h"
 
@@ -98,22 +99,6 @@ private:
     VkDescriptorSet set_ = VK_NULL_HANDLE;
 };
 
-class RayQueryTimer : public KernelTimer {
-public:
-    RayQueryTimer(VulkanContext& vk, std::unique_ptr<RayQueryDispatch> dispatch, std::vector<gpu::HitRecord> first)
-        : vk_(vk), dispatch_(std::move(dispatch)), first_(std::move(first)) {}
-    TimedBatch time(int warmups, int repetitions) override {
-        return splitWarmups(vk_.dispatchAll(std::vector(std::size_t(warmups + repetitions), dispatch_->call())), warmups);
-    }
-    // The driver answers the same rays the same way every time.
-    void checkHits() override { expectSameHits(dispatch_->hits(), first_, "ray_query kernel"); }
-
-private:
-    VulkanContext& vk_;
-    std::unique_ptr<RayQueryDispatch> dispatch_;
-    std::vector<gpu::HitRecord> first_;
-};
-
 StrategyRun runRayQuery(VulkanContext& vk, const Structure& structure, const RayBatch& batch, const RunConfig&,
                         const TimingOptions& timing, Row& row) {
     if (const std::string why = rayQueryRefusal(vk.info()); !why.empty()) throw Error(why);
@@ -135,7 +120,7 @@ StrategyRun runRayQuery(VulkanContext& vk, const Structure& structure, const Ray
             auto dispatch = std::make_unique<RayQueryDispatch>(vk, part, batch.query, topLevel, timing.workgroupSize);
             vk.dispatchAll({dispatch->call()});
             BatchRun b{dispatch->hits(), nullptr};
-            b.timer = std::make_unique<RayQueryTimer>(vk, std::move(dispatch), b.hits);
+            b.timer = std::make_unique<DispatchTimer<RayQueryDispatch>>(vk, std::move(dispatch), b.hits, "ray_query kernel");
             return b;
         },
         [&](const BatchRun& b) {
