@@ -93,14 +93,15 @@ def load(name: str):
 def provenance(name: str, runs, context) -> str:
     """Who, where and how: the machine, device, command, commit and date of a folder, and what the
     noise guard said of its runs."""
-    device = context["devices"][0] if context.get("devices") else {}
+    devices = context.get("devices") or [{}]
     ok = runs[runs.status == "ok"]
     failed = len(runs) - len(ok)
     flagged = int((ok.timing_warning.fillna("") != "").sum()) if "timing_warning" in ok else None
     reps = sorted(set(int(r) for r in ok.timing_repetitions.dropna())) if "timing_repetitions" in ok else []
     lines = [f"Machine: {context.get('cpu', '?')}, {context.get('cpu_threads', '?')} hardware threads "
-             f"(host `{context.get('host', '?')}`). Device: {device.get('name', '?')} ({device.get('driver', '?')}, "
-             f"subgroup size {device.get('subgroup_size', '?')}). Embree {context.get('embree_version', '?')}.",
+             f"(host `{context.get('host', '?')}`). {'Devices' if len(devices) > 1 else 'Device'}: " +
+             "; ".join(f"{d.get('name', '?')} ({d.get('driver', '?')}, subgroup size {d.get('subgroup_size', '?')})"
+                       for d in devices) + f". Embree {context.get('embree_version', '?')}.",
              f"Command: `{context.get('command', '?')}` at commit "
              f"`{commit_text(context)}`, {str(context.get('date_utc', '?'))[:10]}. "
              f"{plural(len(runs), 'run')}: {len(ok)} ok, {failed} failed with their reason in `error`."]
@@ -821,6 +822,125 @@ def control() -> list:
     return out + [""]
 
 
+RAY_TYPES = {"primary": "camera", "shadow": "shadow", "path": "diffuse (path's first bounce)"}
+
+
+def driver_kernels(runs):
+    """results/driver's ok runs, each named by its kernel ("driver's ray query", "grid 64, branching") and
+    its lavapipe's Mesa ("25.0.7", from the driver text)."""
+    ok = runs[runs.status == "ok"].copy()
+    ok["kernel"] = ["driver's ray query" if r.structure_type == "driver" else f"{method_name(r)}, {r.strategy_type}"
+                    for _, r in ok.iterrows()]
+    ok["mesa"] = ok.driver.str.extract(r"Mesa (\d+\.\d+\.\d+)", expand=False)
+    return ok
+
+
+def driver_table(ok) -> tuple:
+    """The newer Mesa's table (a row per scene and kernel, a × Embree cell per ray type, then the driver's ray
+    query over the fastest rtbench kernel's median) and those quotients."""
+    by_key = ok.set_index(["scene", "kernel", "rays_type"])
+    types = [t for t in RAY_TYPES if t in set(ok.rays_type)]
+    out = ["| scene | kernel | " + " | ".join(RAY_TYPES[t] for t in types) + " |", "|---|---|" + "---|" * len(types)]
+    quotients = []
+    for scene, g in ok.groupby("scene", sort=False):
+        for kernel in dict.fromkeys(g.kernel):
+            out.append(f"| {scene} | {kernel} | " + " | ".join(ratio_cell(by_key, (scene, kernel, t)) for t in types) + " |")
+        cells = []
+        for t in types:
+            theirs = g[(g.rays_type == t) & (g.structure_type == "driver")].speed_ratio_vs_embree1
+            ours = g[(g.rays_type == t) & (g.structure_type != "driver")]
+            if theirs.empty or ours.empty:
+                cells.append("—")
+                continue
+            best = ours.loc[ours.speed_ratio_vs_embree1.idxmax()]
+            quotients.append(theirs.iloc[0] / best.speed_ratio_vs_embree1)
+            cells.append(f"{num(quotients[-1], 3)} (of {best.kernel})")
+        out.append(f"| {scene} | driver / fastest rtbench kernel | " + " | ".join(cells) + " |")
+    return out, quotients
+
+
+def driver_builds(ok) -> list:
+    """Build times per scene: the driver's acceleration structure (on the device), rtbench's grid and BVH
+    and Embree's BVH (on the CPU); medians over the scene's runs."""
+    out = ["| scene | driver's structure (device) ms | grid 64 ms | rtbench BVH ms | Embree BVH ms |", "|---|---|---|---|---|"]
+    for scene, g in ok.groupby("scene", sort=False):
+        build = lambda kind: g[g.structure_type == kind].structure_build_ms.median()
+        out.append(f"| {scene} | {num(build('driver'), 3)} | {num(build('uniform_grid'), 3)} | {num(build('bvh'), 3)} | "
+                   f"{num(g.embree_build_ms.median(), 3)} |")
+    return out
+
+
+def driver_versions(ok, old: str, new: str) -> tuple:
+    """rtbench's kernels on the older lavapipe and on the newer, in the same rounds: each cell the × Embree
+    medians, then their quotient (new over old), and those quotients."""
+    mine = ok[ok.structure_type != "driver"]
+    indexed = mine.set_index(["mesa", "scene", "kernel", "rays_type"])
+    by = indexed.speed_ratio_vs_embree1
+    spans = {key: (r.speed_ratio_ci_low, r.speed_ratio_ci_high) for key, r in indexed.iterrows()}
+    types = [t for t in RAY_TYPES if t in set(mine.rays_type)]
+    out = ["| scene | kernel | " + " | ".join(RAY_TYPES[t] for t in types) + " |", "|---|---|" + "---|" * len(types)]
+    quotients = []
+    for (scene, kernel), _ in mine.groupby(["scene", "kernel"], sort=False):
+        cells = []
+        for t in types:
+            if (old, scene, kernel, t) not in by.index or (new, scene, kernel, t) not in by.index:
+                cells.append("—")
+                continue
+            before, after = by[(old, scene, kernel, t)], by[(new, scene, kernel, t)]
+            quotients.append(after / before)
+            low, high = spans[(old, scene, kernel, t)], spans[(new, scene, kernel, t)]
+            tie = " ~" if low[1] >= high[0] and high[1] >= low[0] else ""
+            cells.append(f"{num(before)} → {num(after)} ({num(quotients[-1], 2)}×{tie})")
+        out.append(f"| {scene} | {kernel} | " + " | ".join(cells) + " |")
+    return out, quotients
+
+
+def driver() -> list:
+    """results/driver: the driver's ray query on Mesa 25's lavapipe against rtbench's kernels, and what
+    the newer Mesa changes for rtbench's kernels against Debian's (both lavapipes in the same rounds)."""
+    if not (folder_of("driver") / "runs.csv").exists():
+        return []
+    runs, context = load("driver")
+    ok = driver_kernels(runs)
+    versions = sorted(set(ok.mesa.dropna()), key=lambda v: tuple(int(x) for x in v.split(".")))
+    if not versions:
+        return []
+    new, old = versions[-1], versions[0]
+    table, quotients = driver_table(ok[ok.mesa == new])
+    judged = ok[ok.structure_type == "driver"]
+    failed = runs[runs.status != "ok"]
+    out = ["### `results/driver/`: the driver's ray query as a peer, and what Mesa 25's lavapipe changes", "",
+           provenance("driver", runs, context), "",
+           "`configs/driver.toml`: the driver's `VK_KHR_ray_query` over its own acceleration structure "
+           "(`structure.type = \"driver\"`, `strategy.type = \"ray_query\"`) against rtbench's branching kernel, "
+           "persistent threads and the megakernel over the grid (min_dim 64) and the BVH, on the same rays. Debian 12's "
+           f"lavapipe (Mesa {old}) lacks the extension; Mesa {new}'s lavapipe, from bookworm-backports, has it "
+           "(`scripts/setup.sh` unpacks it into the build folder, `VK_ADD_DRIVER_FILES` names it to the loader, "
+           "`device.name` picks a lavapipe by its driver's Mesa version). Both ran in the same process, their runs "
+           "interleaved round by round. " + (f"{plural(len(failed), 'run')} failed: {reasons(failed.error)}. " if len(failed) else "") +
+           f"The table is Mesa {new}'s. Each cell: the speed over Embree rtcIntersect1's on the same rays in the same "
+           "run, the median and its 95% interval; † a run the noise guard flagged (`timing_warning`). The last row of "
+           "each scene: the driver's median over the fastest rtbench kernel's, a ratio of ratios. The exact reference "
+           f"judged every run: the driver's ray query got {count(int(wrong_rays(judged).fillna(0).sum()))} of "
+           f"{count(judged.rays.sum())} rays wrong (false hits, false misses, other triangles), rtbench's kernels "
+           f"{count(int(wrong_rays(ok[ok.structure_type != 'driver']).fillna(0).sum()))}. " + embree_speed_caption(ok), ""]
+    out += table + ["", "Build times (medians over each scene's runs):", ""] + driver_builds(ok[ok.mesa == new])
+    if quotients:
+        headline("driver", "How fast is the driver's own ray query (Mesa 25's lavapipe)?",
+                 f"{span(min(quotients), max(quotients))}× the speed of rtbench's fastest kernel on the same rays, "
+                 "per scene and ray type (ratios of Embree ratios)", context)
+    if old != new:
+        rows, changes = driver_versions(ok, old, new)
+        out += ["", f"What Mesa {new} changes for rtbench's kernels: each cell their × Embree median on Mesa {old} → on "
+                f"Mesa {new}, and the newer's over the older's (a ratio of ratios, both timed in the same rounds); ~ where the "
+                "two 95% intervals overlap (a tie: not ranked).", ""] + rows
+        if changes:
+            ties = sum(row.count(" ~)") for row in rows)
+            out += ["", f"Over the {len(changes)} kernels and ray types, Mesa {new}'s ratio over Mesa {old}'s spans "
+                    f"{span(min(changes), max(changes))}× (median {num(pd.Series(changes).median(), 2)}×); "
+                    f"{len(changes) - ties} of the {len(changes)} with separated intervals, {ties} ties."]
+    return out + [""]
+
 def fastest_grid(g) -> tuple:
     """The grid size whose 95% interval of time lies wholly below every other's, in full ("10³ (3.51 ms
     [2.9, 4.59])") and short ("10³"); else the tie ("tie: 10³ [2.9, 4.59], 20³ [3.9, 5.23]", "tie of 10³,
@@ -928,10 +1048,10 @@ def results_page() -> str:
            "is called faster than another (or the fastest) only where their 95% intervals do not overlap; where they "
            "overlap it is a tie, given with both intervals; a run without an interval (one timed repetition) is not "
            "ranked.", ""]
-    for part in (bunny, structures, purcell2002, stability, accuracy, raytypes, strategies, multipass_device, wavefront, division, control, christen2005, golden, h200):
+    for part in (bunny, structures, purcell2002, stability, accuracy, raytypes, strategies, multipass_device, wavefront, division, control, driver, christen2005, golden, h200):
         lines = part()
         if lines:
-            ANCHORS[re.search(r"`results/([^/`]+)/`", lines[0]).group(1)] = anchor(lines[0].lstrip("# "))
+            ANCHORS[re.search(r"`results/([^`]+)/`", lines[0]).group(1)] = anchor(lines[0].lstrip("# "))
         out += lines
     while out and out[-1] == "":
         out.pop()

@@ -1,6 +1,6 @@
 #!/bin/bash
 # Runs the configs of record and makes their charts and tables: results/bunny, results/structures,
-# results/purcell2002, results/stability, results/accuracy, results/raytypes, results/strategies, results/multipass_device, results/division, results/control, results/christen2005, results/wavefront (or under OUT, e.g. results/nvidia-h200 on a GPU machine; DEVICE picks the
+# results/purcell2002, results/stability, results/accuracy, results/raytypes, results/strategies, results/multipass_device, results/division, results/control, results/driver, results/christen2005, results/wavefront (or under OUT, e.g. results/nvidia-h200 on a GPU machine; DEVICE picks the
 # Vulkan device by a name substring).
 #   scripts/records.sh [OUT] [DEVICE]        (about 3.5 hours on 2 cores with lavapipe; purcell2002 alone 112 minutes)
 # Environment:
@@ -12,7 +12,7 @@
 #   CONFIGS="bunny ..."   only these configs of record (default: all)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-configs=(${CONFIGS:-bunny structures purcell2002 stability accuracy raytypes strategies multipass_device division control christen2005 wavefront})
+configs=(${CONFIGS:-bunny structures purcell2002 stability accuracy raytypes strategies multipass_device division control driver christen2005 wavefront})
 bin=${RTBENCH_BIN:-build/rtbench}
 
 charts() {
@@ -49,12 +49,16 @@ for config in "${configs[@]}"; do
   # --force re-runs every run; the rows it replaces (the last record's, which git keeps) are set
   # aside in superseded-* files (rtbench never drops a row): removed here. Retime's superseded-*
   # files below are the flagged timings it replaced, and stay with the record.
-  "$bin" run --force "${args[@]}" "configs/$config.toml" || echo "== $config: some runs failed (see runs.csv)"
+  # configs/driver.toml names both lavapipes (Debian's and Mesa 25's, which scripts/setup.sh unpacks
+  # into the build folder): the loader is told of the second for it alone.
+  driver_files=()
+  [ "$config" = driver ] && driver_files=(env VK_ADD_DRIVER_FILES="$PWD/build/lavapipe-ray-query/lvp_icd.json")
+  "${driver_files[@]}" "$bin" run --force "${args[@]}" "configs/$config.toml" || echo "== $config: some runs failed (see runs.csv)"
   rm -f "$out/$config"/superseded-*
   # The runs the noise guard flagged, re-timed (RETIME tries each; column retimed says which try
   # was kept and why); a count that moved fails it, and the record stays as it was.
-  [ "${RETIME:-2}" = 0 ] || "$bin" retime "$out/$config" --tries "${RETIME:-2}" || echo "== $config: retime refused (see above)"
+  [ "${RETIME:-2}" = 0 ] || "${driver_files[@]}" "$bin" retime "$out/$config" --tries "${RETIME:-2}" || echo "== $config: retime refused (see above)"
   echo "== $config: $(( $(date +%s) - start )) s"
 done
 [ "${CHARTS:-1}" = 0 ] || charts "$out"
-echo "== done: $out/{bunny,structures,purcell2002,stability,accuracy,raytypes,strategies,multipass_device,division,control,christen2005,wavefront}"
+echo "== done: ${configs[*]/#/$out/}"

@@ -188,7 +188,9 @@ TEST(ControlRuns, RunBesideBranchingThroughTheRunner) {
             continue;
         }
         EXPECT_EQ(row.at("status"), "ok") << row.at("error");
-        if (control) EXPECT_EQ(cellText(row, "cpu_reference_mismatches"), "");
+        if (control) {
+            EXPECT_EQ(cellText(row, "cpu_reference_mismatches"), "");
+        }
     }
 }
 
