@@ -87,7 +87,8 @@ PinholeCamera prepareSceneAndRays(RunInProgress& p, const ExperimentPlan& plan, 
         perRay.push_back({strategy.name + "'s own per-ray buffers", streamRays * strategy.ownBytesPerRay});
     refuseOversizedTotal(vk.info(), perRay);
     refuseOversizedRayStream(std::uint64_t(p.width) * p.height);
-    p.cameraRays = generatePrimaryRays(camera, p.width, p.height);
+    p.cameraFrame = std::make_shared<const CameraFrame>(cameraFrame(camera, p.width, p.height));
+    p.cameraRays = generatePrimaryRays(*p.cameraFrame);
     validateRays(p.cameraRays);
     return camera;
 }
@@ -122,7 +123,7 @@ void makeWorkload(RunInProgress& p, const StrategyType& strategy, const RayType&
     if (strategy.tracesPath)  // the whole path on the device: the generations before the batch and the passes
         p.workload.batch.path = std::make_shared<const BatchPath>(batchPath(p.workload, p.cameraRays, mesh));
     if (p.workload.fromCamera())  // the camera rays, as a kernel that makes them itself makes them
-        p.workload.batch.camera = std::make_shared<const CameraFrame>(cameraFrame(camera, p.width, p.height));
+        p.workload.batch.camera = p.cameraFrame;
     const RayBatch& batch = p.workload.batch;
     const std::vector<gpu::Ray>& rays = batch.rays;
     validateRays(rays);

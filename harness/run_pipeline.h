@@ -15,6 +15,7 @@
 #include "harness/run_inputs.h"
 #include "harness/timing_rounds.h"
 #include "methods/strategy.h"
+#include "scene/camera.h"
 #include "methods/structure.h"
 #include "rays/workload.h"
 
@@ -29,6 +30,7 @@ struct RunInProgress {
     CpuTimes started;  // the noise guard's window: from here to the end of the timing
     std::optional<RunScene> scene;
     unsigned width = 0, height = 0;
+    std::shared_ptr<const CameraFrame> cameraFrame;  // what the camera rays are made of
     std::vector<gpu::Ray> cameraRays;
     Workload workload;  // the batch the run measures
     std::string shadingMismatch;  // how the device's shading passes differ from the CPU's ("" if not)

@@ -48,16 +48,19 @@ CameraFrame cameraFrame(const PinholeCamera& camera, unsigned width, unsigned he
     return frame;
 }
 
+gpu::Ray primaryRay(const CameraFrame& frame, unsigned x, unsigned y) {
+    const glm::vec3 d = frame.forward + frame.columnOffsets[x] * frame.right + frame.rowOffsets[y] * frame.down;
+    gpu::Ray ray;
+    ray.originTMin = glm::vec4(frame.eye, 0.0f);
+    ray.directionTMax = glm::vec4(d, gpu::kNoHitT);
+    return ray;
+}
+
 std::vector<gpu::Ray> generatePrimaryRays(const CameraFrame& frame) {
-    std::vector<gpu::Ray> rays(static_cast<std::size_t>(frame.width()) * frame.height());
-    for (unsigned y = 0; y < frame.height(); ++y) {
-        for (unsigned x = 0; x < frame.width(); ++x) {
-            const glm::vec3 d = frame.forward + frame.columnOffsets[x] * frame.right + frame.rowOffsets[y] * frame.down;
-            gpu::Ray& ray = rays[static_cast<std::size_t>(y) * frame.width() + x];
-            ray.originTMin = glm::vec4(frame.eye, 0.0f);
-            ray.directionTMax = glm::vec4(d, gpu::kNoHitT);
-        }
-    }
+    std::vector<gpu::Ray> rays;
+    rays.reserve(static_cast<std::size_t>(frame.width()) * frame.height());
+    for (unsigned y = 0; y < frame.height(); ++y)
+        for (unsigned x = 0; x < frame.width(); ++x) rays.push_back(primaryRay(frame, x, y));
     return rays;
 }
 

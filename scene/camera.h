@@ -36,6 +36,8 @@ CameraFrame cameraFrame(const PinholeCamera& camera, unsigned width, unsigned he
 // Primary rays through pixel centres, row-major from the top-left pixel; tMin 0, tMax FLT_MAX.
 // Directions are not normalised, so distances are in units of |direction|.
 std::vector<gpu::Ray> generatePrimaryRays(const CameraFrame& frame);
+// The one of pixel (x, y).
+gpu::Ray primaryRay(const CameraFrame& frame, unsigned x, unsigned y);
 // The same from the camera (cameraFrame's errors).
 std::vector<gpu::Ray> generatePrimaryRays(const PinholeCamera& camera, unsigned width, unsigned height);
 

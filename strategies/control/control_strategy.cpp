@@ -34,6 +34,18 @@ std::uint64_t controlLoopBound(const std::vector<gpu::HitRecord>& cpu, unsigned 
 }
 
 namespace {
+// Whether `rays` are the frame's camera rays, bit for bit, row by row (the kernel makes them from it).
+bool framesTheRays(const CameraFrame& frame, const std::vector<gpu::Ray>& rays) {
+    if (rays.size() != std::size_t(frame.width()) * frame.height()) return false;
+    for (unsigned y = 0; y < frame.height(); ++y) {
+        for (unsigned x = 0; x < frame.width(); ++x) {
+            const gpu::Ray made = primaryRay(frame, x, y);
+            if (std::memcmp(&made, &rays[std::size_t(y) * frame.width() + x], sizeof made) != 0) return false;
+        }
+    }
+    return true;
+}
+
 
 // Why the control cannot trace this batch over this structure ("" when it can).
 std::string controlRefusal(const Structure& structure, const RayBatch& batch, const TimingOptions& timing) {
@@ -141,9 +153,7 @@ StrategyRun runControl(VulkanContext& vk, const Structure& structure, const RayB
                        const TimingOptions& timing, Row& row) {
     if (const std::string why = controlRefusal(structure, batch, timing); !why.empty()) throw Error(why);
     const CameraFrame& frame = *batch.camera;
-    const std::vector<gpu::Ray> made = generatePrimaryRays(frame);
-    if (made.size() != batch.rays.size() || std::memcmp(made.data(), batch.rays.data(), made.size() * sizeof(gpu::Ray)))
-        throw Error("the control: the camera frame does not make the batch's rays");
+    if (!framesTheRays(frame, batch.rays)) throw Error("the control: the camera frame does not make the batch's rays");
     // llvmpipe ends an invocation's loops after a limit (DeviceInfo::loopIterationLimit), silently.
     const std::vector<gpu::HitRecord> cpu = structure.trace(batch.rays, gpu::kQueryClosest);
     const std::uint64_t bound = controlLoopBound(cpu, frame.width(), frame.height());
