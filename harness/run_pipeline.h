@@ -15,9 +15,9 @@
 #include "harness/run_inputs.h"
 #include "harness/timing_rounds.h"
 #include "methods/strategy.h"
-#include "scene/camera.h"
 #include "methods/structure.h"
 #include "rays/workload.h"
+#include "scene/camera.h"
 
 namespace rtbench {
 

@@ -825,6 +825,11 @@ def control() -> list:
 RAY_TYPES = {"primary": "camera", "shadow": "shadow", "path": "diffuse (path's first bounce)"}
 
 
+def ray_type_header(types) -> list:
+    """The head of a driver table: a row per scene and kernel, a column per ray type."""
+    return ["| scene | kernel | " + " | ".join(RAY_TYPES[t] for t in types) + " |", "|---|---|" + "---|" * len(types)]
+
+
 def driver_kernels(runs):
     """results/driver's ok runs, each named by its kernel ("driver's ray query", "grid 64, branching") and
     its lavapipe's Mesa ("25.0.7", from the driver text)."""
@@ -840,7 +845,7 @@ def driver_table(ok) -> tuple:
     query over the fastest rtbench kernel's median) and those quotients."""
     by_key = ok.set_index(["scene", "kernel", "rays_type"])
     types = [t for t in RAY_TYPES if t in set(ok.rays_type)]
-    out = ["| scene | kernel | " + " | ".join(RAY_TYPES[t] for t in types) + " |", "|---|---|" + "---|" * len(types)]
+    out = ray_type_header(types)
     quotients = []
     for scene, g in ok.groupby("scene", sort=False):
         for kernel in dict.fromkeys(g.kernel):
@@ -876,9 +881,9 @@ def driver_versions(ok, old: str, new: str) -> tuple:
     mine = ok[ok.structure_type != "driver"]
     indexed = mine.set_index(["mesa", "scene", "kernel", "rays_type"])
     by = indexed.speed_ratio_vs_embree1
-    spans = {key: (r.speed_ratio_ci_low, r.speed_ratio_ci_high) for key, r in indexed.iterrows()}
+    spans = {key: interval_of(r, "speed_ratio") for key, r in indexed.iterrows()}
     types = [t for t in RAY_TYPES if t in set(mine.rays_type)]
-    out = ["| scene | kernel | " + " | ".join(RAY_TYPES[t] for t in types) + " |", "|---|---|" + "---|" * len(types)]
+    out = ray_type_header(types)
     quotients = []
     for (scene, kernel), _ in mine.groupby(["scene", "kernel"], sort=False):
         cells = []
@@ -889,7 +894,7 @@ def driver_versions(ok, old: str, new: str) -> tuple:
             before, after = by[(old, scene, kernel, t)], by[(new, scene, kernel, t)]
             quotients.append(after / before)
             low, high = spans[(old, scene, kernel, t)], spans[(new, scene, kernel, t)]
-            tie = " ~" if low[1] >= high[0] and high[1] >= low[0] else ""
+            tie = " ~" if not low or not high or (low[1] >= high[0] and high[1] >= low[0]) else ""
             cells.append(f"{num(before)} → {num(after)} ({num(quotients[-1], 2)}×{tie})")
         out.append(f"| {scene} | {kernel} | " + " | ".join(cells) + " |")
     return out, quotients
@@ -933,13 +938,14 @@ def driver() -> list:
         rows, changes = driver_versions(ok, old, new)
         out += ["", f"What Mesa {new} changes for rtbench's kernels: each cell their × Embree median on Mesa {old} → on "
                 f"Mesa {new}, and the newer's over the older's (a ratio of ratios, both timed in the same rounds); ~ where the "
-                "two 95% intervals overlap (a tie: not ranked).", ""] + rows
+                "two 95% intervals overlap or one has none (not ranked).", ""] + rows
         if changes:
             ties = sum(row.count(" ~)") for row in rows)
             out += ["", f"Over the {len(changes)} kernels and ray types, Mesa {new}'s ratio over Mesa {old}'s spans "
                     f"{span(min(changes), max(changes))}× (median {num(pd.Series(changes).median(), 2)}×); "
-                    f"{len(changes) - ties} of the {len(changes)} with separated intervals, {ties} ties."]
+                    f"{len(changes) - ties} of the {len(changes)} with separated intervals, {ties} not ranked."]
     return out + [""]
+
 
 def fastest_grid(g) -> tuple:
     """The grid size whose 95% interval of time lies wholly below every other's, in full ("10³ (3.51 ms

@@ -46,7 +46,6 @@ bool framesTheRays(const CameraFrame& frame, const std::vector<gpu::Ray>& rays) 
     return true;
 }
 
-
 // Why the control cannot trace this batch over this structure ("" when it can).
 std::string controlRefusal(const Structure& structure, const RayBatch& batch, const TimingOptions& timing) {
     if (!batch.camera) return "strategy.type = control makes the camera rays itself: rays.type = primary, without camera.tile";
