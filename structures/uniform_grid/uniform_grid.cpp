@@ -1,8 +1,5 @@
 #include "uniform_grid.h"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/intersections.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -10,34 +7,13 @@
 #include <limits>
 #include <string>
 
-#include <tbb/parallel_for.h>
-
-#include "methods/triangle_store.h"
-#include "triangle_box_filter.h"
 #include "core/error.h"
+#include "grid_cells.h"
 #include "scene/scene_limits.h"
 
 namespace rtbench {
 
 namespace {
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-
-// Candidate cell range of [vmin, vmax] on one axis. The float cell computation may be off by one
-// within rounding of a boundary, so a coordinate that close to one widens the range by a cell;
-// the exact predicate then decides. Clamped with fmax/fmin, which also send a NaN to the grid's
-// edge, so the range is always within [0, resolution - 1].
-void candidateRange(float vmin, float vmax, float boxMin, float invCellSize, unsigned resolution,
-                    int& lo, int& hi) {
-    constexpr double kNear = 1e-4;  // in cells; rounding errors are ~1e-6 cells
-    const double localMin = (double(vmin) - boxMin) * invCellSize;
-    const double localMax = (double(vmax) - boxMin) * invCellSize;
-    double cellMin = std::floor(localMin), cellMax = std::floor(localMax);
-    if (localMin - cellMin < kNear) cellMin -= 1.0;
-    if (cellMax + 1.0 - localMax < kNear) cellMax += 1.0;
-    const double last = static_cast<double>(resolution) - 1.0;
-    lo = static_cast<int>(std::fmin(std::fmax(cellMin, 0.0), last));
-    hi = static_cast<int>(std::fmax(std::fmin(cellMax, last), 0.0));
-}
 
 std::string boxText(const glm::dvec3& e) {
     return formatFloat(e.x) + " x " + formatFloat(e.y) + " x " + formatFloat(e.z);
@@ -112,29 +88,6 @@ VoxelBox UniformGrid::voxelBounds(unsigned x, unsigned y, unsigned z) const {
 
 namespace {
 
-// The CGAL triangle of a grid triangle, and whether it is degenerate (a segment or a point).
-Kernel::Triangle_3 cgalTriangle(const gpu::Triangle& t) {
-    return Kernel::Triangle_3(Kernel::Point_3(t.v0.x, t.v0.y, t.v0.z), Kernel::Point_3(t.v1.x, t.v1.y, t.v1.z),
-                              Kernel::Point_3(t.v2.x, t.v2.y, t.v2.z));
-}
-
-// CGAL's exact test of the closed triangle against the closed box.
-bool exactOverlap(const Kernel::Triangle_3& triangle, bool degenerate, const CGAL::Bbox_3& bbox) {
-    if (degenerate) {  // CGAL's triangle-box test requires a proper triangle
-        const Kernel::Segment_3 s0(triangle[0], triangle[1]), s1(triangle[1], triangle[2]), s2(triangle[0], triangle[2]);
-        if (s0.is_degenerate() && s1.is_degenerate()) return CGAL::do_intersect(bbox, triangle[0]);
-        return (!s0.is_degenerate() && CGAL::do_intersect(bbox, s0)) || (!s1.is_degenerate() && CGAL::do_intersect(bbox, s1)) ||
-               (!s2.is_degenerate() && CGAL::do_intersect(bbox, s2));
-    }
-    return CGAL::do_intersect(triangle, bbox);
-}
-
-// A voxel's box widened by the margin, as both tests see it.
-CGAL::Bbox_3 widenedBox(const VoxelBox& box, float margin) {
-    const double m = margin;
-    return CGAL::Bbox_3(box.min.x - m, box.min.y - m, box.min.z - m, box.max.x + m, box.max.y + m, box.max.z + m);
-}
-
 // The grid's box (the scene's, widened by the margin), resolution and cell size.
 gpu::GridParams gridFrame(const TriangleMesh& mesh, const GridResolutionRule& rule, std::uint64_t maxCells, float voxelMargin) {
     const Bounds3 sceneBounds = mesh.bounds();
@@ -157,106 +110,7 @@ gpu::GridParams gridFrame(const TriangleMesh& mesh, const GridResolutionRule& ru
     return p;
 }
 
-using CellPairs = std::vector<std::pair<std::uint32_t, std::uint32_t>>;  // (cell, triangle)
-
-// Voxels tested, and those CGAL decided.
-struct TestCounts {
-    std::uint64_t voxels = 0, exact = 0;
-};
-
-// Appends triangle i's (cell, i) pairs: every voxel of its candidate range that it meets. The
-// float filter decides where it is sure (triangle_box_filter.h); CGAL's exact test the rest, so
-// the cells are the exact test's.
-void binTriangle(const UniformGrid& grid, std::uint32_t i, float voxelMargin, CellPairs& pairs, TestCounts& counts) {
-    const gpu::Triangle& t = grid.triangles[i];
-    const gpu::GridParams& p = grid.params;
-    glm::ivec3 lo, hi;
-    for (int a = 0; a < 3; ++a) {
-        const float vmin = std::min({t.v0[a], t.v1[a], t.v2[a]});
-        const float vmax = std::max({t.v0[a], t.v1[a], t.v2[a]});
-        candidateRange(vmin - voxelMargin, vmax + voxelMargin, p.boundsMin[a], p.invCellSize[a], p.resolution[a], lo[a], hi[a]);
-    }
-    const Kernel::Triangle_3 triangle = cgalTriangle(t);
-    const bool degenerate = triangle.is_degenerate();
-    const FilterTriangle filter({glm::dvec3(t.v0), glm::dvec3(t.v1), glm::dvec3(t.v2)});
-    for (int z = lo.z; z <= hi.z; ++z)
-        for (int y = lo.y; y <= hi.y; ++y)
-            for (int x = lo.x; x <= hi.x; ++x) {
-                const CGAL::Bbox_3 box = widenedBox(grid.voxelBounds(x, y, z), voxelMargin);
-                Overlap overlap = degenerate ? Overlap::Unsure
-                                             : filteredTriangleBoxOverlap(filter, {box.xmin(), box.ymin(), box.zmin()},
-                                                                          {box.xmax(), box.ymax(), box.zmax()});
-                ++counts.voxels;
-                if (overlap == Overlap::Unsure) {
-                    ++counts.exact;
-                    overlap = exactOverlap(triangle, degenerate, box) ? Overlap::Yes : Overlap::No;
-                }
-                if (overlap == Overlap::Yes)
-                    pairs.emplace_back(std::uint32_t(x + p.resolution.x * (y + std::uint64_t(p.resolution.y) * z)), i);
-            }
-}
-
-// Pass 1, on the machine's cores (TBB): the (cell, triangle) pairs of fixed chunks of triangles,
-// each chunk's in triangle order, so the result does not depend on the scheduling.
-std::vector<CellPairs> binTriangles(UniformGrid& grid, float voxelMargin) {
-    constexpr std::size_t kChunk = 64;  // small: a few large triangles (a floor, a wall) are much of the work
-    const std::size_t count = grid.triangles.size();
-    std::vector<CellPairs> chunks((count + kChunk - 1) / kChunk);
-    std::vector<TestCounts> counts(chunks.size());
-    tbb::parallel_for(std::size_t(0), chunks.size(), [&](std::size_t c) {
-        CellPairs& pairs = chunks[c];
-        pairs.reserve(kChunk * 8);
-        for (std::size_t i = c * kChunk; i < std::min(count, (c + 1) * kChunk); ++i) {
-            binTriangle(grid, std::uint32_t(i), voxelMargin, pairs, counts[c]);
-            if (pairs.size() > std::numeric_limits<std::uint32_t>::max()) break;  // refused below
-        }
-    });
-    std::uint64_t references = 0;
-    for (std::size_t c = 0; c < chunks.size(); ++c) {
-        references += chunks[c].size();
-        grid.stats.voxelTests += counts[c].voxels;
-        grid.stats.exactTests += counts[c].exact;
-    }
-    if (references > std::numeric_limits<std::uint32_t>::max())  // the cell offsets are uint32
-        throw Error("grid: resolution " +
-                    resolutionText({double(grid.params.resolution.x), double(grid.params.resolution.y), double(grid.params.resolution.z)}) +
-                    " gives more than 4294967295 triangle references, more than its 32-bit offsets hold");
-    return chunks;
-}
-
-// Pass 2: a counting sort of the pairs by cell (stable: ids ascend within a voxel), and the stats.
-void sortByCell(UniformGrid& grid, const std::vector<CellPairs>& chunks) {
-    const std::uint64_t cells = std::uint64_t(grid.params.resolution.x) * grid.params.resolution.y * grid.params.resolution.z;
-    grid.cellOffsets.assign(cells + 1, 0);
-    for (const CellPairs& pairs : chunks)
-        for (const auto& [cell, tri] : pairs) ++grid.cellOffsets[cell + 1];
-    std::uint32_t maxInCell = 0;
-    std::uint64_t emptyCells = 0;
-    for (std::uint64_t c = 0; c < cells; ++c) {
-        maxInCell = std::max(maxInCell, grid.cellOffsets[c + 1]);
-        emptyCells += grid.cellOffsets[c + 1] == 0;
-        grid.cellOffsets[c + 1] += grid.cellOffsets[c];
-    }
-    grid.triangleList.resize(grid.cellOffsets.back());
-    std::vector<std::uint32_t> cursor(grid.cellOffsets.begin(), grid.cellOffsets.end() - 1);
-    for (const CellPairs& pairs : chunks)
-        for (const auto& [cell, tri] : pairs) grid.triangleList[cursor[cell]++] = tri;
-    GridStats& s = grid.stats;
-    s.resolution = {grid.params.resolution.x, grid.params.resolution.y, grid.params.resolution.z};
-    s.cells = cells;
-    s.emptyFraction = static_cast<double>(emptyCells) / static_cast<double>(cells);
-    s.references = grid.triangleList.size();
-    s.referencesPerTriangle = static_cast<double>(s.references) / static_cast<double>(grid.triangles.size());
-    s.maxReferencesInCell = maxInCell;
-    s.bytes = grid.cellOffsets.size() * 4 + grid.triangleList.size() * 4 + grid.triangles.size() * triangleVertexBytes(grid.lattice);
-}
-
 }  // namespace
-
-bool triangleOverlapsBox(const gpu::Triangle& t, const VoxelBox& box, float margin) {
-    const Kernel::Triangle_3 triangle = cgalTriangle(t);
-    return exactOverlap(triangle, triangle.is_degenerate(), widenedBox(box, margin));
-}
 
 float conservativeVoxelMargin(const Bounds3& gridBox, const std::vector<gpu::Ray>& rays,
                               const std::array<unsigned, 3>& resolution) {
@@ -281,7 +135,7 @@ UniformGrid buildUniformGrid(const TriangleMesh& mesh, const GridResolutionRule&
         grid.triangles[i] = {glm::vec4(mesh.vertices[t[0]], 0.0f), glm::vec4(mesh.vertices[t[1]], 0.0f),
                              glm::vec4(mesh.vertices[t[2]], 0.0f)};
     }
-    sortByCell(grid, binTriangles(grid, voxelMargin));
+    fillCellLists(grid, voxelMargin);
     grid.stats.voxelMargin = voxelMargin;
     grid.stats.buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return grid;

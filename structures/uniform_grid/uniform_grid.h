@@ -47,7 +47,7 @@ struct GridStats {
     std::uint64_t bytes = 0;  // cell offsets + triangle list + triangle vertices
     double buildMs = 0.0;
     float voxelMargin = 0.0f;  // scene units; 0: exact voxels
-    // Candidate voxels tested, and those the float filter left to CGAL's exact test.
+    // Candidate voxels tested, and those the float filters left to CGAL's exact test.
     std::uint64_t voxelTests = 0, exactTests = 0;
 };
 
@@ -70,11 +70,12 @@ struct UniformGrid {
     VoxelBox voxelBounds(unsigned x, unsigned y, unsigned z) const;
 };
 
-// Builds the grid: each triangle's bounding box gives a candidate cell range (widened by one
-// cell where it lies on a boundary), and the exact triangle-box predicate decides membership for
-// every candidate (closed boxes: a triangle touching a voxel's face belongs to it): a float
-// filter where it is sure (triangle_box_filter.h), CGAL's exact test where not. Triangles are
-// binned in parallel (TBB) and the lists are the same whatever the scheduling.
+// Builds the grid (grid_cells.h): each triangle's bounding box gives a candidate cell range
+// (widened by one cell where it lies on a boundary), and the exact triangle-box predicate decides
+// membership for every candidate (closed boxes: a triangle touching a voxel's face belongs to
+// it): float filters where they are sure (voxel_block_filter.h, then triangle_box_filter.h),
+// CGAL's exact test where not. Triangles are binned in parallel (TBB) and the lists are the same
+// whatever the scheduling.
 // Throws rtbench::Error when the scene is outside the range of scene/scene_limits.h or the
 // cell count would exceed maxCells.
 // voxelMargin > 0 makes the grid conservative: the box grows by the margin on every side, and a

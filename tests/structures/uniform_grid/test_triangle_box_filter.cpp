@@ -1,7 +1,7 @@
-// The grid builder's float filter (structures/uniform_grid/triangle_box_filter.h) against CGAL's
-// exact triangle-box test: where the filter answers, it answers as CGAL does; where a sign is too
-// close to call, it says unsure. And the grids it builds, on the scenes of record, list exactly
-// the voxels CGAL's test gives each triangle.
+// The grid builder's float filters (structures/uniform_grid/voxel_block_filter.h, then
+// triangle_box_filter.h) against CGAL's exact triangle-box test: where a filter answers, it
+// answers as CGAL does; where a sign is too close to call, it says unsure. And the grids they
+// build, on the scenes of record, list exactly the voxels CGAL's test gives each triangle.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -10,6 +10,7 @@
 #include "scene/scene_description.h"
 #include "structures/uniform_grid/triangle_box_filter.h"
 #include "structures/uniform_grid/uniform_grid.h"
+#include "structures/uniform_grid/voxel_block_filter.h"
 
 namespace rtbench {
 namespace {
@@ -25,8 +26,29 @@ Overlap filtered(const gpu::Triangle& t, const VoxelBox& box) {
 
 const VoxelBox kUnitBox{{0, 0, 0}, {1, 1, 1}};
 
-// Hand cases: each answer follows from the geometry (the box is [0, 1]^3).
-TEST(TriangleBoxFilter, AnswersTheCasesItCanBeSureOf) {
+// A block of voxels with the given faces per axis (the same on every axis), and its filter for t.
+struct Block {
+    std::vector<double> lo, hi;
+    VoxelBlockFilter filter;
+    Block(const gpu::Triangle& t, std::vector<double> faceLo, std::vector<double> faceHi) : lo(std::move(faceLo)), hi(std::move(faceHi)) {
+        VoxelBlock block;
+        for (int a = 0; a < 3; ++a) block.lo[a] = lo.data(), block.hi[a] = hi.data();
+        block.size = glm::ivec3(int(lo.size()));
+        filter.reset({glm::dvec3(t.v0), glm::dvec3(t.v1), glm::dvec3(t.v2)}, block);
+    }
+};
+
+Overlap blockFiltered(const gpu::Triangle& t, const VoxelBox& box) {
+    VoxelBlockFilter filter;
+    VoxelBlock block;
+    for (int a = 0; a < 3; ++a) block.lo[a] = &box.min[a], block.hi[a] = &box.max[a];
+    block.size = glm::ivec3(1);
+    filter.reset({glm::dvec3(t.v0), glm::dvec3(t.v1), glm::dvec3(t.v2)}, block);
+    return filter.at(0, 0, 0);
+}
+
+// Hand cases: each answer follows from the geometry (the box is [0, 1]^3). Both filters.
+void expectHandCases(Overlap (*filtered)(const gpu::Triangle&, const VoxelBox&)) {
     // A vertex inside; far away on x; the plane y = 0.5 through the box, no vertex in it.
     EXPECT_EQ(filtered(triangle({0.5f, 0.5f, 0.5f}, {5, 5, 5}, {5, 6, 5}), kUnitBox), Overlap::Yes);
     EXPECT_EQ(filtered(triangle({2, 0, 0}, {3, 1, 0}, {2, 1, 1}), kUnitBox), Overlap::No);
@@ -39,14 +61,69 @@ TEST(TriangleBoxFilter, AnswersTheCasesItCanBeSureOf) {
     // Its bounding box overlaps the box, yet an edge axis separates them: the triangle passes
     // the corner (1, 1, z) diagonally, beyond x + y = 2.5.
     EXPECT_EQ(filtered(triangle({2.5f, 0, 0.5f}, {0, 2.5f, 0.5f}, {2.5f, 2.5f, 0.5f}), kUnitBox), Overlap::No);
+    // In the plane z = 0.5, beyond the box's edge x = 1 on the far side of the line x + y = 2.25
+    // only: the bounding boxes overlap and the plane crosses the box; the edge axis decides.
+    EXPECT_EQ(filtered(triangle({1.25f, 1, 0.5f}, {1, 1.25f, 0.5f}, {2, 2, 0.5f}), kUnitBox), Overlap::No);
+    // The same line through the corner region, x + y = 1.75: it cuts the box's corner.
+    EXPECT_EQ(filtered(triangle({0.75f, 1, 0.5f}, {1, 0.75f, 0.5f}, {2, 2, 0.5f}), kUnitBox), Overlap::Yes);
 }
+
+TEST(TriangleBoxFilter, AnswersTheCasesItCanBeSureOf) { expectHandCases(filtered); }
+TEST(VoxelBlockFilter, AnswersTheCasesItCanBeSureOf) { expectHandCases(blockFiltered); }
 
 // x + y + z = 3 touches the corner (1, 1, 1) and nothing else of the box: the plane's sign at that
 // corner is exactly 0, which no float bound can certify from nonzero factors. Unsure, not a guess.
 TEST(TriangleBoxFilter, IsUnsureWhereOnlyExactArithmeticCanTell) {
     const gpu::Triangle t = triangle({3, 0, 0}, {0, 3, 0}, {0, 0, 3});
     EXPECT_EQ(filtered(t, kUnitBox), Overlap::Unsure);
+    EXPECT_EQ(blockFiltered(t, kUnitBox), Overlap::Unsure);
     EXPECT_TRUE(triangleOverlapsBox(t, kUnitBox));
+}
+
+// A triangle on a voxel face (z = 1, shared by two voxels) meets both: exact zeros, no rounding,
+// so the block filter is sure; a segment (degenerate) is left to CGAL.
+TEST(VoxelBlockFilter, IsSureOfExactZerosAndRefusesSegments) {
+    Block face(triangle({0.25f, 0.25f, 1}, {0.75f, 0.25f, 1}, {0.25f, 0.75f, 1}), {0, 1}, {1, 2});
+    ASSERT_TRUE(face.filter.proper());
+    EXPECT_EQ(face.filter.at(0, 0, 0), Overlap::Yes);
+    EXPECT_EQ(face.filter.at(0, 0, 1), Overlap::Yes);
+    EXPECT_EQ(face.filter.at(1, 0, 0), Overlap::No);
+    EXPECT_FALSE(Block(triangle({0, 0, 0}, {1, 1, 1}, {2, 2, 2}), {0}, {1}).filter.proper());
+}
+
+// Random triangles against blocks of voxels whose faces lie on one lattice half the time (shared
+// coordinates, faces and corners that touch): every answer the block filter gives is CGAL's, it
+// answers most, and it is unsure only where the per-sign filter is too, or more.
+TEST(VoxelBlockFilter, AgreesWithCgalWheneverItAnswers) {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> coord(-2.0f, 3.0f);
+    std::uniform_int_distribution<int> lattice(-2, 3);
+    std::uint64_t answered = 0, total = 0, yes = 0;
+    for (int i = 0; i < 40000; ++i) {
+        const bool snapped = i % 2 == 0;
+        auto point = [&] { return snapped ? glm::vec3(lattice(rng), lattice(rng), lattice(rng)) : glm::vec3(coord(rng), coord(rng), coord(rng)); };
+        const gpu::Triangle t = triangle(point(), point(), point());
+        // Five voxels per axis from -2.5 to 2.5 (unit cells), or random widths.
+        std::vector<double> lo, hi;
+        double face = snapped ? -2.5 : double(coord(rng)) - 1.0;
+        for (int v = 0; v < 5; ++v, face = hi.back()) lo.push_back(face), hi.push_back(face + (snapped ? 1.0 : 0.25 + double(coord(rng) + 2.0f) / 5.0));
+        const Block block(t, lo, hi);
+        if (!block.filter.proper()) continue;  // the builder sends these to CGAL
+        for (int x = 0; x < 5; ++x)
+            for (int y = 0; y < 5; ++y)
+                for (int z = 0; z < 5; ++z) {
+                    const VoxelBox box{{lo[x], lo[y], lo[z]}, {hi[x], hi[y], hi[z]}};
+                    const Overlap o = block.filter.at(x, y, z);
+                    ++total;
+                    if (o == Overlap::Unsure) continue;
+                    ++answered;
+                    yes += o == Overlap::Yes;
+                    ASSERT_EQ(o == Overlap::Yes, triangleOverlapsBox(t, box)) << "triangle " << i << ", voxel " << x << " " << y << " " << z;
+                }
+    }
+    EXPECT_GT(answered, total * 95 / 100) << answered << " of " << total;
+    EXPECT_GT(yes, answered / 20);
+    EXPECT_LT(yes, answered * 9 / 10);
 }
 
 // Random triangles against random boxes, many of them on one lattice (shared coordinates, faces
@@ -74,6 +151,48 @@ TEST(TriangleBoxFilter, AgreesWithCgalWheneverItAnswers) {
     EXPECT_GT(answered, total * 95 / 100) << answered << " of " << total;
     EXPECT_GT(yes, answered / 10);
     EXPECT_LT(yes, answered * 9 / 10);
+}
+
+// Boxes with a corner on a triangle's edge line, or a few ulps off it, at a point with many bits
+// (start + (end - start) k / 2^20, then moved by -2 to 2 ulps per axis): the exact edge function
+// there is 0 or about as small as its products' rounding. Where that rounding could flip a sign
+// the filters must say unsure, and wherever they answer, CGAL agrees.
+TEST(VoxelBlockFilter, AgreesWithCgalWhereAnEdgeLineGrazesACorner) {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> coord(1.0f, 2.0f);
+    std::uniform_int_distribution<int> fraction(1, (1 << 20) - 1), side(0, 1), ulps(-2, 2);
+    std::uniform_real_distribution<double> size(0.01, 1.0);
+    std::uint64_t unsure = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const glm::vec3 start(coord(rng), coord(rng), coord(rng)), end(coord(rng), coord(rng), coord(rng)), third(coord(rng), coord(rng), coord(rng));
+        const double t = std::ldexp(double(fraction(rng)), -20);
+        glm::dvec3 corner = glm::dvec3(start) + (glm::dvec3(end) - glm::dvec3(start)) * t;
+        const bool onTheLine = i % 2 == 0;
+        for (int a = 0; a < 3 && !onTheLine; ++a)
+            for (int step = ulps(rng); step != 0; step += step < 0 ? 1 : -1) corner[a] = std::nextafter(corner[a], step < 0 ? 0.0 : 4.0);
+        glm::dvec3 lo, hi;
+        for (int a = 0; a < 3; ++a) {
+            const double extent = size(rng);
+            lo[a] = side(rng) ? corner[a] : corner[a] - extent;
+            hi[a] = lo[a] == corner[a] ? corner[a] + extent : corner[a];
+        }
+        const gpu::Triangle tri = triangle(start, end, third);
+        if (glm::length(glm::cross(glm::dvec3(tri.v1 - tri.v0), glm::dvec3(tri.v2 - tri.v0))) == 0.0) continue;
+        const VoxelBox box{lo, hi};
+        const Overlap block = blockFiltered(tri, box), corners = filtered(tri, box);
+        unsure += block == Overlap::Unsure;
+        const bool exact = triangleOverlapsBox(tri, box);
+        if (onTheLine) {
+            ASSERT_TRUE(exact) << "triangle " << i << ": the edge passes through the box's corner";
+        }
+        if (block != Overlap::Unsure) {
+            ASSERT_EQ(block == Overlap::Yes, exact) << "triangle " << i;
+        }
+        if (corners != Overlap::Unsure) {
+            ASSERT_EQ(corners == Overlap::Yes, exact) << "triangle " << i;
+        }
+    }
+    EXPECT_GT(unsure, 0u);  // some really are too close to call
 }
 
 // Every voxel CGAL's test gives a triangle, over its bounding box widened by a cell each way,
