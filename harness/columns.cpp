@@ -6,6 +6,7 @@
 #include <set>
 #include <sstream>
 
+#include "build_rounds.h"
 #include "config.h"
 #include "methods/cache/cache_replay.h"
 #include "methods/registry.h"
@@ -325,6 +326,7 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         for (const StructureType* t : structureTypes()) s.addMethod("structure.type", t->name, t->columns);
         for (const RayType* t : rayTypes()) s.addMethod("rays.type", t->name, t->columns);
         addTimingColumns(s);
+        for (const ColumnSpec& c : buildRoundColumns()) s.specs.push_back(c);  // experiment.build_rounds
         addAccuracyColumns(s);
         addWorkColumns(s);
         addInstructionColumns(s);

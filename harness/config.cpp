@@ -120,6 +120,11 @@ void addExperimentKeys(KeyList& s) {
     timingKey({"experiment.max_repetitions", ValueType::Int, "adaptive repetitions: at most this many of each method", std::int64_t(200), false, 1, 100000});
     timingKey({"experiment.time_budget_s", ValueType::Float, "adaptive repetitions: stop adding rounds once a run's timing has taken this long", 30.0, false, 0, 1e6});
     timingKey({"experiment.noise_cv", ValueType::Float, "noise guard: a timing_warning when a method's coefficient of variation exceeds this", 0.05, false, 0, 1e3});
+    {
+        KeySpec rounds{"experiment.build_rounds", ValueType::Int, "build the structure and Embree's BVH of the same triangles this many times more, alternately, and record their medians and their ratio with its interval (build_ratio_vs_embree; 7 rounds or more for the interval); 0: only the run's own build of each (structure_build_ms, embree_build_ms)", std::int64_t(0), false, 0, 1000};
+        rounds.since = 27;
+        s.add(std::move(rounds));
+    }
     timingKey({"experiment.noise_other_cpu", ValueType::Float, "noise guard: a timing_warning when other processes took more than this fraction of the machine's CPU time while the run ran", 0.1, false, 0, 1});
 }
 

@@ -54,8 +54,13 @@ EmbreeReference::EmbreeReference(const TriangleMesh& mesh, const std::string& de
         throw Error("Embree: rtcNewDevice(\"" + deviceConfig + "\") failed: " +
                     errorName(rtcGetDeviceError(nullptr)));
     const auto start = std::chrono::steady_clock::now();
-    scene_ = rtcNewScene(device_);
-    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
+    scene_ = buildScene(mesh);
+    buildMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+RTCScene EmbreeReference::buildScene(const TriangleMesh& mesh) const {
+    RTCScene scene = rtcNewScene(device_);
+    rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
     RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
         geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh.vertices.size()));
@@ -65,11 +70,19 @@ EmbreeReference::EmbreeReference(const TriangleMesh& mesh, const std::string& de
     std::memcpy(vertices, mesh.vertices.data(), mesh.vertices.size() * sizeof(glm::vec3));
     std::memcpy(indices, mesh.triangles.data(), mesh.triangles.size() * sizeof(glm::uvec3));
     rtcCommitGeometry(geometry);
-    rtcAttachGeometry(scene_, geometry);
+    rtcAttachGeometry(scene, geometry);
     rtcReleaseGeometry(geometry);
-    rtcCommitScene(scene_);
+    rtcCommitScene(scene);
     checkDevice("rtcCommitScene");
-    buildMs_ = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return scene;
+}
+
+double EmbreeReference::timeBuild(const TriangleMesh& mesh) const {
+    const auto start = std::chrono::steady_clock::now();
+    RTCScene scene = buildScene(mesh);
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    rtcReleaseScene(scene);
+    return ms;
 }
 
 EmbreeReference::~EmbreeReference() {

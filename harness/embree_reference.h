@@ -34,6 +34,9 @@ public:
                  std::uint32_t query = gpu::kQueryClosest);
 
     double buildMs() const { return buildMs_; }
+    // Builds the same kind of scene of `mesh` again on this device, apart from the one it traces,
+    // and releases it: its build time in ms, as buildMs() measures it (experiment.build_rounds).
+    double timeBuild(const TriangleMesh& mesh) const;
     int threads() const;
     // What Embree reports of the ISA it chose: the widest native packet ("native ray16" ...).
     std::string isa() const;
@@ -41,6 +44,7 @@ public:
 
 private:
     void checkDevice(const char* what) const;
+    RTCScene buildScene(const TriangleMesh& mesh) const;  // committed, RTC_SCENE_FLAG_ROBUST
     RTCDevice device_ = nullptr;
     RTCScene scene_ = nullptr;
     double buildMs_ = 0.0;

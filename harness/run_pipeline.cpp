@@ -1,10 +1,12 @@
 #include "run_pipeline.h"
 
+#include <chrono>
 #include <filesystem>
 
 #include "core/error.h"
 #include "device/gpu_buffers.h"
 #include "device/vulkan_context.h"
+#include "harness/build_rounds.h"
 #include "harness/embree_reference.h"
 #include "harness/exact_reference.h"
 #include "harness/images.h"
@@ -248,6 +250,22 @@ void writeRunFiles(const RunConfig& run, const FolderIdentity& folder, const Hit
         addWarning(row, "output.exr: built without OpenImageIO, no EXR written (rtbench images makes PNGs only)");
 }
 
+// experiment.build_rounds: the structure, built again as this run built it, against Embree's BVH.
+void timeBuilds(RunInProgress& p, const StructureType& kind, const EmbreeReference& embree, const Caches& caches, Row& row) {
+    const RunConfig& run = *p.run;
+    VulkanContext& vk = *p.vk;
+    const TriangleMesh& mesh = p.scene->traced;
+    auto buildStructure = [&] {
+        const std::unique_ptr<Structure> again = kind.build(mesh, p.cameraRays, run, vk.info());
+        again->buildOnDevice(vk);
+        return again->buildMs;
+    };
+    const double start = std::chrono::duration<double>(std::chrono::steady_clock::now() - caches.started).count();
+    const BuildRounds rounds = timeBuildRounds(int(run.getInt("experiment.build_rounds")), buildStructure, [&] { return embree.timeBuild(mesh); });
+    writeBuildRoundColumns(rounds, row);
+    p.buildSamples = buildRoundSamples(rounds, start);
+}
+
 }  // namespace
 
 std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunConfig& run, Caches& caches, Row& row) {
@@ -269,6 +287,7 @@ std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunC
     runMethod(*p, strategy, row);
     // Time: the kernel, uninstrumented, and Embree on the same rays, in rounds.
     EmbreeReference& embree = embreeFor(run, *p->scene, caches, row);
+    timeBuilds(*p, structureKind, embree, caches, row);
     KernelTimer& kernel = *p->method.timer;
     p->rounds = std::make_unique<Rounds>(timedMethods(kernel, embree, p->workload.batch, p->embreeHits, p->scratch, p->embreeRays),
                                          [&kernel] { return kernel.timeHostLoops(); }, roundsOptions(run), caches.started);
@@ -280,6 +299,7 @@ void finishRun(RunInProgress& p, const FolderIdentity& folder, Caches& caches, R
     VulkanContext& vk = *p.vk;
     const std::vector<gpu::Ray>& rays = p.workload.batch.rays;
     samples = p.rounds->result().samples;
+    samples.insert(samples.end(), p.buildSamples.begin(), p.buildSamples.end());
     writeTimingResults(run, vk, p.workload.batch.path ? p.workload.batch.path->rays() : rays.size(), p.rounds->result(), p.started,
                        row);
     row["embree_rays"] = std::to_string(p.embreeRays);

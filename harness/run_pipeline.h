@@ -40,6 +40,7 @@ struct RunInProgress {
     std::vector<gpu::HitRecord> embreeHits, scratch;  // written by the Embree batches
     std::uint64_t embreeRays = 0;                     // the rays each of them traced
     std::unique_ptr<Rounds> rounds;
+    std::vector<TimingSample> buildSamples;  // experiment.build_rounds
 };
 
 // Everything up to the timing: the row gets every value known before it. Throws on a run that

@@ -1,7 +1,8 @@
 // A row's timing samples (samples.csv) are its own: the evidence compare tests, resume keeps and
 // check re-reads. Each ok row of results schema 5 on must have, for every method it reports a
 // median of (kernel, embree1, embree16), timing_repetitions samples of its run and config hash,
-// each a positive number of ms, no (method, round, repetition) twice, whose median is the row's.
+// each a positive number of ms, no (method, round, repetition) twice, whose median is the row's;
+// with experiment.build_rounds, build_rounds samples of structure_build and embree_build alike.
 #pragma once
 #include <map>
 #include <string>

@@ -105,7 +105,9 @@ inline ColumnSpec textColumn(ColumnSpec c) {
 //        kernel_ms_replay).
 //  26  + the control (strategy.type = control, control_cpu_differing): a plain grid ray caster
 //        making its own camera rays, what the branching kernel's speed is judged against.
-constexpr int kSchemaVersion = 26;
+//  27  + build_rounds, structure_build_ms_median, embree_build_ms_median, build_ratio_vs_embree and
+//        its interval (experiment.build_rounds: the two builds timed alternately).
+constexpr int kSchemaVersion = 27;
 
 // The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".
 std::string paramColumn(const std::string& key);

@@ -1,5 +1,5 @@
 #!/bin/bash
-# Runs the configs of record and makes their charts and tables: results/bunny, results/structures,
+# Runs the configs of record and makes their charts and tables: results/bunny, results/structures, results/builds,
 # results/purcell2002, results/stability, results/accuracy, results/raytypes, results/strategies, results/multipass_device, results/division, results/control, results/driver, results/christen2005, results/wavefront (or under OUT, e.g. results/nvidia-h200 on a GPU machine; DEVICE picks the
 # Vulkan device by a name substring).
 #   scripts/records.sh [OUT] [DEVICE]        (about 3.5 hours on 2 cores with lavapipe; purcell2002 alone 112 minutes)
@@ -12,7 +12,7 @@
 #   CONFIGS="bunny ..."   only these configs of record (default: all)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-configs=(${CONFIGS:-bunny structures purcell2002 stability accuracy raytypes strategies multipass_device division control driver christen2005 wavefront})
+configs=(${CONFIGS:-bunny structures builds purcell2002 stability accuracy raytypes strategies multipass_device division control driver christen2005 wavefront})
 bin=${RTBENCH_BIN:-build/rtbench}
 
 charts() {
