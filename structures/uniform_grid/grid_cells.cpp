@@ -87,7 +87,8 @@ struct BinnedTriangle {
     const gpu::Triangle& triangle;
     const VoxelBlockFilter& block;
     glm::ivec3 lo, hi;  // candidate voxels, inclusive
-    bool degenerate;
+    bool degenerate = false;
+    bool insideOne = false;  // one candidate, and a vertex lies in its box: it meets it, no filter needed
 
     BinnedTriangle(const UniformGrid& grid, const VoxelFaces& faces, std::uint32_t i, float voxelMargin, VoxelBlockFilter& filter)
         : id(i), triangle(grid.triangles[i]), block(filter) {
@@ -101,6 +102,12 @@ struct BinnedTriangle {
             candidates.hi[a] = faces.hi[a].data() + lo[a];
         }
         candidates.size = hi - lo + 1;
+        if (candidates.size == glm::ivec3(1)) {
+            const glm::dvec3 v(triangle.v0), boxLo(faces.lo[0][lo.x], faces.lo[1][lo.y], faces.lo[2][lo.z]);
+            const glm::dvec3 boxHi(faces.hi[0][lo.x], faces.hi[1][lo.y], faces.hi[2][lo.z]);
+            insideOne = glm::all(glm::greaterThanEqual(v, boxLo)) && glm::all(glm::lessThanEqual(v, boxHi));
+            if (insideOne) return;
+        }
         filter.reset(vertices(), candidates);
         degenerate = !filter.proper() && cgalTriangle(triangle).is_degenerate();  // CGAL decides what the filter cannot
     }
@@ -111,6 +118,7 @@ struct BinnedTriangle {
     // are, CGAL's exact test. The answer is always the exact test's.
     bool meets(const VoxelFaces& faces, int x, int y, int z, TestCounts& counts) const {
         ++counts.voxels;
+        if (insideOne) return true;
         Overlap overlap = degenerate ? Overlap::Unsure : block.at(x - lo.x, y - lo.y, z - lo.z);
         if (overlap != Overlap::Unsure) return overlap == Overlap::Yes;
         const glm::dvec3 boxLo(faces.lo[0][x], faces.lo[1][y], faces.lo[2][z]), boxHi(faces.hi[0][x], faces.hi[1][y], faces.hi[2][z]);
