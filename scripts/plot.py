@@ -1059,6 +1059,43 @@ def structures_memory(runs, device, folder, written):
     save(fig, folder, "structures_memory", written)
 
 
+def build_times(runs, device, folder, written):
+    """experiment.build_rounds: the grid's build against its cells, per scene, beside Embree's BVH
+    build of the same triangles (medians of the rounds), and their ratio with its 95% interval."""
+    if "build_rounds" not in runs or not (runs.build_rounds > 0).any():
+        return skip(folder, "build_times", "no build rounds (experiment.build_rounds = 0)")
+    grid = runs[(runs.build_rounds > 0) & (runs.structure_type == "uniform_grid")]
+    if grid.empty or grid.groupby("scene").size().max() < 2:
+        return skip(folder, "build_times", "no scene with grids at two resolutions or more")
+    fig, (left, right) = plt.subplots(1, 2, figsize=(12, 4.6))
+    scenes = grid.sort_values("scene_triangles").scene.unique().tolist()
+    colors = plt.rcParams["axes.prop_cycle"].by_key()["color"]
+    for i, scene in enumerate(scenes):
+        g = grid[grid.scene == scene].sort_values("grid_cells")
+        color = colors[i % len(colors)]
+        label = f"{scene} ({int(g.scene_triangles.iloc[0]):,} triangles)"
+        left.plot(g.grid_cells, g.structure_build_ms_median, "o-", color=color, label=label)
+        left.axhline(g.embree_build_ms_median.median(), color=color, linestyle="--", linewidth=1)
+        low = (g.build_ratio_vs_embree - g.build_ratio_ci_low).clip(lower=0)
+        high = (g.build_ratio_ci_high - g.build_ratio_vs_embree).clip(lower=0)
+        right.errorbar(g.grid_cells, g.build_ratio_vs_embree, yerr=[low.fillna(0), high.fillna(0)], fmt="o-", color=color,
+                       capsize=3, label=label)
+    for ax in (left, right):
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("grid cells (log; min_dim 16, 32, 64, 128)")
+    left.set_ylabel("build ms, median of the rounds (log)")
+    left.set_title("Grid build (solid) and Embree's BVH build of the same scene (dashed)")
+    right.axhline(1.0, color="black", linewidth=1)
+    right.set_ylabel("grid build / Embree build (log)")
+    right.set_title("Ratio, with its 95% interval; below the line the grid builds faster")
+    handles, labels = right.get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower center", ncol=3, fontsize=8, frameon=False)
+    rounds = int(grid.build_rounds.max())
+    fig.suptitle(f"Build times, {rounds} rounds alternating the two builds; {device}")
+    save(fig, folder, "build_times", written, rect=(0, 0.1, 1, 1))
+
+
 def structures_work(runs, device, folder, written):
     if structures_comparable(runs):
         return skip(folder, "structures_work", structures_comparable(runs))
@@ -1564,7 +1601,7 @@ def run(folder: Path) -> int:
     runs = runs[variant(runs) == ""]  # the other charts compare methods on the scene as it is
     for chart in (passes_vs_threshold, bandwidth_by_category, texture_cache, christen_grid_size, christen_gpu_cpu, unrolling, grid_resolution, kernel_time,
                   compute_by_kernel,
-                  structures_time, structures_memory, structures_work):
+                  structures_time, structures_memory, structures_work, build_times):
         draw(chart.__name__, folder, chart, runs, device, folder, written)
     draw("failure_map", folder, failure_map, runs, failed, device, folder, written)
     by_key_charts(everything, failed, device, folder, written)

@@ -947,6 +947,66 @@ def driver() -> list:
     return out + [""]
 
 
+def build_verdict(r) -> str:
+    """A build ratio against 1 by its 95% interval: "≤ Embree" wholly at or below, "> Embree" wholly
+    above, "tie" across, "not ranked" without one."""
+    span = interval_of(r, "build_ratio")
+    if not span:
+        return "not ranked"
+    return "≤ Embree" if span[1] <= 1 else "> Embree" if span[0] > 1 else "tie"
+
+
+def builds() -> list:
+    """results/builds: the grid's and rtbench's BVH's builds against Embree's BVH build, in paired rounds."""
+    if not (folder_of("builds") / "runs.csv").exists():
+        return []
+    runs, context = load("builds")
+    ok = runs[(runs.status == "ok") & (runs.build_rounds > 0)].copy()
+    ok["what"] = [f"grid {int(r.structure_min_dim)}" if r.structure_type == "uniform_grid" else "rtbench BVH" for _, r in ok.iterrows()]
+    rounds = int(ok.build_rounds.max())
+    out = ["### `results/builds/`: how long does a structure take to build, against Embree's BVH?", "",
+           provenance("builds", runs, context), "",
+           f"`configs/builds.toml`: each structure built {rounds} times more after its run's own build, alternately with "
+           f"Embree's BVH of the same triangles (`experiment.build_rounds`; every build in `samples.csv`). Each cell: the "
+           "median build in ms; the ratio is the structure's median over Embree's, with its 95% interval (each median's "
+           "97.5% order-statistic interval); the verdict places that interval against 1. Both builds run on the "
+           f"machine's {int(ok.embree_threads.iloc[0])} threads (TBB).", "",
+           "| scene (triangles) | structure | cells | references | build ms | Embree BVH ms | ratio [95%] | verdict |",
+           "|---|---|---|---|---|---|---|---|"]
+    for _, r in ok.sort_values(["scene_triangles", "structure_type", "structure_min_dim"], ascending=[True, False, True]).iterrows():
+        grid = r.structure_type == "uniform_grid"
+        out.append(f"| {r.scene} ({count(r.scene_triangles)}) | {r.what} | {count(r.grid_cells) if grid else '—'} | "
+                   f"{count(r.grid_references) if grid else count(r.bvh_references)} | {num(r.structure_build_ms_median)} | "
+                   f"{num(r.embree_build_ms_median)} | {num(r.build_ratio_vs_embree)} {interval(*interval_of(r, 'build_ratio')) if interval_of(r, 'build_ratio') else '—'} | "
+                   f"{build_verdict(r)} |")
+    target = ok[(ok.structure_type == "uniform_grid") & (ok.scene_triangles >= 50000) & (ok.structure_min_dim <= 64)]
+    verdicts = [build_verdict(r) for _, r in target.iterrows()]
+    worst = target.loc[target.build_ratio_vs_embree.idxmax()] if not target.empty else None
+    failed = runs[runs.status != "ok"]
+    out += ["", f"Issue 47's target, the grid's build at most Embree's on the scenes of 50,000 triangles and more at "
+            f"min_dim ≤ 64: {verdicts.count('≤ Embree')} of {len(verdicts)} at most Embree's, {verdicts.count('tie')} tied, "
+            f"{verdicts.count('> Embree')} slower" + (f" (the slowest: {worst.scene} at min_dim {int(worst.structure_min_dim)}, "
+            f"{num(worst.build_ratio_vs_embree)}×)" if worst is not None else "") + "." +
+            (f" {plural(len(failed), 'run')} failed: {reasons(failed.error)}." if len(failed) else "")]
+    grids = ok[ok.structure_type == "uniform_grid"]
+    growth = []
+    for scene, g in grids.groupby("scene", sort=False):
+        if len(g) > 1:
+            lo, hi = g.loc[g.grid_cells.idxmin()], g.loc[g.grid_cells.idxmax()]
+            growth.append(f"{scene} {num(hi.grid_cells / lo.grid_cells, 2)}× the cells and {num(hi.grid_references / lo.grid_references, 2)}× "
+                          f"the references, {num(hi.structure_build_ms_median / lo.structure_build_ms_median, 2)}× the time")
+    if growth:
+        out += ["", f"How the grid's build grows from min_dim {int(grids.structure_min_dim.min())} to its finest: " + "; ".join(growth) + "."]
+    if verdicts:
+        headline("builds", "Does the grid build as fast as Embree's BVH?",
+                 f"{verdicts.count('≤ Embree')} of {len(verdicts)} grids (≥ 50,000 triangles, min_dim ≤ 64) at most Embree's build "
+                 f"time by their 95% intervals, {verdicts.count('tie')} tied, {verdicts.count('> Embree')} slower" +
+                 (f" (up to {num(worst.build_ratio_vs_embree)}×, {worst.scene} at {int(worst.structure_min_dim)})" if verdicts.count('> Embree') else ""),
+                 context)
+    out += [""] + charts("builds", {"build_times": "the grid's build against its cells beside Embree's, and their ratio"})
+    return out + [""]
+
+
 def fastest_grid(g) -> tuple:
     """The grid size whose 95% interval of time lies wholly below every other's, in full ("10³ (3.51 ms
     [2.9, 4.59])") and short ("10³"); else the tie ("tie: 10³ [2.9, 4.59], 20³ [3.9, 5.23]", "tie of 10³,
@@ -1054,7 +1114,7 @@ def results_page() -> str:
            "is called faster than another (or the fastest) only where their 95% intervals do not overlap; where they "
            "overlap it is a tie, given with both intervals; a run without an interval (one timed repetition) is not "
            "ranked.", ""]
-    for part in (bunny, structures, purcell2002, stability, accuracy, raytypes, strategies, multipass_device, wavefront, division, control, driver, christen2005, golden, h200):
+    for part in (bunny, structures, builds, purcell2002, stability, accuracy, raytypes, strategies, multipass_device, wavefront, division, control, driver, christen2005, golden, h200):
         lines = part()
         if lines:
             ANCHORS[re.search(r"`results/([^`]+)/`", lines[0]).group(1)] = anchor(lines[0].lstrip("# "))

@@ -358,6 +358,28 @@ class NamedCharts(unittest.TestCase):
     def tearDown(self):
         self.tmp.cleanup()
 
+    def test_build_times_put_each_scene_against_embree_and_its_ratio_against_1(self):
+        settings = [{"scene_source": scene, "structure_type": "uniform_grid", "structure_min_dim": d}
+                    for scene in ("cgal:bunny00", "procedural:christen_b") for d in (16, 32, 64)]
+        frame = make_runs(settings, ["scene_source", "structure_min_dim"])
+        cells = frame.structure_min_dim ** 3
+        frame = frame.assign(build_rounds=9, grid_cells=cells, structure_build_ms_median=cells / 1e4,
+                             embree_build_ms_median=[5.0] * 3 + [0.5] * 3)
+        frame = frame.assign(build_ratio_vs_embree=frame.structure_build_ms_median / frame.embree_build_ms_median)
+        frame = frame.assign(build_ratio_ci_low=frame.build_ratio_vs_embree * 0.9, build_ratio_ci_high=frame.build_ratio_vs_embree * 1.2)
+        charts = Charts(write_folder(self.root, "builds", frame))
+        left, right = data_axes(charts.figures["build_times"])[:2]
+        solid = [line for line in left.lines if line.get_linestyle() == "-"]
+        dashed = sorted(line.get_ydata()[0] for line in left.lines if line.get_linestyle() == "--")
+        self.assertEqual(len(solid), 2)  # one line per scene through its three grids
+        self.assertEqual(dashed, [0.5, 5.0])  # each scene's Embree build
+        self.assertIn(1.0, [line.get_ydata()[0] for line in right.lines if line.get_linestyle() == "-" and len(line.get_ydata()) == 2])
+        self.assertEqual(len(right.containers), 2)  # the ratios with their intervals, per scene
+        # Without build rounds the chart is not called for, and says why.
+        quiet = Charts(write_folder(self.root, "no_rounds", make_runs(settings, ["scene_source", "structure_min_dim"])))
+        self.assertNotIn("build_times", quiet.figures)
+        self.assertIn("skipped build_times: no build rounds", quiet.stderr)
+
     def test_bandwidth_bars_name_the_swept_value(self):
         settings = [{"structure_type": "uniform_grid", "structure_min_dim": d} for d in (8, 16, 32, 64)]
         charts = Charts(write_folder(self.root, "bandwidth", make_runs(settings, ["structure_min_dim"])))
