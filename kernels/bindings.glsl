@@ -37,6 +37,9 @@ layout(constant_id = kSpecDivision) const uint division = kDivisionDouble;
 
 layout(std430, set = 0, binding = kBindingRays) readonly buffer RayBuffer { Ray rays[]; };
 layout(std430, set = 0, binding = kBindingHits) writeonly buffer HitBuffer { HitRecord hits[]; };
+// The same records as two 16-byte words each: word 2i is ray i's hit (t, primitive, u, v), the
+// one store an uninstrumented kernel makes (llvmpipe stores a struct field by field, lane by lane).
+layout(std430, set = 0, binding = kBindingHits) writeonly buffer HitWordBuffer { uvec4 hitWords[]; };
 layout(std430, set = 0, binding = kBindingPassCounters) buffer PassCounterBuffer { PassCounters passCounters; };
 layout(push_constant) uniform PushConstants {
     StreamParams stream;
@@ -49,6 +52,16 @@ layout(push_constant) uniform PushConstants {
 // 2D dispatch: maxComputeWorkGroupCount[0] may be only 65535 groups.
 uint rtRayIndex() { return gl_GlobalInvocationID.x + gl_GlobalInvocationID.y * gl_NumWorkGroups.x * gl_WorkGroupSize.x; }
 uint rtRayCount() { return stream.stream.x; }
+
+// Writes ray i's record: whole when instrumented; else the hit alone (t, primitive, u, v: what
+// Embree's rtcIntersect1 answers too) in one 16-byte store, the work counters left as the
+// instrumented run wrote them (the timed runs reuse its buffers; their hits are checked against it).
+void rtWriteRecord(uint i, HitRecord h) {
+    if (instrument != 0u)
+        hits[i] = h;
+    else
+        hitWords[2u * i] = uvec4(floatBitsToUint(h.t), h.primitive, floatBitsToUint(h.u), floatBitsToUint(h.v));
+}
 
 // Adds a per-invocation count to a pass counter: one 64-bit atomic per subgroup.
 void rtCount(uint slot, uint value) {

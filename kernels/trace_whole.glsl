@@ -20,15 +20,7 @@
 #include "traversal_common.glsl"
 #include "structure.glsl"
 
-// Traces ray `rayIndex` and writes its record (work counters only when instrumented).
-void rtTraceAndWrite(uint rayIndex) {
-    HitRecord h = rtTrace(rays[rayIndex]);
-    if (instrument == 0u) {
-        h.cellsVisited = 0u;
-        h.trianglesTested = 0u;
-        h.traversalSteps = 0u;
-    }
-    hits[rayIndex] = h;
-}
+// Traces ray `rayIndex` and writes its record (bindings.glsl rtWriteRecord).
+void rtTraceAndWrite(uint rayIndex) { rtWriteRecord(rayIndex, rtTrace(rays[rayIndex])); }
 
 #endif  // RT_TRACE_WHOLE_GLSL

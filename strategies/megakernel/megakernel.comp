@@ -80,6 +80,5 @@ void main() {
         }
     }
     if (!live) return;
-    if (instrument == 0u) c = RayCounters(0u, 0u, 0u, 0u);
-    hits[rayIndex] = mpHitRecord(hit, c);
+    rtWriteRecord(rayIndex, mpHitRecord(hit, c));
 }

@@ -8,5 +8,5 @@ void main() {
     if (rayIndex >= rtRayCount()) return;
     RayCounters c = RayCounters(0u, 0u, 0u, 0u);
     if (instrument != 0u) c = rayCounters[rayIndex];
-    hits[rayIndex] = mpHitRecord(hitStates[rayIndex], c);
+    rtWriteRecord(rayIndex, mpHitRecord(hitStates[rayIndex], c));
 }

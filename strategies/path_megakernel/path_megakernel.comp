@@ -38,12 +38,7 @@ void main() {
         if (instrument != 0u) rtCount(kCountRaysTraced, 1u);
         if (g == 0u) cameraHit = h;
         if (g == passes) {  // the batch: its ray and record at its path
-            if (instrument == 0u) {
-                h.cellsVisited = 0u;
-                h.trianglesTested = 0u;
-                h.traversalSteps = 0u;
-            }
-            hits[path] = h;
+            rtWriteRecord(path, h);
             batchRays[path] = r;
             batchInfo[path] = uvec4(1u, 0u, path, floatBitsToUint(weight));
         }
