@@ -28,7 +28,7 @@ const std::vector<ColumnSpec>& buildRoundColumns() {
     static const std::vector<ColumnSpec> columns = [] {
         std::vector<ColumnSpec> c{
             {"build_rounds", K::Timing, "rounds", "experiment.build_rounds: rounds in which the structure and Embree's BVH were built again, alternately, for the columns below (0: not timed so)"},
-            {"structure_build_ms_median", K::Timing, "ms", "structure_build_ms, median over the build rounds (samples.csv: method structure_build) (a round builds it as the run does: its CPU build, then the device's buffers, which structure_build_ms leaves out but the driver's build on the device)"},
+            {"structure_build_ms_median", K::Timing, "ms", "structure_build_ms, median over the build rounds (samples.csv: method structure_build): each round builds it as the run does and times what structure_build_ms times (the CPU build; the driver's: its build on the device)"},
             {"embree_build_ms_median", K::Timing, "ms", "embree_build_ms, median over the build rounds (samples.csv: method embree_build) (the same triangles, a new scene on the run's Embree device)"},
             {"build_ratio_vs_embree", K::Timing, "ratio", "structure_build_ms_median / embree_build_ms_median: above 1, the structure takes longer to build"},
             {"build_ratio_ci_low", K::Timing, "ratio", "build_ratio_vs_embree: 95% interval from each median's 97.5% order-statistic interval (both hold at once with at least 95%; empty below 7 rounds), low end"},

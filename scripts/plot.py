@@ -1076,14 +1076,15 @@ def build_times(runs, device, folder, written):
         label = f"{scene} ({int(g.scene_triangles.iloc[0]):,} triangles)"
         left.plot(g.grid_cells, g.structure_build_ms_median, "o-", color=color, label=label)
         left.axhline(g.embree_build_ms_median.median(), color=color, linestyle="--", linewidth=1)
-        low = (g.build_ratio_vs_embree - g.build_ratio_ci_low).clip(lower=0)
-        high = (g.build_ratio_ci_high - g.build_ratio_vs_embree).clip(lower=0)
-        right.errorbar(g.grid_cells, g.build_ratio_vs_embree, yerr=[low.fillna(0), high.fillna(0)], fmt="o-", color=color,
-                       capsize=3, label=label)
+        right.plot(g.grid_cells, g.build_ratio_vs_embree, "o-", color=color, label=label)
+        spans = g[g.build_ratio_ci_low.notna() & g.build_ratio_ci_high.notna()]  # a run without an interval gets no bar
+        low = (spans.build_ratio_vs_embree - spans.build_ratio_ci_low).clip(lower=0)
+        high = (spans.build_ratio_ci_high - spans.build_ratio_vs_embree).clip(lower=0)
+        right.errorbar(spans.grid_cells, spans.build_ratio_vs_embree, yerr=[low, high], fmt="none", ecolor=color, capsize=3)
     for ax in (left, right):
         ax.set_xscale("log")
         ax.set_yscale("log")
-        ax.set_xlabel("grid cells (log; min_dim 16, 32, 64, 128)")
+        ax.set_xlabel("grid cells (log), one point per min_dim")
     left.set_ylabel("build ms, median of the rounds (log)")
     left.set_title("Grid build (solid) and Embree's BVH build of the same scene (dashed)")
     right.axhline(1.0, color="black", linewidth=1)

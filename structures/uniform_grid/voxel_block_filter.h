@@ -27,9 +27,12 @@ public:
     // Tables for this triangle (vertices in double: exact copies of its floats) over this block.
     // Reuses its storage: one filter serves many triangles in turn.
     void reset(const std::array<glm::dvec3, 3>& vertices, const VoxelBlock& block);
-    // Certainly not degenerate (not a segment or a point). Where false, ask CGAL.
+    // Certainly not degenerate (not a segment or a point) by the filter's own arithmetic. Where
+    // false, ask CGAL whether it is.
     bool proper() const { return proper_; }
-    // Voxel (i, j, k) of the block against the closed triangle; needs proper().
+    // Voxel (i, j, k) of the block against the closed triangle, which must not be degenerate
+    // (proper(), or CGAL's word): the 13 axes decide only for a proper triangle, and the bounds
+    // hold for its exact normal whatever proper() said.
     Overlap at(int i, int j, int k) const;
 
     // Four doubles, one per edge of the triangle (lane 3 unused, kept 0: a neutral axis), as
