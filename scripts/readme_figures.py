@@ -949,9 +949,7 @@ def driver() -> list:
 
 def build_span(r):
     """A run's build ratio interval (low, high), None where it has none (fewer than 7 build rounds)."""
-    if pd.isna(r.build_ratio_ci_low) or pd.isna(r.build_ratio_ci_high):
-        return None
-    return float(r.build_ratio_ci_low), float(r.build_ratio_ci_high)
+    return interval_of(r, "build_ratio", samples="build_rounds")
 
 
 def build_verdict(r) -> str:

@@ -384,12 +384,13 @@ def host_against_device(runs: pd.DataFrame, device: str) -> str:
 
 
 # Ranking: one run is faster than another only where their 95% intervals do not overlap.
-def interval_of(run, prefix="kernel_ms"):
+def interval_of(run, prefix="kernel_ms", samples="timing_repetitions"):
     """A run's 95% interval (low, high) from <prefix>_ci_low and _ci_high (kernel_ms: GPU time;
-    speed_ratio: × Embree); None where it has none: empty cells (too few repetitions), or one timed
-    repetition (an older folder's bootstrap of one value: a point, not an interval)."""
+    speed_ratio: × Embree; build_ratio, with samples="build_rounds": the build over Embree's);
+    None where it has none: empty cells (too few samples), or one sample (an older folder's
+    bootstrap of one value: a point, not an interval)."""
     low, high = getattr(run, prefix + "_ci_low", None), getattr(run, prefix + "_ci_high", None)
-    repetitions = getattr(run, "timing_repetitions", None)
+    repetitions = getattr(run, samples, None)
     if pd.isna(low) or pd.isna(high) or (pd.notna(repetitions) and repetitions < 2):
         return None
     return float(low), float(high)
