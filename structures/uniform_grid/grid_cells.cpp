@@ -15,6 +15,7 @@
 #include "methods/triangle_store.h"
 #include "triangle_box_filter.h"
 #include "voxel_block_filter.h"
+#include "voxel_row.h"
 
 namespace rtbench {
 
@@ -112,7 +113,6 @@ struct BinnedTriangle {
         degenerate = !filter.proper() && cgalTriangle(triangle).is_degenerate();  // CGAL decides what the filter cannot
     }
     std::array<glm::dvec3, 3> vertices() const { return {glm::dvec3(triangle.v0), glm::dvec3(triangle.v1), glm::dvec3(triangle.v2)}; }
-    std::uint64_t voxelsPerLayer() const { return std::uint64_t(hi.x - lo.x + 1) * std::uint64_t(hi.y - lo.y + 1); }
 
     // Voxel (x, y, z): the block filter; where it is unsure, the per-sign filter; where both
     // are, CGAL's exact test. The answer is always the exact test's.
@@ -129,30 +129,78 @@ struct BinnedTriangle {
     }
 };
 
-// Appends the triangle's (cell, id) pairs in z layers [zLo, zHi]: every candidate voxel it meets.
-void binLayers(const UniformGrid& grid, const VoxelFaces& faces, const BinnedTriangle& t, int zLo, int zHi, CellPairs& pairs,
-               TestCounts& counts) {
+// The block's axes as the row walk takes them: rows along its longest axis, consecutive rows
+// along the next, layers along the shortest.
+struct RowAxes {
+    int row = 0, next = 1, layer = 2;
+    explicit RowAxes(const glm::ivec3& size) {
+        std::array<int, 3> axes{0, 1, 2};
+        std::stable_sort(axes.begin(), axes.end(), [&](int a, int b) { return size[a] > size[b]; });
+        row = axes[0], next = axes[1], layer = axes[2];
+    }
+};
+
+// Rows [nextLo, nextHi] of one layer of a triangle's block.
+struct RowRun {
+    int layer, nextLo, nextHi;
+};
+
+// Appends the (cell, id) pair of every voxel of the run the triangle meets, each row's span found
+// from the row before's (voxel_row.h).
+void binRows(const UniformGrid& grid, const VoxelFaces& faces, const BinnedTriangle& t, const RowAxes& axes, const RowRun& run,
+             CellPairs& pairs, TestCounts& counts) {
     const glm::uvec3 r(grid.params.resolution);
-    for (int z = zLo; z <= zHi; ++z)
+    glm::ivec3 voxel;
+    voxel[axes.layer] = run.layer;
+    VoxelSpan span;
+    for (voxel[axes.next] = run.nextLo; voxel[axes.next] <= run.nextHi; ++voxel[axes.next]) {
+        const auto meets = [&](int i) {
+            glm::ivec3 v = voxel;
+            v[axes.row] = i;
+            return t.meets(faces, v.x, v.y, v.z, counts);
+        };
+        span = findSpan(t.lo[axes.row], t.hi[axes.row], span, meets);
+        for (voxel[axes.row] = span.first; voxel[axes.row] <= span.last; ++voxel[axes.row])
+            pairs.emplace_back(std::uint32_t(voxel.x + r.x * (voxel.y + std::uint64_t(r.y) * voxel.z)), t.id);
+    }
+}
+
+// Appends the pairs of a small block's voxels, testing each.
+void binVoxels(const UniformGrid& grid, const VoxelFaces& faces, const BinnedTriangle& t, CellPairs& pairs, TestCounts& counts) {
+    const glm::uvec3 r(grid.params.resolution);
+    for (int z = t.lo.z; z <= t.hi.z; ++z)
         for (int y = t.lo.y; y <= t.hi.y; ++y)
             for (int x = t.lo.x; x <= t.hi.x; ++x)
                 if (t.meets(faces, x, y, z, counts)) pairs.emplace_back(std::uint32_t(x + r.x * (y + std::uint64_t(r.y) * z)), t.id);
 }
 
-// Appends triangle i's pairs. A triangle with many candidates (a floor, a wall) has its z layers
-// binned on all cores and appended in order, so the pairs are the same whatever the scheduling.
+// Appends triangle i's pairs: a small block voxel by voxel, a larger one row by row in runs of
+// rows. A triangle with many candidates (a floor, a wall) has its runs binned on all cores and
+// appended in order, so the pairs are the same whatever the scheduling.
 void binTriangle(const UniformGrid& grid, const VoxelFaces& faces, std::uint32_t i, float voxelMargin, VoxelBlockFilter& filter,
                  CellPairs& pairs, TestCounts& counts) {
     constexpr std::uint64_t kParallelVoxels = 1u << 14;
+    constexpr int kRowsPerRun = 16;
+    constexpr std::uint64_t kSmallBlock = 64;  // voxel by voxel: cheaper than a walk over such short rows
     const BinnedTriangle t(grid, faces, i, voxelMargin, filter);
-    const int layers = t.hi.z - t.lo.z + 1;
-    if (layers == 1 || t.voxelsPerLayer() * layers < kParallelVoxels) return binLayers(grid, faces, t, t.lo.z, t.hi.z, pairs, counts);
-    std::vector<CellPairs> layerPairs(layers);
-    std::vector<TestCounts> layerCounts(layers);
-    tbb::parallel_for(0, layers, [&](int l) { binLayers(grid, faces, t, t.lo.z + l, t.lo.z + l, layerPairs[l], layerCounts[l]); });
-    for (int l = 0; l < layers; ++l) {
-        pairs.insert(pairs.end(), layerPairs[l].begin(), layerPairs[l].end());
-        counts.add(layerCounts[l]);
+    const glm::ivec3 size = t.hi - t.lo + 1;
+    const std::uint64_t voxels = std::uint64_t(size.x) * std::uint64_t(size.y) * std::uint64_t(size.z);
+    if (voxels <= kSmallBlock) return binVoxels(grid, faces, t, pairs, counts);
+    const RowAxes axes(size);
+    std::vector<RowRun> runs;
+    for (int layer = t.lo[axes.layer]; layer <= t.hi[axes.layer]; ++layer)
+        for (int next = t.lo[axes.next]; next <= t.hi[axes.next]; next += kRowsPerRun)
+            runs.push_back({layer, next, std::min(next + kRowsPerRun - 1, t.hi[axes.next])});
+    if (runs.size() == 1 || voxels < kParallelVoxels) {
+        for (const RowRun& run : runs) binRows(grid, faces, t, axes, run, pairs, counts);
+        return;
+    }
+    std::vector<CellPairs> runPairs(runs.size());
+    std::vector<TestCounts> runCounts(runs.size());
+    tbb::parallel_for(std::size_t(0), runs.size(), [&](std::size_t k) { binRows(grid, faces, t, axes, runs[k], runPairs[k], runCounts[k]); });
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+        pairs.insert(pairs.end(), runPairs[k].begin(), runPairs[k].end());
+        counts.add(runCounts[k]);
     }
 }
 

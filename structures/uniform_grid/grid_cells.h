@@ -1,5 +1,6 @@
-// The cells of a uniform grid: which voxels each triangle meets (pass 1, on every core), and the
-// per-voxel triangle lists in Purcell et al. 2002 Fig. 4's layout (pass 2, a counting sort).
+// The cells of a uniform grid: which voxels each triangle meets (pass 1, on every core; a large
+// triangle row by row, voxel_row.h), and the per-voxel triangle lists in Purcell et al. 2002
+// Fig. 4's layout (pass 2, a counting sort).
 #pragma once
 #include "uniform_grid.h"
 
