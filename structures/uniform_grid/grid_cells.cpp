@@ -89,20 +89,29 @@ struct BinnedTriangle {
     const gpu::Triangle& triangle;
     const VoxelBlockFilter& block;
     glm::ivec3 lo, hi;  // candidate voxels, inclusive
+    glm::dvec3 boxLo, boxHi;  // the triangle's bounding box
     bool degenerate = false;
     bool insideOne = false;  // one candidate, and a vertex lies in its box: it meets it, no filter needed
+    // Within its one candidate's slab on two axes: a voxel of the row meets it iff the voxel's
+    // slab on the third meets its extent there (the triangle's projection on that axis), exact.
+    bool boxDecides = false;
 
     BinnedTriangle(const UniformGrid& grid, const VoxelFaces& faces, std::uint32_t i, float voxelMargin, VoxelBlockFilter& filter)
         : id(i), triangle(grid.triangles[i]), block(filter) {
         const gpu::GridParams& p = grid.params;
         VoxelBlock candidates;
+        int containedAxes = 0;
         for (int a = 0; a < 3; ++a) {
             const float vmin = std::min({triangle.v0[a], triangle.v1[a], triangle.v2[a]});
             const float vmax = std::max({triangle.v0[a], triangle.v1[a], triangle.v2[a]});
             candidateRange(vmin - voxelMargin, vmax + voxelMargin, p.boundsMin[a], p.invCellSize[a], p.resolution[a], lo[a], hi[a]);
             candidates.lo[a] = faces.lo[a].data() + lo[a];
             candidates.hi[a] = faces.hi[a].data() + lo[a];
+            boxLo[a] = vmin, boxHi[a] = vmax;
+            containedAxes += lo[a] == hi[a] && faces.lo[a][lo[a]] <= boxLo[a] && boxHi[a] <= faces.hi[a][lo[a]];
         }
+        boxDecides = containedAxes >= 2;
+        if (boxDecides) return;
         candidates.size = hi - lo + 1;
         if (candidates.size == glm::ivec3(1)) {
             const glm::dvec3 v(triangle.v0), boxLo(faces.lo[0][lo.x], faces.lo[1][lo.y], faces.lo[2][lo.z]);
@@ -113,6 +122,11 @@ struct BinnedTriangle {
         filter.reset(vertices(), candidates);
         degenerate = !filter.proper() && cgalTriangle(triangle).is_degenerate();  // CGAL decides what the filter cannot
     }
+    bool boxesMeet(const VoxelFaces& faces, const glm::ivec3& voxel) const {
+        for (int a = 0; a < 3; ++a)
+            if (boxHi[a] < faces.lo[a][voxel[a]] || boxLo[a] > faces.hi[a][voxel[a]]) return false;
+        return true;
+    }
     std::array<glm::dvec3, 3> vertices() const { return {glm::dvec3(triangle.v0), glm::dvec3(triangle.v1), glm::dvec3(triangle.v2)}; }
 
     // Voxel (x, y, z): the block filter; where it is unsure, the per-sign filter; where both
@@ -120,6 +134,7 @@ struct BinnedTriangle {
     bool meets(const VoxelFaces& faces, int x, int y, int z, TestCounts& counts) const {
         ++counts.voxels;
         if (insideOne) return true;
+        if (boxDecides) return boxesMeet(faces, glm::ivec3(x, y, z));
         Overlap overlap = degenerate ? Overlap::Unsure : block.at(x - lo.x, y - lo.y, z - lo.z);
         if (overlap != Overlap::Unsure) return overlap == Overlap::Yes;
         const glm::dvec3 boxLo(faces.lo[0][x], faces.lo[1][y], faces.lo[2][z]), boxHi(faces.hi[0][x], faces.hi[1][y], faces.hi[2][z]);

@@ -28,7 +28,7 @@ constexpr double kPlaneBound = 16.0 * kEpsilon;  // twice gamma_8: a normal's co
 }  // namespace
 
 // The plane axis: normal = (v1 - v0) x (v2 - v0), each component a b - c d, and |a b| + |c d|.
-void VoxelBlockFilter::setPlane(const std::array<glm::dvec3, 3>& v) {
+[[gnu::always_inline]] inline void VoxelBlockFilter::setPlane(const std::array<glm::dvec3, 3>& v) {
     const glm::dvec3 e1 = v[1] - v[0], e2 = v[2] - v[0];
     proper_ = false;
     for (int a = 0; a < 3; ++a) {
@@ -42,7 +42,7 @@ void VoxelBlockFilter::setPlane(const std::array<glm::dvec3, 3>& v) {
 // The nine edge axes: edge e (start s = v[e], end v[e + 1], third vertex w = v[e + 2]) x box axis
 // d, p = d + 1 and q = d + 2 (mod 3), the three edges in lanes; f(w) = ep (w_q - s_q) - eq (w_p -
 // s_p) with its error bound gives the triangle's interval.
-__attribute__((target_clones("avx2", "default"))) void VoxelBlockFilter::setEdges(const std::array<glm::dvec3, 3>& v) {
+[[gnu::always_inline]] inline void VoxelBlockFilter::setEdges(const std::array<glm::dvec3, 3>& v) {
     Lanes start[3], end[3], third[3];  // per box axis: the lanes' s, end and w along it
     for (int a = 0; a < 3; ++a) {
         start[a] = Lanes{v[0][a], v[1][a], v[2][a], 0.0};
@@ -63,7 +63,7 @@ __attribute__((target_clones("avx2", "default"))) void VoxelBlockFilter::setEdge
 }
 
 // What the voxel index with faces [faceLo, faceHi] along axis a contributes to every test.
-__attribute__((target_clones("avx2", "default"))) void VoxelBlockFilter::fillIndexTerms(const std::array<glm::dvec3, 3>& v, int a, double faceLo, double faceHi, IndexTerms& t) const {
+[[gnu::always_inline]] inline void VoxelBlockFilter::fillIndexTerms(const std::array<glm::dvec3, 3>& v, int a, double faceLo, double faceHi, IndexTerms& t) const {
     t.overlaps = !(hi_[a] < faceLo || lo_[a] > faceHi);
     t.inside = 0;
     for (int k = 0; k < 3; ++k) t.inside |= unsigned(v[k][a] >= faceLo && v[k][a] <= faceHi) << k;
@@ -85,7 +85,7 @@ __attribute__((target_clones("avx2", "default"))) void VoxelBlockFilter::fillInd
     t.pMinError = kEdgeBound * magnitude(t.pMin), t.pMaxError = kEdgeBound * magnitude(t.pMax);
 }
 
-void VoxelBlockFilter::reset(const std::array<glm::dvec3, 3>& v, const VoxelBlock& block) {
+__attribute__((target_clones("avx2", "default"))) void VoxelBlockFilter::reset(const std::array<glm::dvec3, 3>& v, const VoxelBlock& block) {
     lo_ = glm::min(glm::min(v[0], v[1]), v[2]), hi_ = glm::max(glm::max(v[0], v[1]), v[2]);
     setPlane(v);
     setEdges(v);
