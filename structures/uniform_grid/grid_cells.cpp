@@ -25,8 +25,8 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 
 // Candidate cell range of [vmin, vmax] on one axis. The float cell computation may be off by one
 // within rounding of a boundary, so a coordinate that close to one widens the range by a cell;
-// the exact predicate then decides. Clamped with fmax/fmin, which also send a NaN to the grid's
-// edge, so the range is always within [0, resolution - 1].
+// the exact predicate then decides. Clamped so that a NaN goes to the grid's edge too (each
+// comparison with it is false): the range is always within [0, resolution - 1].
 void candidateRange(float vmin, float vmax, float boxMin, float invCellSize, unsigned resolution, int& lo, int& hi) {
     constexpr double kNear = 1e-4;  // in cells; rounding errors are ~1e-6 cells
     const double localMin = (double(vmin) - boxMin) * invCellSize;
@@ -35,8 +35,9 @@ void candidateRange(float vmin, float vmax, float boxMin, float invCellSize, uns
     if (localMin - cellMin < kNear) cellMin -= 1.0;
     if (cellMax + 1.0 - localMax < kNear) cellMax += 1.0;
     const double last = static_cast<double>(resolution) - 1.0;
-    lo = static_cast<int>(std::fmin(std::fmax(cellMin, 0.0), last));
-    hi = static_cast<int>(std::fmax(std::fmin(cellMax, last), 0.0));
+    const double loClamped = cellMin > 0.0 ? cellMin : 0.0, hiClamped = cellMax < last ? cellMax : last;
+    lo = static_cast<int>(loClamped < last ? loClamped : last);
+    hi = static_cast<int>(hiClamped > 0.0 ? hiClamped : 0.0);
 }
 
 // The CGAL triangle of a grid triangle.
