@@ -56,9 +56,9 @@ RTBENCH_CONST kPathMaxPasses = 64u;  // shading passes of one path (reflection.i
 // ---- specialization-constant ids ----
 RTBENCH_CONST kSpecWorkgroupSize = 0;    // local_size_x of every kernel (default 64)
 RTBENCH_CONST kSpecInstrument = 1;       // 1: count work and bytes; 0: timing runs
-RTBENCH_CONST kSpecTraverseSteps = 2;    // multipass: traversal steps per traverse pass (K)
-RTBENCH_CONST kSpecIntersections = 3;    // multipass: triangle tests per intersect pass (M)
-RTBENCH_CONST kSpecSuppress = 4;         // multipass: 1 = rays done mid-pass skip the rest's reads
+RTBENCH_CONST kSpecTraverseSteps = 2;    // multipass: traversal steps per traverse pass (K); every structure's mpTraverse reads it
+RTBENCH_CONST kSpecIntersections = 3;    // multipass: triangle tests per intersect pass (M); every structure's mpIntersect reads it
+RTBENCH_CONST kSpecSuppress = 4;         // multipass: 1 = rays done mid-pass skip the rest's reads (the structures' hooks)
 RTBENCH_CONST kSpecTriangleTest = 5;     // kTriangleTest*: the ray-triangle test (intersection.test)
 RTBENCH_CONST kSpecVertexBits = 6;       // 0: float vertices (Triangle); 1..16: packed (kPackedTriangleWords)
 RTBENCH_CONST kSpecLatticeOriginX = 7;   // packed vertices: the lattice's origin (float bits) ...
@@ -66,26 +66,12 @@ RTBENCH_CONST kSpecLatticeOriginY = 8;
 RTBENCH_CONST kSpecLatticeOriginZ = 9;
 RTBENCH_CONST kSpecLatticeStep = 10;     // ... and its spacing, a power of two (float bits)
 RTBENCH_CONST kSpecQuery = 11;           // kQuery*: what a ray asks of the scene
-RTBENCH_CONST kSpecRaysPerFetch = 12;    // persistent threads: rays a subgroup fetches at a time (a multiple of its size)
-RTBENCH_CONST kSpecSchedule = 13;        // megakernel: kSchedule*, how a subgroup picks the state it runs
-RTBENCH_CONST kSpecCompact = 14;         // multipass: 1 = passes serve the rays of a compacted list (control on the device)
-RTBENCH_CONST kSpecOracleThreshold = 15; // multipass oracle kernel: floor(oracle_threshold * 2^31)
-RTBENCH_CONST kSpecNaive = 16;           // multipass oracle kernel: 1 = Christen's naive schedule
-RTBENCH_CONST kSpecPassCap = 17;         // multipass oracle kernel: the pass cap (multipassPassCap)
-RTBENCH_CONST kSpecMaxGroupsX = 18;      // multipass oracle kernel: maxComputeWorkGroupCount[0]
-RTBENCH_CONST kSpecOracleAllRays = 19;   // multipass oracle kernel: 1 = the threshold's basis is the stream's rays (oracle_basis = all)
-RTBENCH_CONST kSpecNativeDivision = 20;  // 1: rtDivide is the device's own division (OpFDiv, 2.5 ULP allowed): strategy plain
-RTBENCH_CONST kSpecDivision = 21;        // kDivision*: how rtDivide rounds exactly (intersection.division)
-RTBENCH_CONST kSpecListPartitions = 22;  // multipass, control on the device: partitions of each ray list (1..kMaxListPartitions)
-RTBENCH_CONST kSpecMaxFetches = 23;      // persistent threads: fetches a subgroup makes at most (0: until the stream is done)
-RTBENCH_CONST kSpecPersistentWorkgroups = 24;  // persistent threads: the workgroups asked for (a 2-D grid may pad beyond them)
-
-// ---- megakernel schedules (strategies/megakernel/megakernel.comp; Parker et al. 2013 §5.1-5.2) ----
-RTBENCH_CONST kScheduleSwitch = 0;          // each lane runs its own state: the subgroup runs every state present, one after another
-RTBENCH_CONST kScheduleIntersectFirst = 1;  // one state per iteration: intersect if any lane waits, else traverse
-RTBENCH_CONST kScheduleTraverseFirst = 2;   // one state per iteration: traverse if any lane traverses, else intersect
-RTBENCH_CONST kScheduleMajority = 3;        // one state per iteration: the one more lanes are in (a tie: intersect)
-
+RTBENCH_CONST kSpecNativeDivision = 12;  // 1: rtDivide is the device's own division (OpFDiv, 2.5 ULP allowed): strategy plain
+RTBENCH_CONST kSpecDivision = 13;        // kDivision*: how rtDivide rounds exactly (intersection.division)
+RTBENCH_CONST kSpecMaxGroupsX = 14;      // kernels that size an indirect dispatch: maxComputeWorkGroupCount[0]
+// A strategy numbers its own constants from here, in its folder (strategies/<name>/<name>_layout.h):
+// each kernel is its own SPIR-V module, so two strategies may use the same ids.
+RTBENCH_CONST kSpecStrategyFirst = 15;
 
 // ---- queries (pbrt's Intersect and IntersectP; Embree's rtcIntersect and rtcOccluded) ----
 RTBENCH_CONST kQueryClosest = 0;  // the nearest hit in [tMin, tMax)
@@ -148,12 +134,11 @@ RTBENCH_CONST kCountStencilWrites = 3;  // ray-state bytes written (state change
 RTBENCH_CONST kCountStructureReads = 4; // structure records read (grid: cell offsets; BVH: nodes)
 RTBENCH_CONST kCountTriangleReads = 5;  // triangle-list entries read, each with its vertices
 RTBENCH_CONST kCountStackEntries = 6;   // node-stack entries pushed or popped in memory (multipass on a BVH)
-RTBENCH_CONST kCountActiveLanes = 7;    // branching, persistent, megakernel: sum of active lanes over subgroup ballots
+RTBENCH_CONST kCountActiveLanes = 7;    // kernels with subgroup ballots: sum of active lanes over them
 RTBENCH_CONST kCountLaneSlots = 8;      // the same: sum of subgroup size over subgroup ballots
-RTBENCH_CONST kCountRaysFetched = 9;   // persistent threads: the ray-fetch counter (rays handed out, overshoot included)
-RTBENCH_CONST kCountRaysTraced = 10;   // persistent threads: rays whose record a lane wrote; path megakernel: rays traced
-RTBENCH_CONST kCountRunsTraverse = 11; // megakernel: subgroup executions of the traverse state
-RTBENCH_CONST kCountRunsIntersect = 12;// megakernel: subgroup executions of the intersect state
+// A strategy numbers its own counters from here, in its folder (strategies/<name>/<name>_layout.h),
+// below kCountSlots; only its own kernels and host code read them.
+RTBENCH_CONST kCountStrategyFirst = 9;
 RTBENCH_CONST kCountSlots = 13;
 RTBENCH_CONST kPassLogSums = 8;         // the PassCounters slots a pass log entry keeps: kCountTraversing..kCountStackEntries and one more
 

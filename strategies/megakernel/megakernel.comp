@@ -8,6 +8,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #include "bindings.glsl"
+#include "megakernel_layout.h"
 #include "traversal_common.glsl"
 #define MP_PRIVATE_STACK  // a structure's stack in an array of its own (structures/bvh/bvh_traversal.glsl)
 #include "structure.glsl"

@@ -7,6 +7,7 @@
 #include <bit>
 
 #include "core/error.h"
+#include "megakernel_layout.h"
 
 namespace rtbench {
 

@@ -1,5 +1,6 @@
 #include "megakernel_strategy.h"
 
+#include "megakernel_layout.h"
 #include "megakernel_model.h"
 #include "strategies/branching/branching_strategy.h"
 

@@ -1,6 +1,7 @@
 // What every multipass kernel does around the structure's per-ray work: the stencil test (early
 // exit of rays in other states, Purcell's early fragment kill), saving the new state, and counting.
 #include "bindings.glsl"
+#include "multipass_layout.h"
 #include "traversal_common.glsl"
 // The per-ray state kept between passes, in multipass's own slots (kernels/gpu_layout.h).
 layout(std430, set = 0, binding = kBindingStencil) buffer StencilBuffer { uint8_t stencil[]; };

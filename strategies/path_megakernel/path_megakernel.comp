@@ -9,6 +9,7 @@
 
 #define RT_QUERY_PER_TRACE
 #include "bindings.glsl"
+#include "path_megakernel_layout.h"
 #include "trace_whole.glsl"
 #include "shading.glsl"
 
@@ -35,7 +36,7 @@ void main() {
     while (tracing) {
         query = g == passes ? batchQuery : kQueryClosest;
         HitRecord h = rtTrace(r);
-        if (instrument != 0u) rtCount(kCountRaysTraced, 1u);
+        if (instrument != 0u) rtCount(kCountPathRaysTraced, 1u);
         if (g == 0u) cameraHit = h;
         if (g == passes) {  // the batch: its ray and record at its path
             rtWriteRecord(path, h);

@@ -2,6 +2,7 @@
 
 #include <cstring>
 
+#include "path_megakernel_layout.h"
 #include "strategies/branching/branching_strategy.h"
 #include "methods/metrics.h"
 #include "methods/whole_path.h"
@@ -118,7 +119,7 @@ StrategyRun runPathMegakernelStrategy(VulkanContext& vk, const Structure& struct
     const gpu::PassCounters counters = buffers->readPassCounters();
     const PathEnds ends = downloadPathEnds(*buffers, paths);
     writeWholePathColumns(path, row);
-    const std::uint64_t traced = counters.counts[gpu::kCountRaysTraced];
+    const std::uint64_t traced = counters.counts[gpu::kCountPathRaysTraced];
     row["path_megakernel_rays_traced"] = std::to_string(traced);
 
     // Judged as a whole-traversal kernel's run: its batch records, in the batch's order, and its

@@ -10,6 +10,7 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "bindings.glsl"
+#include "persistent_layout.h"
 #include "trace_whole.glsl"
 
 layout(constant_id = kSpecRaysPerFetch) const uint raysPerFetch = 32u;

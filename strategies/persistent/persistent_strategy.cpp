@@ -1,5 +1,7 @@
 #include "persistent_strategy.h"
 
+#include "persistent_layout.h"
+
 #include "strategies/branching/branching_strategy.h"
 #include "strategies/branching/lane_counts.h"
 #include "methods/stream_batches.h"

@@ -6,6 +6,7 @@
 #include <random>
 
 #include "strategies/branching/branching_strategy.h"
+#include "strategies/persistent/persistent_layout.h"
 #include "harness/embree_reference.h"
 #include "methods/metrics.h"
 #include "structures/uniform_grid/uniform_grid.h"

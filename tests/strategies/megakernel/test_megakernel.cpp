@@ -10,6 +10,7 @@
 #include "structures/bvh/bvh_build.h"
 #include "structures/bvh/bvh_structure.h"
 #include "structures/uniform_grid/grid_structure.h"
+#include "strategies/megakernel/megakernel_layout.h"
 #include "strategies/megakernel/megakernel_model.h"
 #include "scene/camera.h"
 #include "scene/procedural.h"

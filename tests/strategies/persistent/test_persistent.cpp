@@ -15,6 +15,7 @@
 #include "structures/uniform_grid/grid_reference.h"
 #include "structures/uniform_grid/grid_structure.h"
 #include "methods/metrics.h"
+#include "strategies/persistent/persistent_layout.h"
 #include "strategies/persistent/persistent_strategy.h"
 #include "core/error.h"
 #include "scene/procedural.h"

@@ -1,0 +1,23 @@
+// The path megakernel's own counter, numbered from the ids kernels/gpu_layout.h leaves to a
+// strategy. Included by C++ and by GLSL (path_megakernel.comp).
+#ifndef RTBENCH_PATH_MEGAKERNEL_LAYOUT_H
+#define RTBENCH_PATH_MEGAKERNEL_LAYOUT_H
+
+#include "../../kernels/gpu_layout.h"
+
+#ifdef __cplusplus
+namespace rtbench::gpu {
+#define RTBENCH_CONST constexpr uint
+#else
+#define RTBENCH_CONST const uint
+#endif
+
+RTBENCH_CONST kCountPathRaysTraced = kCountStrategyFirst + 0u;  // rays traced, every generation's
+
+#ifdef __cplusplus
+static_assert(kCountPathRaysTraced < kCountSlots);
+}  // namespace rtbench::gpu
+#endif
+#undef RTBENCH_CONST
+
+#endif  // RTBENCH_PATH_MEGAKERNEL_LAYOUT_H
