@@ -14,12 +14,13 @@
 #include "scene/camera.h"
 #include "scene/procedural.h"
 #include "tests/device/test_device.h"
-#include "tests/strategies/multipass/hand_scene.h"
+#include "tests/methods/hand_scenes.h"
+#include "tests/strategies/multipass/multipass_options.h"
 
 namespace rtbench {
 namespace {
 
-// The hand scene (hand_scene.h): a 4x1x1 grid, voxel lists v0 {0}, v1 {}, v2 {2,3}, v3 {1,4,5};
+// The hand scene (tests/methods/hand_scenes.h): a 4x1x1 grid, voxel lists v0 {0}, v1 {}, v2 {2,3}, v3 {1,4,5};
 // ray 0 along +x hits triangle 2, ray 1 misses the box, ray 2 along -x hits triangle 4.
 using hand::handGrid;
 using hand::handRays;

@@ -19,7 +19,8 @@
 #include "scene/camera.h"
 #include "scene/procedural.h"
 #include "tests/device/test_device.h"
-#include "tests/strategies/multipass/hand_scene.h"
+#include "tests/methods/hand_scenes.h"
+#include "tests/strategies/multipass/multipass_options.h"
 
 namespace rtbench {
 namespace {
