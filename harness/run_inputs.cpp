@@ -5,7 +5,7 @@
 #include "scene/scene_description.h"
 #include "scene/scene_limits.h"
 #include "scene/simplify.h"
-#include "methods/triangle_store.h"
+#include "structures/triangle_store.h"
 #include "plan/warnings.h"
 
 namespace rtbench {

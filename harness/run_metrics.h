@@ -11,7 +11,7 @@
 #include "exact_reference.h"
 #include "images.h"
 #include "methods/accounting.h"
-#include "methods/structure.h"
+#include "structures/structure.h"
 #include "noise_guard.h"
 #include "statistics.h"
 #include "timing_rounds.h"

@@ -14,7 +14,7 @@
 #include "harness/path_check.h"
 #include "harness/run_verdict.h"
 #include "methods/registry.h"
-#include "methods/tile_order.h"
+#include "rays/primary/tile_order.h"
 #include "plan/warnings.h"
 #include "scene/camera.h"
 #include "rays/registry.h"

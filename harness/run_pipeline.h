@@ -14,8 +14,8 @@
 #include "harness/output_folder.h"
 #include "harness/run_inputs.h"
 #include "harness/timing_rounds.h"
-#include "methods/strategy.h"
-#include "methods/structure.h"
+#include "strategies/strategy.h"
+#include "structures/structure.h"
 #include "rays/workload.h"
 #include "scene/camera.h"
 

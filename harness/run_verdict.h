@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <string>
 
-#include "methods/strategy.h"
+#include "strategies/strategy.h"
 
 namespace rtbench {
 

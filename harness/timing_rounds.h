@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "methods/strategy.h"
+#include "strategies/strategy.h"
 #include "plan/columns.h"
 #include "plan/keys.h"
 

@@ -41,7 +41,7 @@ RTBENCH_CONST kBindingRayLists = kBindingStrategy + 4u;     // uint[4 * rayCount
 RTBENCH_CONST kBindingPassControl = kBindingStrategy + 5u;  // PassControl, then PassLogEntry[kPassLogEntries]
 RTBENCH_CONST kPassLogEntries = 1024u;  // the pass log is a ring: pass p (from 1) at (p - 1) % kPassLogEntries
 
-// The slots of the strategies that trace a whole path from the camera rays (methods/whole_path.h:
+// The slots of the strategies that trace a whole path from the camera rays (strategies/whole_path.h:
 // the wavefront, Laine, Karras & Aila 2013's queues, and the path megakernel). The wavefront's
 // queue is the common rays and hits slots; the megakernel writes each path's batch ray to the
 // made slots and its record to the hits slot, by path.
@@ -155,7 +155,7 @@ struct Triangle {
     vec4 v2;  // byte 32
 };
 
-// Packed vertices (intersection.vertex_bits < 32, methods/triangle_store.h): every vertex is a
+// Packed vertices (intersection.vertex_bits < 32, structures/triangle_store.h): every vertex is a
 // point of one lattice over the scene's box, origin + q * step with q < 2^16 per axis and step a
 // power of two, so the product is exact and the sum rounds once (no FMA can change it).
 // Triangle i is 5 words from word 5i:
@@ -247,7 +247,7 @@ struct PassLogEntry {
                       //          w: rays the pass was dispatched for (its input list; setup: the stream)
 };
 
-// A whole path's passes and state on the device (methods/whole_path.h). The wavefront hands it on
+// A whole path's passes and state on the device (strategies/whole_path.h). The wavefront hands it on
 // between its kernels: the queue of the generation being traced, the slots its shading pass fills
 // (queue rays x fan-out). All but `passes`, `material` and `limits.xyz` are the wavefront's,
 // written on the device (wavefront_setup.comp, wavefront_scan.comp); the megakernel reads the rest.

@@ -1,5 +1,5 @@
 // Rays after the first hit: ONE source for the shading pass and the CPU (rays/
-// shading_reference.h compiles it as C++, as methods/shared_source_begin.h does a traversal), so
+// shading_reference.h compiles it as C++, as structures/shared_source_begin.h does a traversal), so
 // every method, Embree and the exact reference trace the same float rays, bit for bit.
 // Include after kernels/ray_math.glsl. The rule every secondary ray leaves a surface by is
 // rtOffsetRay's, whatever the method.

@@ -8,7 +8,7 @@
 
 // Hooks for instrumentation at each iteration of a traversal's outer loop (voxels, BVH
 // references) and of its triangle loop: strategies/branching/branching.comp counts subgroup lanes there, the
-// CPU reference logs the loop trips (methods/shared_source_begin.h); none elsewhere.
+// CPU reference logs the loop trips (structures/shared_source_begin.h); none elsewhere.
 #ifndef RT_ON_OUTER
 #define RT_ON_OUTER()
 #endif

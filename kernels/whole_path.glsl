@@ -1,4 +1,4 @@
-// What the kernels that trace a whole path from the camera rays share (methods/whole_path.h: the
+// What the kernels that trace a whole path from the camera rays share (strategies/whole_path.h: the
 // wavefront's and the path megakernel's): the control block with the passes, the camera rays and
 // the vertices the shading passes read. Include after gpu_layout.h.
 #ifndef RT_WHOLE_PATH_GLSL

@@ -9,7 +9,7 @@
 #include "methods/instructions/instruction_estimate.h"
 #include "methods/metrics.h"
 #include "strategies/multipass/multipass_schedule.h"
-#include "methods/structure.h"
+#include "structures/structure.h"
 
 namespace rtbench {
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "methods/strategy.h"
-#include "methods/structure.h"
+#include "strategies/strategy.h"
+#include "structures/structure.h"
 
 namespace rtbench {
 

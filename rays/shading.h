@@ -60,7 +60,7 @@ ShadedRays shadeOnCpu(const TriangleMesh& scene, const Surfaces& surfaces, const
                       const gpu::ShadingParams& pass);
 
 // The same on the device (kernels/shading.comp), the scene as its float triangles
-// (methods/triangle_store.h floatTriangles), uploaded for the call; `ms` gets the dispatch's GPU
+// (structures/triangle_store.h floatTriangles), uploaded for the call; `ms` gets the dispatch's GPU
 // time (-1 without timestamps).
 ShadedRays shadeOnDevice(VulkanContext& vk, unsigned workgroupSize, const std::vector<gpu::Triangle>& triangles,
                          const Surfaces& surfaces, const ShadingInput& in, const gpu::ShadingParams& pass, double& ms);

@@ -1,7 +1,7 @@
 #include "workload.h"
 
 #include "device/gpu_buffers.h"
-#include "methods/triangle_store.h"
+#include "structures/triangle_store.h"
 #include "core/error.h"
 #include "rays/shading.h"
 

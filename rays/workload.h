@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "device/vulkan_context.h"
-#include "methods/ray_batch.h"
-#include "methods/structure.h"
+#include "strategies/ray_batch.h"
+#include "structures/structure.h"
 #include "plan/columns.h"
 #include "plan/keys.h"
 #include "scene/mesh.h"

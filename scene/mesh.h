@@ -20,7 +20,7 @@ struct Bounds3 {
     bool empty() const { return min.x > max.x; }
 };
 
-// A lattice the vertices lie on (intersection.vertex_bits, methods/triangle_store.h): each vertex is
+// A lattice the vertices lie on (intersection.vertex_bits, structures/triangle_store.h): each vertex is
 // origin + q * step in float, q an integer vector in [0, 2^bits), step a power of two.
 struct VertexLattice {
     unsigned bits = 0;  // 0: float vertices, on no lattice

@@ -13,7 +13,7 @@
 #include "methods/accounting.h"
 #include "methods/cache/cache_simulator.h"
 #include "strategies/multipass/multipass_schedule.h"
-#include "methods/structure.h"
+#include "structures/structure.h"
 #include "plan/columns.h"
 #include "plan/keys.h"
 

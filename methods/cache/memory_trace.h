@@ -1,4 +1,4 @@
-// The memory reads of the kernels' source compiled as C++ (methods/shared_kernels.h), for the
+// The memory reads of the kernels' source compiled as C++ (structures/shared_kernels.h), for the
 // texture-cache simulation of Purcell et al. 2002 §4.1 and Fig. 9: a structure's buffers are
 // TracedArrays, which report every element the source reads to the calling thread's current
 // MemoryTrace (none, as in every other use: a plain array read). The trace places the host

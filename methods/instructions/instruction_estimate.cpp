@@ -2,7 +2,7 @@
 
 #include "methods/instructions/spirv_instructions.h"
 #include "strategies/multipass/multipass_schedule.h"
-#include "methods/structure.h"
+#include "structures/structure.h"
 
 namespace rtbench {
 

@@ -5,7 +5,7 @@
 #include "lane_counts.h"
 #include "device/embedded_kernels.h"
 #include "methods/cache/cache_replay.h"
-#include "methods/stream_batches.h"
+#include "strategies/stream_batches.h"
 #include "core/error.h"
 #include "scene/scene_limits.h"
 #include "plan/warnings.h"

@@ -3,7 +3,7 @@
 // whole traversal.
 #pragma once
 #include "strategies/branching/lane_counts.h"
-#include "methods/strategy.h"
+#include "strategies/strategy.h"
 
 namespace rtbench {
 

@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "methods/ray_batch.h"
-#include "methods/structure.h"
+#include "strategies/ray_batch.h"
+#include "structures/structure.h"
 
 namespace rtbench {
 

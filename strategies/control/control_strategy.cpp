@@ -5,7 +5,7 @@
 
 #include "device/embedded_kernels.h"
 #include "core/error.h"
-#include "methods/dispatch_timer.h"
+#include "strategies/dispatch_timer.h"
 #include "scene/camera.h"
 #include "strategies/branching/branching_strategy.h"
 #include "strategies/control/kernels/control_layout.h"

@@ -7,7 +7,7 @@
 // exact reference and Embree, and compared with the CPU reference's (counted, not failed: the
 // device divides as it will).
 #pragma once
-#include "methods/strategy.h"
+#include "strategies/strategy.h"
 
 namespace rtbench {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "methods/structure.h"
+#include "structures/structure.h"
 
 namespace rtbench {
 

@@ -3,7 +3,7 @@
 // the state it runs each iteration (strategy.schedule), against the CPU model of the same
 // schedule (megakernel_model.h).
 #pragma once
-#include "methods/strategy.h"
+#include "strategies/strategy.h"
 
 namespace rtbench {
 

@@ -16,7 +16,7 @@
 #include "methods/accounting.h"
 #include "methods/cache/memory_trace.h"
 #include "strategies/multipass/multipass_schedule.h"
-#include "methods/structure.h"
+#include "structures/structure.h"
 
 namespace rtbench {
 

@@ -6,7 +6,7 @@
 
 #include "device/embedded_kernels.h"
 #include "methods/cache/cache_replay.h"
-#include "methods/stream_batches.h"
+#include "strategies/stream_batches.h"
 #include "multipass_layout.h"
 #include "multipass_simulator.h"
 #include "core/error.h"

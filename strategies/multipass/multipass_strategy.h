@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "device/gpu_buffers.h"
-#include "methods/strategy.h"
+#include "strategies/strategy.h"
 #include "multipass_schedule.h"
 
 namespace rtbench {

@@ -5,7 +5,7 @@
 #include "path_megakernel_layout.h"
 #include "strategies/branching/branching_strategy.h"
 #include "methods/metrics.h"
-#include "methods/whole_path.h"
+#include "strategies/whole_path.h"
 #include "core/error.h"
 
 namespace rtbench {

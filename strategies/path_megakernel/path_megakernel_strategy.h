@@ -2,7 +2,7 @@
 // strategies/path_megakernel/path_megakernel.comp, one dispatch tracing the whole path of every
 // camera ray in registers, shading between the traces; the wavefront's peer on the same path.
 #pragma once
-#include "methods/strategy.h"
+#include "strategies/strategy.h"
 
 namespace rtbench {
 

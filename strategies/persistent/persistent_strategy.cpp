@@ -4,7 +4,7 @@
 
 #include "strategies/branching/branching_strategy.h"
 #include "strategies/branching/lane_counts.h"
-#include "methods/stream_batches.h"
+#include "strategies/stream_batches.h"
 #include "core/error.h"
 
 namespace rtbench {

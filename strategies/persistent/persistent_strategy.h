@@ -2,7 +2,7 @@
 // a fixed grid of workgroups whose subgroups take batches of rays from an atomic counter until the
 // stream is done, each lane running its ray's whole traversal as the branching kernel does.
 #pragma once
-#include "methods/strategy.h"
+#include "strategies/strategy.h"
 
 namespace rtbench {
 

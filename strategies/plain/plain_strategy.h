@@ -5,7 +5,7 @@
 // hits are judged against the exact reference (and Embree), as the driver's are; the records that
 // differ from the CPU reference's (which divides exactly) are counted, not failed.
 #pragma once
-#include "methods/strategy.h"
+#include "strategies/strategy.h"
 
 namespace rtbench {
 

@@ -5,8 +5,8 @@
 #include "device/embedded_kernels.h"
 #include "structures/driver/driver_structure.h"
 #include "strategies/branching/branching_strategy.h"
-#include "methods/dispatch_timer.h"
-#include "methods/stream_batches.h"
+#include "strategies/dispatch_timer.h"
+#include "strategies/stream_batches.h"
 #include "core/error.h"
 
 namespace rtbench {

@@ -4,7 +4,7 @@
 // arithmetic is not rtbench's: its hits are judged against the exact reference and Embree, as
 // Embree's are, not bit for bit against a CPU re-implementation, and it counts no work.
 #pragma once
-#include "methods/strategy.h"
+#include "strategies/strategy.h"
 
 namespace rtbench {
 

@@ -6,7 +6,7 @@
 #include "strategies/branching/branching_strategy.h"
 #include "strategies/branching/lane_counts.h"
 #include "methods/metrics.h"
-#include "methods/whole_path.h"
+#include "strategies/whole_path.h"
 #include "core/error.h"
 
 namespace rtbench {

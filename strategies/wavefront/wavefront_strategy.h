@@ -6,7 +6,7 @@
 // (wavefront_compact.comp); each stage dispatched indirectly with the workgroups the one before
 // wrote. Its time is the whole path's; every generation is checked against the CPU's.
 #pragma once
-#include "methods/strategy.h"
+#include "strategies/strategy.h"
 
 namespace rtbench {
 

@@ -1,16 +1,16 @@
 // CPU reference of brute force: its kernels' own source (kernels/ray_math.glsl,
 // kernels/traversal_common.glsl and brute_traversal.glsl) compiled as C++
-// (methods/shared_kernels.h).
+// (structures/shared_kernels.h).
 #pragma once
 #include "brute_layout.h"
-#include "methods/shared_kernels.h"
+#include "structures/shared_kernels.h"
 
 namespace rtbench {
 
 namespace bruteref {
 using namespace glm;
 using namespace rtbench::gpu;
-#include "methods/shared_source_begin.h"
+#include "structures/shared_source_begin.h"
 struct BruteKernels : KernelConstants {
     using RtTraversalState = BruteTraversalState;
     static constexpr std::uint64_t kTraversalStackBytes = 0;  // no node stack
@@ -21,7 +21,7 @@ struct BruteKernels : KernelConstants {
 #include "../../kernels/traversal_common.glsl"
 #include "brute_traversal.glsl"
 };
-#include "methods/shared_source_end.h"
+#include "structures/shared_source_end.h"
 }  // namespace bruteref
 
 }  // namespace rtbench

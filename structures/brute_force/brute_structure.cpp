@@ -3,8 +3,8 @@
 #include <chrono>
 
 #include "brute_reference.h"
-#include "methods/shared_source.h"
-#include "methods/triangle_store.h"
+#include "structures/shared_source.h"
+#include "structures/triangle_store.h"
 #include "structures/brute_force/brute_layout.h"
 #include "core/error.h"
 

@@ -1,7 +1,7 @@
-// Brute force as a method's structure (methods/structure.h): no structure at all, every ray
+// Brute force as a method's structure (structures/structure.h): no structure at all, every ray
 // tests every triangle. The baseline of "no more structure than a scene needs".
 #pragma once
-#include "methods/structure.h"
+#include "structures/structure.h"
 
 namespace rtbench {
 

@@ -7,7 +7,7 @@
 #include <functional>
 #include <new>
 
-#include "methods/triangle_store.h"
+#include "structures/triangle_store.h"
 #include "core/error.h"
 #include "scene/scene_limits.h"
 

@@ -1,16 +1,16 @@
 // CPU reference of the BVH: its kernels' own source (kernels/ray_math.glsl,
-// kernels/traversal_common.glsl and bvh_traversal.glsl) compiled as C++ (methods/shared_kernels.h),
+// kernels/traversal_common.glsl and bvh_traversal.glsl) compiled as C++ (structures/shared_kernels.h),
 // so its hits, per-ray counters and multipass events equal the GPU kernels' bit for bit.
 #pragma once
 #include "bvh_build.h"
-#include "methods/shared_kernels.h"
+#include "structures/shared_kernels.h"
 
 namespace rtbench {
 
 namespace bvhref {
 using namespace glm;
 using namespace rtbench::gpu;
-#include "methods/shared_source_begin.h"
+#include "structures/shared_source_begin.h"
 struct BvhKernels : KernelConstants {
     using RtTraversalState = BvhTraversalState;
     static constexpr std::uint64_t kTraversalStackBytes = sizeof(BvhTraversalState::stack);  // its node stack, at its end
@@ -37,7 +37,7 @@ struct BvhKernels : KernelConstants {
 #undef MP_STACK_READ
 #undef MP_STACK_WRITE
 };
-#include "methods/shared_source_end.h"
+#include "structures/shared_source_end.h"
 }  // namespace bvhref
 
 // The shared source over a flattened tree, float vertices.

@@ -1,9 +1,9 @@
 #include "bvh_structure.h"
 
-#include "methods/cost_model.h"
+#include "structures/cost_model.h"
 #include "bvh_reference.h"
-#include "methods/shared_source.h"
-#include "methods/triangle_store.h"
+#include "structures/shared_source.h"
+#include "structures/triangle_store.h"
 #include "core/error.h"
 
 namespace rtbench {

@@ -1,10 +1,10 @@
-// The BVH as a method's structure (methods/structure.h): Embree's builder, flattened to the
+// The BVH as a method's structure (structures/structure.h): Embree's builder, flattened to the
 // layout of bvh_layout.h, traversed per ray with a stack (bvh_traversal.glsl).
 #pragma once
 #include <memory>
 
 #include "bvh_build.h"
-#include "methods/structure.h"
+#include "structures/structure.h"
 
 namespace rtbench {
 

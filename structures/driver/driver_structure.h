@@ -7,7 +7,7 @@
 #include <memory>
 
 #include "device/acceleration_structure.h"
-#include "methods/structure.h"
+#include "structures/structure.h"
 
 namespace rtbench {
 

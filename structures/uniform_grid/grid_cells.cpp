@@ -13,7 +13,7 @@
 #include <string>
 
 #include "core/error.h"
-#include "methods/triangle_store.h"
+#include "structures/triangle_store.h"
 #include "triangle_box_filter.h"
 #include "voxel_block_filter.h"
 #include "voxel_row.h"

@@ -1,12 +1,12 @@
 // CPU reference of the uniform grid: the functional simulator of Purcell §4.1. It runs the
 // kernels' own source (kernels/ray_math.glsl, kernels/traversal_common.glsl and this folder's
-// grid_traversal.glsl and grid_multipass.glsl, compiled as C++ here: methods/shared_kernels.h), so
+// grid_traversal.glsl and grid_multipass.glsl, compiled as C++ here: structures/shared_kernels.h), so
 // its hits, per-ray counters and multipass events must equal the GPU kernels' on the same rays,
 // bit for bit.
 #pragma once
 #include <vector>
 
-#include "methods/shared_kernels.h"
+#include "structures/shared_kernels.h"
 #include "uniform_grid.h"
 
 namespace rtbench {
@@ -14,7 +14,7 @@ namespace rtbench {
 namespace gridref {
 using namespace glm;
 using namespace rtbench::gpu;
-#include "methods/shared_source_begin.h"
+#include "structures/shared_source_begin.h"
 struct GridKernels : KernelConstants {
     using RtTraversalState = GridTraversalState;
     static constexpr std::uint64_t kTraversalStackBytes = 0;  // no node stack
@@ -28,7 +28,7 @@ struct GridKernels : KernelConstants {
 #include "grid_traversal.glsl"
 #include "grid_multipass.glsl"
 };
-#include "methods/shared_source_end.h"
+#include "structures/shared_source_end.h"
 }  // namespace gridref
 
 gridref::GridKernels gridKernels(const UniformGrid& grid);

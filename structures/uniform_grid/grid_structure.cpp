@@ -4,9 +4,9 @@
 
 #include "device/gpu_buffers.h"
 #include "grid_reference.h"
-#include "methods/shared_source.h"
-#include "methods/cost_model.h"
-#include "methods/triangle_store.h"
+#include "structures/shared_source.h"
+#include "structures/cost_model.h"
+#include "structures/triangle_store.h"
 #include "core/error.h"
 
 namespace rtbench {

@@ -1,9 +1,9 @@
-// The uniform grid as a method's structure (methods/structure.h): Purcell et al. 2002's grid at a
+// The uniform grid as a method's structure (structures/structure.h): Purcell et al. 2002's grid at a
 // chosen resolution rule, its keys and columns.
 #pragma once
 #include <array>
 
-#include "methods/structure.h"
+#include "structures/structure.h"
 
 namespace rtbench {
 

@@ -11,7 +11,7 @@
 
 #include "strategies/branching/branching_strategy.h"
 #include "strategies/multipass/multipass_strategy.h"
-#include "methods/stream_batches.h"
+#include "strategies/stream_batches.h"
 #include "device/gpu_buffers.h"
 #include "harness/runner.h"
 #include "tests/device/test_device.h"

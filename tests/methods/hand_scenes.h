@@ -20,7 +20,7 @@
 #include "structures/uniform_grid/uniform_grid.h"
 #include "strategies/multipass/multipass_simulator.h"
 #include "strategies/multipass/multipass_strategy.h"
-#include "methods/structure.h"
+#include "structures/structure.h"
 #include "scene/camera.h"
 #include "scene/mesh.h"
 #include "scene/procedural.h"

@@ -11,7 +11,7 @@
 #include "tests/methods/hand_scenes.h"
 #include "tests/rays/workload_runs.h"
 #include "rays/refraction/refraction_rays.h"
-#include "methods/triangle_store.h"
+#include "structures/triangle_store.h"
 #include "rays/shading.h"
 
 namespace rtbench {

@@ -16,7 +16,7 @@
 #include "tests/temp_dir.h"
 #include "tests/rays/workload_runs.h"
 #include "rays/shading_reference.h"
-#include "methods/triangle_store.h"
+#include "structures/triangle_store.h"
 #include "rays/shading.h"
 #include "rays/shadow/shadow_rays.h"
 

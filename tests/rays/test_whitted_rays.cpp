@@ -9,7 +9,7 @@
 
 #include <cmath>
 
-#include "methods/triangle_store.h"
+#include "structures/triangle_store.h"
 #include "tests/device/test_device.h"
 #include "tests/error_of.h"
 #include "tests/methods/hand_scenes.h"

@@ -10,7 +10,7 @@
 #include "harness/embree_reference.h"
 #include "methods/metrics.h"
 #include "structures/uniform_grid/uniform_grid.h"
-#include "methods/stream_batches.h"
+#include "strategies/stream_batches.h"
 #include "scene/camera.h"
 #include "structures/uniform_grid/grid_reference.h"
 #include "structures/uniform_grid/grid_structure.h"

@@ -1,4 +1,4 @@
-// The strategies that trace a whole path on the device (methods/whole_path.h): the wavefront, stage
+// The strategies that trace a whole path on the device (strategies/whole_path.h): the wavefront, stage
 // by stage over queues, and the path megakernel, in one kernel. Capacities by hand; the parallel
 // mirrors' hand-computed iterations and a diffuse path of two rays per hit on every structure;
 // their checks catching a path that is not the device's; whole runs of every ray type they trace
@@ -11,7 +11,7 @@
 #include "strategies/branching/branching_strategy.h"
 #include "strategies/path_megakernel/path_megakernel_strategy.h"
 #include "strategies/wavefront/wavefront_strategy.h"
-#include "methods/whole_path.h"
+#include "strategies/whole_path.h"
 #include "core/error.h"
 #include "tests/device/test_device.h"
 #include "tests/error_of.h"

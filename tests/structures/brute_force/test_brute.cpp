@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "methods/accounting.h"
-#include "methods/triangle_store.h"
+#include "structures/triangle_store.h"
 #include "strategies/branching/branching_strategy.h"
 #include "strategies/branching/lane_counts.h"
 #include "structures/brute_force/brute_structure.h"

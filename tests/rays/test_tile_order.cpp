@@ -3,7 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "methods/tile_order.h"
+#include "rays/primary/tile_order.h"
 #include "tests/error_of.h"
 #include "tests/harness/test_experiment.h"
 

@@ -34,7 +34,7 @@ struct BatchPath {
     std::vector<gpu::Triangle> triangles;     // the traced scene's vertices, as the passes read them
     gpu::Material material{};                 // every surface's
     // Why the passes read more than one material or any light ("" when they do not): the
-    // whole-path strategies bind one material and no light (methods/whole_path.h).
+    // whole-path strategies bind one material and no light (strategies/whole_path.h).
     std::string notUniform;
     // Rays in all the generations: what a strategy tracing the whole path traces.
     std::uint64_t rays() const {

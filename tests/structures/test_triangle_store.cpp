@@ -10,7 +10,7 @@
 #include "structures/bvh/bvh_structure.h"
 #include "structures/uniform_grid/grid_structure.h"
 #include "structures/uniform_grid/uniform_grid.h"
-#include "methods/triangle_store.h"
+#include "structures/triangle_store.h"
 #include "tests/methods/test_rays.h"
 #include "scene/procedural.h"
 #include "tests/error_of.h"

@@ -1,4 +1,4 @@
-// The cost model (methods/cost_model.h) on hand-computed cases, and structure.type = auto choosing
+// The cost model (structures/cost_model.h) on hand-computed cases, and structure.type = auto choosing
 // by it.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -6,7 +6,7 @@
 #include "device/vulkan_context.h"
 #include "structures/auto/auto_structure.h"
 #include "structures/brute_force/brute_structure.h"
-#include "methods/cost_model.h"
+#include "structures/cost_model.h"
 #include "structures/uniform_grid/grid_structure.h"
 #include "structures/uniform_grid/uniform_grid.h"
 #include "scene/procedural.h"

@@ -2,19 +2,19 @@
 // shared_kernels.h; the macros that open and close it: shared_source_begin.h and _end.h).
 //
 // Use: in a namespace with `using namespace glm; using namespace rtbench::gpu;`,
-//   #include "methods/shared_source_begin.h"
+//   #include "structures/shared_source_begin.h"
 //   struct XKernels : KernelConstants { <buffers as pointers>; XParams params;
 //   #include "../../kernels/ray_math.glsl"  ... the structure's .glsl files ... };
-//   #include "methods/shared_source_end.h"
-// in structures/<x>/<x>_reference.h, list XKernels in methods/structure_kernels.h, and derive the
+//   #include "structures/shared_source_end.h"
+// in structures/<x>/<x>_reference.h, list XKernels in structures/structure_kernels.h, and derive the
 // structure from SharedSourceStructure<XKernels>.
 #pragma once
 #include <cstdint>
 #include <cstring>
 #include <vector>
 
-#include "methods/shared_kernels.h"
-#include "methods/structure.h"
+#include "structures/shared_kernels.h"
+#include "structures/structure.h"
 
 namespace rtbench {
 

@@ -6,7 +6,7 @@
 #include <utility>
 #include <vector>
 
-#include "methods/strategy.h"
+#include "strategies/strategy.h"
 
 namespace rtbench {
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "kernels/gpu_layout.h"
-#include "methods/structure.h"
+#include "structures/structure.h"
 #include "scene/mesh.h"
 
 namespace rtbench {

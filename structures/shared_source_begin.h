@@ -1,5 +1,5 @@
-// Opens a structure's shared GLSL as C++ (see methods/shared_kernels.h); close with
-// methods/shared_source_end.h. No include guard: it is meant to be included once per structure.
+// Opens a structure's shared GLSL as C++ (see structures/shared_kernels.h); close with
+// structures/shared_source_end.h. No include guard: it is meant to be included once per structure.
 #define RT_OUT(T) T&
 #define RT_INOUT(T) T&
 #define RT_ON_OUTER() \

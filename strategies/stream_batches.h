@@ -8,7 +8,7 @@
 #include <memory>
 #include <vector>
 
-#include "methods/strategy.h"
+#include "strategies/strategy.h"
 
 namespace rtbench {
 

@@ -1,8 +1,8 @@
-// The shared GLSL traversal of a structure compiled as C++ (methods/shared_source_begin.h): the
+// The shared GLSL traversal of a structure compiled as C++ (structures/shared_source_begin.h): the
 // members every such source expects besides the structure's buffers (the kernels'
 // specialization constants and the loop log of RT_ON_OUTER / RT_ON_INNER), and the trace of a
 // ray stream through it. Each structure's <name>_reference.h declares its XKernels over these;
-// methods/structure_kernels.h lists them for the strategies' CPU models.
+// structures/structure_kernels.h lists them for the strategies' CPU models.
 #pragma once
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -25,7 +25,7 @@ struct KernelConstants {
     std::uint32_t query = gpu::kQueryClosest;  // gpu::kQuery*: closest hit or any hit
     std::uint32_t nativeDivision = 0;  // the CPU's float division is IEEE's, correctly rounded, either way
     std::uint32_t division = gpu::kDivisionDouble;  // gpu::kDivision*: how rtDivide rounds exactly
-    std::uint32_t vertexBits = 0;  // packed vertices on this lattice when != 0 (methods/triangle_store.h)
+    std::uint32_t vertexBits = 0;  // packed vertices on this lattice when != 0 (structures/triangle_store.h)
     float latticeOriginX = 0.0f, latticeOriginY = 0.0f, latticeOriginZ = 0.0f, latticeStep = 0.0f;
     std::vector<std::uint32_t>* loopLog = nullptr;  // when set: per outer iteration, the triangle-loop trips
 

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "device/gpu_buffers.h"
-#include "methods/ray_batch.h"
-#include "methods/structure.h"
+#include "strategies/ray_batch.h"
+#include "structures/structure.h"
 #include "plan/columns.h"
 
 namespace rtbench {

@@ -1,4 +1,4 @@
-// Closes what methods/shared_source_begin.h opened.
+// Closes what structures/shared_source_begin.h opened.
 #undef precise
 #undef RT_ON_INNER
 #undef RT_ON_OUTER
@@ -6,7 +6,7 @@
 #undef RT_OUT
 #pragma GCC diagnostic pop
 // The shared sources' include guards, so that the next structure's kernels include them again
-// (methods/structure_kernels.h holds every structure's in one translation unit).
+// (structures/structure_kernels.h holds every structure's in one translation unit).
 #undef RT_RAY_MATH_GLSL
 #undef RT_TRAVERSAL_COMMON_GLSL
 #undef RT_MULTIPASS_INTERSECT_GLSL

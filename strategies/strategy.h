@@ -10,8 +10,8 @@
 
 #include "device/vulkan_context.h"
 #include "methods/accounting.h"
-#include "methods/ray_batch.h"
-#include "methods/structure.h"
+#include "strategies/ray_batch.h"
+#include "structures/structure.h"
 
 namespace rtbench {
 

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "kernels/gpu_layout.h"
-#include "methods/ray_batch.h"
+#include "strategies/ray_batch.h"
 #include "core/error.h"
 
 namespace rtbench {

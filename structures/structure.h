@@ -3,7 +3,7 @@
 // GLSL), its per-ray traversal in GLSL (structure.glsl, which the generic kernels of kernels/
 // include: CMake compiles every kernel once per structure), its CPU reference (the same GLSL
 // compiled as C++), its accounting and its config keys and columns. A strategy
-// (methods/strategy.h) runs any structure through the Structure interface below; the runner knows
+// (strategies/strategy.h) runs any structure through the Structure interface below; the runner knows
 // neither by name: methods/registry.cpp lists them.
 #pragma once
 #include <cstdint>
@@ -13,7 +13,7 @@
 
 #include "device/gpu_buffers.h"
 #include "kernels/gpu_layout.h"
-#include "methods/structure_kernels.h"
+#include "structures/structure_kernels.h"
 #include "plan/columns.h"
 #include "plan/keys.h"
 #include "scene/mesh.h"
@@ -75,7 +75,7 @@ public:
     virtual WalkBounds walkBounds() const = 0;
     virtual StepFunctions stepFunctions() const { return {}; }
 
-    // The cost model (methods/cost_model.h): the cell or node visits plus triangle tests these
+    // The cost model (structures/cost_model.h): the cell or node visits plus triangle tests these
     // rays are predicted to take, from the structure's statistics alone, before any ray is traced;
     // negative where the structure's traversal is not rtbench's to model (the driver's).
     virtual double predictedWork(const std::vector<gpu::Ray>& rays) const = 0;
@@ -92,7 +92,7 @@ public:
     void setTriangleTest(std::uint32_t test) { setArithmetic({test, arithmetic_.division}); }
     std::uint32_t triangleTest() const { return arithmetic_.triangleTest; }
     std::uint32_t division() const { return arithmetic_.division; }
-    // The lattice its vertex buffer is packed to (bits 0: float vertices; methods/triangle_store.h).
+    // The lattice its vertex buffer is packed to (bits 0: float vertices; structures/triangle_store.h).
     virtual const VertexLattice& vertexLattice() const = 0;
 
     // A structure the device builds (the driver's: methods/ray_query) builds it here, after the
