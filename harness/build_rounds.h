@@ -6,7 +6,7 @@
 #include <functional>
 #include <vector>
 
-#include "plan/columns.h"
+#include "schema/columns.h"
 #include "timing_rounds.h"
 
 namespace rtbench {

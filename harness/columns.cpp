@@ -18,7 +18,7 @@ namespace rtbench {
 
 namespace {
 
-// The columns added before schema numbers were recorded (plan/columns.h), by the schema that added
+// The columns added before schema numbers were recorded (schema/columns.h), by the schema that added
 // them; the rest of the columns of those days are schema 1, and later ones declare their own.
 int addedInSchema(const std::string& column) {
     static const std::map<std::string, int> added = [] {

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "plan/columns.h"
+#include "schema/columns.h"
 #include "writers.h"
 
 namespace rtbench {
@@ -33,7 +33,7 @@ std::vector<Row> parseRunsCsv(const std::string& text, const std::string& path, 
 // What a column's cells hold, for readers that type them (pandas: Int64, float64, boolean,
 // string): integer, number (inf and nan included), boolean ("true"/"false") or text: the
 // column's ColumnSpec::type (a config key's column has its key's type; a column that names or
-// explains declares text where it is declared; the rest are inferred from the unit, plan/columns.h).
+// explains declares text where it is declared; the rest are inferred from the unit, schema/columns.h).
 // Empty cells (a column a run does not write) are missing values of any type.
 const char* columnValueType(const ColumnSpec& column);
 
@@ -42,7 +42,7 @@ const char* columnValueType(const ColumnSpec& column);
 // when a run writes it, and its meaning.
 std::string columnsCsv();
 
-// A results folder's schema (plan/columns.h kSchemaVersion) as its context.json records it; 1
+// A results folder's schema (schema/columns.h kSchemaVersion) as its context.json records it; 1
 // when it does not (folders written before the schema was recorded).
 int schemaVersion(const Json& context);
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "plan/keys.h"
+#include "schema/keys.h"
 
 namespace rtbench {
 

@@ -6,7 +6,7 @@
 #include "scene/scene_limits.h"
 #include "scene/simplify.h"
 #include "structures/triangle_store.h"
-#include "plan/warnings.h"
+#include "schema/warnings.h"
 
 namespace rtbench {
 

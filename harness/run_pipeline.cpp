@@ -15,7 +15,7 @@
 #include "harness/run_verdict.h"
 #include "methods/registry.h"
 #include "rays/primary/tile_order.h"
-#include "plan/warnings.h"
+#include "schema/warnings.h"
 #include "scene/camera.h"
 #include "rays/registry.h"
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "plan/columns.h"
+#include "schema/columns.h"
 
 namespace rtbench {
 

@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "plan/columns.h"
+#include "schema/columns.h"
 
 namespace rtbench {
 

@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "strategies/strategy.h"
-#include "plan/columns.h"
-#include "plan/keys.h"
+#include "schema/columns.h"
+#include "schema/keys.h"
 
 namespace rtbench {
 

@@ -12,8 +12,8 @@
 #include "device/vulkan_context.h"
 #include "strategies/ray_batch.h"
 #include "structures/structure.h"
-#include "plan/columns.h"
-#include "plan/keys.h"
+#include "schema/columns.h"
+#include "schema/keys.h"
 #include "scene/mesh.h"
 #include "rays/shading.h"
 

@@ -75,7 +75,7 @@ def sweep_of(label: str) -> str:
 # pandas dtypes of columns.csv's value types (harness/columns.h columnValueType).
 DTYPES = {"integer": "Int64", "number": "float64", "boolean": "boolean", "text": "string"}
 AXES = ("_x", "_y", "_z")
-# The 3-vector config keys (plan/keys.h keyColumns), by their one column before results schema 6.
+# The 3-vector config keys (schema/keys.h keyColumns), by their one column before results schema 6.
 VECTOR_KEYS = ("scene_translate", "camera_position", "camera_look_at", "camera_up", "structure_resolution")
 
 

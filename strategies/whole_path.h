@@ -11,7 +11,7 @@
 #include "device/gpu_buffers.h"
 #include "strategies/ray_batch.h"
 #include "structures/structure.h"
-#include "plan/columns.h"
+#include "schema/columns.h"
 
 namespace rtbench {
 

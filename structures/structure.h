@@ -14,8 +14,8 @@
 #include "device/gpu_buffers.h"
 #include "kernels/gpu_layout.h"
 #include "structures/structure_kernels.h"
-#include "plan/columns.h"
-#include "plan/keys.h"
+#include "schema/columns.h"
+#include "schema/keys.h"
 #include "scene/mesh.h"
 
 namespace rtbench {

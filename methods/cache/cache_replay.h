@@ -14,8 +14,8 @@
 #include "methods/cache/cache_simulator.h"
 #include "strategies/multipass/multipass_schedule.h"
 #include "structures/structure.h"
-#include "plan/columns.h"
-#include "plan/keys.h"
+#include "schema/columns.h"
+#include "schema/keys.h"
 
 namespace rtbench {
 

@@ -8,7 +8,7 @@
 #include "strategies/stream_batches.h"
 #include "core/error.h"
 #include "scene/scene_limits.h"
-#include "plan/warnings.h"
+#include "schema/warnings.h"
 
 namespace rtbench {
 

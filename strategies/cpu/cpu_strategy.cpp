@@ -6,7 +6,7 @@
 #include <chrono>
 #include <thread>
 
-#include "plan/warnings.h"
+#include "schema/warnings.h"
 
 
 namespace rtbench {

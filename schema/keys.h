@@ -44,7 +44,7 @@ struct KeySpec {
     // False for keys that place the results (experiment.name, experiment.output): one value per
     // config, never a list, the same in every [[sweep]].
     bool sweepable = true;
-    // The results schema (kSchemaVersion, plan/columns.h) that added the key's column (keys
+    // The results schema (kSchemaVersion, schema/columns.h) that added the key's column (keys
     // of earlier schemas get theirs from harness/columns.cpp's history).
     int since = 1;
 };

@@ -2,7 +2,7 @@
 #pragma once
 #include <string>
 
-#include "plan/columns.h"
+#include "schema/columns.h"
 
 namespace rtbench {
 
