@@ -4,14 +4,7 @@
 #ifndef RTBENCH_MEGAKERNEL_LAYOUT_H
 #define RTBENCH_MEGAKERNEL_LAYOUT_H
 
-#include "../../kernels/gpu_layout.h"
-
-#ifdef __cplusplus
-namespace rtbench::gpu {
-#define RTBENCH_CONST constexpr uint
-#else
-#define RTBENCH_CONST const uint
-#endif
+#include "../../kernels/layout_begin.h"
 
 RTBENCH_CONST kSpecSchedule = kSpecStrategyFirst + 0u;  // kSchedule*: how a subgroup picks the state it runs
 
@@ -25,8 +18,7 @@ RTBENCH_CONST kCountRunsIntersect = kCountStrategyFirst + 1u;  // subgroup execu
 
 #ifdef __cplusplus
 static_assert(kCountRunsIntersect < kCountSlots);
-}  // namespace rtbench::gpu
 #endif
-#undef RTBENCH_CONST
+#include "../../kernels/layout_end.h"
 
 #endif  // RTBENCH_MEGAKERNEL_LAYOUT_H

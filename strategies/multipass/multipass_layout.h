@@ -5,14 +5,7 @@
 #ifndef RTBENCH_MULTIPASS_LAYOUT_H
 #define RTBENCH_MULTIPASS_LAYOUT_H
 
-#include "../../kernels/gpu_layout.h"
-
-#ifdef __cplusplus
-namespace rtbench::gpu {
-#define RTBENCH_CONST constexpr uint
-#else
-#define RTBENCH_CONST const uint
-#endif
+#include "../../kernels/layout_begin.h"
 
 RTBENCH_CONST kSpecCompact = kSpecStrategyFirst + 0u;          // 1 = passes serve the rays of a compacted list (control on the device)
 RTBENCH_CONST kSpecListPartitions = kSpecStrategyFirst + 1u;   // control on the device: partitions of each ray list (1..kMaxListPartitions)
@@ -21,9 +14,6 @@ RTBENCH_CONST kSpecNaive = kSpecStrategyFirst + 3u;            // oracle kernel:
 RTBENCH_CONST kSpecPassCap = kSpecStrategyFirst + 4u;          // oracle kernel: the pass cap (multipassPassCap)
 RTBENCH_CONST kSpecOracleAllRays = kSpecStrategyFirst + 5u;    // oracle kernel: 1 = the threshold's basis is the stream's rays (oracle_basis = all)
 
-#ifdef __cplusplus
-}  // namespace rtbench::gpu
-#endif
-#undef RTBENCH_CONST
+#include "../../kernels/layout_end.h"
 
 #endif  // RTBENCH_MULTIPASS_LAYOUT_H

@@ -3,21 +3,13 @@
 #ifndef RTBENCH_PATH_MEGAKERNEL_LAYOUT_H
 #define RTBENCH_PATH_MEGAKERNEL_LAYOUT_H
 
-#include "../../kernels/gpu_layout.h"
-
-#ifdef __cplusplus
-namespace rtbench::gpu {
-#define RTBENCH_CONST constexpr uint
-#else
-#define RTBENCH_CONST const uint
-#endif
+#include "../../kernels/layout_begin.h"
 
 RTBENCH_CONST kCountPathRaysTraced = kCountStrategyFirst + 0u;  // rays traced, every generation's
 
 #ifdef __cplusplus
 static_assert(kCountPathRaysTraced < kCountSlots);
-}  // namespace rtbench::gpu
 #endif
-#undef RTBENCH_CONST
+#include "../../kernels/layout_end.h"
 
 #endif  // RTBENCH_PATH_MEGAKERNEL_LAYOUT_H

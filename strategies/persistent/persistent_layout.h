@@ -4,14 +4,7 @@
 #ifndef RTBENCH_PERSISTENT_LAYOUT_H
 #define RTBENCH_PERSISTENT_LAYOUT_H
 
-#include "../../kernels/gpu_layout.h"
-
-#ifdef __cplusplus
-namespace rtbench::gpu {
-#define RTBENCH_CONST constexpr uint
-#else
-#define RTBENCH_CONST const uint
-#endif
+#include "../../kernels/layout_begin.h"
 
 RTBENCH_CONST kSpecRaysPerFetch = kSpecStrategyFirst + 0u;          // rays a subgroup fetches at a time (a multiple of its size)
 RTBENCH_CONST kSpecMaxFetches = kSpecStrategyFirst + 1u;            // fetches a subgroup makes at most (0: until the stream is done)
@@ -22,8 +15,7 @@ RTBENCH_CONST kCountRaysTraced = kCountStrategyFirst + 1u;   // rays whose recor
 
 #ifdef __cplusplus
 static_assert(kCountRaysTraced < kCountSlots);
-}  // namespace rtbench::gpu
 #endif
-#undef RTBENCH_CONST
+#include "../../kernels/layout_end.h"
 
 #endif  // RTBENCH_PERSISTENT_LAYOUT_H

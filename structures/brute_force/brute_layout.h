@@ -4,14 +4,7 @@
 #ifndef RTBENCH_BRUTE_LAYOUT_H
 #define RTBENCH_BRUTE_LAYOUT_H
 
-#include "../../kernels/gpu_layout.h"
-
-#ifdef __cplusplus
-namespace rtbench::gpu {
-#define RTBENCH_CONST constexpr uint
-#else
-#define RTBENCH_CONST const uint
-#endif
+#include "../../kernels/layout_begin.h"
 
 RTBENCH_CONST kBindingBruteTriangles = kBindingStructure + 0u;  // Triangle[triangleCount]
 RTBENCH_CONST kBruteBindings = 1u;
@@ -28,8 +21,7 @@ struct BruteTraversalState {
 #ifdef __cplusplus
 static_assert(sizeof(BruteParams) == 16);
 static_assert(sizeof(BruteTraversalState) == 16);
-}  // namespace rtbench::gpu
 #endif
-#undef RTBENCH_CONST
+#include "../../kernels/layout_end.h"
 
 #endif  // RTBENCH_BRUTE_LAYOUT_H

@@ -13,14 +13,7 @@
 #ifndef RTBENCH_BVH_LAYOUT_H
 #define RTBENCH_BVH_LAYOUT_H
 
-#include "../../kernels/gpu_layout.h"
-
-#ifdef __cplusplus
-namespace rtbench::gpu {
-#define RTBENCH_CONST constexpr uint
-#else
-#define RTBENCH_CONST const uint
-#endif
+#include "../../kernels/layout_begin.h"
 
 RTBENCH_CONST kBindingBvhNodes = kBindingStructure + 0u;         // BvhNode[innerNodes]; node 0 is the root
 RTBENCH_CONST kBindingBvhTriangleList = kBindingStructure + 1u;  // uint[references]: triangle ids by leaf
@@ -65,8 +58,7 @@ struct BvhTraversalState {
 static_assert(sizeof(BvhNode) == 80);
 static_assert(sizeof(BvhParams) == 32);
 static_assert(sizeof(BvhTraversalState) == 16 + 4 * kBvhStackSize);
-}  // namespace rtbench::gpu
 #endif
-#undef RTBENCH_CONST
+#include "../../kernels/layout_end.h"
 
 #endif  // RTBENCH_BVH_LAYOUT_H

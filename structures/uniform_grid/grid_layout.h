@@ -4,14 +4,7 @@
 #ifndef RTBENCH_GRID_LAYOUT_H
 #define RTBENCH_GRID_LAYOUT_H
 
-#include "../../kernels/gpu_layout.h"
-
-#ifdef __cplusplus
-namespace rtbench::gpu {
-#define RTBENCH_CONST constexpr uint
-#else
-#define RTBENCH_CONST const uint
-#endif
+#include "../../kernels/layout_begin.h"
 
 RTBENCH_CONST kBindingCellOffsets = kBindingStructure + 0u;   // uint[cellCount + 1]: voxel -> list start
 RTBENCH_CONST kBindingTriangleList = kBindingStructure + 1u;  // uint[references]: triangle ids by voxel
@@ -36,8 +29,7 @@ struct GridTraversalState {
 #ifdef __cplusplus
 static_assert(sizeof(GridParams) == 80);
 static_assert(sizeof(GridTraversalState) == 32);
-}  // namespace rtbench::gpu
 #endif
-#undef RTBENCH_CONST
+#include "../../kernels/layout_end.h"
 
 #endif  // RTBENCH_GRID_LAYOUT_H

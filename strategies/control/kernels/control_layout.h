@@ -3,14 +3,7 @@
 #ifndef RTBENCH_CONTROL_LAYOUT_H
 #define RTBENCH_CONTROL_LAYOUT_H
 
-#include "../../../kernels/gpu_layout.h"
-
-#ifdef __cplusplus
-namespace rtbench::gpu {
-#define RTBENCH_CONST constexpr uint
-#else
-#define RTBENCH_CONST const uint
-#endif
+#include "../../../kernels/layout_begin.h"
 
 RTBENCH_CONST kControlBindingCells = 0u;      // uvec2[cells]: each voxel's (first, count) in the list
 RTBENCH_CONST kControlBindingList = 1u;       // uint[references]: triangle ids, voxel by voxel
@@ -41,8 +34,7 @@ struct ControlParams {
 #ifdef __cplusplus
 static_assert(sizeof(ControlCamera) == 64);
 static_assert(sizeof(ControlParams) == 96);
-}  // namespace rtbench::gpu
 #endif
-#undef RTBENCH_CONST
+#include "../../../kernels/layout_end.h"
 
 #endif  // RTBENCH_CONTROL_LAYOUT_H

@@ -1,0 +1,5 @@
+// Closes what kernels/layout_begin.h opened.
+#ifdef __cplusplus
+}  // namespace rtbench::gpu
+#endif
+#undef RTBENCH_CONST
