@@ -90,7 +90,7 @@ struct BinnedTriangle {
     const gpu::Triangle& triangle;
     const VoxelBlockFilter& block;
     glm::ivec3 lo, hi;  // candidate voxels, inclusive
-    glm::dvec3 boxLo, boxHi;  // the triangle's bounding box
+    glm::dvec3 boundsLo, boundsHi;  // the triangle's bounding box
     bool degenerate = false;
     bool insideOne = false;  // one candidate, and a vertex lies in its box: it meets it, no filter needed
     // Within its one candidate's slab on two axes: a voxel of the row meets it iff the voxel's
@@ -108,8 +108,8 @@ struct BinnedTriangle {
             candidateRange(vmin - voxelMargin, vmax + voxelMargin, p.boundsMin[a], p.invCellSize[a], p.resolution[a], lo[a], hi[a]);
             candidates.lo[a] = faces.lo[a].data() + lo[a];
             candidates.hi[a] = faces.hi[a].data() + lo[a];
-            boxLo[a] = vmin, boxHi[a] = vmax;
-            containedAxes += lo[a] == hi[a] && faces.lo[a][lo[a]] <= boxLo[a] && boxHi[a] <= faces.hi[a][lo[a]];
+            boundsLo[a] = vmin, boundsHi[a] = vmax;
+            containedAxes += lo[a] == hi[a] && faces.lo[a][lo[a]] <= boundsLo[a] && boundsHi[a] <= faces.hi[a][lo[a]];
         }
         boxDecides = containedAxes >= 2;
         if (boxDecides) return;
@@ -125,7 +125,7 @@ struct BinnedTriangle {
     }
     bool boxesMeet(const VoxelFaces& faces, const glm::ivec3& voxel) const {
         for (int a = 0; a < 3; ++a)
-            if (boxHi[a] < faces.lo[a][voxel[a]] || boxLo[a] > faces.hi[a][voxel[a]]) return false;
+            if (boundsHi[a] < faces.lo[a][voxel[a]] || boundsLo[a] > faces.hi[a][voxel[a]]) return false;
         return true;
     }
     std::array<glm::dvec3, 3> vertices() const { return {glm::dvec3(triangle.v0), glm::dvec3(triangle.v1), glm::dvec3(triangle.v2)}; }
