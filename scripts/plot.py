@@ -1053,7 +1053,7 @@ def structures_memory(runs, device, folder, written):
     left.set_title("Memory: the structure's buffers, vertices included")
     missing |= grouped_bars(right, runs, "structure_build_ms", scenes, methods)
     right.set_ylabel("CPU build time (ms, log)")
-    right.set_title("Build time (grid: CGAL exact triangle-box tests; BVH: Embree rtcBuildBVH)")
+    right.set_title("Build time (grid: exact cells, CGAL where filters are unsure;\nBVH: Embree rtcBuildBVH)")
     legend_beside(fig, legend_ax, method_handles(methods, missing))
     fig.suptitle(f"Memory and build time per structure; {device}")
     save(fig, folder, "structures_memory", written)
