@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "scene/scene_limits.h"
+#include "strategies/ray_batch.h"
 
 namespace rtbench {
 
@@ -118,7 +119,7 @@ double EmbreeReference::trace(const std::vector<gpu::Ray>& rays, EmbreeMode mode
     validateRays(rays);  // Embree asserts (and aborts the process) on origins beyond 1.844e18
     hits.resize(rays.size());
     const std::size_t n = rays.size();
-    const bool anyHit = query == gpu::kQueryAny;
+    const bool anyHit = !answersNearest(query);
     const auto start = std::chrono::steady_clock::now();
     if (mode == EmbreeMode::Intersect1) {
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), [&](const auto& range) {

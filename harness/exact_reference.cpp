@@ -13,6 +13,8 @@
 #include <cmath>
 #include <optional>
 
+#include "strategies/ray_batch.h"
+
 namespace rtbench {
 namespace {
 
@@ -195,7 +197,7 @@ ExactAccuracy compareExact(const std::vector<gpu::HitRecord>& hits, const ExactH
                            std::uint32_t query) {
     ExactAccuracy a;
     a.rays = exact.rays.size();
-    a.distancesCompared = query != gpu::kQueryAny;
+    a.distancesCompared = answersNearest(query);
     a.primitivesCompared = sameTriangles && a.distancesCompared;
     double errorSum = 0.0;
     std::uint64_t errorCount = 0;

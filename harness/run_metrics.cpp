@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "image_compare.h"
+#include "strategies/ray_batch.h"
 
 namespace rtbench {
 
@@ -124,7 +125,7 @@ std::vector<gpu::HitRecord> exactInPlace(const std::vector<gpu::HitRecord>& hits
         gpu::HitRecord& h = out[exact.rays[i]];
         const bool hit = h.primitive != gpu::kNoHit;
         const bool tie = sameTriangles && hit && exact.isFirstHit(i, h.primitive);
-        const bool anyHitRight = sameTriangles && hit && query == gpu::kQueryAny && exact.hits[i].primitive != gpu::kNoHit;
+        const bool anyHitRight = sameTriangles && hit && !answersNearest(query) && exact.hits[i].primitive != gpu::kNoHit;
         if (!tie && !anyHitRight) h.primitive = exact.hits[i].primitive;
     }
     return out;

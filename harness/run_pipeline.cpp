@@ -18,6 +18,7 @@
 #include "schema/warnings.h"
 #include "scene/camera.h"
 #include "rays/registry.h"
+#include "strategies/ray_batch.h"
 
 namespace rtbench {
 namespace fs = std::filesystem;
@@ -121,7 +122,7 @@ void makeWorkload(RunInProgress& p, const StrategyType& strategy, const RayType&
                                 [&run](glm::vec3 point) { return sceneTransform(run, point); }};
     p.workload = rayKind.make(inputs, row);
     if (const std::string query = run.getString("rays.query"); query != "own")
-        p.workload.batch.query = query == "any" ? gpu::kQueryAny : gpu::kQueryClosest;
+        p.workload.batch.query = queryOfName(query);
     if (strategy.tracesPath)  // the whole path on the device: the generations before the batch and the passes
         p.workload.batch.path = std::make_shared<const BatchPath>(batchPath(p.workload, p.cameraRays, mesh));
     if (p.workload.fromCamera())  // the camera rays, as a kernel that makes them itself makes them

@@ -4,13 +4,15 @@
 #include <cmath>
 #include <cstring>
 
+#include "strategies/ray_batch.h"
+
 namespace rtbench {
 
 Agreement compareHits(const std::vector<gpu::HitRecord>& hits, const std::vector<gpu::HitRecord>& reference,
                       std::uint32_t query) {
     Agreement a;
     a.rays = hits.size();
-    a.primitivesCompared = query != gpu::kQueryAny;
+    a.primitivesCompared = answersNearest(query);
     double errorSum = 0.0;
     for (std::size_t i = 0; i < hits.size(); ++i) {
         const bool hit = hits[i].primitive != gpu::kNoHit;

@@ -54,7 +54,15 @@ struct RayBatch {
     std::shared_ptr<const CameraFrame> camera;
 };
 
-// The query's name, as the rays.query column and the messages write it.
+// The query's name, as the rays.query column and the messages write it, and the query a name
+// (a rays.query value other than "own") asks.
 inline const char* queryName(std::uint32_t query) { return query == gpu::kQueryAny ? "any" : "closest"; }
+inline std::uint32_t queryOfName(const std::string& name) { return name == "any" ? gpu::kQueryAny : gpu::kQueryClosest; }
+
+// Whether the query's answer is the nearest hit (pbrt's Intersect, Embree's rtcIntersect: its
+// distance and triangle are judged) or only whether something is hit (IntersectP, rtcOccluded:
+// the first hit found ends the walk and is its record, so only hit or miss is judged). The
+// references and the judges ask this, not the query's number.
+inline bool answersNearest(std::uint32_t query) { return query != gpu::kQueryAny; }
 
 }  // namespace rtbench
