@@ -92,7 +92,6 @@ struct BinnedTriangle {
     glm::ivec3 lo, hi;  // candidate voxels, inclusive
     glm::dvec3 boundsLo, boundsHi;  // the triangle's bounding box
     bool degenerate = false;
-    bool insideOne = false;  // one candidate, and a vertex lies in its box: it meets it, no filter needed
     // Within its one candidate's slab on two axes: a voxel of the row meets it iff the voxel's
     // slab on the third meets its extent there (the triangle's projection on that axis), exact.
     bool boxDecides = false;
@@ -114,12 +113,6 @@ struct BinnedTriangle {
         boxDecides = containedAxes >= 2;
         if (boxDecides) return;
         candidates.size = hi - lo + 1;
-        if (candidates.size == glm::ivec3(1)) {
-            const glm::dvec3 v(triangle.v0), boxLo(faces.lo[0][lo.x], faces.lo[1][lo.y], faces.lo[2][lo.z]);
-            const glm::dvec3 boxHi(faces.hi[0][lo.x], faces.hi[1][lo.y], faces.hi[2][lo.z]);
-            insideOne = glm::all(glm::greaterThanEqual(v, boxLo)) && glm::all(glm::lessThanEqual(v, boxHi));
-            if (insideOne) return;
-        }
         filter.reset(vertices(), candidates);
         degenerate = !filter.proper() && cgalTriangle(triangle).is_degenerate();  // CGAL decides what the filter cannot
     }
@@ -130,11 +123,10 @@ struct BinnedTriangle {
     }
     std::array<glm::dvec3, 3> vertices() const { return {glm::dvec3(triangle.v0), glm::dvec3(triangle.v1), glm::dvec3(triangle.v2)}; }
 
-    // Voxel (x, y, z): the block filter; where it is unsure, the per-sign filter; where both
-    // are, CGAL's exact test. The answer is always the exact test's.
+    // Voxel (x, y, z): the boxes where they decide; else the block filter; where it is unsure, the
+    // per-sign filter; where both are, CGAL's exact test. The answer is always the exact test's.
     bool meets(const VoxelFaces& faces, int x, int y, int z, TestCounts& counts) const {
         ++counts.voxels;
-        if (insideOne) return true;
         if (boxDecides) return boxesMeet(faces, glm::ivec3(x, y, z));
         Overlap overlap = degenerate ? Overlap::Unsure : block.at(x - lo.x, y - lo.y, z - lo.z);
         if (overlap != Overlap::Unsure) return overlap == Overlap::Yes;
@@ -157,6 +149,12 @@ struct RowAxes {
     }
 };
 
+// Voxel v's cell in the grid's x-fastest order (Purcell et al. 2002 Fig. 4).
+std::uint32_t cellIndex(const UniformGrid& grid, const glm::ivec3& v) {
+    const glm::uvec3 r(grid.params.resolution);
+    return std::uint32_t(v.x + r.x * (v.y + std::uint64_t(r.y) * v.z));
+}
+
 // Rows [nextLo, nextHi] of one layer of a triangle's block.
 struct RowRun {
     int layer, nextLo, nextHi;
@@ -166,7 +164,6 @@ struct RowRun {
 // from the row before's (voxel_row.h).
 void binRows(const UniformGrid& grid, const VoxelFaces& faces, const BinnedTriangle& t, const RowAxes& axes, const RowRun& run,
              CellPairs& pairs, TestCounts& counts) {
-    const glm::uvec3 r(grid.params.resolution);
     glm::ivec3 voxel;
     voxel[axes.layer] = run.layer;
     VoxelSpan span;
@@ -178,17 +175,16 @@ void binRows(const UniformGrid& grid, const VoxelFaces& faces, const BinnedTrian
         };
         span = findSpan(t.lo[axes.row], t.hi[axes.row], span, meets);
         for (voxel[axes.row] = span.first; voxel[axes.row] <= span.last; ++voxel[axes.row])
-            pairs.emplace_back(std::uint32_t(voxel.x + r.x * (voxel.y + std::uint64_t(r.y) * voxel.z)), t.id);
+            pairs.emplace_back(cellIndex(grid, voxel), t.id);
     }
 }
 
 // Appends the pairs of a small block's voxels, testing each.
 void binVoxels(const UniformGrid& grid, const VoxelFaces& faces, const BinnedTriangle& t, CellPairs& pairs, TestCounts& counts) {
-    const glm::uvec3 r(grid.params.resolution);
     for (int z = t.lo.z; z <= t.hi.z; ++z)
         for (int y = t.lo.y; y <= t.hi.y; ++y)
             for (int x = t.lo.x; x <= t.hi.x; ++x)
-                if (t.meets(faces, x, y, z, counts)) pairs.emplace_back(std::uint32_t(x + r.x * (y + std::uint64_t(r.y) * z)), t.id);
+                if (t.meets(faces, x, y, z, counts)) pairs.emplace_back(cellIndex(grid, glm::ivec3(x, y, z)), t.id);
 }
 
 // Appends triangle i's pairs: a small block voxel by voxel, a larger one row by row in runs of
