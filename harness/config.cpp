@@ -119,7 +119,12 @@ void addExperimentKeys(KeyList& s) {
     timingKey({"experiment.target_ci", ValueType::Float, "adaptive repetitions: after experiment.repetitions, add rounds until the 95% interval of every median (order statistics: 6 repetitions or more; kernel, Embree 1 and 16) is within +- this fraction of it, or experiment.max_repetitions or experiment.time_budget_s is reached (0: a fixed count)", 0.0, false, 0, 1});
     timingKey({"experiment.max_repetitions", ValueType::Int, "adaptive repetitions: at most this many of each method", std::int64_t(200), false, 1, 100000});
     timingKey({"experiment.time_budget_s", ValueType::Float, "adaptive repetitions: stop adding rounds once a run's timing has taken this long", 30.0, false, 0, 1e6});
-    timingKey({"experiment.noise_cv", ValueType::Float, "noise guard: a timing_warning when a method's coefficient of variation exceeds this", 0.05, false, 0, 1e3});
+    timingKey({"experiment.noise_cv", ValueType::Float, "noise guard, for a method with 2 to 5 repetitions (too few for an interval of the median): a timing_warning when its coefficient of variation exceeds this", 0.05, false, 0, 1e3});
+    {
+        KeySpec ci{"experiment.noise_ci", ValueType::Float, "noise guard, for a method with 6 repetitions or more: a timing_warning when the 95% interval of its median (order statistics) is wider than +- this fraction of the median (half the interval's width over the median)", 0.05, false, 0, 1e3};
+        ci.since = 28;
+        s.add(std::move(ci));
+    }
     {
         KeySpec rounds{"experiment.build_rounds", ValueType::Int, "build the structure and Embree's BVH of the same triangles this many times more, alternately, and record their medians and their ratio with its interval (build_ratio_vs_embree; 7 rounds or more for the interval); 0: only the run's own build of each (structure_build_ms, embree_build_ms)", std::int64_t(0), false, 0, 1000};
         rounds.since = 27;

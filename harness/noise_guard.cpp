@@ -8,6 +8,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "schema/columns.h"
+
 namespace rtbench {
 
 namespace {
@@ -71,6 +73,17 @@ double otherCpuFraction(const CpuTimes& before, const CpuTimes& after, unsigned 
     if (wall * double(cores) * ticksPerSecond < kMinTicks) return -1.0;
     const double others = (after.machineBusyTicks - before.machineBusyTicks) - (after.selfTicks - before.selfTicks);
     return std::clamp(others / ticksPerSecond / (wall * double(cores)), 0.0, 1.0);
+}
+
+std::string spreadWarning(const std::string& method, const SampleStats& s, double noiseCi, double noiseCv) {
+    if (s.ci) {
+        const double halfWidth = s.relativeHalfWidth();
+        if (halfWidth <= noiseCi) return "";
+        return method + " interval +-" + formatNumber(100.0 * halfWidth, 3) + "% > experiment.noise_ci " + formatNumber(noiseCi, 3);
+    }
+    if (!s.cv || *s.cv <= noiseCv) return "";
+    return method + " CV " + formatNumber(*s.cv, 3) + " (" + std::to_string(s.n) + " repetitions: no interval) > experiment.noise_cv " +
+           formatNumber(noiseCv, 3);
 }
 
 double loadAverage() {

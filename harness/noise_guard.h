@@ -4,6 +4,8 @@
 #pragma once
 #include <string>
 
+#include "statistics.h"
+
 namespace rtbench {
 
 // The host's CPU time at one moment (Linux /proc): every process's busy time and this process's
@@ -26,6 +28,14 @@ double selfTicks(const std::string& procSelfStat);     // -1 when malformed
 // kMinTicks clock ticks of the machine's capacity (too short to tell).
 constexpr double kMinTicks = 100.0;
 double otherCpuFraction(const CpuTimes& before, const CpuTimes& after, unsigned cores, double ticksPerSecond);
+
+// Why one method's repetitions are not results of record, or "" when they are. The guard judges
+// the statistic the results publish, the median: where 6 or more repetitions give its 95%
+// interval (order statistics), a half-width beyond +-noiseCi of the median; below 6, a coefficient
+// of variation above noiseCv; one repetition never (the caller says its noise is not measured).
+// The mean's spread is not the median's: one slow repetition of ten moves the CV and not the
+// median's interval (results schema 28; before, the CV at any count).
+std::string spreadWarning(const std::string& method, const SampleStats& s, double noiseCi, double noiseCv);
 
 // The 1-minute load average (getloadavg), -1 when unknown.
 double loadAverage();

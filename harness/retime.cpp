@@ -23,35 +23,43 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// How well a run's timings are conditioned: no timing warning beats one, then the lower largest
-// coefficient of variation of its methods (kernel, Embree 1, Embree 16).
+// How well a run's timings are conditioned: no timing warning beats one, then the narrower widest
+// spread of its methods (kernel, Embree 1, Embree 16) as the noise guard judges it: the median's
+// interval half-width over the median, or below 6 repetitions the CV (harness/noise_guard.h).
 struct Conditioning {
     bool warned = true;
-    double largestCv = std::numeric_limits<double>::infinity();
+    double largestSpread = std::numeric_limits<double>::infinity();
     bool betterThan(const Conditioning& other) const {
-        return warned != other.warned ? !warned : largestCv < other.largestCv;
+        return warned != other.warned ? !warned : largestSpread < other.largestSpread;
     }
     std::string text() const {
         std::ostringstream s;
-        s << "largest CV ";
-        if (std::isfinite(largestCv)) s << formatNumber(100.0 * largestCv, 3) << "%";
+        s << "widest spread ";
+        if (std::isfinite(largestSpread)) s << "+-" << formatNumber(100.0 * largestSpread, 3) << "%";
         else s << "unknown";
         return s.str();
     }
 };
 
+// One method's spread from its columns: the interval where the row has one, else the CV.
+double spreadOf(const Row& row, const std::string& method) {
+    const double low = cellNumber(cellText(row, method + "_ms_ci_low")), high = cellNumber(cellText(row, method + "_ms_ci_high"));
+    const double median = cellNumber(cellText(row, method + "_ms_median"));
+    if (std::isfinite(low) && std::isfinite(high) && median > 0) return 0.5 * (high - low) / median;
+    return cellNumber(cellText(row, method + "_ms_cv"));
+}
+
 Conditioning conditioning(const Row& row) {
     Conditioning c;
     c.warned = !cellText(row, "timing_warning").empty();
     double largest = -1.0;
-    for (const char* column : {"kernel_ms_cv", "embree1_ms_cv", "embree16_ms_cv"}) {
-        const double cv = cellNumber(cellText(row, column));
-        if (std::isfinite(cv)) largest = std::max(largest, cv);
+    for (const char* method : {"kernel", "embree1", "embree16"}) {
+        const double spread = spreadOf(row, method);
+        if (std::isfinite(spread)) largest = std::max(largest, spread);
     }
-    if (largest >= 0.0) c.largestCv = largest;
+    if (largest >= 0.0) c.largestSpread = largest;
     return c;
 }
-
 
 // The best try of one flagged run so far.
 struct Best {

@@ -72,12 +72,15 @@ void writeTimingResults(const RunConfig& run, const VulkanContext& vk, std::size
     const SampleStats k = writeTimingColumns("kernel", timed.of("kernel"), row);
     row["kernel_mrays_s"] = formatNumber(k.median > 0 ? double(rays) / (k.median * 1e3) : 0.0);
     std::vector<std::string> noisy;
-    const double noiseCv = run.getFloat("experiment.noise_cv");
-    if (k.cv && *k.cv > noiseCv) noisy.push_back("kernel CV " + formatNumber(*k.cv, 3));
+    const double noiseCi = run.getFloat("experiment.noise_ci"), noiseCv = run.getFloat("experiment.noise_cv");
+    auto judge = [&](const std::string& method, const SampleStats& s) {
+        if (std::string w = spreadWarning(method, s, noiseCi, noiseCv); !w.empty()) noisy.push_back(std::move(w));
+    };
+    judge("kernel", k);
     for (const char* m : {"embree1", "embree16"}) {
         const SampleStats e = writeTimingColumns(m, timed.of(m), row);
         row[std::string(m) + "_mrays_s"] = formatNumber(double(rays) / (e.median * 1e3));
-        if (e.cv && *e.cv > noiseCv) noisy.push_back(std::string(m) + " CV " + formatNumber(*e.cv, 3));
+        judge(m, e);
     }
     // The strategy's own series: the parts of a repetition, its host-controlled loops.
     for (const auto& [name, ms] : timed.series) {
@@ -100,7 +103,6 @@ void writeTimingResults(const RunConfig& run, const VulkanContext& vk, std::size
     const double load = loadAverage();
     row["load_average"] = load < 0 ? "" : formatNumber(load, 3);
     row["device_host_threads"] = std::to_string(deviceHostThreads(vk.info().type == "cpu", cores));
-    if (!noisy.empty()) noisy.back() += " > experiment.noise_cv " + formatNumber(noiseCv, 3);
     if (!k.cv) noisy.push_back("one repetition: its noise is not measured");
     if (other > run.getFloat("experiment.noise_other_cpu"))
         noisy.push_back("other processes took " + formatNumber(100 * other, 3) + "% of the machine's CPU time (> experiment.noise_other_cpu " +

@@ -107,7 +107,10 @@ inline ColumnSpec textColumn(ColumnSpec c) {
 //        making its own camera rays, what the branching kernel's speed is judged against.
 //  27  + build_rounds, structure_build_ms_median, embree_build_ms_median, build_ratio_vs_embree and
 //        its interval (experiment.build_rounds: the two builds timed alternately).
-constexpr int kSchemaVersion = 27;
+//  28  the noise guard judges each method's median by its 95% interval (experiment.noise_ci) where
+//        6 or more repetitions give one, the CV (experiment.noise_cv) only below 6 (before: the
+//        CV at any count, which one slow repetition of ten inflates while the median stays).
+constexpr int kSchemaVersion = 28;
 
 // The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".
 std::string paramColumn(const std::string& key);

@@ -110,11 +110,23 @@ def provenance(name: str, runs, context) -> str:
         timing = "one timed repetition of each method per run (no spread, no interval)" if reps == [1] else \
             f"{'/'.join(map(str, reps)) or '?'} timed repetitions of each method per run, in rounds"
         lines.append(f"Timing: {timing}; the noise guard flagged {flagged} of the {len(ok)} ok runs (`timing_warning`: "
-                     f"a coefficient of variation over {num(ok.experiment_noise_cv.iloc[0]) if len(ok) else '?'} or "
+                     f"{guard_criterion(ok)} or "
                      f"other processes over {num(100 * ok.experiment_noise_other_cpu.iloc[0]) if len(ok) else '?'}% of "
                      f"the CPU; they took at most {num(100 * ok.other_cpu_fraction.max(), 2)}%); "
                      f"{num(wall, 2) + ' s' if wall < 120 else num(wall / 60, 2) + ' min'} of wall time in all.")
     return " ".join(lines)
+
+
+def guard_criterion(ok):
+    """What the noise guard judged a method's spread by, as the folder's schema had it: the median's
+    interval from results schema 28 (experiment.noise_ci; the CV below 6 repetitions), the CV before."""
+    if not len(ok):
+        return "a spread over ?"
+    cv = num(ok.experiment_noise_cv.iloc[0])
+    if "experiment_noise_ci" in ok and ok.experiment_noise_ci.notna().any():
+        return (f"a median's 95% interval wider than ±{num(100 * ok.experiment_noise_ci.iloc[0])}% of it, or below 6 "
+                f"repetitions a coefficient of variation over {cv},")
+    return f"a coefficient of variation over {cv}"
 
 
 # The README's headline table, a row per folder: declared by each section where its figures are

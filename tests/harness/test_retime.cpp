@@ -29,7 +29,7 @@ using ::testing::Not;
 // the only warning is the one a test forges.
 ExperimentResult runQuietlyTimed(TempDir& dir) {
     const std::string path = dir.write("retime.toml", "[experiment]\nname = \"retime\"\noutput = \"" + dir.file("out") +
-                                                          "\"\nrepetitions = 6\nwarmups = 0\nnoise_cv = 1000\nnoise_other_cpu = 1\n"
+                                                          "\"\nrepetitions = 6\nwarmups = 0\nnoise_cv = 1000\nnoise_ci = 1000\nnoise_other_cpu = 1\n"
                                                           "[device]\nname = \"" + testDeviceName() + "\"\n"
                                                           "[scene]\nsource = \"procedural:christen_b\"\n"
                                                           "[camera]\nwidth = 32\nheight = 24\n[output]\nimages = false\n"

@@ -3,6 +3,8 @@
 // guard's /proc parsers.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "harness/noise_guard.h"
 #include "harness/timing_rounds.h"
 
@@ -165,6 +167,29 @@ TEST(NoiseGuard, ProcParsers) {
     after.valid = false;
     EXPECT_DOUBLE_EQ(otherCpuFraction(before, after, 2, 100.0), -1.0);
     EXPECT_EQ(deviceHostThreads(false, 16), 0u);
+}
+
+TEST(NoiseGuard, JudgesTheMediansIntervalFromSixRepetitionsAndTheCvBelow) {
+    const std::vector<double> oneSlowOfTen = {10, 10, 10, 10, 100, 10, 10, 10, 10, 10};
+    // n = 10 at 95%: [x(2), x(9)] (coverage 1 - 2 * 11/1024 = 0.979) = [10, 10]: the median is
+    // certain although one repetition took 10x (CV = sqrt(810) / 19 = 1.50).
+    const SampleStats slow = summarize(oneSlowOfTen);
+    ASSERT_NEAR(*slow.cv, std::sqrt(810.0) / 19.0, 1e-12);
+    EXPECT_EQ(spreadWarning("kernel", slow, 0.05, 0.05), "");
+    // Half at 10 ms and half at 12: the median 11 in [10, 12], +-1/11 = 9.09%.
+    const SampleStats split = summarize({10, 12, 10, 12, 10, 12, 10, 12, 10, 12});
+    EXPECT_EQ(spreadWarning("embree1", split, 0.05, 1.0), "embree1 interval +-9.09% > experiment.noise_ci 0.05");
+    EXPECT_EQ(spreadWarning("embree1", split, 0.1, 0.0), "");
+    // Half at 10 and half at 11: +-0.5/10.5 = 4.76%, within 5%.
+    EXPECT_EQ(spreadWarning("kernel", summarize({10, 11, 10, 11, 10, 11, 10, 11, 10, 11}), 0.05, 0.0), "");
+    // 3 repetitions give no interval: the CV judges. {10, 10, 12}: sd sqrt(4/3), mean 32/3.
+    const SampleStats three = summarize({10, 10, 12});
+    ASSERT_FALSE(three.ci);
+    ASSERT_NEAR(*three.cv, std::sqrt(4.0 / 3.0) / (32.0 / 3.0), 1e-12);
+    EXPECT_EQ(spreadWarning("kernel", three, 0.0, 0.05), "kernel CV 0.108 (3 repetitions: no interval) > experiment.noise_cv 0.05");
+    EXPECT_EQ(spreadWarning("kernel", three, 0.0, 0.2), "");
+    // One repetition: no spread to judge (the caller says its noise is not measured).
+    EXPECT_EQ(spreadWarning("kernel", summarize({10}), 0.0, 0.0), "");
 }
 
 }  // namespace
