@@ -2,8 +2,10 @@
 
 #include <chrono>
 #include <filesystem>
+#include <variant>
 
 #include "core/error.h"
+#include "core/overloaded.h"
 #include "device/gpu_buffers.h"
 #include "device/vulkan_context.h"
 #include "harness/build_rounds.h"
@@ -26,26 +28,26 @@ namespace fs = std::filesystem;
 namespace {
 
 // The methods a run's rounds time: the kernel (its KernelTimer) and Embree rtcIntersect1 and
-// rtcIntersect16 (any hit: rtcOccluded1 and 16) on the same rays (every generation of the path, for
+// rtcIntersect16 (any hit: rtcOccluded1 and 16) on the same rays (every generation of `path`, for
 // a strategy that traces it whole); the single rays' hits of the batch go to `embreeHits`, the
 // rays each repetition traced to `embreeRays`.
 std::vector<TimedMethod> timedMethods(KernelTimer& kernel, EmbreeReference& embree, const RayBatch& batch,
-                                      std::vector<gpu::HitRecord>& embreeHits, std::vector<gpu::HitRecord>& scratch,
-                                      std::uint64_t& embreeRays) {
+                                      const BatchPath* path, std::vector<gpu::HitRecord>& embreeHits,
+                                      std::vector<gpu::HitRecord>& scratch, std::uint64_t& embreeRays) {
     std::vector<TimedMethod> methods;
     methods.push_back({"kernel", [&kernel](int warmups, int repetitions) { return kernel.time(warmups, repetitions); }});
     for (EmbreeMode mode : {EmbreeMode::Intersect1, EmbreeMode::Intersect16})
         methods.push_back({mode == EmbreeMode::Intersect1 ? "embree1" : "embree16",
-                           [&embree, &batch, &embreeHits, &scratch, &embreeRays, mode](int warmups, int repetitions) {
-                               // What the kernel traced: the batch, or (RayBatch::path) every generation of its path,
+                           [&embree, &batch, path, &embreeHits, &scratch, &embreeRays, mode](int warmups, int repetitions) {
+                               // What the kernel traced: the batch, or every generation of its path,
                                // those before the batch as closest-hit queries.
                                auto trace = [&](std::vector<gpu::HitRecord>& hits) {
                                    double ms = 0.0;
                                    embreeRays = batch.rays.size();
-                                   if (batch.path)
-                                       for (std::size_t g = 0; g + 1 < batch.path->generations.size(); ++g) {
-                                           ms += embree.trace(*batch.path->generations[g].rays, mode, scratch, gpu::kQueryClosest);
-                                           embreeRays += batch.path->generations[g].rays->size();
+                                   if (path)
+                                       for (std::size_t g = 0; g + 1 < path->generations.size(); ++g) {
+                                           ms += embree.trace(*path->generations[g].rays, mode, scratch, gpu::kQueryClosest);
+                                           embreeRays += path->generations[g].rays->size();
                                        }
                                    return ms + embree.trace(batch.rays, mode, hits, batch.query);
                                };
@@ -112,7 +114,7 @@ void buildStructure(RunInProgress& p, const StructureType& kind, const TriangleM
 
 // The batch of rays the run measures (rays.type), from the camera rays and, after the first hit,
 // from the structure's hits of them; its columns and the structure's.
-void makeWorkload(RunInProgress& p, const StrategyType& strategy, const RayType& rayKind, const PinholeCamera& camera,
+void makeWorkload(RunInProgress& p, const RayType& rayKind, const PinholeCamera& camera,
                   Row& row) {
     const RunConfig& run = *p.run;
     VulkanContext& vk = *p.vk;
@@ -123,8 +125,6 @@ void makeWorkload(RunInProgress& p, const StrategyType& strategy, const RayType&
     p.workload = rayKind.make(inputs, row);
     if (const std::string query = run.getString("rays.query"); query != "own")
         p.workload.batch.query = queryOfName(query);
-    if (strategy.tracesPath)  // the whole path on the device: the generations before the batch and the passes
-        p.workload.batch.path = std::make_shared<const BatchPath>(batchPath(p.workload, p.cameraRays, mesh));
     if (p.workload.fromCamera())  // the camera rays, as a kernel that makes them itself makes them
         p.workload.batch.camera = p.cameraFrame;
     const RayBatch& batch = p.workload.batch;
@@ -154,15 +154,23 @@ void runMethod(RunInProgress& p, const StrategyType& strategy, Row& row) {
     TimingOptions timing;
     timing.workgroupSize = unsigned(run.getInt("strategy.workgroup_size"));
     timing.warmups = timing.repetitions = 0;  // timed in rounds with Embree
-    // camera.tile (Purcell §5.3): the method traces the rays tile by tile; its records come back
-    // in the batch's order. Embree traces them row by row.
     const unsigned tile = run.has("camera.tile") ? unsigned(run.getInt("camera.tile")) : 0u;  // camera rays only
-    if (tile && strategy.tracesPath)
-        throw Error("camera.tile: strategy.type = " + strategy.name + " traces the camera rays in the order they are made");
-    const std::vector<std::uint32_t> order = tileOrder(p.width, p.height, tile);
-    if (!order.empty()) p.tiled = inTileOrder(batch, order);
-    p.method = strategy.run(vk, structure, order.empty() ? batch : p.tiled, run, timing, row);
-    if (!order.empty()) p.method.hits = inBatchOrder(p.method.hits, order);
+    auto traceBatch = [&](StrategyType::TraceBatch trace) {
+        // camera.tile (Purcell §5.3): the method traces the rays tile by tile; its records come
+        // back in the batch's order. Embree traces them row by row.
+        const std::vector<std::uint32_t> order = tileOrder(p.width, p.height, tile);
+        if (order.empty()) return trace(vk, structure, batch, run, timing, row);
+        p.tiled = inTileOrder(batch, order);
+        StrategyRun method = trace(vk, structure, p.tiled, run, timing, row);
+        method.hits = inBatchOrder(method.hits, order);
+        return method;
+    };
+    auto tracePath = [&](StrategyType::TracePath trace) {
+        if (tile) throw Error("camera.tile: strategy.type = " + strategy.name + " traces the camera rays in the order they are made");
+        p.path = batchPath(p.workload, p.cameraRays, mesh);  // the generations before the batch and the passes
+        return trace(vk, structure, batch, *p.path, run, timing, row);
+    };
+    p.method = std::visit(Overloaded{traceBatch, tracePath}, strategy.trace);
     row["cpu_reference_mismatches"] = p.method.cpuCompared ? std::to_string(p.method.cpuMismatches) : "";
     refuseForeignTriangles(p.method.hits, mesh.triangles.size());
     row["cpu_counts_match"] = !p.method.countsCompared ? "" : p.method.countsMismatch.empty() ? "1" : "0";
@@ -284,13 +292,14 @@ std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunC
         if (const std::string why = strategy.refusal(vk.info()); !why.empty()) throw Error(why);
     const PinholeCamera camera = prepareSceneAndRays(*p, plan, strategy, caches, row);
     buildStructure(*p, structureKind, p->scene->traced);
-    makeWorkload(*p, strategy, rayKind, camera, row);
+    makeWorkload(*p, rayKind, camera, row);
     runMethod(*p, strategy, row);
     // Time: the kernel, uninstrumented, and Embree on the same rays, in rounds.
     EmbreeReference& embree = embreeFor(run, *p->scene, caches, row);
     timeBuilds(*p, structureKind, embree, caches, row);
     KernelTimer& kernel = *p->method.timer;
-    p->rounds = std::make_unique<Rounds>(timedMethods(kernel, embree, p->workload.batch, p->embreeHits, p->scratch, p->embreeRays),
+    p->rounds = std::make_unique<Rounds>(timedMethods(kernel, embree, p->workload.batch, p->path ? &*p->path : nullptr,
+                                                     p->embreeHits, p->scratch, p->embreeRays),
                                          [&kernel] { return kernel.timeHostLoops(); }, roundsOptions(run), caches.started);
     return p;
 }
@@ -301,8 +310,7 @@ void finishRun(RunInProgress& p, const FolderIdentity& folder, Caches& caches, R
     const std::vector<gpu::Ray>& rays = p.workload.batch.rays;
     samples = p.rounds->result().samples;
     samples.insert(samples.end(), p.buildSamples.begin(), p.buildSamples.end());
-    writeTimingResults(run, vk, p.workload.batch.path ? p.workload.batch.path->rays() : rays.size(), p.rounds->result(), p.started,
-                       row);
+    writeTimingResults(run, vk, p.path ? p.path->rays() : rays.size(), p.rounds->result(), p.started, row);
     row["embree_rays"] = std::to_string(p.embreeRays);
     checkTimedRecords(p.method, p.shadingMismatch, rays.size());
     const RunImage imageOf{p};

@@ -33,6 +33,9 @@ struct RunInProgress {
     std::shared_ptr<const CameraFrame> cameraFrame;  // what the camera rays are made of
     std::vector<gpu::Ray> cameraRays;
     Workload workload;  // the batch the run measures
+    // A strategy that traces the whole path: the generations that end in the batch and the passes
+    // between (pointing into `workload` and `cameraRays`); none for a batch strategy.
+    std::optional<BatchPath> path;
     std::string shadingMismatch;  // how the device's shading passes differ from the CPU's ("" if not)
     std::unique_ptr<Structure> structure;
     RayBatch tiled;  // camera.tile: the batch in tile order, as the method traced it

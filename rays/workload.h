@@ -74,7 +74,7 @@ struct Workload {
 };
 
 // The path `workload` traced to its batch, for a strategy that traces it whole on the device
-// (RayBatch::path): it points into `workload` and `cameraRays`, which must outlive it.
+// (StrategyType::TracePath): it points into `workload` and `cameraRays`, which must outlive it.
 BatchPath batchPath(const Workload& workload, const std::vector<gpu::Ray>& cameraRays, const TriangleMesh& scene);
 
 // Rays of `hits` that hit something.

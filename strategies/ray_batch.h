@@ -1,6 +1,7 @@
 // A batch of rays as a workload (rays/workload.h) hands it to a method: the rays, and the query
 // they ask of the scene. The method knows no ray type; the query is all it needs of one (and, for
-// a strategy that traces the whole path, the path: the rays before the batch and the passes).
+// a strategy that traces the whole path, the BatchPath beside it: the rays before the batch and
+// the passes).
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -26,7 +27,7 @@ struct PathGeneration {
 };
 
 // How the batch came to be, for a strategy that traces the whole path on the device from the camera
-// rays (StrategyType::tracesPath: the wavefront, the path megakernel): the generations and the
+// rays (StrategyType::TracePath: the wavefront, the path megakernel): the generations and the
 // shading passes between.
 struct BatchPath {
     std::vector<PathGeneration> generations;  // 0: the camera rays; back(): the batch
@@ -47,8 +48,6 @@ struct BatchPath {
 struct RayBatch {
     std::vector<gpu::Ray> rays;
     std::uint32_t query = gpu::kQueryClosest;  // gpu::kQuery*: closest hit or any hit
-    // Set by the runner for a strategy that traces the whole path (null for the others).
-    std::shared_ptr<const BatchPath> path;
     // The camera's frame when the batch is its camera rays in their order, row by row (null
     // otherwise): a strategy that makes the camera rays itself (the control) makes them from it.
     std::shared_ptr<const CameraFrame> camera;

@@ -6,8 +6,10 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <variant>
 #include <vector>
 
+#include "core/error.h"
 #include "device/vulkan_context.h"
 #include "methods/accounting.h"
 #include "strategies/ray_batch.h"
@@ -86,18 +88,30 @@ struct StrategyType {
     // refusal before the structure (and so the exact size) is known; 0: none per ray.
     std::uint64_t ownBytesPerRay = 0;
     std::string onlyStructure;  // the one structure.type it can trace ("": any)
-    // Traces the whole path from the camera rays on the device (the wavefront): the runner hands it
-    // RayBatch::path, and its time covers every generation and the shading passes between, so
-    // Embree traces the rays of every generation too and the rates count them all.
-    bool tracesPath = false;
     // Why a device cannot run it ("" when it can; null: any device that runs rtbench can): the
     // run fails with this before anything is loaded.
     std::string (*refusal)(const DeviceInfo& device) = nullptr;
-    // Uploads, runs one instrumented run of the batch's query (and the timed repetitions `timing`
-    // asks for), compares with its CPU model, writes its own columns to `row`, returns its timer.
-    StrategyRun (*run)(VulkanContext& vk, const Structure& structure, const RayBatch& batch, const RunConfig& config,
-                       const TimingOptions& timing, Row& row);
+    // What it traces, at one of two levels (pbrt-v4's RayIntegrator::Li against Integrator::Render):
+    // - TraceBatch: the batch's rays, each on its own;
+    // - TracePath: the whole path from the camera rays that ends in the batch (the wavefront, the
+    //   path megakernel). Its time covers every generation and the shading passes between, so
+    //   Embree traces every generation's rays too and the rates count them all.
+    // Either uploads, runs one instrumented run of the batch's query (and the timed repetitions
+    // `timing` asks for), compares with its CPU model, writes its own columns to `row` and returns
+    // its timer.
+    using TraceBatch = StrategyRun (*)(VulkanContext& vk, const Structure& structure, const RayBatch& batch,
+                                       const RunConfig& config, const TimingOptions& timing, Row& row);
+    using TracePath = StrategyRun (*)(VulkanContext& vk, const Structure& structure, const RayBatch& batch,
+                                      const BatchPath& path, const RunConfig& config, const TimingOptions& timing, Row& row);
+    std::variant<TraceBatch, TracePath> trace;
 };
+
+// The strategy's TraceBatch, for a caller that hands it rays alone (tests); rtbench::Error naming
+// the strategy when it traces whole paths.
+inline StrategyType::TraceBatch batchTracer(const StrategyType& strategy) {
+    if (const auto* trace = std::get_if<StrategyType::TraceBatch>(&strategy.trace)) return *trace;
+    throw Error("strategy.type = " + strategy.name + " traces whole paths, not a batch of rays alone");
+}
 
 // Throws, with the count of differing rays, when a timed run's hits differ from the instrumented
 // run's (t and primitive); a NaN distance is named as what it is, an out-of-range input.

@@ -7,16 +7,13 @@
 
 namespace rtbench {
 
-const BatchPath& traceablePath(const RayBatch& batch, const std::string& strategy) {
-    if (!batch.path) throw Error("strategy.type = " + strategy + ": the run gave the strategy no path to trace");
-    const BatchPath& path = *batch.path;
+void requireTraceablePath(const BatchPath& path, const std::string& strategy) {
     if (!path.notUniform.empty())
         throw Error("strategy.type = " + strategy + " traces paths over one material and no light, and this ray type's " +
                     path.notUniform + " (rays.type primary, reflection, refraction, path and ao can)");
     if (path.passes.size() > gpu::kPathMaxPasses)
         throw Error("strategy.type = " + strategy + ": " + std::to_string(path.passes.size()) + " shading passes, at most " +
                     std::to_string(gpu::kPathMaxPasses));
-    return path;
 }
 
 WholePathCapacity wholePathCapacity(std::uint64_t cameraRays, const std::vector<std::uint32_t>& fanOuts) {

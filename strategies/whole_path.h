@@ -1,4 +1,4 @@
-// What the strategies that trace a whole path from the camera rays share (StrategyType::tracesPath:
+// What the strategies that trace a whole path from the camera rays share (StrategyType::TracePath:
 // the wavefront's queues, the path megakernel's registers): the refusals of what they cannot trace,
 // the capacities of a path's generations, and the device buffers of kernels/gpu_layout.h's
 // kBindingPath* slots with the passes, the material, the camera rays and the vertices uploaded.
@@ -15,10 +15,9 @@
 
 namespace rtbench {
 
-// The batch's path, or rtbench::Error naming `strategy` and what it cannot trace: no path (a
-// runner that did not hand one), surfaces of more than one material or lights, more passes than
-// kPathMaxPasses.
-const BatchPath& traceablePath(const RayBatch& batch, const std::string& strategy);
+// Nothing, or rtbench::Error naming `strategy` and what of `path` it cannot trace: surfaces of
+// more than one material or lights, more passes than kPathMaxPasses.
+void requireTraceablePath(const BatchPath& path, const std::string& strategy);
 
 // The most rays a generation of a path of `cameraRays` rays through passes of fan-outs `fanOuts`
 // can hold (every ray of the one before making fan-out rays), and the most slots a pass can fill.

@@ -241,7 +241,7 @@ const StrategyType& branchingStrategyType() {
         t.name = "branching";
         t.help = "one kernel per ray stream (Purcell's branching architecture)";
         t.columns = wholeTraversalColumns();
-        t.run = runBranchingStrategy;
+        t.trace = runBranchingStrategy;
         return t;
     }();
     return type;

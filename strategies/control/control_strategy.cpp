@@ -184,7 +184,7 @@ const StrategyType& controlStrategyType() {
                       "control: rays whose hit (t, triangle) differs from the CPU reference's, which divides exactly (0 "
                       "where the device's division is IEEE's, as on llvmpipe; counted, not failed)",
                       0.0, false, {}, 26}};
-        t.run = runControl;
+        t.trace = runControl;
         return t;
     }();
     return type;

@@ -95,7 +95,7 @@ const StrategyType& cpuStrategyType() {
         t.columns = {{"host_threads", ColumnKind::Context, "threads",
                       "cpu: the threads that traced the rays (strategy.threads, 0 made every hardware thread)", 0.0, false,
                       {}, 16}};
-        t.run = runOnHost;
+        t.trace = runOnHost;
         return t;
     }();
     return type;

@@ -67,7 +67,7 @@ const StrategyType& megakernelStrategyType() {
             c.since = 12;
             t.columns.push_back(c);
         }
-        t.run = runMegakernelStrategy;
+        t.trace = runMegakernelStrategy;
         return t;
     }();
     return type;

@@ -515,7 +515,7 @@ const StrategyType& multipassStrategyType() {
             {"branching_mismatches", K::Exact, "rays", "multipass: rays whose hit record differs from the branching caster's"},
             {"multipass_batch_rays", K::Exact, "rays", "multipass: rays per batch (strategy.batch_rays, 0 made what one binding holds); passes_* add up over the batches", 0.0, false, {}, 12},
         };
-        t.run = runMultipassStrategy;
+        t.trace = runMultipassStrategy;
         return t;
     }();
     return type;

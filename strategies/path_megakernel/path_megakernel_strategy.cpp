@@ -101,8 +101,8 @@ private:
 };
 
 StrategyRun runPathMegakernelStrategy(VulkanContext& vk, const Structure& structure, const RayBatch& batch,
-                                      const RunConfig&, const TimingOptions& timing, Row& row) {
-    const BatchPath& path = traceablePath(batch, "path_megakernel");
+                                      const BatchPath& path, const RunConfig&, const TimingOptions& timing, Row& row) {
+    requireTraceablePath(path, "path_megakernel");
     for (std::size_t g = 1; g < path.passes.size(); ++g)
         if (path.passes[g].pass.z != 1)
             throw Error("strategy.type = path_megakernel follows one ray per hit after the first pass, and pass " +
@@ -151,13 +151,12 @@ const StrategyType& pathMegakernelStrategyType() {
         t.name = "path_megakernel";
         t.help = "the whole path in one kernel: each invocation traces its camera ray and every path its hit starts, shading "
                  "between the traces (Laine, Karras & Aila 2013's megakernel, the wavefront's peer)";
-        t.tracesPath = true;
         // The camera rays' copy, a batch ray and its flags (one path per camera ray).
         t.ownBytesPerRay = sizeof(gpu::Ray) + sizeof(gpu::Ray) + 16;
         t.columns = wholePathStrategyColumns({{"path_megakernel_rays_traced", ColumnKind::Exact, "rays",
                                                "path_megakernel: rays the kernel traced, counted on the device (must equal "
                                                "whole_path_rays)"}});
-        t.run = runPathMegakernelStrategy;
+        t.trace = runPathMegakernelStrategy;
         return t;
     }();
     return type;

@@ -124,7 +124,7 @@ const StrategyType& persistentStrategyType() {
             if (c.since == 1) c.since = 12;  // persistent_max_fetches: 22
             t.columns.push_back(c);
         }
-        t.run = runPersistentStrategy;
+        t.trace = runPersistentStrategy;
         return t;
     }();
     return type;

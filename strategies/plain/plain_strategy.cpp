@@ -45,7 +45,7 @@ const StrategyType& plainStrategyType() {
                       "(0 where the device's division is IEEE's, as on llvmpipe; counted, not failed)",
                       0.0, false, {}, 15},
                      streamBatchesColumn()};
-        t.run = runPlain;
+        t.trace = runPlain;
         return t;
     }();
     return type;

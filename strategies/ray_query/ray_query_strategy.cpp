@@ -144,7 +144,7 @@ const StrategyType& rayQueryStrategyType() {
         t.onlyStructure = "driver";
         t.columns = {streamBatchesColumn()};
         t.refusal = rayQueryRefusal;
-        t.run = runRayQuery;
+        t.trace = runRayQuery;
         return t;
     }();
     return type;

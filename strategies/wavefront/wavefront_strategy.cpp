@@ -196,8 +196,8 @@ private:
 };
 
 StrategyRun runWavefrontStrategy(VulkanContext& vk, const Structure& structure, const RayBatch& batch,
-                                 const RunConfig&, const TimingOptions& timing, Row& row) {
-    const BatchPath& path = traceablePath(batch, "wavefront");
+                                 const BatchPath& path, const RunConfig&, const TimingOptions& timing, Row& row) {
+    requireTraceablePath(path, "wavefront");
     const unsigned subgroup = vk.info().subgroupSize;
     if (timing.workgroupSize % subgroup || timing.workgroupSize / subgroup > 256)
         throw Error("strategy.workgroup_size " + std::to_string(timing.workgroupSize) +
@@ -249,7 +249,6 @@ const StrategyType& wavefrontStrategyType() {
         StrategyType t;
         t.name = "wavefront";
         t.help = "the whole path on the device, stage by stage over compacted queues: trace, shade, compact (Laine, Karras & Aila 2013)";
-        t.tracesPath = true;
         // The camera rays' copy, a queue entry, a made ray and its flags (fan-out 1).
         t.ownBytesPerRay = sizeof(gpu::Ray) + 16 + sizeof(gpu::Ray) + 16;
         t.columns = wholePathStrategyColumns({
@@ -257,7 +256,7 @@ const StrategyType& wavefrontStrategyType() {
             {"kernel_ms_trace", K::Timing, "ms", "wavefront: median GPU time of its trace stages per repetition"},
             {"kernel_ms_shade", K::Timing, "ms", "wavefront: median GPU time of its shading stages per repetition"},
             {"kernel_ms_queue", K::Timing, "ms", "wavefront: median GPU time of its setup, scans and compactions per repetition"}});
-        t.run = runWavefrontStrategy;
+        t.trace = runWavefrontStrategy;
         return t;
     }();
     return type;

@@ -49,7 +49,7 @@ TEST_F(LoopLimit, ARunPastTheDevicesLoopLimitFailsNamingItAndOneUnderItPasses) {
     Row row;
     {
         const std::unique_ptr<Structure> grid = gridStructure(buildUniformGrid(stack(60000), rule));
-        const StrategyRun run = branchingStrategyType().run(*vk_, *grid, RayBatch{rays}, config, {64, 0, 1}, row);
+        const StrategyRun run = batchTracer(branchingStrategyType())(*vk_, *grid, RayBatch{rays}, config, {64, 0, 1}, row);
         EXPECT_EQ(run.truncatedRays, 0u);
         EXPECT_EQ(run.cpuMismatches, 0u);  // 60,001 iterations: the device finishes every ray
         EXPECT_EQ(row.at("rays_cut_short"), "0");
@@ -57,7 +57,7 @@ TEST_F(LoopLimit, ARunPastTheDevicesLoopLimitFailsNamingItAndOneUnderItPasses) {
     }
     {
         const std::unique_ptr<Structure> grid = gridStructure(buildUniformGrid(stack(70000), rule));
-        const StrategyRun run = branchingStrategyType().run(*vk_, *grid, RayBatch{rays}, config, {64, 0, 1}, row);
+        const StrategyRun run = batchTracer(branchingStrategyType())(*vk_, *grid, RayBatch{rays}, config, {64, 0, 1}, row);
         EXPECT_EQ(run.truncatedRays, rays.size());
         EXPECT_GT(run.cpuMismatches, 0u);  // the device really did cut them short
         EXPECT_THAT(run.truncatedWhy, HasSubstr("needs 70001 loop iterations"));

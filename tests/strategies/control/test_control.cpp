@@ -83,7 +83,7 @@ protected:
                     unsigned workgroupSize = 64) {
         batch_ = RayBatch{generatePrimaryRays(camera, width, height)};
         batch_.camera = std::make_shared<const CameraFrame>(cameraFrame(camera, width, height));
-        return controlStrategyType().run(*vk_, grid, batch_, RunConfig{}, {workgroupSize, 0, 1}, row);
+        return batchTracer(controlStrategyType())(*vk_, grid, batch_, RunConfig{}, {workgroupSize, 0, 1}, row);
     }
     RayBatch batch_;
 };
@@ -153,17 +153,17 @@ TEST_F(ControlKernel, RefusesWhatItDoesNotTrace) {
     Row row;
     EXPECT_THAT(errorOf([&] { run(*grid, camera, 16, 16, row, 32); }), HasSubstr("strategy.workgroup_size = 32"));
     RayBatch notCamera{generatePrimaryRays(camera, 16, 16)};  // no frame: other rays, or tiles
-    EXPECT_THAT(errorOf([&] { controlStrategyType().run(*vk_, *grid, notCamera, RunConfig{}, {64, 0, 1}, row); }),
+    EXPECT_THAT(errorOf([&] { batchTracer(controlStrategyType())(*vk_, *grid, notCamera, RunConfig{}, {64, 0, 1}, row); }),
                 HasSubstr("rays.type = primary, without camera.tile"));
     RayBatch any = notCamera;
     any.camera = std::make_shared<const CameraFrame>(cameraFrame(camera, 16, 16));
     any.query = gpu::kQueryAny;
-    EXPECT_THAT(errorOf([&] { controlStrategyType().run(*vk_, *grid, any, RunConfig{}, {64, 0, 1}, row); }),
+    EXPECT_THAT(errorOf([&] { batchTracer(controlStrategyType())(*vk_, *grid, any, RunConfig{}, {64, 0, 1}, row); }),
                 HasSubstr("closest-hit queries only"));
     RayBatch other = notCamera;
     other.camera = std::make_shared<const CameraFrame>(cameraFrame(camera, 16, 16));
     other.rays[5].directionTMax.x += 1.0f;  // not the frame's ray
-    EXPECT_THAT(errorOf([&] { controlStrategyType().run(*vk_, *grid, other, RunConfig{}, {64, 0, 1}, row); }),
+    EXPECT_THAT(errorOf([&] { batchTracer(controlStrategyType())(*vk_, *grid, other, RunConfig{}, {64, 0, 1}, row); }),
                 HasSubstr("does not make the batch's rays"));
     grid->setTriangleTest(gpu::kTriangleTestWatertight);
     EXPECT_THAT(errorOf([&] { run(*grid, camera, 16, 16, row); }), HasSubstr("Moller-Trumbore only"));

@@ -34,7 +34,7 @@ TEST_F(CpuStrategy, ItsRecordsAreTheDevicesOnEveryStructure) {
             RunConfig config;
             config.values["strategy.threads"] = std::int64_t(2);
             Row row;
-            const StrategyRun cpu = cpuStrategyType().run(*vk_, *structure, batch, config, {64, 0, 1}, row);
+            const StrategyRun cpu = batchTracer(cpuStrategyType())(*vk_, *structure, batch, config, {64, 0, 1}, row);
             expectIdentical(runBranching(*vk_, *structure, rays, {64, 0, 0}, query).hits, cpu.hits);
             EXPECT_EQ(row.at("host_threads"), "2");
             EXPECT_FALSE(cpu.cpuCompared);  // its records are the CPU reference's: no check of itself

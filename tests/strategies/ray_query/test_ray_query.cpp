@@ -127,7 +127,7 @@ protected:
         Row row;
         TimingOptions timing;
         timing.warmups = timing.repetitions = 0;
-        return rayQueryStrategyType().run(*vk_, driver, batch, RunConfig{}, timing, row);
+        return batchTracer(rayQueryStrategyType())(*vk_, driver, batch, RunConfig{}, timing, row);
     }
 };
 

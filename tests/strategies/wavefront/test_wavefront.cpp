@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <map>
+#include <memory>
+#include <variant>
 
 #include "strategies/branching/branching_strategy.h"
 #include "strategies/path_megakernel/path_megakernel_strategy.h"
@@ -44,13 +46,34 @@ TEST(WholePathCapacity, TheQueueHoldsTheLargestGenerationAndTheSlotsTheLargestPa
     EXPECT_THAT(errorOf([] { wholePathCapacity(1u << 20, {1u << 12, 2}); }), HasSubstr("32-bit ray indices"));
 }
 
+// The two levels of the seam are types: the whole-path strategies are TracePath, and a caller that
+// hands rays alone (batchTracer) is refused by name; a batch strategy is TraceBatch.
+TEST(WholePathStrategies, TraceWholePathsNotABatchAlone) {
+    for (const StrategyType* strategy : {&wavefrontStrategyType(), &pathMegakernelStrategyType()}) {
+        EXPECT_TRUE(std::holds_alternative<StrategyType::TracePath>(strategy->trace)) << strategy->name;
+        EXPECT_THAT(errorOf([&] { batchTracer(*strategy); }),
+                    HasSubstr("strategy.type = " + strategy->name + " traces whole paths, not a batch of rays alone"));
+    }
+    EXPECT_TRUE(std::holds_alternative<StrategyType::TraceBatch>(branchingStrategyType().trace));
+    EXPECT_NO_THROW(batchTracer(branchingStrategyType()));
+}
+
 using WavefrontKernels = VulkanTest;
 
-// A whole-path strategy's instrumented run of `w` (its StrategyRun), the path as the runner hands it.
-StrategyRun runWholePath(const StrategyType& strategy, VulkanContext& vk, const Structure& s, Workload& w,
-                         const std::vector<gpu::Ray>& camera, const TriangleMesh& mesh, Row& row, unsigned workgroupSize = 64) {
-    w.batch.path = std::make_shared<const BatchPath>(batchPath(w, camera, mesh));
-    return strategy.run(vk, s, w.batch, RunConfig{}, {workgroupSize, 0, 0}, row);
+// A whole-path strategy's instrumented run of `w`, with the path as the runner hands it (the
+// TracePath level of the seam), kept as long as the run: its timer reads it. KeptPath is the
+// first base, so the path outlives the timer.
+struct KeptPath {
+    std::unique_ptr<const BatchPath> path;
+};
+struct WholePathRun : KeptPath, StrategyRun {};
+WholePathRun runWholePath(const StrategyType& strategy, VulkanContext& vk, const Structure& s, Workload& w,
+                          const std::vector<gpu::Ray>& camera, const TriangleMesh& mesh, Row& row, unsigned workgroupSize = 64) {
+    WholePathRun r;
+    r.path = std::make_unique<const BatchPath>(batchPath(w, camera, mesh));
+    static_cast<StrategyRun&>(r) =
+        std::get<StrategyType::TracePath>(strategy.trace)(vk, s, w.batch, *r.path, RunConfig{}, {workgroupSize, 0, 0}, row);
+    return r;
 }
 
 const std::vector<const StrategyType*> wholePathStrategies = {&wavefrontStrategyType(), &pathMegakernelStrategyType()};
@@ -73,7 +96,7 @@ TEST_F(WavefrontKernels, TwoParallelMirrorsEndAtTheHandComputedIterationOnEveryS
             const WorkloadInputs inputs{run, mesh, camera, *s, glm::vec3(0, 1, 0), [](glm::vec3 p) { return p; }};
             Row row;
             Workload w = reflectionRayType().make(inputs, row);
-            const StrategyRun r = runWholePath(*strategy, *vk_, *s, w, camera, mesh, row);
+            const WholePathRun r = runWholePath(*strategy, *vk_, *s, w, camera, mesh, row);
             EXPECT_EQ(r.countsMismatch, "");
             EXPECT_EQ(r.cpuMismatches, 0u);
             EXPECT_EQ(r.truncatedRays, 0u);
@@ -137,7 +160,7 @@ TEST_F(WavefrontKernels, ADiffusePathOfTwoRaysPerHitInsideABoxIsTheCpusGeneratio
         Row row;
         Workload w = pathRayType().make(inputs, row);
         ASSERT_EQ(w.batch.rays.size(), 300u);  // every ray hits a face: 150 x 2, then one each
-        const StrategyRun r = runWholePath(*strategy, *vk_, *s, w, camera, mesh, row, vk_->info().subgroupSize);
+        const WholePathRun r = runWholePath(*strategy, *vk_, *s, w, camera, mesh, row, vk_->info().subgroupSize);
         EXPECT_EQ(r.countsMismatch, "");
         EXPECT_EQ(r.cpuMismatches, 0u);
         expectIdentical(r.hits, s->trace(w.batch.rays));
@@ -179,7 +202,7 @@ TEST_F(WavefrontKernels, AGenerationThatIsNotTheDevicesIsNamed) {
         if (tamper == 0) std::swap(g.rays[0], g.rays[1]);
         if (tamper == 1) g.parents[1] = 2;
         if (tamper == 2) g.weights[0] = 0.5f;
-        const StrategyRun r = runWholePath(wavefrontStrategyType(), *vk_, *m.s, w, m.camera, m.mesh, row);
+        const WholePathRun r = runWholePath(wavefrontStrategyType(), *vk_, *m.s, w, m.camera, m.mesh, row);
         EXPECT_THAT(r.countsMismatch, HasSubstr(tamper == 0 ? "generation 1 (2 of 2 rays" : "generation 1 (1 of 2 rays"));
         EXPECT_THAT(r.countsMismatch, HasSubstr(tamper == 0 ? "ray 0's ray" : tamper == 1 ? "ray 1's parent" : "ray 0's weight"));
     }
@@ -197,7 +220,7 @@ TEST_F(WavefrontKernels, APathMegakernelBatchThatIsNotTheDevicesIsNamed) {
         if (tamper == 0) w.batch.rays[1].originTMin.x += 1.0f;
         if (tamper == 1) w.weights[0] = 0.5f;
         if (tamper == 2) w.paths[1] = 2;  // camera ray 2 misses: its path never reaches the batch
-        const StrategyRun r = runWholePath(pathMegakernelStrategyType(), *vk_, *m.s, w, m.camera, m.mesh, row);
+        const WholePathRun r = runWholePath(pathMegakernelStrategyType(), *vk_, *m.s, w, m.camera, m.mesh, row);
         EXPECT_THAT(r.countsMismatch, HasSubstr("batch (1 of 2 rays; first: "));
         EXPECT_THAT(r.countsMismatch, HasSubstr(tamper == 0 ? "ray 1's ray" : tamper == 1 ? "ray 0's weight" : "ray 1's path that never reached"));
     }
