@@ -108,13 +108,23 @@ def provenance(name: str, runs, context) -> str:
     if flagged is not None:
         wall = runs.wall_s.sum()
         timing = "one timed repetition of each method per run (no spread, no interval)" if reps == [1] else \
-            f"{'/'.join(map(str, reps)) or '?'} timed repetitions of each method per run, in rounds"
+            f"{reps_text(reps)} timed repetitions of each method per run, in rounds"
         lines.append(f"Timing: {timing}; the noise guard flagged {flagged} of the {len(ok)} ok runs (`timing_warning`: "
                      f"{guard_criterion(ok)} or "
                      f"other processes over {num(100 * ok.experiment_noise_other_cpu.iloc[0]) if len(ok) else '?'}% of "
                      f"the CPU; they took at most {num(100 * ok.other_cpu_fraction.max(), 2)}%); "
                      f"{num(wall, 2) + ' s' if wall < 120 else num(wall / 60, 2) + ' min'} of wall time in all.")
     return " ".join(lines)
+
+
+def reps_text(reps):
+    """The runs' repetition counts: each of a few (10/15), or the range of many (10–30: adaptive
+    rounds, experiment.target_ci, stop where each run's medians settle)."""
+    if not reps:
+        return "?"
+    if len(reps) <= 3:
+        return "/".join(map(str, reps))
+    return f"{reps[0]}–{reps[-1]} (adaptive: `timing_stop` says why each run stopped)"
 
 
 def guard_criterion(ok):
