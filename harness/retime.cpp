@@ -12,6 +12,7 @@
 #include "columns.h"
 #include "output_folder.h"
 #include "samples_check.h"
+#include "statistics.h"
 #include "runner.h"
 #include "timing_rounds.h"
 #include "version.h"
@@ -45,7 +46,7 @@ struct Conditioning {
 double spreadOf(const Row& row, const std::string& method) {
     const double low = cellNumber(cellText(row, method + "_ms_ci_low")), high = cellNumber(cellText(row, method + "_ms_ci_high"));
     const double median = cellNumber(cellText(row, method + "_ms_median"));
-    if (std::isfinite(low) && std::isfinite(high) && median > 0) return 0.5 * (high - low) / median;
+    if (std::isfinite(low) && std::isfinite(high) && median > 0) return relativeHalfWidth(Interval{low, high}, median);
     return cellNumber(cellText(row, method + "_ms_cv"));
 }
 

@@ -52,9 +52,11 @@ std::optional<Interval> medianInterval(const std::vector<double>& samples, doubl
     return Interval{sorted[k - 1], sorted[n - k]};
 }
 
+double relativeHalfWidth(const Interval& ci, double median) { return median > 0 ? 0.5 * (ci.high - ci.low) / median : 0.0; }
+
 double SampleStats::relativeHalfWidth() const {
     if (!ci) return std::numeric_limits<double>::infinity();
-    return median > 0 ? 0.5 * (ci->high - ci->low) / median : 0.0;
+    return rtbench::relativeHalfWidth(*ci, median);
 }
 
 SampleStats summarize(const std::vector<double>& samples) {

@@ -25,6 +25,10 @@ double orderStatisticCoverage(std::size_t n, std::size_t k);
 // even [min, max] covers less: fewer than 6 samples at 95%, fewer than 7 at 97.5%.
 std::optional<Interval> medianInterval(const std::vector<double>& samples, double confidence = 0.95);
 
+// Half the interval's width over the median it brackets (0 for a median of 0 or less): how
+// tightly a median is pinned, what the noise guard and adaptive repetitions judge.
+double relativeHalfWidth(const Interval& ci, double median);
+
 struct SampleStats {
     std::size_t n = 0;
     double mean = 0.0, median = 0.0, min = 0.0, max = 0.0;
