@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -75,11 +76,17 @@ double otherCpuFraction(const CpuTimes& before, const CpuTimes& after, unsigned 
     return std::clamp(others / ticksPerSecond / (wall * double(cores)), 0.0, 1.0);
 }
 
+// A percentage in plain digits: a spread of 1,140% reads "1140", never "1.14e+03".
+static std::string percentText(double fraction) {
+    const double percent = 100.0 * fraction;
+    return percent >= 1000.0 ? std::to_string(std::llround(percent)) : formatNumber(percent, 3);
+}
+
 std::string spreadWarning(const std::string& method, const SampleStats& s, double noiseCi, double noiseCv) {
     if (s.ci) {
         const double halfWidth = s.relativeHalfWidth();
         if (halfWidth <= noiseCi) return "";
-        return method + " interval +-" + formatNumber(100.0 * halfWidth, 3) + "% > experiment.noise_ci " + formatNumber(noiseCi, 3);
+        return method + " interval +-" + percentText(halfWidth) + "% > experiment.noise_ci " + formatNumber(noiseCi, 3);
     }
     if (!s.cv || *s.cv <= noiseCv) return "";
     return method + " CV " + formatNumber(*s.cv, 3) + " (" + std::to_string(s.n) + " repetitions: no interval) > experiment.noise_cv " +

@@ -182,6 +182,9 @@ TEST(NoiseGuard, JudgesTheMediansIntervalFromSixRepetitionsAndTheCvBelow) {
     EXPECT_EQ(spreadWarning("embree1", split, 0.1, 0.0), "");
     // Half at 10 and half at 11: +-0.5/10.5 = 4.76%, within 5%.
     EXPECT_EQ(spreadWarning("kernel", summarize({10, 11, 10, 11, 10, 11, 10, 11, 10, 11}), 0.05, 0.0), "");
+    // Six repetitions give [x(1), x(6)] (coverage 1 - 2/64): {1 x5, 25} has median 1 in [1, 25],
+    // +-12 = 1200%, written in plain digits (the sanitizer build once wrote "1.14e+03%").
+    EXPECT_EQ(spreadWarning("kernel", summarize({1, 1, 1, 1, 1, 25}), 0.05, 0.0), "kernel interval +-1200% > experiment.noise_ci 0.05");
     // 3 repetitions give no interval: the CV judges. {10, 10, 12}: sd sqrt(4/3), mean 32/3.
     const SampleStats three = summarize({10, 10, 12});
     ASSERT_FALSE(three.ci);
