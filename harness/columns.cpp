@@ -10,6 +10,7 @@
 #include "config.h"
 #include "methods/cache/cache_replay.h"
 #include "methods/registry.h"
+#include "run_metrics.h"
 #include "rays/registry.h"
 #include "core/error.h"
 #include "core/input_file.h"
@@ -234,65 +235,6 @@ void addAccuracyColumns(ColumnList& s) {
     s.add("image_pixels_differ", K::Exact, "pixels", "shaded pixels whose 8-bit grey differs from the exact render's");
 }
 
-// Work and accounting (exact, from instrumented kernels; equal to the CPU reference).
-void addWorkColumns(ColumnList& s) {
-    using K = ColumnKind;
-    s.add("work_per_ray_mean", K::Exact, "operations", "cells or nodes visited + triangles tested per ray, measured: what predicted_work_per_ray predicts");
-    s.add("triangles_per_ray_mean", K::Exact, "tests", "ray-triangle tests per ray, mean");
-    s.add("triangles_per_ray_max", K::Exact, "tests", "ray-triangle tests per ray, max");
-    s.add("traversal_steps_per_ray_mean", K::Exact, "steps", "traversal step attempts per ray (grid: DDA steps; BVH: references visited, inner nodes and leaves), mean");
-    s.add("traversal_steps_per_ray_max", K::Exact, "steps", "traversal step attempts per ray, max");
-    s.add("passes_total", K::Exact, "passes", "kernel dispatches over the ray stream");
-    s.add("simd_efficiency", K::Exact, "fraction",
-          "the strategy's own measure, as written before schema 14 (two measures in one column; read the two below): "
-          "simd_lane_utilisation for branching, persistent and the megakernel; for multipass Purcell's over the stream "
-          "(control = host) or over its compacted lists (control = device: 1)");
-    ColumnSpec& lanes = s.add("simd_lane_utilisation", K::Exact, "fraction",
-          "branching, persistent, megakernel: active lanes / lane slots over the kernel's subgroup ballots (Aila & Laine "
-          "2009), counted only where some lane of a subgroup still works (rays that miss at once are left out)");
-    lanes.since = 14;
-    lanes.appliesWhen = {"strategy.type=branching|persistent|megakernel"};
-    s.add("simd_efficiency_purcell", K::Exact, "fraction",
-          "Purcell et al. 2002 Table 2's SIMD efficiency, the average fraction of the stream's rays doing useful work in a "
-          "pass, misses included: multipass, rays served / (rays x traverse and intersect passes), whatever the control; "
-          "branching, persistent, megakernel, the stream run in lock step one traversal step or triangle test at a time: "
-          "sum of (steps + tests) / (rays x the most steps + tests of one ray)").since = 14;
-    s.add("bytes_stencil", K::Exact, "bytes", "ray-state byte reads and writes");
-    s.add("bytes_state", K::Exact, "bytes", "per-ray state saved and restored");
-    s.add("bytes_stack", K::Exact, "bytes", "multipass: node-stack entries pushed and popped, 4 bytes each (BVH; its stack stays in memory)");
-    s.add("bytes_compaction", K::Exact, "bytes", "multipass with strategy.control = device: compacted ray-list entries read and appended, 4 bytes each").since = 13;
-    s.add("bytes_triangle_list", K::Exact, "bytes", "triangle-list entries read");
-    s.add("bytes_vertices", K::Exact, "bytes", "triangle vertices read");
-    s.add("bytes_output", K::Exact, "bytes", "hit records written");
-    s.add("bytes_total", K::Exact, "bytes", "all categories");
-    s.add("bytes_per_ray", K::Exact, "bytes", "bytes_total / rays");
-}
-
-// Purcell Table 1 / Fig. 7's compute, estimated (methods/instructions/instruction_estimate.h):
-// branching and multipass runs, since results schema 17.
-void addInstructionColumns(ColumnList& s) {
-    const std::string estimate = "estimate: static SPIR-V instructions (glslang, unoptimised; every branch counted) ";
-    auto add = [&](std::string name, std::string unit, std::string help) {
-        ColumnSpec& c = s.add(std::move(name), ColumnKind::Exact, std::move(unit), std::move(help));
-        c.since = 17;
-        c.appliesWhen = {"strategy.type=branching|multipass"};
-    };
-    add("instructions_per_step", "instructions",
-        estimate + "of one traversal event (grid: rtDdaStep, a DDA step; BVH: rtBvhChildren, an inner node)");
-    add("instructions_per_test", "instructions", estimate + "of one ray-triangle test (rtIntersectStored, the run's test)");
-    add("instructions_traverse", "instructions",
-        estimate + "x exact counts: traversal (Fig. 7's traverser): steps x instructions_per_step, and for multipass "
-        "each ray a traverse pass serves x the traverse kernel's other instructions");
-    add("instructions_intersect", "instructions",
-        estimate + "x exact counts: intersection (Fig. 7's intersector): tests x instructions_per_test, and for "
-        "multipass each ray an intersect pass serves x the intersect kernel's other instructions");
-    add("instructions_other", "instructions",
-        estimate + "x rays: the rest of the kernel (branching) or the setup and write kernels (multipass); rays the "
-        "stencil turns away cost none (Purcell's early fragment kill)");
-    add("instructions_total", "instructions", "instructions_traverse + instructions_intersect + instructions_other");
-    add("instructions_per_byte", "ratio", "instructions_total / bytes_total: compute against bandwidth (Purcell §4.2)");
-}
-
 // Self-checks (a mismatch fails the run), and the run's wall time.
 void addSelfCheckColumns(ColumnList& s) {
     using K = ColumnKind;
@@ -328,8 +270,7 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         addTimingColumns(s);
         for (const ColumnSpec& c : buildRoundColumns()) s.specs.push_back(c);  // experiment.build_rounds
         addAccuracyColumns(s);
-        addWorkColumns(s);
-        addInstructionColumns(s);
+        for (const ColumnSpec& c : architectureColumns()) s.specs.push_back(c);  // harness/run_metrics.cpp
         for (const StrategyType* t : strategyTypes()) s.addMethod("strategy.type", t->name, t->columns);
         for (const ColumnSpec& c : cacheColumns()) s.specs.push_back(c);  // cache.simulate
         addSelfCheckColumns(s);

@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "image_compare.h"
+#include "schema/column.h"
 #include "strategies/ray_batch.h"
 
 namespace rtbench {
@@ -15,38 +16,118 @@ namespace {
 // A shaded pixel differs from the exact render's when its 8-bit grey differs (by a level or more).
 constexpr double kPixelDifferThreshold = 0.5 / 255.0;
 
+// Work, SIMD efficiency and bytes by data type (exact, from instrumented kernels; equal to the CPU
+// reference), and Purcell Table 1 / Fig. 7's compute estimated (methods/instructions/
+// instruction_estimate.h, branching and multipass runs since results schema 17).
+struct ArchitectureColumns {
+    using K = ColumnKind;
+    template <class T>
+    using C = Column<T>;
+    using U64 = std::uint64_t;
+    using U32 = std::uint32_t;
+    ColumnGroup group;
+    C<double> workPerRayMean = group.add<double>(
+        {"work_per_ray_mean", K::Exact, "operations", "cells or nodes visited + triangles tested per ray, measured: what predicted_work_per_ray predicts"});
+    C<double> trianglesPerRayMean = group.add<double>({"triangles_per_ray_mean", K::Exact, "tests", "ray-triangle tests per ray, mean"});
+    C<U32> trianglesPerRayMax = group.add<U32>({"triangles_per_ray_max", K::Exact, "tests", "ray-triangle tests per ray, max"});
+    C<double> stepsPerRayMean = group.add<double>(
+        {"traversal_steps_per_ray_mean", K::Exact, "steps", "traversal step attempts per ray (grid: DDA steps; BVH: references visited, inner nodes and leaves), mean"});
+    C<U32> stepsPerRayMax = group.add<U32>({"traversal_steps_per_ray_max", K::Exact, "steps", "traversal step attempts per ray, max"});
+    C<U64> passes = group.add<U64>({"passes_total", K::Exact, "passes", "kernel dispatches over the ray stream"});
+    C<double> simdEfficiency = group.add<double>(
+        {"simd_efficiency", K::Exact, "fraction",
+         "the strategy's own measure, as written before schema 14 (two measures in one column; read the two below): "
+         "simd_lane_utilisation for branching, persistent and the megakernel; for multipass Purcell's over the stream "
+         "(control = host) or over its compacted lists (control = device: 1)"});
+    C<double> laneUtilisation = group.add<double>(
+        {"simd_lane_utilisation", K::Exact, "fraction",
+         "branching, persistent, megakernel: active lanes / lane slots over the kernel's subgroup ballots (Aila & Laine "
+         "2009), counted only where some lane of a subgroup still works (rays that miss at once are left out)",
+         0.0, false, {"strategy.type=branching|persistent|megakernel"}, 14});
+    C<double> purcellSimdEfficiency = group.add<double>(
+        {"simd_efficiency_purcell", K::Exact, "fraction",
+         "Purcell et al. 2002 Table 2's SIMD efficiency, the average fraction of the stream's rays doing useful work in a "
+         "pass, misses included: multipass, rays served / (rays x traverse and intersect passes), whatever the control; "
+         "branching, persistent, megakernel, the stream run in lock step one traversal step or triangle test at a time: "
+         "sum of (steps + tests) / (rays x the most steps + tests of one ray)", 0.0, false, {}, 14});
+    C<U64> bytesStencil = group.add<U64>({"bytes_stencil", K::Exact, "bytes", "ray-state byte reads and writes"});
+    C<U64> bytesState = group.add<U64>({"bytes_state", K::Exact, "bytes", "per-ray state saved and restored"});
+    C<U64> bytesStack = group.add<U64>(
+        {"bytes_stack", K::Exact, "bytes", "multipass: node-stack entries pushed and popped, 4 bytes each (BVH; its stack stays in memory)"});
+    C<U64> bytesCompaction = group.add<U64>(
+        {"bytes_compaction", K::Exact, "bytes", "multipass with strategy.control = device: compacted ray-list entries read and appended, 4 bytes each",
+         0.0, false, {}, 13});
+    C<U64> bytesTriangleList = group.add<U64>({"bytes_triangle_list", K::Exact, "bytes", "triangle-list entries read"});
+    C<U64> bytesVertices = group.add<U64>({"bytes_vertices", K::Exact, "bytes", "triangle vertices read"});
+    C<U64> bytesOutput = group.add<U64>({"bytes_output", K::Exact, "bytes", "hit records written"});
+    C<U64> bytesTotal = group.add<U64>({"bytes_total", K::Exact, "bytes", "all categories"});
+    C<double> bytesPerRay = group.add<double>({"bytes_per_ray", K::Exact, "bytes", "bytes_total / rays"});
+    C<U64> perStep = instructions("instructions_per_step",
+                                  "of one traversal event (grid: rtDdaStep, a DDA step; BVH: rtBvhChildren, an inner node)");
+    C<U64> perTest = instructions("instructions_per_test", "of one ray-triangle test (rtIntersectStored, the run's test)");
+    C<U64> traverse = instructions("instructions_traverse",
+                                   "x exact counts: traversal (Fig. 7's traverser): steps x instructions_per_step, and for multipass "
+                                   "each ray a traverse pass serves x the traverse kernel's other instructions");
+    C<U64> intersect = instructions("instructions_intersect",
+                                    "x exact counts: intersection (Fig. 7's intersector): tests x instructions_per_test, and for "
+                                    "multipass each ray an intersect pass serves x the intersect kernel's other instructions");
+    C<U64> other = instructions("instructions_other",
+                                "x rays: the rest of the kernel (branching) or the setup and write kernels (multipass); rays the "
+                                "stencil turns away cost none (Purcell's early fragment kill)");
+    C<U64> total = instructions("instructions_total", "", "instructions_traverse + instructions_intersect + instructions_other");
+    C<double> perByte = group.add<double>({"instructions_per_byte", K::Exact, "ratio",
+                                           "instructions_total / bytes_total: compute against bandwidth (Purcell §4.2)", 0.0, false,
+                                           {"strategy.type=branching|multipass"}, 17});
+
+private:
+    // An estimate's column (`estimate` empty: a sum of the others).
+    C<U64> instructions(std::string name, const std::string& what, const std::string& sum = "") {
+        const std::string estimate = "estimate: static SPIR-V instructions (glslang, unoptimised; every branch counted) ";
+        return group.add<U64>({std::move(name), K::Exact, "instructions", sum.empty() ? estimate + what : sum, 0.0, false,
+                               {"strategy.type=branching|multipass"}, 17});
+    }
+};
+
+const ArchitectureColumns& architecture() {
+    static const ArchitectureColumns columns;
+    return columns;
+}
+
 }  // namespace
+
+const std::vector<ColumnSpec>& architectureColumns() { return architecture().group.specs(); }
 
 void writeArchitectureColumns(const ArchitectureMetrics& m, const Structure& structure, std::uint64_t rays, Row& row) {
     const WorkStats& w = m.work;
     if (!m.countsKnown) return;  // left empty: not zero
+    const ArchitectureColumns& c = architecture();
     structure.writeWorkColumns(w.cellsPerRayMean, w.cellsPerRayMax, m.bytes.cells, row);
-    row["work_per_ray_mean"] = formatNumber(double(w.cellsTotal + w.trianglesTotal) / double(rays));
-    row["triangles_per_ray_mean"] = formatNumber(w.trianglesPerRayMean);
-    row["triangles_per_ray_max"] = std::to_string(w.trianglesPerRayMax);
-    row["traversal_steps_per_ray_mean"] = formatNumber(double(w.stepsTotal) / double(rays));
-    row["traversal_steps_per_ray_max"] = std::to_string(w.stepsPerRayMax);
-    row["passes_total"] = std::to_string(m.passes);
-    row["simd_efficiency"] = formatNumber(m.simdEfficiency);
-    if (m.laneUtilisation >= 0) row["simd_lane_utilisation"] = formatNumber(m.laneUtilisation);
-    row["simd_efficiency_purcell"] = formatNumber(m.purcellSimdEfficiency);
-    row["bytes_stencil"] = std::to_string(m.bytes.stencil);
-    row["bytes_state"] = std::to_string(m.bytes.state);
-    if (m.bytes.stack) row["bytes_stack"] = std::to_string(m.bytes.stack);
-    if (m.bytes.compaction) row["bytes_compaction"] = std::to_string(m.bytes.compaction);
-    row["bytes_triangle_list"] = std::to_string(m.bytes.triangleList);
-    row["bytes_vertices"] = std::to_string(m.bytes.vertices);
-    row["bytes_output"] = std::to_string(m.bytes.output);
-    row["bytes_total"] = std::to_string(m.bytes.total());
-    row["bytes_per_ray"] = formatNumber(double(m.bytes.total()) / double(rays));
+    put(row, c.workPerRayMean, double(w.cellsTotal + w.trianglesTotal) / double(rays));
+    put(row, c.trianglesPerRayMean, w.trianglesPerRayMean);
+    put(row, c.trianglesPerRayMax, w.trianglesPerRayMax);
+    put(row, c.stepsPerRayMean, double(w.stepsTotal) / double(rays));
+    put(row, c.stepsPerRayMax, w.stepsPerRayMax);
+    put(row, c.passes, m.passes);
+    put(row, c.simdEfficiency, m.simdEfficiency);
+    if (m.laneUtilisation >= 0) put(row, c.laneUtilisation, m.laneUtilisation);
+    put(row, c.purcellSimdEfficiency, m.purcellSimdEfficiency);
+    put(row, c.bytesStencil, m.bytes.stencil);
+    put(row, c.bytesState, m.bytes.state);
+    if (m.bytes.stack) put(row, c.bytesStack, m.bytes.stack);
+    if (m.bytes.compaction) put(row, c.bytesCompaction, m.bytes.compaction);
+    put(row, c.bytesTriangleList, m.bytes.triangleList);
+    put(row, c.bytesVertices, m.bytes.vertices);
+    put(row, c.bytesOutput, m.bytes.output);
+    put(row, c.bytesTotal, m.bytes.total());
+    put(row, c.bytesPerRay, double(m.bytes.total()) / double(rays));
     if (const InstructionEstimate& i = m.instructions; i.known) {
-        row["instructions_per_step"] = std::to_string(i.perStep);
-        row["instructions_per_test"] = std::to_string(i.perTest);
-        row["instructions_traverse"] = std::to_string(i.traverse);
-        row["instructions_intersect"] = std::to_string(i.intersect);
-        row["instructions_other"] = std::to_string(i.other);
-        row["instructions_total"] = std::to_string(i.total());
-        row["instructions_per_byte"] = formatNumber(double(i.total()) / double(m.bytes.total()));
+        put(row, c.perStep, i.perStep);
+        put(row, c.perTest, i.perTest);
+        put(row, c.traverse, i.traverse);
+        put(row, c.intersect, i.intersect);
+        put(row, c.other, i.other);
+        put(row, c.total, i.total());
+        put(row, c.perByte, double(i.total()) / double(m.bytes.total()));
     }
 }
 

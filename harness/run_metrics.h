@@ -19,6 +19,9 @@
 
 namespace rtbench {
 
+// The columns writeArchitectureColumns writes, declared where it writes them.
+const std::vector<ColumnSpec>& architectureColumns();
+
 // The architecture's counts (Purcell's passes and SIMD efficiency, work per ray, bytes by data
 // type) and the structure's own columns for `rays` rays.
 void writeArchitectureColumns(const ArchitectureMetrics& m, const Structure& structure, std::uint64_t rays, Row& row);

@@ -8,6 +8,7 @@
 #include "structures/cost_model.h"
 #include "structures/triangle_store.h"
 #include "core/error.h"
+#include "schema/column.h"
 
 namespace rtbench {
 
@@ -39,7 +40,32 @@ GridResolutionRule resolutionRule(const RunConfig& run) {
     return rule;
 }
 
-std::string num(double v, int significant = 6) { return formatNumber(v, significant); }
+// The grid's columns, each declared once, here, where its value is written.
+struct GridColumns {
+    using K = ColumnKind;
+    ColumnGroup group;
+    Column<unsigned> resX = group.add<unsigned>({"grid_res_x", K::Exact, "cells", "grid resolution along x"});
+    Column<unsigned> resY = group.add<unsigned>({"grid_res_y", K::Exact, "cells", "grid resolution along y"});
+    Column<unsigned> resZ = group.add<unsigned>({"grid_res_z", K::Exact, "cells", "grid resolution along z"});
+    Column<std::uint64_t> cells = group.add<std::uint64_t>({"grid_cells", K::Exact, "cells", "voxels in the grid"});
+    Column<double> emptyFraction = group.add<double>({"grid_empty_fraction", K::Exact, "fraction", "voxels with no triangle"});
+    Column<std::uint64_t> references = group.add<std::uint64_t>({"grid_references", K::Exact, "references", "(voxel, triangle) pairs"});
+    Column<double> referencesPerTriangle = group.add<double>({"grid_refs_per_triangle", K::Exact, "references", "references per triangle"});
+    Column<std::uint32_t> maxReferencesInCell = group.add<std::uint32_t>({"grid_max_refs_in_cell", K::Exact, "references", "largest voxel list"});
+    Column<std::uint64_t> bytes = group.add<std::uint64_t>({"grid_bytes", K::Exact, "bytes", "grid memory (offsets, lists, vertices)"});
+    Column<double> voxelMargin = group.add<double>(
+        {"grid_voxel_margin", K::Exact, "scene units", "structure.conservative: how far beyond its box a voxel lists triangles (0: exact voxels)"}, 4);
+    Column<double> buildMs = group.add<double>(
+        {"grid_build_ms", K::Timing, "ms", "CPU build time of the grid: wall time, the triangles binned in parallel on TBB's threads, as Embree builds its BVH"}, 4);
+    Column<double> voxelsPerRayMean = group.add<double>({"voxels_per_ray_mean", K::Exact, "voxels", "voxels visited per ray, mean"});
+    Column<std::uint32_t> voxelsPerRayMax = group.add<std::uint32_t>({"voxels_per_ray_max", K::Exact, "voxels", "voxels visited per ray, max"});
+    Column<std::uint64_t> bytesVoxel = group.add<std::uint64_t>({"bytes_voxel", K::Exact, "bytes", "voxel offsets read"});
+};
+
+const GridColumns& gridColumns() {
+    static const GridColumns columns;
+    return columns;
+}
 
 class GridStructure final : public SharedSourceStructure<gridref::GridKernels> {
 public:
@@ -95,24 +121,26 @@ public:
 
     void writeColumns(Row& row) const override {
         const GridStats& g = grid_.stats;
-        row["grid_res_x"] = std::to_string(g.resolution[0]);
-        row["grid_res_y"] = std::to_string(g.resolution[1]);
-        row["grid_res_z"] = std::to_string(g.resolution[2]);
-        row["grid_cells"] = std::to_string(g.cells);
-        row["grid_empty_fraction"] = num(g.emptyFraction);
-        row["grid_references"] = std::to_string(g.references);
-        row["grid_refs_per_triangle"] = num(g.referencesPerTriangle);
-        row["grid_max_refs_in_cell"] = std::to_string(g.maxReferencesInCell);
-        row["grid_bytes"] = std::to_string(g.bytes);
-        row["grid_voxel_margin"] = num(g.voxelMargin, 4);
-        row["grid_build_ms"] = num(g.buildMs, 4);
+        const GridColumns& c = gridColumns();
+        put(row, c.resX, g.resolution[0]);
+        put(row, c.resY, g.resolution[1]);
+        put(row, c.resZ, g.resolution[2]);
+        put(row, c.cells, g.cells);
+        put(row, c.emptyFraction, g.emptyFraction);
+        put(row, c.references, g.references);
+        put(row, c.referencesPerTriangle, g.referencesPerTriangle);
+        put(row, c.maxReferencesInCell, g.maxReferencesInCell);
+        put(row, c.bytes, g.bytes);
+        put(row, c.voxelMargin, g.voxelMargin);
+        put(row, c.buildMs, g.buildMs);
     }
 
     void writeWorkColumns(double cellsPerRayMean, std::uint32_t cellsPerRayMax, std::uint64_t cellBytes,
                           Row& row) const override {
-        row["voxels_per_ray_mean"] = num(cellsPerRayMean);
-        row["voxels_per_ray_max"] = std::to_string(cellsPerRayMax);
-        row["bytes_voxel"] = std::to_string(cellBytes);
+        const GridColumns& c = gridColumns();
+        put(row, c.voxelsPerRayMean, cellsPerRayMean);
+        put(row, c.voxelsPerRayMax, cellsPerRayMax);
+        put(row, c.bytesVoxel, cellBytes);
     }
 
 private:
@@ -138,7 +166,6 @@ std::unique_ptr<Structure> gridStructure(UniformGrid grid) { return std::make_un
 
 const StructureType& gridStructureType() {
     static const StructureType type = [] {
-        using K = ColumnKind;
         StructureType t;
         t.name = "uniform_grid";
         t.help = "uniform grid (Purcell et al. 2002 Fig. 4), CGAL's exact triangle-box membership";
@@ -149,22 +176,7 @@ const StructureType& gridStructureType() {
             {"structure.cells_per_triangle", ValueType::Float, "density rule: about this many cubic cells per triangle", {}, false, 1e-3, 1e3, {}, {}, {}, rule},
             {"structure.conservative", ValueType::Bool, "conservative traversal: each voxel also lists the triangles within a margin of it that bounds the DDA's rounding (structures/uniform_grid/uniform_grid.h), so a ray through an edge or a corner, or far from the origin, loses no triangle", false},
         };
-        t.columns = {
-            {"grid_res_x", K::Exact, "cells", "grid resolution along x"},
-            {"grid_res_y", K::Exact, "cells", "grid resolution along y"},
-            {"grid_res_z", K::Exact, "cells", "grid resolution along z"},
-            {"grid_cells", K::Exact, "cells", "voxels in the grid"},
-            {"grid_empty_fraction", K::Exact, "fraction", "voxels with no triangle"},
-            {"grid_references", K::Exact, "references", "(voxel, triangle) pairs"},
-            {"grid_refs_per_triangle", K::Exact, "references", "references per triangle"},
-            {"grid_max_refs_in_cell", K::Exact, "references", "largest voxel list"},
-            {"grid_bytes", K::Exact, "bytes", "grid memory (offsets, lists, vertices)"},
-            {"grid_voxel_margin", K::Exact, "scene units", "structure.conservative: how far beyond its box a voxel lists triangles (0: exact voxels)"},
-            {"grid_build_ms", K::Timing, "ms", "CPU build time of the grid: wall time, the triangles binned in parallel on TBB's threads, as Embree builds its BVH"},
-            {"voxels_per_ray_mean", K::Exact, "voxels", "voxels visited per ray, mean"},
-            {"voxels_per_ray_max", K::Exact, "voxels", "voxels visited per ray, max"},
-            {"bytes_voxel", K::Exact, "bytes", "voxel offsets read"},
-        };
+        t.columns = gridColumns().group.specs();
         t.build = buildGrid;
         return t;
     }();
