@@ -4,10 +4,24 @@
 
 #include "methods/registry.h"
 #include "core/error.h"
+#include "schema/column.h"
 
 namespace rtbench {
 
 namespace {
+
+// The choice and what the cost model predicted for each candidate.
+struct AutoColumns {
+    ColumnGroup group;
+    Column<std::string> choice = group.add<std::string>({"auto_choice", ColumnKind::Exact, "", "auto: the structure chosen"});
+    Column<std::string> predictions = group.add<std::string>(
+        {"auto_predictions", ColumnKind::Exact, "operations", "auto: every candidate's predicted work per ray (predicted_work_per_ray), or refused"});
+};
+
+const AutoColumns& autoColumns() {
+    static const AutoColumns columns;
+    return columns;
+}
 
 // The chosen structure, with the record of the choice.
 class AutoStructure final : public Structure {
@@ -32,8 +46,8 @@ public:
     }
     void writeColumns(Row& row) const override {
         chosen_->writeColumns(row);
-        row["auto_choice"] = choice_;
-        row["auto_predictions"] = predictions_;
+        put(row, autoColumns().choice, choice_);
+        put(row, autoColumns().predictions, predictions_);
     }
     void writeWorkColumns(double cellsPerRayMean, std::uint32_t cellsPerRayMax, std::uint64_t cellBytes,
                           Row& row) const override {
@@ -87,15 +101,10 @@ std::unique_ptr<Structure> buildAuto(const TriangleMesh& mesh, const std::vector
 
 const StructureType& autoStructureType() {
     static const StructureType type = [] {
-        using K = ColumnKind;
         StructureType t;
         t.name = "auto";
         t.help = "the structure the cost model predicts the least work for (each candidate built with its default keys)";
-        t.columns = {
-            textColumn({"auto_choice", K::Exact, "", "auto: the structure chosen"}),
-            textColumn({"auto_predictions", K::Exact, "operations",
-                        "auto: every candidate's predicted work per ray (predicted_work_per_ray), or refused"}),
-        };
+        t.columns = autoColumns().group.specs();
         t.build = buildAuto;
         return t;
     }();

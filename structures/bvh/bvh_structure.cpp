@@ -5,13 +5,33 @@
 #include "structures/shared_source.h"
 #include "structures/triangle_store.h"
 #include "core/error.h"
+#include "schema/column.h"
 
 namespace rtbench {
 
 
 namespace {
 
-std::string num(double v, int significant = 6) { return formatNumber(v, significant); }
+// The BVH's columns, each declared once, here, where its value is written.
+struct BvhColumns {
+    using K = ColumnKind;
+    using U64 = std::uint64_t;
+    ColumnGroup group;
+    Column<U64> innerNodes = group.add<U64>({"bvh_inner_nodes", K::Exact, "nodes", "BVH inner nodes (80 bytes each)"});
+    Column<U64> leaves = group.add<U64>({"bvh_leaves", K::Exact, "leaves", "BVH leaves"});
+    Column<unsigned> depth = group.add<unsigned>({"bvh_depth", K::Exact, "levels", "deepest leaf's distance from the root"});
+    Column<unsigned> largestLeaf = group.add<unsigned>({"bvh_largest_leaf", K::Exact, "triangles", "most triangles in one leaf"});
+    Column<U64> references = group.add<U64>({"bvh_references", K::Exact, "references", "triangle-list entries (each triangle once)"});
+    Column<double> sahCost = group.add<double>({"bvh_sah_cost", K::Exact, "", "SAH cost of the tree (traversal and intersection cost 1)"});
+    Column<double> nodesPerRayMean = group.add<double>({"nodes_per_ray_mean", K::Exact, "nodes", "BVH inner nodes visited per ray, mean"});
+    Column<std::uint32_t> nodesPerRayMax = group.add<std::uint32_t>({"nodes_per_ray_max", K::Exact, "nodes", "BVH inner nodes visited per ray, max"});
+    Column<U64> bytesNode = group.add<U64>({"bytes_node", K::Exact, "bytes", "BVH nodes read"});
+};
+
+const BvhColumns& bvhColumns() {
+    static const BvhColumns columns;
+    return columns;
+}
 
 class BvhStructure final : public SharedSourceStructure<bvhref::BvhKernels> {
 public:
@@ -62,19 +82,21 @@ public:
 
     void writeColumns(Row& row) const override {
         const BvhStats& s = bvh_.stats;
-        row["bvh_inner_nodes"] = std::to_string(s.innerNodes);
-        row["bvh_leaves"] = std::to_string(s.leaves);
-        row["bvh_depth"] = std::to_string(s.depth);
-        row["bvh_largest_leaf"] = std::to_string(s.largestLeaf);
-        row["bvh_references"] = std::to_string(s.references);
-        row["bvh_sah_cost"] = num(s.sahCost);
+        const BvhColumns& c = bvhColumns();
+        put(row, c.innerNodes, s.innerNodes);
+        put(row, c.leaves, s.leaves);
+        put(row, c.depth, s.depth);
+        put(row, c.largestLeaf, s.largestLeaf);
+        put(row, c.references, s.references);
+        put(row, c.sahCost, s.sahCost);
     }
 
     void writeWorkColumns(double cellsPerRayMean, std::uint32_t cellsPerRayMax, std::uint64_t cellBytes,
                           Row& row) const override {
-        row["nodes_per_ray_mean"] = num(cellsPerRayMean);
-        row["nodes_per_ray_max"] = std::to_string(cellsPerRayMax);
-        row["bytes_node"] = std::to_string(cellBytes);
+        const BvhColumns& c = bvhColumns();
+        put(row, c.nodesPerRayMean, cellsPerRayMean);
+        put(row, c.nodesPerRayMax, cellsPerRayMax);
+        put(row, c.bytesNode, cellBytes);
     }
 
 private:
@@ -120,7 +142,6 @@ std::unique_ptr<Structure> bvhStructure(FlatBvh bvh) { return std::make_unique<B
 
 const StructureType& bvhStructureType() {
     static const StructureType type = [] {
-        using K = ColumnKind;
         StructureType t;
         t.name = "bvh";
         t.help = "binary BVH from Embree's builder (rtcBuildBVH), both child boxes per node (Aila & Laine 2009)";
@@ -128,17 +149,7 @@ const StructureType& bvhStructureType() {
             {"structure.leaf_size", ValueType::Int, "BVH: most triangles per leaf (Embree's maxLeafSize)", std::int64_t(4), false, 1, double(gpu::kBvhMaxLeafSize)},
             {"structure.quality", ValueType::String, "BVH: medium (binned SAH) or low (Morton codes: faster build, worse tree)", std::string("medium"), false, -1e300, 1e300, {"medium", "low"}},
         };
-        t.columns = {
-            {"bvh_inner_nodes", K::Exact, "nodes", "BVH inner nodes (80 bytes each)"},
-            {"bvh_leaves", K::Exact, "leaves", "BVH leaves"},
-            {"bvh_depth", K::Exact, "levels", "deepest leaf's distance from the root"},
-            {"bvh_largest_leaf", K::Exact, "triangles", "most triangles in one leaf"},
-            {"bvh_references", K::Exact, "references", "triangle-list entries (each triangle once)"},
-            {"bvh_sah_cost", K::Exact, "", "SAH cost of the tree (traversal and intersection cost 1)"},
-            {"nodes_per_ray_mean", K::Exact, "nodes", "BVH inner nodes visited per ray, mean"},
-            {"nodes_per_ray_max", K::Exact, "nodes", "BVH inner nodes visited per ray, max"},
-            {"bytes_node", K::Exact, "bytes", "BVH nodes read"},
-        };
+        t.columns = bvhColumns().group.specs();
         t.build = buildBvhStructure;
         return t;
     }();

@@ -2,6 +2,7 @@
 
 #include "structures/bvh/bvh_structure.h"
 #include "core/error.h"
+#include "schema/column.h"
 
 namespace rtbench {
 
@@ -24,12 +25,36 @@ const DriverAccelerationStructure& DriverStructure::accelerationStructure() cons
     return *device_;
 }
 
+namespace {
+
+// The driver's acceleration structure's storage, as the driver sized it (results schema 14).
+struct DriverColumns {
+    ColumnGroup group;
+    Column<std::uint64_t> blas = bytes("driver_blas_bytes", "driver: the bottom level's storage, as the driver sized it");
+    Column<std::uint64_t> tlas = bytes("driver_tlas_bytes", "driver: the top level's storage (one instance)");
+    Column<std::uint64_t> scratch = bytes("driver_scratch_bytes", "driver: the larger build's scratch (freed after the build)");
+    Column<std::uint64_t> input = bytes("driver_input_bytes", "driver: vertices, indices and the instance uploaded for the build");
+
+private:
+    Column<std::uint64_t> bytes(std::string name, std::string help) {
+        return group.add<std::uint64_t>({std::move(name), ColumnKind::Exact, "bytes", std::move(help), 0.0, false, {}, 14});
+    }
+};
+
+const DriverColumns& driverColumns() {
+    static const DriverColumns columns;
+    return columns;
+}
+
+}  // namespace
+
 void DriverStructure::writeColumns(Row& row) const {
     if (!device_) return;
-    row["driver_blas_bytes"] = std::to_string(device_->bottomLevelBytes());
-    row["driver_tlas_bytes"] = std::to_string(device_->topLevelBytes());
-    row["driver_scratch_bytes"] = std::to_string(device_->scratchBytes());
-    row["driver_input_bytes"] = std::to_string(device_->inputBytes());
+    const DriverColumns& c = driverColumns();
+    put(row, c.blas, device_->bottomLevelBytes());
+    put(row, c.tlas, device_->topLevelBytes());
+    put(row, c.scratch, device_->scratchBytes());
+    put(row, c.input, device_->inputBytes());
 }
 
 namespace {
@@ -51,12 +76,7 @@ const StructureType& driverStructureType() {
         t.help = "the Vulkan driver's own acceleration structure (VK_KHR_acceleration_structure), built on the device; "
                  "traced by strategy.type = ray_query only";
         t.onlyStrategy = "ray_query";
-        const int since = 14;
-        t.columns = {
-            {"driver_blas_bytes", ColumnKind::Exact, "bytes", "driver: the bottom level's storage, as the driver sized it", 0.0, false, {}, since},
-            {"driver_tlas_bytes", ColumnKind::Exact, "bytes", "driver: the top level's storage (one instance)", 0.0, false, {}, since},
-            {"driver_scratch_bytes", ColumnKind::Exact, "bytes", "driver: the larger build's scratch (freed after the build)", 0.0, false, {}, since},
-            {"driver_input_bytes", ColumnKind::Exact, "bytes", "driver: vertices, indices and the instance uploaded for the build", 0.0, false, {}, since}};
+        t.columns = driverColumns().group.specs();
         t.build = buildDriverStructure;
         return t;
     }();
