@@ -60,14 +60,30 @@ std::unique_ptr<GpuBuffers> uploadWholePath(VulkanContext& vk, const Structure& 
     return buffers;
 }
 
-std::vector<ColumnSpec> wholePathStrategyColumns(std::vector<ColumnSpec> own) {
-    std::vector<ColumnSpec> c = wholeTraversalColumns();
-    own.insert(own.begin(), {
+namespace {
+
+// What every whole-path strategy writes (results schema 19).
+struct WholePathColumns {
+    ColumnGroup group;
+    Column<std::uint64_t> generations = group.add<std::uint64_t>(
         {"whole_path_generations", ColumnKind::Exact, "generations",
-         "wavefront, path_megakernel: generations traced on the device, the camera rays' and the batch's included"},
+         "wavefront, path_megakernel: generations traced on the device, the camera rays' and the batch's included", 0.0, false, {}, 19});
+    Column<std::uint64_t> rays = group.add<std::uint64_t>(
         {"whole_path_rays", ColumnKind::Exact, "rays",
          "wavefront, path_megakernel: rays traced over those generations: what the kernel time covers, what Embree traces "
-         "beside it and the rates count"}});
+         "beside it and the rates count", 0.0, false, {}, 19});
+};
+
+const WholePathColumns& wholePathColumns() {
+    static const WholePathColumns columns;
+    return columns;
+}
+
+}  // namespace
+
+std::vector<ColumnSpec> wholePathStrategyColumns(std::vector<ColumnSpec> own) {
+    std::vector<ColumnSpec> c = wholeTraversalColumns().group.specs();
+    for (const ColumnSpec& col : wholePathColumns().group.specs()) c.push_back(col);
     for (ColumnSpec& col : own) {
         col.since = 19;
         c.push_back(col);
@@ -76,8 +92,8 @@ std::vector<ColumnSpec> wholePathStrategyColumns(std::vector<ColumnSpec> own) {
 }
 
 void writeWholePathColumns(const BatchPath& path, Row& row) {
-    row["whole_path_generations"] = std::to_string(path.generations.size());
-    row["whole_path_rays"] = std::to_string(path.rays());
+    put(row, wholePathColumns().generations, path.generations.size());
+    put(row, wholePathColumns().rays, path.rays());
 }
 
 }  // namespace rtbench

@@ -177,16 +177,17 @@ StrategyRun judgeWholeTraversal(VulkanContext& vk, const Structure& structure, c
     StrategyRun run;
     run.metrics = branchingMetrics(kernel.hits, kernel.activeLanes, kernel.laneSlots, structure.costs());
     run.cpuMismatches = recordMismatches(kernel.hits, structure.trace(batch.rays, batch.query));
-    row["lanes_model_active"] = std::to_string(lanes.activeLanes);
-    row["lanes_model_slots"] = std::to_string(lanes.laneSlots);
+    const WholeTraversalColumns& c = wholeTraversalColumns();
+    put(row, c.lanesModelActive, lanes.activeLanes);
+    put(row, c.lanesModelSlots, lanes.laneSlots);
     const LaneVerdict verdict =
         judgeLaneCounts(vk.info(), kernel.activeLanes, kernel.laneSlots, lanes.activeLanes, lanes.laneSlots);
     run.countsMismatch = verdict.mismatch;
     run.countsCompared = vk.info().lockStepSubgroups;
     if (!verdict.warning.empty()) addWarning(row, verdict.warning);
     run.truncatedRays = lanes.raysInLongSubgroups;
-    row["rays_cut_short"] = std::to_string(run.truncatedRays);
-    row["stream_batches"] = std::to_string(kernel.batches);
+    put(row, c.raysCutShort, run.truncatedRays);
+    put(row, c.streamBatches, kernel.batches);
     if (run.truncatedRays)
         run.truncatedWhy = loopLimitWhy(vk.info(), lanes.maxSubgroupIterations, run.truncatedRays) + longLoops;
     run.hits = std::move(kernel.hits);
@@ -194,28 +195,8 @@ StrategyRun judgeWholeTraversal(VulkanContext& vk, const Structure& structure, c
     return run;
 }
 
-ColumnSpec streamBatchesColumn() {
-    return {"stream_batches", ColumnKind::Exact, "dispatches",
-            "branching, plain, persistent, megakernel, ray_query, wavefront, path_megakernel: dispatches the ray stream ran in, each of whole workgroups, one "
-            "after another (more than 1 when one binding cannot hold its ray or hit records); records and counts are as of one", 0.0, false, {}, 13};
-}
-
-const std::vector<ColumnSpec>& wholeTraversalColumns() {
-    static const std::vector<ColumnSpec> columns = [] {
-        std::vector<ColumnSpec> c = {
-            {"rays_cut_short", ColumnKind::Exact, "rays",
-             "branching, persistent, megakernel, wavefront, path_megakernel: rays in subgroups needing more loop iterations than the device runs (a failed run; llvmpipe: 65,535)"},
-            {"lanes_model_active", ColumnKind::Exact, "lanes",
-             "branching, persistent, wavefront (the batch's trace), path_megakernel: active lanes summed over the subgroup ballots "
-             "as the CPU lane model counts them (lock-step loops; equal to the device's on llvmpipe, where a difference fails the "
-             "run; elsewhere a warning)"},
-            {"lanes_model_slots", ColumnKind::Exact, "lanes",
-             "branching, persistent, wavefront, path_megakernel: subgroup size summed over the same ballots, as the CPU lane model counts them"},
-            streamBatchesColumn()};
-        for (ColumnSpec& col : c)
-            if (col.name.rfind("lanes_model_", 0) == 0) col.since = 11;
-        return c;
-    }();
+const WholeTraversalColumns& wholeTraversalColumns() {
+    static const WholeTraversalColumns columns;
     return columns;
 }
 
@@ -240,7 +221,7 @@ const StrategyType& branchingStrategyType() {
         StrategyType t;
         t.name = "branching";
         t.help = "one kernel per ray stream (Purcell's branching architecture)";
-        t.columns = wholeTraversalColumns();
+        t.columns = wholeTraversalColumns().group.specs();
         t.trace = runBranchingStrategy;
         return t;
     }();

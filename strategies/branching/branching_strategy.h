@@ -3,6 +3,7 @@
 // whole traversal.
 #pragma once
 #include "strategies/branching/lane_counts.h"
+#include "schema/column.h"
 #include "strategies/strategy.h"
 
 namespace rtbench {
@@ -77,9 +78,28 @@ StrategyRun judgeWholeTraversal(VulkanContext& vk, const Structure& structure, c
 // the message of a run cut short.
 StrategyRun judgeWholeTraversal(VulkanContext& vk, const Structure& structure, const RayBatch& batch,
                                 BranchingRun&& kernel, const LaneCounts& model, const std::string& longLoops, Row& row);
-// rays_cut_short, stream_batches and the lane model's lanes_model_*: what judgeWholeTraversal writes.
-const std::vector<ColumnSpec>& wholeTraversalColumns();
-// stream_batches: BranchingRun::batches, for every strategy that runs through runBranching.
-ColumnSpec streamBatchesColumn();
+// What judgeWholeTraversal writes, declared once for every strategy that writes some of them:
+// rays_cut_short, the lane model's lanes_model_*, and stream_batches (BranchingRun::batches, for
+// every strategy that runs through runBranching). Each strategy lists the ones it writes.
+struct WholeTraversalColumns {
+    ColumnGroup group;
+    Column<std::uint64_t> raysCutShort = group.add<std::uint64_t>(
+        {"rays_cut_short", ColumnKind::Exact, "rays",
+         "branching, persistent, megakernel, wavefront, path_megakernel: rays in subgroups needing more loop iterations than the device runs (a failed run; llvmpipe: 65,535)"});
+    Column<std::uint64_t> lanesModelActive = group.add<std::uint64_t>(
+        {"lanes_model_active", ColumnKind::Exact, "lanes",
+         "branching, persistent, wavefront (the batch's trace), path_megakernel: active lanes summed over the subgroup ballots "
+         "as the CPU lane model counts them (lock-step loops; equal to the device's on llvmpipe, where a difference fails the "
+         "run; elsewhere a warning)", 0.0, false, {}, 11});
+    Column<std::uint64_t> lanesModelSlots = group.add<std::uint64_t>(
+        {"lanes_model_slots", ColumnKind::Exact, "lanes",
+         "branching, persistent, wavefront, path_megakernel: subgroup size summed over the same ballots, as the CPU lane model counts them",
+         0.0, false, {}, 11});
+    Column<std::uint64_t> streamBatches = group.add<std::uint64_t>(
+        {"stream_batches", ColumnKind::Exact, "dispatches",
+         "branching, plain, persistent, megakernel, ray_query, wavefront, path_megakernel: dispatches the ray stream ran in, each of whole workgroups, one "
+         "after another (more than 1 when one binding cannot hold its ray or hit records); records and counts are as of one", 0.0, false, {}, 13});
+};
+const WholeTraversalColumns& wholeTraversalColumns();
 
 }  // namespace rtbench

@@ -2,11 +2,31 @@
 
 #include "megakernel_layout.h"
 #include "megakernel_model.h"
+#include "schema/column.h"
 #include "strategies/branching/branching_strategy.h"
 
 namespace rtbench {
 
 namespace {
+
+// The megakernel's state executions (OptiX Fig. 6), the device's and the CPU model's (results
+// schema 12), declared once, here, where they are written.
+struct MegakernelColumns {
+    using K = ColumnKind;
+    using U64 = std::uint64_t;
+    ColumnGroup group;
+    Column<U64> runsTraverse = group.add<U64>(
+        {"megakernel_runs_traverse", K::Exact, "executions", "megakernel: subgroup executions of the traverse state (one traversal step for the lanes in it; OptiX Fig. 6's state executions, per subgroup)", 0.0, false, {}, 12});
+    Column<U64> runsIntersect = group.add<U64>(
+        {"megakernel_runs_intersect", K::Exact, "executions", "megakernel: subgroup executions of the intersect state (one triangle test for the lanes in it)", 0.0, false, {}, 12});
+    Column<U64> modelRuns = group.add<U64>(
+        {"megakernel_model_runs", K::Exact, "executions", "megakernel: state executions of the CPU model of the schedule (equal to the device's two; a difference fails the run)", 0.0, false, {}, 12});
+};
+
+const MegakernelColumns& megakernelColumns() {
+    static const MegakernelColumns columns;
+    return columns;
+}
 
 StrategyRun runMegakernelStrategy(VulkanContext& vk, const Structure& structure, const RayBatch& batch,
                                   const RunConfig& config, const TimingOptions& timing, Row& row) {
@@ -20,9 +40,10 @@ StrategyRun runMegakernelStrategy(VulkanContext& vk, const Structure& structure,
         megakernelCounts(structure, rays, vk.info().subgroupSize, schedule, batch.query, loopIterationBudget(vk.info()));
     const std::uint64_t runsTraverse = kernel.counters.counts[gpu::kCountRunsTraverse];
     const std::uint64_t runsIntersect = kernel.counters.counts[gpu::kCountRunsIntersect];
-    row["megakernel_runs_traverse"] = std::to_string(runsTraverse);
-    row["megakernel_runs_intersect"] = std::to_string(runsIntersect);
-    row["megakernel_model_runs"] = std::to_string(model.runsTraverse + model.runsIntersect);
+    const MegakernelColumns& c = megakernelColumns();
+    put(row, c.runsTraverse, runsTraverse);
+    put(row, c.runsIntersect, runsIntersect);
+    put(row, c.modelRuns, model.runsTraverse + model.runsIntersect);
     StrategyRun run;
     run.metrics = branchingMetrics(kernel.hits, kernel.activeLanes, kernel.laneSlots, structure.costs());
     // The state machine's records are the branching caster's, counters too.
@@ -36,8 +57,8 @@ StrategyRun runMegakernelStrategy(VulkanContext& vk, const Structure& structure,
                              std::to_string(model.activeLanes) + "/" + std::to_string(model.laneSlots) +
                              " in the CPU model) differ";
     run.truncatedRays = model.raysInLongSubgroups;
-    row["rays_cut_short"] = std::to_string(run.truncatedRays);
-    row["stream_batches"] = std::to_string(kernel.batches);
+    put(row, wholeTraversalColumns().raysCutShort, run.truncatedRays);
+    put(row, wholeTraversalColumns().streamBatches, kernel.batches);
     if (run.truncatedRays) run.truncatedWhy = loopLimitWhy(vk.info(), model.maxSubgroupIterations, run.truncatedRays);
     run.hits = std::move(kernel.hits);
     run.timer = std::move(kernel.timer);
@@ -48,7 +69,6 @@ StrategyRun runMegakernelStrategy(VulkanContext& vk, const Structure& structure,
 
 const StrategyType& megakernelStrategyType() {
     static const StrategyType type = [] {
-        using K = ColumnKind;
         StrategyType t;
         t.name = "megakernel";
         t.help = "one kernel stepping each ray's state machine, the subgroup choosing the state it runs (OptiX, Parker et al. 2013 §5)";
@@ -58,15 +78,9 @@ const StrategyType& megakernelStrategyType() {
                    "fixed priority, §5.2; which priority OptiX used is not stated), majority (the state more lanes are in)",
                    std::string("intersect_first"), false, -1e300, 1e300, {"switch", "intersect_first", "traverse_first", "majority"}}};
         t.keys.back().since = 12;
-        t.columns.push_back(wholeTraversalColumns().front());  // rays_cut_short
-        t.columns.push_back(streamBatchesColumn());
-        for (ColumnSpec c : std::vector<ColumnSpec>{
-                 {"megakernel_runs_traverse", K::Exact, "executions", "megakernel: subgroup executions of the traverse state (one traversal step for the lanes in it; OptiX Fig. 6's state executions, per subgroup)"},
-                 {"megakernel_runs_intersect", K::Exact, "executions", "megakernel: subgroup executions of the intersect state (one triangle test for the lanes in it)"},
-                 {"megakernel_model_runs", K::Exact, "executions", "megakernel: state executions of the CPU model of the schedule (equal to the device's two; a difference fails the run)"}}) {
-            c.since = 12;
-            t.columns.push_back(c);
-        }
+        t.columns.push_back(wholeTraversalColumns().raysCutShort.spec());
+        t.columns.push_back(wholeTraversalColumns().streamBatches.spec());
+        for (const ColumnSpec& c : megakernelColumns().group.specs()) t.columns.push_back(c);
         t.trace = runMegakernelStrategy;
         return t;
     }();

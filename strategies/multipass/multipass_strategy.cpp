@@ -6,6 +6,7 @@
 
 #include "device/embedded_kernels.h"
 #include "methods/cache/cache_replay.h"
+#include "schema/column.h"
 #include "strategies/stream_batches.h"
 #include "multipass_layout.h"
 #include "multipass_simulator.h"
@@ -193,6 +194,28 @@ MultipassCounts runLoop(VulkanContext& vk, GpuBuffers& buffers, Pipelines& pipel
                                  : runHostLoop(vk, buffers, pipelines, options, cap);
 }
 
+// Multipass's own counts, declared once, here, where they are written: the passes by kind
+// (Purcell et al. 2002 §4.2), and the check against the branching caster with the batch size.
+struct MultipassColumns {
+    using K = ColumnKind;
+    using U64 = std::uint64_t;
+    ColumnGroup passes;
+    Column<U64> setup = passes.add<U64>({"passes_setup", K::Exact, "passes", "multipass setup passes"});
+    Column<U64> traverse = passes.add<U64>({"passes_traverse", K::Exact, "passes", "multipass traverse passes"});
+    Column<U64> intersect = passes.add<U64>({"passes_intersect", K::Exact, "passes", "multipass intersect passes"});
+    Column<U64> write = passes.add<U64>({"passes_write", K::Exact, "passes", "multipass write passes"});
+    Column<U64> lowerBound = passes.add<U64>({"passes_lower_bound", K::Exact, "passes", "Purcell's lower bound on traverse + intersect passes"});
+    ColumnGroup run;
+    Column<U64> branchingMismatches = run.add<U64>({"branching_mismatches", K::Exact, "rays", "multipass: rays whose hit record differs from the branching caster's"});
+    Column<U64> batchRays = run.add<U64>(
+        {"multipass_batch_rays", K::Exact, "rays", "multipass: rays per batch (strategy.batch_rays, 0 made what one binding holds); passes_* add up over the batches", 0.0, false, {}, 12});
+};
+
+const MultipassColumns& multipassColumns() {
+    static const MultipassColumns columns;
+    return columns;
+}
+
 StrategyRun runMultipassStrategy(VulkanContext& vk, const Structure& structure, const RayBatch& batch,
                                  const RunConfig& config, const TimingOptions& timing, Row& row) {
     const std::vector<gpu::Ray>& rays = batch.rays;
@@ -205,18 +228,19 @@ StrategyRun runMultipassStrategy(VulkanContext& vk, const Structure& structure, 
         {embeddedKernel(prefix + "setup"), embeddedKernel(prefix + "traverse"), embeddedKernel(prefix + "intersect"),
          embeddedKernel(prefix + "write")},
         kernelEvents(structure, run.metrics.work), kernel.counts, rays.size());
-    row["multipass_batch_rays"] = std::to_string(std::min<std::uint64_t>(kernel.batchRays, rays.size()));
+    const MultipassColumns& c = multipassColumns();
+    put(row, c.batchRays, std::min<std::uint64_t>(kernel.batchRays, rays.size()));
     const MultipassResult cpu = simulateMultipass(structure, rays, options, batch.query, kernel.batchRays);
     run.cpuMismatches = recordMismatches(kernel.hits, cpu.hits);
     if (!(cpu.counts == kernel.counts)) run.countsMismatch = "pass sequence or event counts differ";
     // The two architectures must produce identical hit records (and work counters).
     run.branchingMismatches = recordMismatches(kernel.hits, structure.trace(rays, batch.query));
-    row["branching_mismatches"] = std::to_string(run.branchingMismatches);
-    row["passes_setup"] = std::to_string(run.metrics.passesSetup);
-    row["passes_traverse"] = std::to_string(run.metrics.passesTraverse);
-    row["passes_intersect"] = std::to_string(run.metrics.passesIntersect);
-    row["passes_write"] = std::to_string(run.metrics.passesWrite);
-    row["passes_lower_bound"] = std::to_string(run.metrics.passesLowerBound);
+    put(row, c.branchingMismatches, run.branchingMismatches);
+    put(row, c.setup, run.metrics.passesSetup);
+    put(row, c.traverse, run.metrics.passesTraverse);
+    put(row, c.intersect, run.metrics.passesIntersect);
+    put(row, c.write, run.metrics.passesWrite);
+    put(row, c.lowerBound, run.metrics.passesLowerBound);
     if (const auto cache = cacheConfig(config))
         run.modelMismatch = writeCacheColumns(
             multipassCacheReplay(structure, rays, options, batch.query, kernel.batchRays, *cache), run.metrics.bytes, row);
@@ -498,12 +522,9 @@ const StrategyType& multipassStrategyType() {
             if (k.name == "strategy.oracle_basis") k.since = 14;
             if (k.name == "strategy.list_partitions") k.since = 20;
         }
-        t.columns = {
-            {"passes_setup", K::Exact, "passes", "multipass setup passes"},
-            {"passes_traverse", K::Exact, "passes", "multipass traverse passes"},
-            {"passes_intersect", K::Exact, "passes", "multipass intersect passes"},
-            {"passes_write", K::Exact, "passes", "multipass write passes"},
-            {"passes_lower_bound", K::Exact, "passes", "Purcell's lower bound on traverse + intersect passes"},
+        // The pass counts, the timings harness/run_metrics.cpp writes from the timer's parts, the checks.
+        t.columns = multipassColumns().passes.specs();
+        t.columns.insert(t.columns.end(), {
             {"kernel_ms_setup", K::Timing, "ms", "multipass: GPU time of the setup passes, median (with strategy.control = host: in the replay, kernel_ms_replay)"},
             {"kernel_ms_traverse", K::Timing, "ms", "multipass: GPU time of the traverse passes, median (with strategy.control = host: in the replay, kernel_ms_replay)"},
             {"kernel_ms_intersect", K::Timing, "ms", "multipass: GPU time of the intersect passes, median (with strategy.control = host: in the replay, kernel_ms_replay)"},
@@ -512,9 +533,8 @@ const StrategyType& multipassStrategyType() {
             {"kernel_ms_oracle", K::Timing, "ms", "multipass with strategy.control = device: GPU time of the oracle kernel (one invocation after each pass), median", 0.0, false, {"strategy.control=device"}, 13},
             {"kernel_ms_replay", K::Timing, "ms", "multipass with strategy.control = host: GPU time of the live loop's pass sequence replayed in one submission without the oracle's read-backs (before results schema 25, the headline kernel_ms), median", 0.0, false, {"strategy.control=host"}, 25},
             {"multipass_live_ms_median", K::Timing, "ms", "multipass: host wall time of the instrumented live pass loop, median of one per round: with strategy.control = host the instrumented passes with the oracle's read-back after each (Christen 2005 §4.3.4's CPU-controlled loop); with device, the instrumented loop in submissions of 341 oracle iterations (the last partly idle), its control block and log read after each, and the log's replay on the host", 0.0, false, {}, 5},
-            {"branching_mismatches", K::Exact, "rays", "multipass: rays whose hit record differs from the branching caster's"},
-            {"multipass_batch_rays", K::Exact, "rays", "multipass: rays per batch (strategy.batch_rays, 0 made what one binding holds); passes_* add up over the batches", 0.0, false, {}, 12},
-        };
+        });
+        for (const ColumnSpec& c : multipassColumns().run.specs()) t.columns.push_back(c);
         t.trace = runMultipassStrategy;
         return t;
     }();

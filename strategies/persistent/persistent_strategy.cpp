@@ -4,6 +4,7 @@
 
 #include "strategies/branching/branching_strategy.h"
 #include "strategies/branching/lane_counts.h"
+#include "schema/column.h"
 #include "strategies/stream_batches.h"
 #include "core/error.h"
 
@@ -32,6 +33,27 @@ std::uint64_t persistentMaxFetches(std::uint64_t budget, std::uint64_t walkItera
 }
 
 namespace {
+
+// Persistent threads' own columns (results schema 12; persistent_max_fetches 22), declared once,
+// here, where they are written.
+struct PersistentColumns {
+    using K = ColumnKind;
+    using U64 = std::uint64_t;
+    ColumnGroup group;
+    Column<U64> raysPerFetch = group.add<U64>(
+        {"persistent_rays_per_fetch", K::Exact, "rays", "persistent: rays a subgroup took per fetch (strategy.rays_per_fetch, 0 made the subgroup size)", 0.0, false, {}, 12});
+    Column<U64> maxFetches = group.add<U64>(
+        {"persistent_max_fetches", K::Exact, "fetches", "persistent: fetches a subgroup may make (0: until the stream is done); on a device with a loop limit (llvmpipe: 65,535 iterations of all loops together, a workgroup's subgroups run one after another) as many as its longest walks fit, each counted as 2 passes a loop trip (docs/method.md)", 0.0, false, {}, 22});
+    Column<U64> fetched = group.add<U64>(
+        {"rays_fetched", K::Scheduled, "rays", "persistent: the fetch counter's final value, the batches handed out and the last fetch, which found none, of each subgroup that did not reach persistent_max_fetches (which subgroups reach it is the device's scheduling: the run checks it lies between the batches handed out and those plus a last fetch of every subgroup)", 0.0, false, {}, 12});
+    Column<U64> traced = group.add<U64>(
+        {"rays_traced", K::Exact, "rays", "persistent: records the kernel wrote (must equal the rays: each traced once)", 0.0, false, {}, 12});
+};
+
+const PersistentColumns& persistentColumns() {
+    static const PersistentColumns columns;
+    return columns;
+}
 
 StrategyRun runPersistentStrategy(VulkanContext& vk, const Structure& structure, const RayBatch& batch,
                                   const RunConfig& config, const TimingOptions& timing, Row& row) {
@@ -76,10 +98,11 @@ StrategyRun runPersistentStrategy(VulkanContext& vk, const Structure& structure,
     }
     const std::uint64_t fetched = kernel.counters.counts[gpu::kCountRaysFetched];
     const std::uint64_t traced = kernel.counters.counts[gpu::kCountRaysTraced];
-    row["persistent_rays_per_fetch"] = std::to_string(expected.raysPerFetch);
-    row["persistent_max_fetches"] = std::to_string(maxFetches);
-    row["rays_fetched"] = std::to_string(fetched);
-    row["rays_traced"] = std::to_string(traced);
+    const PersistentColumns& c = persistentColumns();
+    put(row, c.raysPerFetch, expected.raysPerFetch);
+    put(row, c.maxFetches, maxFetches);
+    put(row, c.fetched, fetched);
+    put(row, c.traced, traced);
     StrategyRun run = judgeWholeTraversal(vk, structure, batch, std::move(kernel), lanes,
                                           "; multipass (a few iterations per pass), a finer grid or the BVH stay within it", row);
     // Every ray traced exactly once: the records are checked against the CPU's; the count of
@@ -106,7 +129,6 @@ StrategyRun runPersistentStrategy(VulkanContext& vk, const Structure& structure,
 
 const StrategyType& persistentStrategyType() {
     static const StrategyType type = [] {
-        using K = ColumnKind;
         StrategyType t;
         t.name = "persistent";
         t.help = "persistent threads: a fixed grid of workgroups fetching rays from an atomic counter (Aila & Laine 2009)";
@@ -115,15 +137,8 @@ const StrategyType& persistentStrategyType() {
             {"strategy.rays_per_fetch", ValueType::Int, "persistent: rays a subgroup takes per fetch, a multiple of the subgroup size (0: the subgroup size, one ray per lane as Aila & Laine)", std::int64_t(0), false, 0, 1 << 16},
         };
         for (KeySpec& k : t.keys) k.since = 12;
-        t.columns = wholeTraversalColumns();
-        for (ColumnSpec c : std::vector<ColumnSpec>{
-                 {"persistent_rays_per_fetch", K::Exact, "rays", "persistent: rays a subgroup took per fetch (strategy.rays_per_fetch, 0 made the subgroup size)"},
-                 {"persistent_max_fetches", K::Exact, "fetches", "persistent: fetches a subgroup may make (0: until the stream is done); on a device with a loop limit (llvmpipe: 65,535 iterations of all loops together, a workgroup's subgroups run one after another) as many as its longest walks fit, each counted as 2 passes a loop trip (docs/method.md)", 0.0, false, {}, 22},
-                 {"rays_fetched", K::Scheduled, "rays", "persistent: the fetch counter's final value, the batches handed out and the last fetch, which found none, of each subgroup that did not reach persistent_max_fetches (which subgroups reach it is the device's scheduling: the run checks it lies between the batches handed out and those plus a last fetch of every subgroup)"},
-                 {"rays_traced", K::Exact, "rays", "persistent: records the kernel wrote (must equal the rays: each traced once)"}}) {
-            if (c.since == 1) c.since = 12;  // persistent_max_fetches: 22
-            t.columns.push_back(c);
-        }
+        t.columns = wholeTraversalColumns().group.specs();
+        for (const ColumnSpec& c : persistentColumns().group.specs()) t.columns.push_back(c);
         t.trace = runPersistentStrategy;
         return t;
     }();

@@ -22,7 +22,7 @@ StrategyRun runPlain(VulkanContext& vk, const Structure& structure, const RayBat
     launch.constants = {{gpu::kSpecNativeDivision, 1u}};
     BranchingRun kernel = runBranching(vk, structure, batch.rays, timing, batch.query, launch);
     row["plain_cpu_differing"] = std::to_string(hitMismatches(kernel.hits, structure.trace(batch.rays, batch.query)));
-    row["stream_batches"] = std::to_string(kernel.batches);
+    put(row, wholeTraversalColumns().streamBatches, kernel.batches);
     StrategyRun run;
     run.hits = std::move(kernel.hits);
     run.timer = std::move(kernel.timer);
@@ -44,7 +44,7 @@ const StrategyType& plainStrategyType() {
                       "plain: rays whose hit (t, triangle, u, v) differs from the CPU reference's, which divides exactly "
                       "(0 where the device's division is IEEE's, as on llvmpipe; counted, not failed)",
                       0.0, false, {}, 15},
-                     streamBatchesColumn()};
+                     wholeTraversalColumns().streamBatches.spec()};
         t.trace = runPlain;
         return t;
     }();

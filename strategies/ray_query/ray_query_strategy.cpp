@@ -127,7 +127,7 @@ StrategyRun runRayQuery(VulkanContext& vk, const Structure& structure, const Ray
             run.hits.insert(run.hits.end(), b.hits.begin(), b.hits.end());
             ++batches;
         });
-    row["stream_batches"] = std::to_string(batches);
+    put(row, wholeTraversalColumns().streamBatches, batches);
 
     judgeByTheExactReference(rays, run, "the driver's ray query");
     return run;
@@ -142,7 +142,7 @@ const StrategyType& rayQueryStrategyType() {
         t.help = "the driver's own traversal (VK_KHR_ray_query) of its own acceleration structure (structure.type = driver); "
                  "judged against the exact reference, no work counted";
         t.onlyStructure = "driver";
-        t.columns = {streamBatchesColumn()};
+        t.columns = {wholeTraversalColumns().streamBatches.spec()};
         t.refusal = rayQueryRefusal;
         t.trace = runRayQuery;
         return t;

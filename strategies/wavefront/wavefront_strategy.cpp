@@ -236,7 +236,7 @@ StrategyRun runWavefrontStrategy(VulkanContext& vk, const Structure& structure, 
                                loopLimitWhy(vk.info(), lanes.maxSubgroupIterations, lanes.raysInLongSubgroups);
         run.truncatedRays += lanes.raysInLongSubgroups;
     }
-    row["rays_cut_short"] = std::to_string(run.truncatedRays);
+    put(row, wholeTraversalColumns().raysCutShort, run.truncatedRays);
     if (!mismatch.empty() && run.countsMismatch.empty()) run.countsMismatch = mismatch + " differs";
     return run;
 }
