@@ -127,12 +127,7 @@ void addSceneColumns(ColumnList& s) {
     s.add("vertex_snap_error_max", K::Exact, "scene units", "intersection.vertex_bits < 32: the largest distance a vertex moved to its lattice point (not simplified scenes)");
     s.add("rays", K::Exact, "rays", "rays traced: the batch of rays.type the run measures");
     s.text("query", K::Exact, "what the rays ask: closest (the nearest hit) or any (whether anything is hit in [tMin, tMax): the walk ends at its first hit; Embree's rtcOccluded)").since = 7;
-    // The shading passes that made the rays after the first hit, run again on the device
-    // (rays/workload.h checkShadingOnDevice); 0 and empty for camera rays.
-    s.add("shading_passes", K::Exact, "passes", "shading passes (kernels/shading.comp) that made the generations after the camera rays: 1 for shadow rays, k for reflection iteration k").since = 9;
-    s.add("shading_rays", K::Exact, "rays", "rays those passes made on the device, all generations together").since = 9;
-    s.add("shading_ms", K::Timing, "ms", "GPU time of those passes together (one dispatch each, not in kernel_ms)").since = 9;
-    s.add("shading_device_mismatches", K::Exact, "rays", "rays the device's shading passes made that differ from the CPU's in a bit, their parent or their path (a failed run)").since = 9;
+    for (const ColumnSpec& c : shadingColumns()) s.specs.push_back(c);  // rays/workload.cpp
     for (const char* axis : {"x", "y", "z"})
         s.add(std::string("camera_eye_") + axis, K::Exact, "scene units", std::string("the camera the rays came from (fitted to the scene, or as given, moved with it): eye position, ") + axis).since = 5;
     for (const char* axis : {"x", "y", "z"})

@@ -4,6 +4,7 @@
 #include "structures/triangle_store.h"
 #include "core/error.h"
 #include "rays/shading.h"
+#include "schema/column.h"
 
 namespace rtbench {
 
@@ -101,6 +102,32 @@ BatchPath batchPath(const Workload& w, const std::vector<gpu::Ray>& cameraRays, 
     return path;
 }
 
+namespace {
+
+// The shading passes that made the rays after the first hit, run again on the device (results
+// schema 9; 0 and empty for camera rays), declared once, here, where they are written.
+struct ShadingColumns {
+    using K = ColumnKind;
+    ColumnGroup group;
+    Column<std::uint64_t> passes = group.add<std::uint64_t>(
+        {"shading_passes", K::Exact, "passes", "shading passes (kernels/shading.comp) that made the generations after the camera rays: 1 for shadow rays, k for reflection iteration k", 0.0, false, {}, 9});
+    Column<std::uint64_t> rays = group.add<std::uint64_t>(
+        {"shading_rays", K::Exact, "rays", "rays those passes made on the device, all generations together", 0.0, false, {}, 9});
+    Column<double> ms = group.add<double>(
+        {"shading_ms", K::Timing, "ms", "GPU time of those passes together (one dispatch each, not in kernel_ms)", 0.0, false, {}, 9});
+    Column<std::uint64_t> mismatches = group.add<std::uint64_t>(
+        {"shading_device_mismatches", K::Exact, "rays", "rays the device's shading passes made that differ from the CPU's in a bit, their parent or their path (a failed run)", 0.0, false, {}, 9});
+};
+
+const ShadingColumns& shadingColumnsDeclared() {
+    static const ShadingColumns columns;
+    return columns;
+}
+
+}  // namespace
+
+const std::vector<ColumnSpec>& shadingColumns() { return shadingColumnsDeclared().group.specs(); }
+
 std::string checkShadingOnDevice(VulkanContext& vk, unsigned workgroupSize, const TriangleMesh& scene,
                                  const std::vector<gpu::Ray>& cameraRays, const Workload& w, Row& row) {
     const std::vector<gpu::Triangle> triangles = floatTriangles(scene);  // once for every pass
@@ -125,10 +152,11 @@ std::string checkShadingOnDevice(VulkanContext& vk, unsigned workgroupSize, cons
             mismatches += n;
         }
     }
-    row["shading_passes"] = std::to_string(w.shading.size());
-    row["shading_rays"] = std::to_string(made);
-    row["shading_ms"] = timed && !w.shading.empty() ? formatNumber(ms, 6) : "";
-    row["shading_device_mismatches"] = std::to_string(mismatches);
+    const ShadingColumns& c = shadingColumnsDeclared();
+    put(row, c.passes, w.shading.size());
+    put(row, c.rays, made);
+    put(row, c.ms, timed && !w.shading.empty() ? std::optional<double>(ms) : std::nullopt);
+    put(row, c.mismatches, mismatches);
     if (!mismatches) return "";
     return "the device's shading pass made rays that differ from the CPU's on " + std::to_string(mismatches) +
            " rays (first: " + first + ")";

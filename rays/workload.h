@@ -98,6 +98,9 @@ Workload followGenerations(const WorkloadInputs& in, Row& row, const std::vector
 // Every shading pass of `workload` run again on the device (kernels/shading.comp) from the same
 // rays and hits, its rays compared bit for bit with the CPU's. Writes shading_* columns to `row`;
 // returns what differs ("" when nothing does), which fails the run.
+// The columns checkShadingOnDevice writes.
+const std::vector<ColumnSpec>& shadingColumns();
+
 std::string checkShadingOnDevice(VulkanContext& vk, unsigned workgroupSize, const TriangleMesh& scene,
                                  const std::vector<gpu::Ray>& cameraRays, const Workload& workload, Row& row);
 

@@ -1,10 +1,25 @@
 #include "ao_rays.h"
 
 #include "rays/shading.h"
+#include "schema/column.h"
 
 namespace rtbench {
 
 namespace {
+
+// Ambient occlusion's own columns (results schema 9), declared once, here, where they are written.
+struct AoColumns {
+    ColumnGroup group;
+    Column<double> radiusTraced = group.add<double>(
+        {"ao_radius_traced", ColumnKind::Exact, "scene units", "ao: the rays' length in the traced scene", 0.0, false, {}, 9}, 9);
+    Column<std::uint64_t> cameraHits = group.add<std::uint64_t>(
+        {"ao_camera_hits", ColumnKind::Exact, "rays", "ao: camera rays that hit; each makes ao.samples rays", 0.0, false, {}, 9});
+};
+
+const AoColumns& aoColumns() {
+    static const AoColumns columns;
+    return columns;
+}
 
 Workload aoWorkload(const WorkloadInputs& in, Row& row) {
     const auto samples = std::uint32_t(in.run.getInt("ao.samples"));
@@ -12,13 +27,13 @@ Workload aoWorkload(const WorkloadInputs& in, Row& row) {
     // Given in the scene's own units, it scales with it; by default a tenth of the traced scene's diagonal.
     const float radius = in.run.has("ao.radius") ? float(in.run.getFloat("ao.radius") * in.run.getFloat("scene.scale"))
                                                  : 0.1f * glm::length(in.scene.bounds().extent());
-    row["ao_radius_traced"] = formatNumber(radius, 9);
+    put(row, aoColumns().radiusTraced, radius);
     Workload w = followPaths(in, std::make_shared<const Surfaces>(), {diffusePass(samples, 1, seed, radius)}, gpu::kQueryAny,
                              [](std::size_t, std::uint64_t rays, std::uint64_t) {
                                  return "rays.type = ao: no rays to trace: none of the " + std::to_string(rays) +
                                         " camera rays hit";
                              });
-    row["ao_camera_hits"] = std::to_string(w.parentHits);
+    put(row, aoColumns().cameraHits, w.parentHits);
     return w;
 }
 
@@ -26,7 +41,6 @@ Workload aoWorkload(const WorkloadInputs& in, Row& row) {
 
 const RayType& aoRayType() {
     static const RayType type = [] {
-        using K = ColumnKind;
         RayType t;
         t.name = "ao";
         t.help = "ambient occlusion: ao.samples any-hit cosine-weighted rays of length ao.radius from each camera hit";
@@ -38,10 +52,7 @@ const RayType& aoRayType() {
              {}, false, 1e-30, 1e30},
             randomSeedKey("ao.seed", "ambient occlusion"),
         };
-        t.columns = {
-            {"ao_radius_traced", K::Exact, "scene units", "ao: the rays' length in the traced scene"},
-            {"ao_camera_hits", K::Exact, "rays", "ao: camera rays that hit; each makes ao.samples rays"},
-        };
+        t.columns = aoColumns().group.specs();
         t.make = aoWorkload;
         setSince(t, 9);
         return t;

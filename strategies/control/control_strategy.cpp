@@ -11,6 +11,7 @@
 #include "strategies/control/kernels/control_layout.h"
 #include "strategies/ray_query/ray_query_strategy.h"
 #include "structures/uniform_grid/grid_layout.h"
+#include "schema/column.h"
 
 namespace rtbench {
 
@@ -148,6 +149,15 @@ void ControlDispatch::create(const Structure& grid, const CameraFrame& frame) {
     set_ = vk_.createDescriptorSet(pipeline_, {&cells_, &list_, &triangles_, &camera_, &hits_});
 }
 
+// Rays the control's hits differ from the CPU reference's on (results schema 26).
+const Column<std::uint64_t>& controlCpuDiffering() {
+    static const Column<std::uint64_t> column(
+        {"control_cpu_differing", ColumnKind::Exact, "rays",
+         "control: rays whose hit (t, triangle) differs from the CPU reference's, which divides exactly (0 "
+         "where the device's division is IEEE's, as on llvmpipe; counted, not failed)", 0.0, false, {}, 26});
+    return column;
+}
+
 StrategyRun runControl(VulkanContext& vk, const Structure& structure, const RayBatch& batch, const RunConfig&,
                        const TimingOptions& timing, Row& row) {
     if (const std::string why = controlRefusal(structure, batch, timing); !why.empty()) throw Error(why);
@@ -164,7 +174,7 @@ StrategyRun runControl(VulkanContext& vk, const Structure& structure, const RayB
     vk.dispatchAll({dispatch->call()});
     StrategyRun run;
     run.hits = dispatch->hits();
-    row["control_cpu_differing"] = std::to_string(hitPointMismatches(run.hits, cpu));
+    put(row, controlCpuDiffering(), hitPointMismatches(run.hits, cpu));
     run.timer = std::make_unique<DispatchTimer<ControlDispatch>>(vk, std::move(dispatch), run.hits, "control kernel");
     judgeByTheExactReference(batch.rays, run, "the control kernel");
     return run;
@@ -180,10 +190,7 @@ const StrategyType& controlStrategyType() {
                  "camera rays made in 8 x 8 pixel tiles, 8-byte hits, the device's division; what the branching kernel's "
                  "speed is judged against; judged against the exact reference, no work counted";
         t.onlyStructure = "uniform_grid";
-        t.columns = {{"control_cpu_differing", ColumnKind::Exact, "rays",
-                      "control: rays whose hit (t, triangle) differs from the CPU reference's, which divides exactly (0 "
-                      "where the device's division is IEEE's, as on llvmpipe; counted, not failed)",
-                      0.0, false, {}, 26}};
+        t.columns = {controlCpuDiffering().spec()};
         t.trace = runControl;
         return t;
     }();

@@ -8,6 +8,7 @@
 
 #include "schema/warnings.h"
 
+#include "schema/column.h"
 
 namespace rtbench {
 
@@ -59,10 +60,18 @@ private:
     std::vector<gpu::HitRecord> counted_, last_;
 };
 
+// The threads that traced (results schema 16): what ran, not what was asked.
+const Column<int>& hostThreadsColumn() {
+    static const Column<int> column({"host_threads", ColumnKind::Context, "threads",
+                                     "cpu: the threads that traced the rays (strategy.threads, 0 made every hardware thread)", 0.0,
+                                     false, {}, 16});
+    return column;
+}
+
 StrategyRun runOnHost(VulkanContext&, const Structure& structure, const RayBatch& batch, const RunConfig& config,
                       const TimingOptions& timing, Row& row) {
     const int threads = hostThreads(config, row);
-    row["host_threads"] = std::to_string(threads);  // what ran, not what was asked
+    put(row, hostThreadsColumn(), threads);
     tbb::task_arena arena(threads);
     StrategyRun run;
     run.hits = traceOnHost(structure, batch.rays, batch.query, arena);
@@ -92,9 +101,7 @@ const StrategyType& cpuStrategyType() {
         t.keys = {{"strategy.threads", ValueType::Int, "cpu: TBB threads tracing the rays (0: every hardware thread)",
                    std::int64_t(0), false, 0, 4096}};
         t.keys.back().since = 16;
-        t.columns = {{"host_threads", ColumnKind::Context, "threads",
-                      "cpu: the threads that traced the rays (strategy.threads, 0 made every hardware thread)", 0.0, false,
-                      {}, 16}};
+        t.columns = {hostThreadsColumn().spec()};
         t.trace = runOnHost;
         return t;
     }();

@@ -7,6 +7,7 @@
 #include "methods/metrics.h"
 #include "strategies/whole_path.h"
 #include "core/error.h"
+#include "schema/column.h"
 
 namespace rtbench {
 
@@ -100,6 +101,14 @@ private:
     PathEnds counted_;  // the instrumented run's, by path
 };
 
+// Rays the path megakernel traced, counted on the device (results schema 19).
+const Column<std::uint64_t>& raysTracedColumn() {
+    static const Column<std::uint64_t> column({"path_megakernel_rays_traced", ColumnKind::Exact, "rays",
+                                               "path_megakernel: rays the kernel traced, counted on the device (must equal "
+                                               "whole_path_rays)", 0.0, false, {}, 19});
+    return column;
+}
+
 StrategyRun runPathMegakernelStrategy(VulkanContext& vk, const Structure& structure, const RayBatch& batch,
                                       const BatchPath& path, const RunConfig&, const TimingOptions& timing, Row& row) {
     requireTraceablePath(path, "path_megakernel");
@@ -120,7 +129,7 @@ StrategyRun runPathMegakernelStrategy(VulkanContext& vk, const Structure& struct
     const PathEnds ends = downloadPathEnds(*buffers, paths);
     writeWholePathColumns(path, row);
     const std::uint64_t traced = counters.counts[gpu::kCountPathRaysTraced];
-    row["path_megakernel_rays_traced"] = std::to_string(traced);
+    put(row, raysTracedColumn(), traced);
 
     // Judged as a whole-traversal kernel's run: its batch records, in the batch's order, and its
     // ballots against the lane model of its own schedule.
@@ -153,9 +162,7 @@ const StrategyType& pathMegakernelStrategyType() {
                  "between the traces (Laine, Karras & Aila 2013's megakernel, the wavefront's peer)";
         // The camera rays' copy, a batch ray and its flags (one path per camera ray).
         t.ownBytesPerRay = sizeof(gpu::Ray) + sizeof(gpu::Ray) + 16;
-        t.columns = wholePathStrategyColumns({{"path_megakernel_rays_traced", ColumnKind::Exact, "rays",
-                                               "path_megakernel: rays the kernel traced, counted on the device (must equal "
-                                               "whole_path_rays)"}});
+        t.columns = wholePathStrategyColumns({raysTracedColumn().spec()});
         t.trace = runPathMegakernelStrategy;
         return t;
     }();

@@ -3,6 +3,7 @@
 #include "strategies/branching/branching_strategy.h"
 #include "strategies/ray_query/ray_query_strategy.h"
 #include "core/error.h"
+#include "schema/column.h"
 
 namespace rtbench {
 
@@ -16,12 +17,21 @@ std::uint64_t hitMismatches(const std::vector<gpu::HitRecord>& a, const std::vec
 
 namespace {
 
+// Rays the plain kernel's hits differ from the CPU reference's on (results schema 15).
+const Column<std::uint64_t>& plainCpuDiffering() {
+    static const Column<std::uint64_t> column(
+        {"plain_cpu_differing", ColumnKind::Exact, "rays",
+         "plain: rays whose hit (t, triangle, u, v) differs from the CPU reference's, which divides exactly "
+         "(0 where the device's division is IEEE's, as on llvmpipe; counted, not failed)", 0.0, false, {}, 15});
+    return column;
+}
+
 StrategyRun runPlain(VulkanContext& vk, const Structure& structure, const RayBatch& batch, const RunConfig&,
                      const TimingOptions& timing, Row& row) {
     TraceLaunch launch;
     launch.constants = {{gpu::kSpecNativeDivision, 1u}};
     BranchingRun kernel = runBranching(vk, structure, batch.rays, timing, batch.query, launch);
-    row["plain_cpu_differing"] = std::to_string(hitMismatches(kernel.hits, structure.trace(batch.rays, batch.query)));
+    put(row, plainCpuDiffering(), hitMismatches(kernel.hits, structure.trace(batch.rays, batch.query)));
     put(row, wholeTraversalColumns().streamBatches, kernel.batches);
     StrategyRun run;
     run.hits = std::move(kernel.hits);
@@ -40,11 +50,7 @@ const StrategyType& plainStrategyType() {
         t.name = "plain";
         t.help = "the branching kernel dividing as the device does (OpFDiv) instead of exactly: the control that measures "
                  "what bit-exact division costs; judged against the exact reference, no work counted";
-        t.columns = {{"plain_cpu_differing", ColumnKind::Exact, "rays",
-                      "plain: rays whose hit (t, triangle, u, v) differs from the CPU reference's, which divides exactly "
-                      "(0 where the device's division is IEEE's, as on llvmpipe; counted, not failed)",
-                      0.0, false, {}, 15},
-                     wholeTraversalColumns().streamBatches.spec()};
+        t.columns = {plainCpuDiffering().spec(), wholeTraversalColumns().streamBatches.spec()};
         t.trace = runPlain;
         return t;
     }();

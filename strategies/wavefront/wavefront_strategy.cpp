@@ -8,6 +8,7 @@
 #include "methods/metrics.h"
 #include "strategies/whole_path.h"
 #include "core/error.h"
+#include "schema/column.h"
 
 namespace rtbench {
 
@@ -195,6 +196,14 @@ private:
     std::vector<gpu::HitRecord> counted_;
 };
 
+// The wavefront's queue size (results schema 19).
+const Column<std::uint64_t>& queueCapacityColumn() {
+    static const Column<std::uint64_t> column(
+        {"wavefront_queue_capacity", ColumnKind::Exact, "rays", "wavefront: rays its queue holds (the camera rays times the passes' fan-outs)", 0.0,
+         false, {}, 19});
+    return column;
+}
+
 StrategyRun runWavefrontStrategy(VulkanContext& vk, const Structure& structure, const RayBatch& batch,
                                  const BatchPath& path, const RunConfig&, const TimingOptions& timing, Row& row) {
     requireTraceablePath(path, "wavefront");
@@ -217,7 +226,7 @@ StrategyRun runWavefrontStrategy(VulkanContext& vk, const Structure& structure, 
     }
     const gpu::PassCounters counters = wavefront->buffers().readPassCounters();
     writeWholePathColumns(path, row);
-    row["wavefront_queue_capacity"] = std::to_string(wavefront->queueCapacity());
+    put(row, queueCapacityColumn(), wavefront->queueCapacity());
 
     // The batch's trace is the branching kernel over the batch in its order: judged as branching's.
     BranchingRun kernel;
@@ -252,7 +261,7 @@ const StrategyType& wavefrontStrategyType() {
         // The camera rays' copy, a queue entry, a made ray and its flags (fan-out 1).
         t.ownBytesPerRay = sizeof(gpu::Ray) + 16 + sizeof(gpu::Ray) + 16;
         t.columns = wholePathStrategyColumns({
-            {"wavefront_queue_capacity", K::Exact, "rays", "wavefront: rays its queue holds (the camera rays times the passes' fan-outs)"},
+            queueCapacityColumn().spec(),
             {"kernel_ms_trace", K::Timing, "ms", "wavefront: median GPU time of its trace stages per repetition"},
             {"kernel_ms_shade", K::Timing, "ms", "wavefront: median GPU time of its shading stages per repetition"},
             {"kernel_ms_queue", K::Timing, "ms", "wavefront: median GPU time of its setup, scans and compactions per repetition"}});
