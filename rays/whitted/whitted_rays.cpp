@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "rays/shadow/shadow_rays.h"
+#include "schema/column.h"
 
 namespace rtbench {
 
@@ -44,6 +45,57 @@ std::shared_ptr<const Surfaces> whittedSurfaces(const WorkloadInputs& in) {
 
 namespace {
 
+// Whitted rays' own columns (results schema 10), declared once, here, where they are written.
+struct WhittedColumns {
+    using K = ColumnKind;
+    using U64 = std::uint64_t;
+    ColumnGroup group;
+    Column<U64> lights = group.add<U64>({"whitted_lights", K::Exact, "lights", "whitted: point lights (each diffuse hit makes a shadow ray toward each)", 0.0, false, {}, 10});
+    Column<std::string> lightPositions = group.add<std::string>(
+        {"whitted_light_positions", K::Exact, "scene units", "whitted: the point lights in the traced scene, \"x y z\" each, separated by \"; \"", 0.0, false, {}, 10});
+    Column<U64> materials = group.add<U64>({"whitted_materials", K::Exact, "materials", "whitted: materials (whitted.surface and the description's)", 0.0, false, {}, 10});
+    Column<U64> parentRays = group.add<U64>({"whitted_parent_rays", K::Exact, "rays", "whitted: rays of the generation the batch was made from", 0.0, false, {}, 10});
+    Column<U64> parentHits = group.add<U64>({"whitted_parent_hits", K::Exact, "rays", "whitted: of those, the rays that hit", 0.0, false, {}, 10});
+    Column<U64> raysBefore = group.add<U64>(
+        {"whitted_rays_before", K::Exact, "rays", "whitted: rays traced before the batch (the camera rays and generations 1 .. whitted.depth - 1 or .. depth)", 0.0, false, {}, 10});
+    Column<U64> reflected = group.add<U64>({"whitted_reflected", K::Exact, "rays", "whitted (secondary): batch rays that are reflections", 0.0, false, {}, 10});
+    Column<U64> refracted = group.add<U64>({"whitted_refracted", K::Exact, "rays", "whitted (secondary): batch rays that are refractions", 0.0, false, {}, 10});
+    Column<double> weight = group.add<double>(
+        {"whitted_weight", K::Exact, "", "whitted: the sum of the batch rays' weights (the pixels' worth of radiance they carry)", 0.0, false, {}, 10}, 9);
+};
+
+const WhittedColumns& whittedColumns() {
+    static const WhittedColumns columns;
+    return columns;
+}
+
+// The batch's lights, materials and generations into the row; a shadow batch has no reflections
+// or refractions (empty).
+void writeWhittedColumns(const WorkloadInputs& in, const Surfaces& surfaces, const Workload& w, bool shadow, Row& row) {
+    const WhittedColumns& c = whittedColumns();
+    put(row, c.lights, surfaces.lights.size());
+    std::string positions;  // in the traced scene
+    for (const glm::vec3& l : surfaces.lights)
+        positions += (positions.empty() ? "" : "; ") + formatNumber(l.x, 9) + " " + formatNumber(l.y, 9) + " " + formatNumber(l.z, 9);
+    put(row, c.lightPositions, positions);
+    put(row, c.materials, surfaces.materials.size());
+    put(row, c.parentRays, w.parentRays);
+    put(row, c.parentHits, w.parentHits);
+    std::uint64_t traced = in.cameraRays.size();
+    for (const Generation& g : w.between) traced += g.rays.size();
+    put(row, c.raysBefore, traced);
+    // A secondary ray's slot (path mod 2) says which it is: 0 the reflection, 1 the refraction.
+    std::uint64_t refracted = 0;
+    double weight = 0.0;
+    for (std::size_t r = 0; r < w.batch.rays.size(); ++r) {
+        refracted += !shadow && w.paths[r] % 2 == 1;
+        weight += double(w.weights[r]);
+    }
+    put(row, c.reflected, shadow ? std::nullopt : std::optional<std::uint64_t>(w.batch.rays.size() - refracted));
+    put(row, c.refracted, shadow ? std::nullopt : std::optional<std::uint64_t>(refracted));
+    put(row, c.weight, weight);
+}
+
 Workload whittedWorkload(const WorkloadInputs& in, Row& row) {
     const auto depth = std::size_t(in.run.getInt("whitted.depth"));
     const bool shadow = in.run.getString("whitted.rays") == "shadow";
@@ -66,27 +118,7 @@ Workload whittedWorkload(const WorkloadInputs& in, Row& row) {
                                                  : "none on a mirror or glass");
                              });
     w.image = shadow ? BatchImage::Shadows : BatchImage::Hits;
-    row["whitted_lights"] = std::to_string(lights);
-    std::string positions;  // in the traced scene
-    for (const glm::vec3& l : surfaces->lights)
-        positions += (positions.empty() ? "" : "; ") + formatNumber(l.x, 9) + " " + formatNumber(l.y, 9) + " " + formatNumber(l.z, 9);
-    row["whitted_light_positions"] = positions;
-    row["whitted_materials"] = std::to_string(surfaces->materials.size());
-    row["whitted_parent_rays"] = std::to_string(w.parentRays);
-    row["whitted_parent_hits"] = std::to_string(w.parentHits);
-    std::uint64_t traced = in.cameraRays.size();
-    for (const Generation& g : w.between) traced += g.rays.size();
-    row["whitted_rays_before"] = std::to_string(traced);
-    // A secondary ray's slot (path mod 2) says which it is: 0 the reflection, 1 the refraction.
-    std::uint64_t refracted = 0;
-    double weight = 0.0;
-    for (std::size_t r = 0; r < w.batch.rays.size(); ++r) {
-        refracted += !shadow && w.paths[r] % 2 == 1;
-        weight += double(w.weights[r]);
-    }
-    row["whitted_reflected"] = shadow ? "" : std::to_string(w.batch.rays.size() - refracted);
-    row["whitted_refracted"] = shadow ? "" : std::to_string(refracted);
-    row["whitted_weight"] = formatNumber(weight, 9);
+    writeWhittedColumns(in, *surfaces, w, shadow, row);
     return w;
 }
 
@@ -94,7 +126,6 @@ Workload whittedWorkload(const WorkloadInputs& in, Row& row) {
 
 const RayType& whittedRayType() {
     static const RayType type = [] {
-        using K = ColumnKind;
         RayType t;
         t.name = "whitted";
         t.help = "Whitted ray tracing by material: generation whitted.depth's reflections and refractions, or the "
@@ -122,20 +153,7 @@ const RayType& whittedRayType() {
             reflectance,
             ior,
         };
-        t.columns = {
-            {"whitted_lights", K::Exact, "lights", "whitted: point lights (each diffuse hit makes a shadow ray toward each)"},
-            textColumn({"whitted_light_positions", K::Exact, "scene units",
-                        "whitted: the point lights in the traced scene, \"x y z\" each, separated by \"; \""}),
-            {"whitted_materials", K::Exact, "materials", "whitted: materials (whitted.surface and the description's)"},
-            {"whitted_parent_rays", K::Exact, "rays", "whitted: rays of the generation the batch was made from"},
-            {"whitted_parent_hits", K::Exact, "rays", "whitted: of those, the rays that hit"},
-            {"whitted_rays_before", K::Exact, "rays",
-             "whitted: rays traced before the batch (the camera rays and generations 1 .. whitted.depth - 1 or .. depth)"},
-            {"whitted_reflected", K::Exact, "rays", "whitted (secondary): batch rays that are reflections"},
-            {"whitted_refracted", K::Exact, "rays", "whitted (secondary): batch rays that are refractions"},
-            {"whitted_weight", K::Exact, "",
-             "whitted: the sum of the batch rays' weights (the pixels' worth of radiance they carry)"},
-        };
+        t.columns = whittedColumns().group.specs();
         t.make = whittedWorkload;
         setSince(t, 10);
         t.keys.push_back(lightPositionKey());  // the shadow rays' light, since results schema 7
