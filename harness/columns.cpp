@@ -10,7 +10,9 @@
 #include "config.h"
 #include "methods/cache/cache_replay.h"
 #include "methods/registry.h"
+#include "run_inputs.h"
 #include "run_metrics.h"
+#include "run_pipeline.h"
 #include "rays/registry.h"
 #include "core/error.h"
 #include "core/input_file.h"
@@ -54,6 +56,8 @@ struct ColumnList {
     ColumnSpec& text(std::string name, ColumnKind kind, std::string help) {
         return specs.emplace_back(textColumn({std::move(name), kind, "", std::move(help)}));
     }
+    // A part's typed columns (schema/column.h), in their order.
+    void append(const std::vector<ColumnSpec>& columns) { specs.insert(specs.end(), columns.begin(), columns.end()); }
     // A structure's, ray type's or strategy's own columns, written only by its runs (`typeKey` =
     // `name`). A column several methods write (rays_cut_short, the lane model's lanes_model_*) is
     // declared by each, alike: its condition names them all.
@@ -118,25 +122,10 @@ void addIdentityColumns(ColumnList& s) {
 
 // Scene, rays, the shading passes that made them, and the structure.
 void addSceneColumns(ColumnList& s) {
-    using K = ColumnKind;
-    s.add("scene_triangles", K::Exact, "triangles", "triangles after triangulation");
-    s.add("scene_degenerate", K::Exact, "triangles", "zero-area triangles in float (never hit)");
-    s.add("scene_full_triangles", K::Exact, "triangles", "triangles of the scene before scene.simplify_*: what the exact reference traces");
-    s.add("scene_simplify_ms", K::Timing, "ms", "scene.simplify_*: wall time of the edge collapses");
-    s.add("vertex_lattice_step", K::Exact, "scene units", "intersection.vertex_bits < 32: the spacing of the vertex lattice");
-    s.add("vertex_snap_error_max", K::Exact, "scene units", "intersection.vertex_bits < 32: the largest distance a vertex moved to its lattice point (not simplified scenes)");
-    s.add("rays", K::Exact, "rays", "rays traced: the batch of rays.type the run measures");
-    s.text("query", K::Exact, "what the rays ask: closest (the nearest hit) or any (whether anything is hit in [tMin, tMax): the walk ends at its first hit; Embree's rtcOccluded)").since = 7;
-    for (const ColumnSpec& c : shadingColumns()) s.specs.push_back(c);  // rays/workload.cpp
-    for (const char* axis : {"x", "y", "z"})
-        s.add(std::string("camera_eye_") + axis, K::Exact, "scene units", std::string("the camera the rays came from (fitted to the scene, or as given, moved with it): eye position, ") + axis).since = 5;
-    for (const char* axis : {"x", "y", "z"})
-        s.add(std::string("camera_target_") + axis, K::Exact, "scene units", std::string("the camera's point looked at, ") + axis).since = 5;
-    s.add("structure_bytes", K::Exact, "bytes", "device memory of the structure (its buffers, triangle vertices included; the driver's: its two levels' storage)");
-    s.add("structure_bytes_per_triangle", K::Exact, "bytes", "structure_bytes / scene_triangles");
-    s.add("structure_build_ms", K::Timing, "ms", "CPU build time of the structure (the driver's: its builds on the device, GPU timestamps)");
-    s.add("predicted_work_per_ray", K::Exact, "operations",
-          "cost model: cells or nodes visited + triangles tested per ray, predicted from the structure alone (SAH-style, no early termination)");
+    s.append(sceneInputColumns());          // harness/run_inputs.cpp
+    s.append(batchColumns());               // harness/run_pipeline.cpp
+    s.append(shadingColumns());             // rays/workload.cpp
+    s.append(cameraAndStructureColumns());  // harness/run_pipeline.cpp
 }
 
 // How the timing went, and the noise guard's judgement of it (harness/timing_rounds.h).
@@ -201,33 +190,14 @@ void addTimingColumns(ColumnList& s) {
 // deterministic, Embree's depend on its ISA path), and the image against the exact render.
 void addAccuracyColumns(ColumnList& s) {
     using K = ColumnKind;
-    s.add("hits", K::Exact, "rays", "rays the kernel hit");
-    s.add("hit_miss_agreement", K::Reference, "fraction", "rays whose hit/miss equals Embree's", 1e-4);
-    s.add("same_primitive_agreement", K::Reference, "fraction", "rays both hit on the same triangle", 1e-4);
-    s.add("rel_distance_error_mean", K::Reference, "", "|t - t_Embree| / t_Embree, mean over rays both hit", 1e-6);
-    s.add("rel_distance_error_max", K::Reference, "", "|t - t_Embree| / t_Embree, max", 1e-6);
-    s.add("hit_miss_mismatches", K::Reference, "rays", "rays where one hit and the other missed", 1e-4, true);
-    s.add("primitive_mismatches", K::Reference, "rays", "rays both hit on different triangles", 1e-4, true);
+    s.append(agreementColumns());  // harness/run_pipeline.cpp
     s.add("exact_rays", K::Exact, "rays", "rays traced by the exact reference (accuracy.exact_rays)");
     s.add("exact_ties", K::Exact, "rays", "of those, rays whose exact first hit is shared by several triangles (each is correct)");
     s.add("exact_ms", K::Timing, "ms", "wall time of the exact reference on those rays");
     s.add("exact_parent_wrong", K::Exact, "rays", "rays after the first hit: of the exact_rays, those with a ray earlier on their path (the camera ray, an earlier reflection) whose hit is not an exact first hit (they leave from another surface than the exact scene's; still judged as the rays they are)").since = 7;
-    for (const bool embree : {false, true}) {
-        const std::string p = embree ? "embree_exact_" : "exact_";
-        const std::string who = embree ? "Embree" : "the kernel";
-        const K kind = embree ? K::Reference : K::Exact;
-        s.add(p + "false_misses", kind, "rays", "the exact ray hits, " + who + " missed (a leak)", 1e-4, true);
-        s.add(p + "false_hits", kind, "rays", "the exact ray misses, " + who + " hit", 1e-4, true);
-        s.add(p + "wrong_primitive", kind, "rays", "both hit; " + who + "'s triangle is not one the exact ray hits first (empty for a simplified scene: other triangles, and for any-hit rays: any triangle answers)", 1e-4, true);
-        s.add(p + "wrong_ppm", kind, "ppm", "false misses + false hits + wrong primitive, per million exact_rays (of primary rays: wrong pixels)", 100.0);
-        s.add(p + "distance_error_mean", kind, "", "|t - t_exact| / t_exact, mean over rays both hit", 1e-6);
-        s.add(p + "distance_error_max", kind, "", "|t - t_exact| / t_exact, max", 1e-6);
-    }
-    // Image-level accuracy, as OpenImageIO's idiff measures it, on the pixels of the exact_rays.
-    s.add("image_psnr_db", K::Exact, "dB", "shaded pixels (8-bit grey, as the PNG) of the run's image against the same image made with the exact hits on the full scene (rays after the first hit: the batch's image, of its rays' own hits or of the camera hits they change; since results schema 10): PSNR, 20 log10(1 / RMS error) on [0, 1]; inf when equal");
-    s.add("image_error_mean", K::Exact, "", "shaded pixels against the exact render: mean |difference|");
-    s.add("image_error_max", K::Exact, "", "shaded pixels against the exact render: largest |difference|");
-    s.add("image_pixels_differ", K::Exact, "pixels", "shaded pixels whose 8-bit grey differs from the exact render's");
+    s.append(exactColumns(false));  // harness/run_metrics.cpp: the kernel's, then Embree's
+    s.append(exactColumns(true));
+    s.append(imageColumns());
 }
 
 // Self-checks (a mismatch fails the run), and the run's wall time.
@@ -265,7 +235,7 @@ const std::vector<ColumnSpec>& runColumnSpecs() {
         addTimingColumns(s);
         for (const ColumnSpec& c : buildRoundColumns()) s.specs.push_back(c);  // experiment.build_rounds
         addAccuracyColumns(s);
-        for (const ColumnSpec& c : architectureColumns()) s.specs.push_back(c);  // harness/run_metrics.cpp
+        s.append(architectureColumns());  // harness/run_metrics.cpp
         for (const StrategyType* t : strategyTypes()) s.addMethod("strategy.type", t->name, t->columns);
         for (const ColumnSpec& c : cacheColumns()) s.specs.push_back(c);  // cache.simulate
         addSelfCheckColumns(s);

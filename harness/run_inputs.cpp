@@ -6,6 +6,7 @@
 #include "scene/scene_limits.h"
 #include "scene/simplify.h"
 #include "structures/triangle_store.h"
+#include "schema/column.h"
 #include "schema/warnings.h"
 
 namespace rtbench {
@@ -41,6 +42,33 @@ const std::shared_ptr<TriangleMesh>& fullScene(const ExperimentPlan& plan, const
     return caches.meshes[key];
 }
 
+namespace {
+
+// The scene as the methods trace it, declared once, here, where its values are written.
+struct SceneInputColumns {
+    using K = ColumnKind;
+    using U64 = std::uint64_t;
+    ColumnGroup group;
+    Column<U64> triangles = group.add<U64>({"scene_triangles", K::Exact, "triangles", "triangles after triangulation"});
+    Column<U64> degenerate = group.add<U64>({"scene_degenerate", K::Exact, "triangles", "zero-area triangles in float (never hit)"});
+    Column<U64> fullTriangles = group.add<U64>(
+        {"scene_full_triangles", K::Exact, "triangles", "triangles of the scene before scene.simplify_*: what the exact reference traces"});
+    Column<double> simplifyMs = group.add<double>({"scene_simplify_ms", K::Timing, "ms", "scene.simplify_*: wall time of the edge collapses"}, 4);
+    Column<double> latticeStep = group.add<double>(
+        {"vertex_lattice_step", K::Exact, "scene units", "intersection.vertex_bits < 32: the spacing of the vertex lattice"});
+    Column<double> snapErrorMax = group.add<double>(
+        {"vertex_snap_error_max", K::Exact, "scene units", "intersection.vertex_bits < 32: the largest distance a vertex moved to its lattice point (not simplified scenes)"}, 4);
+};
+
+const SceneInputColumns& sceneInputs() {
+    static const SceneInputColumns columns;
+    return columns;
+}
+
+}  // namespace
+
+const std::vector<ColumnSpec>& sceneInputColumns() { return sceneInputs().group.specs(); }
+
 void writeInputColumns(const TriangleMesh& scene, Row& row) {
     row["inputs_hash"] = inputsHash(scene.inputs);
     std::string files;
@@ -53,7 +81,9 @@ RunScene sceneFor(const ExperimentPlan& plan, const RunConfig& run, Caches& cach
     const std::string key = sceneKey(run);
     const std::shared_ptr<TriangleMesh>& full = fullScene(plan, run, caches);
     writeInputColumns(*full, row);
-    row["scene_full_triangles"] = row["scene_triangles"] = std::to_string(full->triangles.size());
+    const SceneInputColumns& c = sceneInputs();
+    put(row, c.fullTriangles, full->triangles.size());
+    put(row, c.triangles, full->triangles.size());
     validateSceneRange(*full);  // before the structure, the camera fit or Embree see it
 
     // Simplified: cached by scene and target, whatever the vertex bits.
@@ -71,7 +101,7 @@ RunScene sceneFor(const ExperimentPlan& plan, const RunConfig& run, Caches& cach
             caches.simplified[tracedKey] = {std::make_shared<TriangleMesh>(std::move(result.mesh)), result.ms, result.unchanged};
         }
         const SimplifiedScene& s = caches.simplified[tracedKey];
-        row["scene_simplify_ms"] = formatNumber(s.ms, 4);
+        put(row, c.simplifyMs, s.ms);
         if (!s.unchanged) simplified = s.mesh;  // else the same triangles, ids and all
         sameTriangles = s.unchanged;
     }
@@ -87,14 +117,14 @@ RunScene sceneFor(const ExperimentPlan& plan, const RunConfig& run, Caches& cach
         for (const glm::uvec3& t : traced->triangles)
             for (int k = 0; k < 3; ++k)
                 snapError = std::max(snapError, glm::length(glm::dvec3(traced->vertices[t[k]]) - glm::dvec3(simplified->vertices[t[k]])));
-        row["vertex_lattice_step"] = formatNumber(traced->lattice.step);
-        row["vertex_snap_error_max"] = formatNumber(snapError, 4);
+        put(row, c.latticeStep, traced->lattice.step);
+        put(row, c.snapErrorMax, snapError);
     }
     const TriangleMesh& mesh = *traced;
-    row["scene_triangles"] = std::to_string(mesh.triangles.size());
+    put(row, c.triangles, mesh.triangles.size());
     validateSceneRange(mesh);
     const std::size_t degenerate = mesh.degenerateCount();
-    row["scene_degenerate"] = std::to_string(degenerate);
+    put(row, c.degenerate, degenerate);
     // What makes the scene differ from what its file describes, in the row and on the console.
     std::vector<std::string> warnings;
     if (degenerate)  // never hit by any method

@@ -19,6 +19,9 @@
 
 namespace rtbench {
 
+// The scene columns sceneFor writes.
+const std::vector<ColumnSpec>& sceneInputColumns();
+
 // A config's 3-vector as the float vector the scene and camera use.
 glm::vec3 toVec3(const std::array<double, 3>& a);
 

@@ -191,14 +191,69 @@ void writeTimingResults(const RunConfig& run, const VulkanContext& vk, std::size
     for (const std::string& n : noisy) row["timing_warning"] += (row["timing_warning"].empty() ? "" : "; ") + n;
 }
 
-void writeExactColumns(const std::string& prefix, const ExactAccuracy& a, Row& row) {
-    row[prefix + "false_misses"] = std::to_string(a.falseMisses);
-    row[prefix + "false_hits"] = std::to_string(a.falseHits);
-    if (a.primitivesCompared) row[prefix + "wrong_primitive"] = std::to_string(a.wrongPrimitive);
-    row[prefix + "wrong_ppm"] = formatNumber(a.wrongPerMillion(), 6);
+namespace {
+
+// Accuracy against the exact reference (harness/exact_reference.h), the kernel's ("exact_":
+// deterministic counts) or Embree's ("embree_exact_": its floating-point path decides, compared
+// within a tolerance).
+struct ExactColumns {
+    using U64 = std::uint64_t;
+    explicit ExactColumns(bool embree)
+        : prefix(embree ? "embree_exact_" : "exact_"), who(embree ? "Embree" : "the kernel"),
+          kind(embree ? ColumnKind::Reference : ColumnKind::Exact) {}
+    const std::string prefix, who;
+    const ColumnKind kind;
+    ColumnGroup group;
+    Column<U64> falseMisses = group.add<U64>({prefix + "false_misses", kind, "rays", "the exact ray hits, " + who + " missed (a leak)", 1e-4, true});
+    Column<U64> falseHits = group.add<U64>({prefix + "false_hits", kind, "rays", "the exact ray misses, " + who + " hit", 1e-4, true});
+    Column<U64> wrongPrimitive = group.add<U64>(
+        {prefix + "wrong_primitive", kind, "rays",
+         "both hit; " + who + "'s triangle is not one the exact ray hits first (empty for a simplified scene: other triangles, and for any-hit rays: any triangle answers)",
+         1e-4, true});
+    Column<double> wrongPpm = group.add<double>(
+        {prefix + "wrong_ppm", kind, "ppm", "false misses + false hits + wrong primitive, per million exact_rays (of primary rays: wrong pixels)", 100.0});
+    Column<double> distanceErrorMean = group.add<double>(
+        {prefix + "distance_error_mean", kind, "", "|t - t_exact| / t_exact, mean over rays both hit", 1e-6}, 4);
+    Column<double> distanceErrorMax = group.add<double>({prefix + "distance_error_max", kind, "", "|t - t_exact| / t_exact, max", 1e-6}, 4);
+};
+
+const ExactColumns& exactOf(bool embree) {
+    static const ExactColumns kernel(false), embreeColumns(true);
+    return embree ? embreeColumns : kernel;
+}
+
+// Image-level accuracy, as OpenImageIO's idiff measures it, on the pixels of the exact_rays.
+struct ImageColumns {
+    using K = ColumnKind;
+    ColumnGroup group;
+    Column<double> psnr = group.add<double>(
+        {"image_psnr_db", K::Exact, "dB", "shaded pixels (8-bit grey, as the PNG) of the run's image against the same image made with the exact hits on the full scene (rays after the first hit: the batch's image, of its rays' own hits or of the camera hits they change; since results schema 10): PSNR, 20 log10(1 / RMS error) on [0, 1]; inf when equal"},
+        5);
+    Column<double> errorMean = group.add<double>({"image_error_mean", K::Exact, "", "shaded pixels against the exact render: mean |difference|"}, 4);
+    Column<double> errorMax = group.add<double>({"image_error_max", K::Exact, "", "shaded pixels against the exact render: largest |difference|"}, 4);
+    Column<std::uint64_t> pixelsDiffer = group.add<std::uint64_t>(
+        {"image_pixels_differ", K::Exact, "pixels", "shaded pixels whose 8-bit grey differs from the exact render's"});
+};
+
+const ImageColumns& imageOf() {
+    static const ImageColumns columns;
+    return columns;
+}
+
+}  // namespace
+
+const std::vector<ColumnSpec>& exactColumns(bool embree) { return exactOf(embree).group.specs(); }
+const std::vector<ColumnSpec>& imageColumns() { return imageOf().group.specs(); }
+
+void writeExactColumns(bool embree, const ExactAccuracy& a, Row& row) {
+    const ExactColumns& c = exactOf(embree);
+    put(row, c.falseMisses, a.falseMisses);
+    put(row, c.falseHits, a.falseHits);
+    if (a.primitivesCompared) put(row, c.wrongPrimitive, a.wrongPrimitive);
+    put(row, c.wrongPpm, a.wrongPerMillion());
     if (!a.distancesCompared) return;
-    row[prefix + "distance_error_mean"] = formatNumber(a.distanceErrorMean, 4);
-    row[prefix + "distance_error_max"] = formatNumber(a.distanceErrorMax, 4);
+    put(row, c.distanceErrorMean, a.distanceErrorMean);
+    put(row, c.distanceErrorMax, a.distanceErrorMax);
 }
 
 std::vector<gpu::HitRecord> exactInPlace(const std::vector<gpu::HitRecord>& hits, const ExactHits& exact, bool sameTriangles,
@@ -220,10 +275,11 @@ void writeImageAccuracy(const std::vector<float>& shades, const std::vector<floa
     for (float s : shades) test.push_back(float(pixelGrey(s)) / 255.0f);
     for (float s : exactShades) reference.push_back(float(pixelGrey(s)) / 255.0f);
     const ImageComparison c = compareImages(test, reference, width, height, kPixelDifferThreshold);
-    row["image_psnr_db"] = formatNumber(c.psnr, 5);
-    row["image_error_mean"] = formatNumber(c.meanError, 4);
-    row["image_error_max"] = formatNumber(c.maxError, 4);
-    row["image_pixels_differ"] = std::to_string(c.differing);
+    const ImageColumns& columns = imageOf();
+    put(row, columns.psnr, c.psnr);
+    put(row, columns.errorMean, c.meanError);
+    put(row, columns.errorMax, c.maxError);
+    put(row, columns.pixelsDiffer, c.differing);
 }
 
 }  // namespace rtbench

@@ -36,8 +36,10 @@ void writeTimingResults(const RunConfig& run, const VulkanContext& vk, std::size
                         const CpuTimes& before, Row& row);
 
 // Accuracy against the exact reference into <prefix>false_misses, _false_hits, _wrong_primitive,
-// _wrong_ppm and the distance errors ("exact_" for the kernel, "embree_exact_" for Embree).
-void writeExactColumns(const std::string& prefix, const ExactAccuracy& a, Row& row);
+// _wrong_ppm and the distance errors (prefix "exact_" for the kernel, "embree_exact_" for Embree),
+// and the columns it writes.
+void writeExactColumns(bool embree, const ExactAccuracy& a, Row& row);
+const std::vector<ColumnSpec>& exactColumns(bool embree);
 
 // The batch's hits with the exact ones in place of the sampled rays': what the exact render is
 // made from. A kernel's answer the exact reference confirms keeps its triangle, and shades as it:
@@ -49,6 +51,7 @@ std::vector<gpu::HitRecord> exactInPlace(const std::vector<gpu::HitRecord>& hits
 // Image-level accuracy (harness/image_compare.h, idiff's measures): the 8-bit grey of `shades`
 // (harness/images.h: a hit's shade, -1 a miss) against `exactShades`, width x height values:
 // a run's image and the same image made with the exact hits, or one value per sampled ray.
+const std::vector<ColumnSpec>& imageColumns();
 void writeImageAccuracy(const std::vector<float>& shades, const std::vector<float>& exactShades, unsigned width,
                         unsigned height, Row& row);
 

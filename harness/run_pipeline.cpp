@@ -17,6 +17,7 @@
 #include "harness/run_verdict.h"
 #include "methods/registry.h"
 #include "rays/primary/tile_order.h"
+#include "schema/column.h"
 #include "schema/warnings.h"
 #include "scene/camera.h"
 #include "rays/registry.h"
@@ -26,6 +27,62 @@ namespace rtbench {
 namespace fs = std::filesystem;
 
 namespace {
+
+// The columns this file's stages write, declared once, here.
+struct PipelineColumns {
+    using K = ColumnKind;
+    using U64 = std::uint64_t;
+    // The batch of rays the run measures.
+    ColumnGroup batch;
+    Column<U64> rays = batch.add<U64>({"rays", K::Exact, "rays", "rays traced: the batch of rays.type the run measures"});
+    Column<std::string> query = batch.add<std::string>(
+        {"query", K::Exact, "", "what the rays ask: closest (the nearest hit) or any (whether anything is hit in [tMin, tMax): the walk ends at its first hit; Embree's rtcOccluded)", 0.0, false, {}, 7});
+    // The camera the rays came from, and the structure.
+    ColumnGroup cameraAndStructure;
+    std::array<Column<double>, 3> eye = {eyeColumn("x"), eyeColumn("y"), eyeColumn("z")};
+    std::array<Column<double>, 3> target = {targetColumn("x"), targetColumn("y"), targetColumn("z")};
+    Column<U64> structureBytes = cameraAndStructure.add<U64>(
+        {"structure_bytes", K::Exact, "bytes", "device memory of the structure (its buffers, triangle vertices included; the driver's: its two levels' storage)"});
+    Column<double> structureBytesPerTriangle = cameraAndStructure.add<double>(
+        {"structure_bytes_per_triangle", K::Exact, "bytes", "structure_bytes / scene_triangles"});
+    Column<double> structureBuildMs = cameraAndStructure.add<double>(
+        {"structure_build_ms", K::Timing, "ms", "CPU build time of the structure (the driver's: its builds on the device, GPU timestamps)"}, 4);
+    Column<double> predictedWork = cameraAndStructure.add<double>(
+        {"predicted_work_per_ray", K::Exact, "operations",
+         "cost model: cells or nodes visited + triangles tested per ray, predicted from the structure alone (SAH-style, no early termination)"});
+    // Agreement with Embree on the same rays (a second view of accuracy: depends on Embree's
+    // floating-point path, so compared within a tolerance).
+    ColumnGroup agreement;
+    Column<U64> hits = agreement.add<U64>({"hits", K::Exact, "rays", "rays the kernel hit"});
+    Column<double> hitMissAgreement = agreement.add<double>(
+        {"hit_miss_agreement", K::Reference, "fraction", "rays whose hit/miss equals Embree's", 1e-4}, 8);
+    Column<double> samePrimitiveAgreement = agreement.add<double>(
+        {"same_primitive_agreement", K::Reference, "fraction", "rays both hit on the same triangle", 1e-4}, 8);
+    Column<double> relDistanceErrorMean = agreement.add<double>(
+        {"rel_distance_error_mean", K::Reference, "", "|t - t_Embree| / t_Embree, mean over rays both hit", 1e-6}, 4);
+    Column<double> relDistanceErrorMax = agreement.add<double>(
+        {"rel_distance_error_max", K::Reference, "", "|t - t_Embree| / t_Embree, max", 1e-6}, 4);
+    Column<U64> hitMissMismatches = agreement.add<U64>(
+        {"hit_miss_mismatches", K::Reference, "rays", "rays where one hit and the other missed", 1e-4, true});
+    Column<U64> primitiveMismatches = agreement.add<U64>(
+        {"primitive_mismatches", K::Reference, "rays", "rays both hit on different triangles", 1e-4, true});
+
+private:
+    Column<double> eyeColumn(const std::string& axis) {
+        return cameraAndStructure.add<double>(
+            {"camera_eye_" + axis, K::Exact, "scene units",
+             "the camera the rays came from (fitted to the scene, or as given, moved with it): eye position, " + axis, 0.0, false, {}, 5}, 9);
+    }
+    Column<double> targetColumn(const std::string& axis) {
+        return cameraAndStructure.add<double>(
+            {"camera_target_" + axis, K::Exact, "scene units", "the camera's point looked at, " + axis, 0.0, false, {}, 5}, 9);
+    }
+};
+
+const PipelineColumns& pipelineColumns() {
+    static const PipelineColumns columns;
+    return columns;
+}
 
 // The methods a run's rounds time: the kernel (its KernelTimer) and Embree rtcIntersect1 and
 // rtcIntersect16 (any hit: rtcOccluded1 and 16) on the same rays (every generation of `path`, for
@@ -80,9 +137,8 @@ PinholeCamera prepareSceneAndRays(RunInProgress& p, const ExperimentPlan& plan, 
     const RunScene& scene = p.scene.emplace(sceneFor(plan, run, caches, row));
     const PinholeCamera camera = cameraFor(run, scene.full);  // the same rays at every simplification
     for (int a = 0; a < 3; ++a) {
-        const char axis[2] = {char('x' + a), 0};
-        row[std::string("camera_eye_") + axis] = formatNumber(camera.position[a], 9);
-        row[std::string("camera_target_") + axis] = formatNumber(camera.lookAt[a], 9);
+        put(row, pipelineColumns().eye[std::size_t(a)], camera.position[a]);
+        put(row, pipelineColumns().target[std::size_t(a)], camera.lookAt[a]);
     }
     p.width = unsigned(run.getInt("camera.width"));
     p.height = unsigned(run.getInt("camera.height"));
@@ -132,14 +188,15 @@ void makeWorkload(RunInProgress& p, const RayType& rayKind, const PinholeCamera&
     validateRays(rays);
     p.shadingMismatch = checkShadingOnDevice(vk, unsigned(run.getInt("strategy.workgroup_size")), mesh, p.cameraRays,
                                               p.workload, row);
-    row["rays"] = std::to_string(rays.size());
-    row["query"] = queryName(batch.query);
+    const PipelineColumns& c = pipelineColumns();
+    put(row, c.rays, rays.size());
+    put(row, c.query, queryName(batch.query));
     structure.writeColumns(row);
-    row["structure_bytes"] = std::to_string(structure.memoryBytes);
-    row["structure_bytes_per_triangle"] = formatNumber(double(structure.memoryBytes) / double(std::max<std::size_t>(mesh.triangles.size(), 1)));
-    row["structure_build_ms"] = formatNumber(structure.buildMs, 4);
+    put(row, c.structureBytes, structure.memoryBytes);
+    put(row, c.structureBytesPerTriangle, double(structure.memoryBytes) / double(std::max<std::size_t>(mesh.triangles.size(), 1)));
+    put(row, c.structureBuildMs, structure.buildMs);
     const double predicted = structure.predictedWork(rays);
-    row["predicted_work_per_ray"] = predicted < 0 ? "" : formatNumber(predicted / double(rays.size()));
+    put(row, c.predictedWork, predicted < 0 ? std::nullopt : std::optional<double>(predicted / double(rays.size())));
 }
 
 // The method: the strategy runs the structure's kernels once, instrumented, and checks them against
@@ -206,8 +263,8 @@ void judgeAgainstExact(const RunInProgress& p, const RunImage& imageOf, const Hi
     const ExactHits& exact = traceExact(run, scene.full, rays, caches, row);
     const ExactAccuracy kernelAccuracy = compareExact(method.hits, exact, scene.sameTriangles, query);
     row["exact_ties"] = std::to_string(kernelAccuracy.ties);
-    writeExactColumns("exact_", kernelAccuracy, row);
-    writeExactColumns("embree_exact_", compareExact(p.embreeHits, exact, scene.sameTriangles, query), row);
+    writeExactColumns(false, kernelAccuracy, row);
+    writeExactColumns(true, compareExact(p.embreeHits, exact, scene.sameTriangles, query), row);
     // The exact render: the exact hits' own triangles of the full scene, or the camera hits (the
     // traced scene's, as the kernel's image) changed by the exact hits. When only some rays are
     // sampled, each sampled ray's own value (as if it alone made its pixel), one row of them.
@@ -237,14 +294,15 @@ void judgeAgainstExact(const RunInProgress& p, const RunImage& imageOf, const Hi
 void writeAgreement(const RunInProgress& p, Row& row) {
     const StrategyRun& method = p.method;
     const Agreement a = compareHits(method.hits, p.embreeHits, p.workload.batch.query);
-    row["hits"] = std::to_string(method.metrics.work.hits);
-    row["hit_miss_agreement"] = formatNumber(a.hitMissAgreement, 8);
-    row["hit_miss_mismatches"] = std::to_string(a.hitMissMismatches);
+    const PipelineColumns& c = pipelineColumns();
+    put(row, c.hits, method.metrics.work.hits);
+    put(row, c.hitMissAgreement, a.hitMissAgreement);
+    put(row, c.hitMissMismatches, a.hitMissMismatches);
     if (a.primitivesCompared) {
-        row["same_primitive_agreement"] = formatNumber(a.samePrimitiveAgreement, 8);
-        row["rel_distance_error_mean"] = formatNumber(a.relDistanceErrorMean, 4);
-        row["rel_distance_error_max"] = formatNumber(a.relDistanceErrorMax, 4);
-        row["primitive_mismatches"] = std::to_string(a.primitiveMismatches);
+        put(row, c.samePrimitiveAgreement, a.samePrimitiveAgreement);
+        put(row, c.relDistanceErrorMean, a.relDistanceErrorMean);
+        put(row, c.relDistanceErrorMax, a.relDistanceErrorMax);
+        put(row, c.primitiveMismatches, a.primitiveMismatches);
     }
 }
 
@@ -276,6 +334,10 @@ void timeBuilds(RunInProgress& p, const StructureType& kind, const EmbreeReferen
 }
 
 }  // namespace
+
+const std::vector<ColumnSpec>& batchColumns() { return pipelineColumns().batch.specs(); }
+const std::vector<ColumnSpec>& cameraAndStructureColumns() { return pipelineColumns().cameraAndStructure.specs(); }
+const std::vector<ColumnSpec>& agreementColumns() { return pipelineColumns().agreement.specs(); }
 
 std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunConfig& run, Caches& caches, Row& row) {
     auto p = std::make_unique<RunInProgress>();

@@ -46,6 +46,12 @@ struct RunInProgress {
     std::vector<TimingSample> buildSamples;  // experiment.build_rounds
 };
 
+// The columns the stages write: the batch (rays, query), the camera and the structure, and the
+// agreement with Embree on the same rays, each in its place among runs.csv's (harness/columns.cpp).
+const std::vector<ColumnSpec>& batchColumns();
+const std::vector<ColumnSpec>& cameraAndStructureColumns();
+const std::vector<ColumnSpec>& agreementColumns();
+
 // Everything up to the timing: the row gets every value known before it. Throws on a run that
 // cannot be run (its reason goes into the row as a failed run's error).
 std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunConfig& run, Caches& caches, Row& row);
