@@ -10,6 +10,8 @@
 #include "config.h"
 #include "methods/cache/cache_replay.h"
 #include "methods/registry.h"
+#include "retime.h"
+#include "run_columns.h"
 #include "run_inputs.h"
 #include "run_metrics.h"
 #include "run_pipeline.h"
@@ -52,15 +54,11 @@ struct ColumnList {
         specs.push_back({std::move(name), kind, std::move(unit), std::move(help), tolerance, perRay});
         return specs.back();
     }
-    // A column whose cells name or explain (a label, a hash, a reason).
-    ColumnSpec& text(std::string name, ColumnKind kind, std::string help) {
-        return specs.emplace_back(textColumn({std::move(name), kind, "", std::move(help)}));
-    }
     // A part's typed columns (schema/column.h), in their order.
     void append(const std::vector<ColumnSpec>& columns) { specs.insert(specs.end(), columns.begin(), columns.end()); }
     // A structure's, ray type's or strategy's own columns, written only by its runs (`typeKey` =
-    // `name`). A column several methods write (rays_cut_short, the lane model's lanes_model_*) is
-    // declared by each, alike: its condition names them all.
+    // `name`). A column several methods write (rays_cut_short, the lane model's lanes_model_*:
+    // strategies/branching/branching_strategy.h) is listed by each: its condition names them all.
     void addMethod(const std::string& typeKey, const std::string& name, const std::vector<ColumnSpec>& columns) {
         for (ColumnSpec c : columns) {
             auto same = std::find_if(specs.begin(), specs.end(), [&](const ColumnSpec& d) { return d.name == c.name; });
@@ -104,20 +102,7 @@ void addKeyColumns(ColumnList& s) {
 
 // Identity and outcome.
 void addIdentityColumns(ColumnList& s) {
-    using K = ColumnKind;
-    s.text("run", K::Parameter, "run number in the plan (000, 001, ...)");
-    s.text("label", K::Parameter, "the swept parameters of the run");
-    s.text("sweep", K::Parameter, "the name of the [[sweep]] the run comes from (empty: the base config)").since = 5;
-    s.text("status", K::Exact, "ok or failed");
-    s.text("error", K::Exact, "why the run failed");
-    s.text("warnings", K::Exact, "what the run did that may surprise (e.g. triangles degenerate in float)");
-    s.text("config_hash", K::Parameter, "FNV-1a 64 of the run's parameters (the command line's -d, --validation and --embree-config included)");
-    s.text("inputs_hash", K::Parameter, "FNV-1a 64 over the contents of every file the scene was made from (mesh files, the scene description and its meshes, a cgal: mesh's cached file; none for procedural scenes): with config_hash, git_commit, device, driver and cpu, the run's identity");
-    s.text("input_files", K::Context, "those files: path (bytes, FNV-1a 64 of the contents), in reading order");
-    s.text("git_commit", K::Context, "commit of the binary");
-    s.text("device", K::Context, "Vulkan device name");
-    s.text("driver", K::Context, "Vulkan driver name and version");
-    s.text("cpu", K::Context, "the host's CPU model (what lavapipe and Embree ran on)");
+    s.append(runColumnsDeclared().identity.specs());  // harness/run_columns.h
 }
 
 // Scene, rays, the shading passes that made them, and the structure.
@@ -128,73 +113,23 @@ void addSceneColumns(ColumnList& s) {
     s.append(cameraAndStructureColumns());  // harness/run_pipeline.cpp
 }
 
-// How the timing went, and the noise guard's judgement of it (harness/timing_rounds.h).
-void addNoiseGuardColumns(ColumnList& s) {
-    using K = ColumnKind;
-    s.add("timing_repetitions", K::Timing, "repetitions", "timed repetitions of each method (kernel, Embree 1, Embree 16)").since = 5;
-    s.add("timing_rounds", K::Timing, "rounds", "rounds they were timed in, each the kernel then Embree 1 then Embree 16").since = 5;
-    s.text("timing_stop", K::Timing, "why the timing stopped: repetitions (experiment.repetitions, fixed), converged (every interval within experiment.target_ci), max_repetitions, time_budget").since = 5;
-    s.add("timing_s", K::Timing, "s", "wall time of the timed rounds (with experiment.target_ci, the judging after each included: what experiment.time_budget_s bounds)").since = 5;
-    s.text("timing_warning", K::Context, "noise guard: why the run's timings are not results of record (a median's 95% interval wider than +- experiment.noise_ci of it, or below 6 repetitions a coefficient of variation above experiment.noise_cv; other processes above experiment.noise_other_cpu, one repetition: noise not measured); empty when clean").since = 5;
-    s.text("retimed", K::Context, "rtbench retime: when the run was re-timed, which try's timings were kept and why (no timing warning beats one, then the narrower widest spread: a median's interval half-width, or below 6 repetitions the CV), or that none was better conditioned; empty when never re-timed").since = 24;
-    s.add("other_cpu_fraction", K::Timing, "fraction", "noise guard: CPU time other processes took while the run ran (from its scene to the end of its timing), over cores x wall time (Linux /proc/stat, hypervisor steal included); empty when that window held under 100 clock ticks of the machine").since = 5;
-    s.add("load_average", K::Timing, "", "noise guard: 1-minute load average when the timing ended").since = 5;
-    s.add("device_host_threads", K::Context, "threads", "threads the device runs on the host's cores (lavapipe: LP_NUM_THREADS, else one per core up to 32; 0 for a GPU), beside embree_threads, against the machine's cores (context.json cpu_threads)").since = 5;
-}
-
-// A timed method's spread: mean, std, CV and the median's interval (harness/timing_rounds.h).
-void addSpreadColumns(ColumnList& s, const std::string& m, const std::string& who) {
-    using K = ColumnKind;
-    s.add(m + "_ms_mean", K::Timing, "ms", who + ", mean of the repetitions").since = 5;
-    s.add(m + "_ms_std", K::Timing, "ms", who + ", sample standard deviation of the repetitions (empty for one)").since = 5;
-    s.add(m + "_ms_cv", K::Timing, "", who + ", coefficient of variation (std / mean; empty for one repetition)").since = 5;
-    s.add(m + "_ms_ci_low", K::Timing, "ms", who + ", 95% interval of the median from the order statistics "
-          "(distribution-free, coverage at least 95%; empty below 6 repetitions; before results schema 23: "
-          "percentile bootstrap): low end").since = 5;
-    s.add(m + "_ms_ci_high", K::Timing, "ms", who + ", 95% interval of the median (as _ci_low): high end").since = 5;
-}
-
 // Time: the kernel's and Embree's on the same rays (every sample is in samples.csv).
 void addTimingColumns(ColumnList& s) {
-    using K = ColumnKind;
-    s.add("kernel_ms_median", K::Timing, "ms",
-          "GPU time of the kernel(s), median of the repetitions (multipass with strategy.control = host, "
-          "since results schema 25: host wall time of its live pass loop, the oracle's read-back after every pass)");
-    s.add("kernel_ms_min", K::Timing, "ms", "GPU time, fastest repetition");
-    s.add("kernel_ms_max", K::Timing, "ms", "GPU time, slowest repetition");
-    addSpreadColumns(s, "kernel", "GPU time");
-    s.add("kernel_mrays_s", K::Timing, "Mrays/s", "rays / median GPU time (the rays of every generation for a strategy that traces the whole path: whole_path_rays)");
-    for (const std::string m : {"embree1", "embree16"}) {
-        s.add(m + "_ms_median", K::Timing, "ms", "Embree " + m + " on the same rays, median");
-        s.add(m + "_ms_min", K::Timing, "ms", "Embree " + m + ", fastest repetition");
-        s.add(m + "_ms_max", K::Timing, "ms", "Embree " + m + ", slowest repetition");
-        addSpreadColumns(s, m, "Embree " + m);
-        s.add(m + "_mrays_s", K::Timing, "Mrays/s", "rays / Embree's median time");
-    }
-    s.add("embree_rays", K::Exact, "rays",
-          "rays Embree traced per repetition: the batch's, or beside a strategy that traces the whole path (wavefront, "
-          "path_megakernel) every generation's, as the kernel did").since = 19;
-    s.add("embree_threads", K::Context, "threads", "TBB threads Embree ran on");
-    s.text("embree_isa", K::Context, "Embree's native packet width (its ISA path)");
-    s.add("embree_build_ms", K::Timing, "ms", "Embree BVH build time");
-    s.add("speed_ratio_vs_embree1", K::Timing, "ratio", "kernel Mrays/s / Embree rtcIntersect1 Mrays/s");
-    s.add("speed_ratio_ci_low", K::Timing, "ratio", "speed_ratio_vs_embree1: 95% interval, from each median's 97.5% "
-          "order-statistic interval (both hold at once with at least 95%; empty below 7 repetitions; before results "
-          "schema 23: percentile bootstrap), low end").since = 5;
-    s.add("speed_ratio_ci_high", K::Timing, "ratio", "speed_ratio_vs_embree1: 95% interval (as _ci_low), high end").since = 5;
-    addNoiseGuardColumns(s);
+    s.append(timingColumns(TimingColumnPart::Methods));  // harness/run_metrics.cpp
+    s.specs.push_back(embreeRaysColumn());  // harness/run_pipeline.cpp
+    s.append(embreeColumns());  // harness/run_inputs.cpp
+    s.append(timingColumns(TimingColumnPart::Ratio));
+    s.append(timingColumns(TimingColumnPart::Rounds));
+    s.specs.push_back(retimedColumn().spec());  // harness/retime.cpp
+    s.append(timingColumns(TimingColumnPart::Machine));
 }
 
 // Agreement with Embree (a second view of accuracy: depends on Embree's floating-point path),
 // accuracy against the exact reference (harness/exact_reference.h: the kernels' counts are
 // deterministic, Embree's depend on its ISA path), and the image against the exact render.
 void addAccuracyColumns(ColumnList& s) {
-    using K = ColumnKind;
     s.append(agreementColumns());  // harness/run_pipeline.cpp
-    s.add("exact_rays", K::Exact, "rays", "rays traced by the exact reference (accuracy.exact_rays)");
-    s.add("exact_ties", K::Exact, "rays", "of those, rays whose exact first hit is shared by several triangles (each is correct)");
-    s.add("exact_ms", K::Timing, "ms", "wall time of the exact reference on those rays");
-    s.add("exact_parent_wrong", K::Exact, "rays", "rays after the first hit: of the exact_rays, those with a ray earlier on their path (the camera ray, an earlier reflection) whose hit is not an exact first hit (they leave from another surface than the exact scene's; still judged as the rays they are)").since = 7;
+    s.append(exactSampleColumns());  // harness/run_pipeline.cpp
     s.append(exactColumns(false));  // harness/run_metrics.cpp: the kernel's, then Embree's
     s.append(exactColumns(true));
     s.append(imageColumns());
@@ -202,13 +137,8 @@ void addAccuracyColumns(ColumnList& s) {
 
 // Self-checks (a mismatch fails the run), and the run's wall time.
 void addSelfCheckColumns(ColumnList& s) {
-    using K = ColumnKind;
-    s.add("cpu_reference_mismatches", K::Exact, "rays",
-          "rays whose GPU hit record differs from the CPU reference's (empty for the driver's ray query: another's arithmetic, judged by the exact reference)");
-    s.add("cpu_counts_match", K::Exact, "",
-          "1 when pass and lane counts equal the CPU reference's (lane counts only on a device whose subgroups run "
-          "in lock step; empty for branching elsewhere, where they are not compared)").type = ColumnType::Integer;
-    s.add("wall_s", K::Timing, "s", "wall time of the whole run");
+    s.append(selfCheckColumns());  // harness/run_pipeline.cpp
+    s.specs.push_back(runColumnsDeclared().wallSeconds.spec());
 }
 
 // A column of inferred type: an integer when its unit counts things and it is not a mean or a

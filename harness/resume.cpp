@@ -9,6 +9,7 @@
 #include "device/vulkan_context.h"
 #include "harness/columns.h"
 #include "harness/output_folder.h"
+#include "harness/run_columns.h"
 #include "harness/samples_check.h"
 #include "harness/timing_rounds.h"
 #include "harness/version.h"
@@ -122,7 +123,7 @@ void matchEarlier(const ExperimentPlan& plan, const std::vector<const RunConfig*
             continue;
         }
         row = *previous->second;
-        row["label"] = run.label();  // the label names the swept keys of this plan
+        put(row, runColumnsDeclared().label, run.label());  // the label names the swept keys of this plan
         resumed.kept[k] = true;
         earlier.keptRows.insert(previous->second);
     }

@@ -10,6 +10,7 @@
 
 #include "check.h"
 #include "columns.h"
+#include "schema/column.h"
 #include "output_folder.h"
 #include "samples_check.h"
 #include "statistics.h"
@@ -21,6 +22,15 @@
 
 namespace rtbench {
 namespace fs = std::filesystem;
+
+const Column<std::string>& retimedColumn() {
+    static const Column<std::string> column(
+        {"retimed", ColumnKind::Context, "",
+         "rtbench retime: when the run was re-timed, which try's timings were kept and why (no timing warning beats one, then the "
+         "narrower widest spread: a median's interval half-width, or below 6 repetitions the CV), or that none was better "
+         "conditioned; empty when never re-timed", 0.0, false, {}, 24});
+    return column;
+}
 
 namespace {
 
@@ -163,7 +173,7 @@ void writeRetimed(const FolderIdentity& folder, std::vector<Row> rows, const std
         }
         const std::string note = retimedNote(row, it->second, options.tries, when);
         if (it->second.attempt > 0) row = it->second.row;
-        row["retimed"] = note;
+        put(row, retimedColumn(), note);
     }
     for (const Row& s : samples)
         if (const auto it = best.find(runKey(s)); it != best.end() && it->second.attempt > 0) asideSamples.push_back(s);

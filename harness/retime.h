@@ -5,10 +5,12 @@
 // per try (so an interleaved sweep stays interleaved). A try whose parameters or counts differ
 // from the record (what `rtbench check` fails on) is a failure and nothing is written. Otherwise
 // the best try replaces the run's row and samples when it is better conditioned than the record:
-// no timing warning beats one, then the lower largest coefficient of variation of its methods.
+// no timing warning beats one, then the narrower widest spread of its methods (a median's interval
+// half-width; below 6 repetitions the CV).
 // The `retimed` column says which try was kept and why, or that none was; the replaced rows and
 // samples are saved aside (superseded-<time>-runs.csv and -samples.csv), never lost.
 #pragma once
+#include "schema/column.h"
 #include <ostream>
 #include <string>
 #include <vector>
@@ -29,6 +31,9 @@ struct RetimeResult {
 
 // Throws rtbench::Error (nothing written) when the folder is not a complete results folder of
 // this schema, or a flagged run was recorded by another commit or on another CPU.
+// The column retime writes into each run it re-timed.
+const Column<std::string>& retimedColumn();
+
 RetimeResult retimeFlagged(const std::string& folder, const RetimeOptions& options, std::ostream& out);
 
 }  // namespace rtbench

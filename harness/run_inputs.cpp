@@ -7,6 +7,7 @@
 #include "scene/simplify.h"
 #include "structures/triangle_store.h"
 #include "schema/column.h"
+#include "run_columns.h"
 #include "schema/warnings.h"
 
 namespace rtbench {
@@ -65,16 +66,31 @@ const SceneInputColumns& sceneInputs() {
     return columns;
 }
 
+// Embree as the run used it.
+struct EmbreeColumns {
+    using K = ColumnKind;
+    ColumnGroup group;
+    Column<int> threads = group.add<int>({"embree_threads", K::Context, "threads", "TBB threads Embree ran on"});
+    Column<std::string> isa = group.add<std::string>({"embree_isa", K::Context, "", "Embree's native packet width (its ISA path)"});
+    Column<double> buildMs = group.add<double>({"embree_build_ms", K::Timing, "ms", "Embree BVH build time"}, 4);
+};
+
+const EmbreeColumns& embreeColumnsDeclared() {
+    static const EmbreeColumns columns;
+    return columns;
+}
+
 }  // namespace
 
 const std::vector<ColumnSpec>& sceneInputColumns() { return sceneInputs().group.specs(); }
+const std::vector<ColumnSpec>& embreeColumns() { return embreeColumnsDeclared().group.specs(); }
 
 void writeInputColumns(const TriangleMesh& scene, Row& row) {
-    row["inputs_hash"] = inputsHash(scene.inputs);
+    put(row, runColumnsDeclared().inputsHash, inputsHash(scene.inputs));
     std::string files;
     for (const InputFile& f : scene.inputs)
         files += (files.empty() ? "" : "; ") + f.path + " (" + std::to_string(f.bytes) + " bytes, fnv1a64 " + f.hash + ")";
-    row["input_files"] = files;
+    put(row, runColumnsDeclared().inputFiles, files);
 }
 
 RunScene sceneFor(const ExperimentPlan& plan, const RunConfig& run, Caches& caches, Row& row) {
@@ -155,9 +171,10 @@ EmbreeReference& embreeFor(const RunConfig& run, const RunScene& scene, Caches& 
     const std::string embreeKey = scene.tracedKey + "|" + embreeConfig;
     if (!caches.embree.count(embreeKey)) caches.embree[embreeKey] = std::make_shared<EmbreeReference>(scene.traced, embreeConfig);
     EmbreeReference& embree = *caches.embree[embreeKey];
-    row["embree_threads"] = std::to_string(embree.threads());
-    row["embree_isa"] = embree.isa();
-    row["embree_build_ms"] = formatNumber(embree.buildMs(), 4);
+    const EmbreeColumns& c = embreeColumnsDeclared();
+    put(row, c.threads, embree.threads());
+    put(row, c.isa, embree.isa());
+    put(row, c.buildMs, embree.buildMs());
     return embree;
 }
 
@@ -168,7 +185,7 @@ const ExactReference& exactReferenceFor(const RunConfig& run, const TriangleMesh
 }
 
 const ExactHits& traceExact(const RunConfig& run, const TriangleMesh& mesh, const std::vector<gpu::Ray>& rays,
-                            Caches& caches, Row& row) {
+                            Caches& caches) {
     const std::string scene = sceneKey(run);
     const std::uint64_t sampleSize = std::uint64_t(run.getInt("accuracy.exact_rays"));
     const std::string key = scene + "|" + std::to_string(fnv1a64({reinterpret_cast<const char*>(rays.data()),
@@ -176,10 +193,7 @@ const ExactHits& traceExact(const RunConfig& run, const TriangleMesh& mesh, cons
                             "|" + std::to_string(sampleSize);
     if (!caches.exactHits.count(key))
         caches.exactHits[key] = std::make_shared<ExactHits>(exactReferenceFor(run, mesh, caches).trace(rays, sampleRays(rays.size(), sampleSize)));
-    const ExactHits& exact = *caches.exactHits[key];
-    row["exact_rays"] = std::to_string(exact.rays.size());
-    row["exact_ms"] = formatNumber(exact.ms, 4);
-    return exact;
+    return *caches.exactHits[key];
 }
 
 }  // namespace rtbench

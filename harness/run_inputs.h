@@ -19,8 +19,9 @@
 
 namespace rtbench {
 
-// The scene columns sceneFor writes.
+// The scene columns sceneFor writes, and Embree's that embreeFor writes.
 const std::vector<ColumnSpec>& sceneInputColumns();
+const std::vector<ColumnSpec>& embreeColumns();
 
 // A config's 3-vector as the float vector the scene and camera use.
 glm::vec3 toVec3(const std::array<double, 3>& a);
@@ -88,6 +89,6 @@ const ExactReference& exactReferenceFor(const RunConfig& run, const TriangleMesh
 
 // The exact first hits of the sampled rays, computed once per scene, rays and sample size.
 const ExactHits& traceExact(const RunConfig& run, const TriangleMesh& mesh, const std::vector<gpu::Ray>& rays,
-                            Caches& caches, Row& row);
+                            Caches& caches);
 
 }  // namespace rtbench

@@ -131,64 +131,172 @@ void writeArchitectureColumns(const ArchitectureMetrics& m, const Structure& str
     }
 }
 
-SampleStats writeTimingColumns(const std::string& prefix, const std::vector<double>& ms, Row& row) {
-    const SampleStats s = summarize(ms);
-    row[prefix + "_ms_median"] = formatNumber(s.median);
-    row[prefix + "_ms_min"] = formatNumber(s.min);
-    row[prefix + "_ms_max"] = formatNumber(s.max);
-    row[prefix + "_ms_mean"] = formatNumber(s.mean);
-    // Spread and interval where the samples have them (empty, never 0: one sample has no spread,
-    // fewer than 6 no distribution-free 95% interval of the median).
-    row[prefix + "_ms_std"] = s.stddev ? formatNumber(*s.stddev, 4) : "";
-    row[prefix + "_ms_cv"] = s.cv ? formatNumber(*s.cv, 4) : "";
-    row[prefix + "_ms_ci_low"] = s.ci ? formatNumber(s.ci->low) : "";
-    row[prefix + "_ms_ci_high"] = s.ci ? formatNumber(s.ci->high) : "";
-    return s;
+namespace {
+
+// A timed method's columns: <m>_ms_median, _min, _max, its spread (_mean, _std, _cv and the
+// median's interval _ci_low, _ci_high; results schema 5) and its rate <m>_mrays_s.
+struct MethodTimingColumns {
+    using K = ColumnKind;
+    struct Texts {
+        std::string median, fastest, slowest, who, rate;
+    };
+    MethodTimingColumns(const std::string& m, const Texts& t)
+        : median(group.add<double>({m + "_ms_median", K::Timing, "ms", t.median})),
+          min(group.add<double>({m + "_ms_min", K::Timing, "ms", t.fastest})),
+          max(group.add<double>({m + "_ms_max", K::Timing, "ms", t.slowest})),
+          mean(group.add<double>({m + "_ms_mean", K::Timing, "ms", t.who + ", mean of the repetitions", 0.0, false, {}, 5})),
+          stddev(group.add<double>({m + "_ms_std", K::Timing, "ms", t.who + ", sample standard deviation of the repetitions (empty for one)", 0.0, false, {}, 5}, 4)),
+          cv(group.add<double>({m + "_ms_cv", K::Timing, "", t.who + ", coefficient of variation (std / mean; empty for one repetition)", 0.0, false, {}, 5}, 4)),
+          ciLow(group.add<double>({m + "_ms_ci_low", K::Timing, "ms",
+                                   t.who + ", 95% interval of the median from the order statistics (distribution-free, coverage at least 95%; "
+                                   "empty below 6 repetitions; before results schema 23: percentile bootstrap): low end", 0.0, false, {}, 5})),
+          ciHigh(group.add<double>({m + "_ms_ci_high", K::Timing, "ms", t.who + ", 95% interval of the median (as _ci_low): high end", 0.0, false, {}, 5})),
+          rate(group.add<double>({m + "_mrays_s", K::Timing, "Mrays/s", t.rate})) {}
+    ColumnGroup group;
+    Column<double> median, min, max, mean, stddev, cv, ciLow, ciHigh, rate;
+
+    // The series' statistics, and its rate for `rays` rays (none where the median is 0).
+    SampleStats write(const std::vector<double>& ms, std::size_t rays, Row& row) const {
+        const SampleStats s = summarize(ms);
+        put(row, median, s.median);
+        put(row, min, s.min);
+        put(row, max, s.max);
+        put(row, mean, s.mean);
+        // Spread and interval where the samples have them (empty, never 0: one sample has no
+        // spread, fewer than 6 no distribution-free 95% interval of the median).
+        put(row, stddev, s.stddev);
+        put(row, cv, s.cv);
+        put(row, ciLow, s.ci ? std::optional<double>(s.ci->low) : std::nullopt);
+        put(row, ciHigh, s.ci ? std::optional<double>(s.ci->high) : std::nullopt);
+        put(row, rate, s.median > 0 ? double(rays) / (s.median * 1e3) : 0.0);
+        return s;
+    }
+};
+
+// The run's timing: the kernel's and Embree's on the same rays (every sample is in samples.csv),
+// the speed ratio, and how the timing went with the noise guard's judgement of it.
+struct TimingColumns {
+    using K = ColumnKind;
+    MethodTimingColumns kernel{
+        "kernel",
+        {"GPU time of the kernel(s), median of the repetitions (multipass with strategy.control = host, since results schema 25: "
+         "host wall time of its live pass loop, the oracle's read-back after every pass)",
+         "GPU time, fastest repetition", "GPU time, slowest repetition", "GPU time",
+         "rays / median GPU time (the rays of every generation for a strategy that traces the whole path: whole_path_rays)"}};
+    MethodTimingColumns embree1 = embree("embree1");
+    MethodTimingColumns embree16 = embree("embree16");
+    ColumnGroup ratio;
+    Column<double> speedRatio = ratio.add<double>({"speed_ratio_vs_embree1", K::Timing, "ratio", "kernel Mrays/s / Embree rtcIntersect1 Mrays/s"}, 4);
+    Column<double> ratioLow = ratio.add<double>(
+        {"speed_ratio_ci_low", K::Timing, "ratio",
+         "speed_ratio_vs_embree1: 95% interval, from each median's 97.5% order-statistic interval (both hold at once with at least "
+         "95%; empty below 7 repetitions; before results schema 23: percentile bootstrap), low end", 0.0, false, {}, 5}, 4);
+    Column<double> ratioHigh = ratio.add<double>(
+        {"speed_ratio_ci_high", K::Timing, "ratio", "speed_ratio_vs_embree1: 95% interval (as _ci_low), high end", 0.0, false, {}, 5}, 4);
+    ColumnGroup rounds;
+    Column<int> repetitions = rounds.add<int>(
+        {"timing_repetitions", K::Timing, "repetitions", "timed repetitions of each method (kernel, Embree 1, Embree 16)", 0.0, false, {}, 5});
+    Column<int> roundCount = rounds.add<int>(
+        {"timing_rounds", K::Timing, "rounds", "rounds they were timed in, each the kernel then Embree 1 then Embree 16", 0.0, false, {}, 5});
+    Column<std::string> stop = rounds.add<std::string>(
+        {"timing_stop", K::Timing, "",
+         "why the timing stopped: repetitions (experiment.repetitions, fixed), converged (every interval within experiment.target_ci), "
+         "max_repetitions, time_budget", 0.0, false, {}, 5});
+    Column<double> seconds = rounds.add<double>(
+        {"timing_s", K::Timing, "s",
+         "wall time of the timed rounds (with experiment.target_ci, the judging after each included: what experiment.time_budget_s bounds)",
+         0.0, false, {}, 5}, 4);
+    Column<std::string> warning = rounds.add<std::string>(
+        {"timing_warning", K::Context, "",
+         "noise guard: why the run's timings are not results of record (a median's 95% interval wider than +- experiment.noise_ci of "
+         "it, or below 6 repetitions a coefficient of variation above experiment.noise_cv; other processes above "
+         "experiment.noise_other_cpu, one repetition: noise not measured); empty when clean", 0.0, false, {}, 5});
+    ColumnGroup machine;
+    Column<double> otherCpu = machine.add<double>(
+        {"other_cpu_fraction", K::Timing, "fraction",
+         "noise guard: CPU time other processes took while the run ran (from its scene to the end of its timing), over cores x wall "
+         "time (Linux /proc/stat, hypervisor steal included); empty when that window held under 100 clock ticks of the machine",
+         0.0, false, {}, 5}, 3);
+    Column<double> loadAverage = machine.add<double>({"load_average", K::Timing, "", "noise guard: 1-minute load average when the timing ended", 0.0, false, {}, 5}, 3);
+    Column<unsigned> deviceHostThreads = machine.add<unsigned>(
+        {"device_host_threads", K::Context, "threads",
+         "threads the device runs on the host's cores (lavapipe: LP_NUM_THREADS, else one per core up to 32; 0 for a GPU), beside "
+         "embree_threads, against the machine's cores (context.json cpu_threads)", 0.0, false, {}, 5});
+
+private:
+    static MethodTimingColumns embree(const std::string& m) {
+        return MethodTimingColumns(m, {"Embree " + m + " on the same rays, median", "Embree " + m + ", fastest repetition",
+                                       "Embree " + m + ", slowest repetition", "Embree " + m, "rays / Embree's median time"});
+    }
+};
+
+const TimingColumns& timingColumnsDeclared() {
+    static const TimingColumns columns;
+    return columns;
+}
+
+// The noise guard's reading of the window from `before` to now, and of each method's spread.
+std::vector<std::string> noiseWarnings(const RunConfig& run, const VulkanContext& vk, const CpuTimes& before,
+                                       const std::vector<std::pair<std::string, SampleStats>>& methods, Row& row) {
+    const TimingColumns& c = timingColumnsDeclared();
+    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+    const double other = otherCpuFraction(before, sampleCpuTimes(), cores, double(::sysconf(_SC_CLK_TCK)));
+    put(row, c.otherCpu, other < 0 ? std::nullopt : std::optional<double>(other));
+    const double load = loadAverage();
+    put(row, c.loadAverage, load < 0 ? std::nullopt : std::optional<double>(load));
+    put(row, c.deviceHostThreads, deviceHostThreads(vk.info().type == "cpu", cores));
+    std::vector<std::string> noisy;
+    const double noiseCi = run.getFloat("experiment.noise_ci"), noiseCv = run.getFloat("experiment.noise_cv");
+    for (const auto& [method, s] : methods)
+        if (std::string w = spreadWarning(method, s, noiseCi, noiseCv); !w.empty()) noisy.push_back(std::move(w));
+    if (!methods.front().second.cv) noisy.push_back("one repetition: its noise is not measured");
+    if (other > run.getFloat("experiment.noise_other_cpu"))
+        noisy.push_back("other processes took " + formatNumber(100 * other, 3) + "% of the machine's CPU time (> experiment.noise_other_cpu " +
+                        formatNumber(run.getFloat("experiment.noise_other_cpu"), 3) + ")");
+    return noisy;
+}
+
+}  // namespace
+
+std::vector<ColumnSpec> timingColumns(TimingColumnPart part) {
+    const TimingColumns& c = timingColumnsDeclared();
+    switch (part) {
+        case TimingColumnPart::Methods: {
+            std::vector<ColumnSpec> specs;
+            for (const MethodTimingColumns* m : {&c.kernel, &c.embree1, &c.embree16})
+                specs.insert(specs.end(), m->group.specs().begin(), m->group.specs().end());
+            return specs;
+        }
+        case TimingColumnPart::Ratio: return c.ratio.specs();
+        case TimingColumnPart::Rounds: return c.rounds.specs();
+        case TimingColumnPart::Machine: return c.machine.specs();
+    }
+    return {};
 }
 
 void writeTimingResults(const RunConfig& run, const VulkanContext& vk, std::size_t rays, const RoundsResult& timed,
                         const CpuTimes& before, Row& row) {
-    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-    const CpuTimes after = sampleCpuTimes();
-    const SampleStats k = writeTimingColumns("kernel", timed.of("kernel"), row);
-    row["kernel_mrays_s"] = formatNumber(k.median > 0 ? double(rays) / (k.median * 1e3) : 0.0);
-    std::vector<std::string> noisy;
-    const double noiseCi = run.getFloat("experiment.noise_ci"), noiseCv = run.getFloat("experiment.noise_cv");
-    auto judge = [&](const std::string& method, const SampleStats& s) {
-        if (std::string w = spreadWarning(method, s, noiseCi, noiseCv); !w.empty()) noisy.push_back(std::move(w));
-    };
-    judge("kernel", k);
-    for (const char* m : {"embree1", "embree16"}) {
-        const SampleStats e = writeTimingColumns(m, timed.of(m), row);
-        row[std::string(m) + "_mrays_s"] = formatNumber(double(rays) / (e.median * 1e3));
-        judge(m, e);
-    }
-    // The strategy's own series: the parts of a repetition, its host-controlled loops.
+    const TimingColumns& c = timingColumnsDeclared();
+    const SampleStats k = c.kernel.write(timed.of("kernel"), rays, row);
+    const SampleStats e1 = c.embree1.write(timed.of("embree1"), rays, row);
+    const SampleStats e16 = c.embree16.write(timed.of("embree16"), rays, row);
+    // The strategy's own series, the columns it declares: the parts of a repetition, its host-controlled loops.
     for (const auto& [name, ms] : timed.series) {
         if (name.rfind("kernel_", 0) == 0) row["kernel_ms_" + name.substr(7)] = formatNumber(median(ms));
         else if (name != "kernel" && name != "embree1" && name != "embree16") row[name + "_ms_median"] = formatNumber(median(ms));
     }
-    const double embreeMedian = median(timed.of("embree1"));
-    row["speed_ratio_vs_embree1"] = formatNumber(k.median > 0 ? embreeMedian / k.median : 0.0, 4);
+    put(row, c.speedRatio, k.median > 0 ? e1.median / k.median : 0.0);
     const std::optional<Interval> ratio = ratioOfMediansInterval(timed.of("embree1"), timed.of("kernel"));
-    row["speed_ratio_ci_low"] = ratio ? formatNumber(ratio->low, 4) : "";
-    row["speed_ratio_ci_high"] = ratio ? formatNumber(ratio->high, 4) : "";
-    row["timing_repetitions"] = std::to_string(timed.repetitions);
-    row["timing_rounds"] = std::to_string(timed.rounds);
-    row["timing_stop"] = timed.stop;
-    row["timing_s"] = formatNumber(timed.seconds, 4);
-
-    // The noise guard.
-    const double other = otherCpuFraction(before, after, cores, double(::sysconf(_SC_CLK_TCK)));
-    row["other_cpu_fraction"] = other < 0 ? "" : formatNumber(other, 3);
-    const double load = loadAverage();
-    row["load_average"] = load < 0 ? "" : formatNumber(load, 3);
-    row["device_host_threads"] = std::to_string(deviceHostThreads(vk.info().type == "cpu", cores));
-    if (!k.cv) noisy.push_back("one repetition: its noise is not measured");
-    if (other > run.getFloat("experiment.noise_other_cpu"))
-        noisy.push_back("other processes took " + formatNumber(100 * other, 3) + "% of the machine's CPU time (> experiment.noise_other_cpu " +
-                        formatNumber(run.getFloat("experiment.noise_other_cpu"), 3) + ")");
-    for (const std::string& n : noisy) row["timing_warning"] += (row["timing_warning"].empty() ? "" : "; ") + n;
+    put(row, c.ratioLow, ratio ? std::optional<double>(ratio->low) : std::nullopt);
+    put(row, c.ratioHigh, ratio ? std::optional<double>(ratio->high) : std::nullopt);
+    put(row, c.repetitions, timed.repetitions);
+    put(row, c.roundCount, timed.rounds);
+    put(row, c.stop, timed.stop);
+    put(row, c.seconds, timed.seconds);
+    std::string warning;
+    for (const std::string& n : noiseWarnings(run, vk, before, {{"kernel", k}, {"embree1", e1}, {"embree16", e16}}, row))
+        warning += (warning.empty() ? "" : "; ") + n;
+    put(row, c.warning, warning);
 }
 
 namespace {

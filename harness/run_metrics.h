@@ -26,8 +26,11 @@ const std::vector<ColumnSpec>& architectureColumns();
 // type) and the structure's own columns for `rays` rays.
 void writeArchitectureColumns(const ArchitectureMetrics& m, const Structure& structure, std::uint64_t rays, Row& row);
 
-// A timed series' statistics into <prefix>_ms_median, _min, _max, _mean, _std, _cv, _ci_low, _ci_high.
-SampleStats writeTimingColumns(const std::string& prefix, const std::vector<double>& ms, Row& row);
+// The columns writeTimingResults writes, in their places among runs.csv's: each method's
+// statistics and rate (kernel, embree1, embree16), the speed ratio, how the rounds went, and the
+// machine's load the noise guard read.
+enum class TimingColumnPart { Methods, Ratio, Rounds, Machine };
+std::vector<ColumnSpec> timingColumns(TimingColumnPart part);
 
 // A run's timing (harness/timing_rounds.h) into `row`: each method's statistics, the strategy's
 // own series, the speed ratio with its interval, and the noise guard's reading of the window

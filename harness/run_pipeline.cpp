@@ -66,6 +66,31 @@ struct PipelineColumns {
         {"hit_miss_mismatches", K::Reference, "rays", "rays where one hit and the other missed", 1e-4, true});
     Column<U64> primitiveMismatches = agreement.add<U64>(
         {"primitive_mismatches", K::Reference, "rays", "rays both hit on different triangles", 1e-4, true});
+    // The rays the exact reference judges (accuracy.exact_rays).
+    ColumnGroup exactSample;
+    Column<U64> exactRays = exactSample.add<U64>({"exact_rays", K::Exact, "rays", "rays traced by the exact reference (accuracy.exact_rays)"});
+    Column<U64> exactTies = exactSample.add<U64>(
+        {"exact_ties", K::Exact, "rays", "of those, rays whose exact first hit is shared by several triangles (each is correct)"});
+    Column<double> exactMs = exactSample.add<double>({"exact_ms", K::Timing, "ms", "wall time of the exact reference on those rays"}, 4);
+    Column<U64> exactParentWrong = exactSample.add<U64>(
+        {"exact_parent_wrong", K::Exact, "rays",
+         "rays after the first hit: of the exact_rays, those with a ray earlier on their path (the camera ray, an earlier reflection) "
+         "whose hit is not an exact first hit (they leave from another surface than the exact scene's; still judged as the rays they are)",
+         0.0, false, {}, 7});
+    // Rays Embree traced beside the kernel.
+    Column<U64> embreeRays = Column<U64>(
+        {"embree_rays", K::Exact, "rays",
+         "rays Embree traced per repetition: the batch's, or beside a strategy that traces the whole path (wavefront, "
+         "path_megakernel) every generation's, as the kernel did", 0.0, false, {}, 19});
+    // Self-checks of the method against the CPU reference (a mismatch fails the run).
+    ColumnGroup selfCheck;
+    Column<U64> cpuMismatches = selfCheck.add<U64>(
+        {"cpu_reference_mismatches", K::Exact, "rays",
+         "rays whose GPU hit record differs from the CPU reference's (empty for the driver's ray query: another's arithmetic, judged by the exact reference)"});
+    Column<int> cpuCountsMatch = selfCheck.add<int>(
+        {"cpu_counts_match", K::Exact, "",
+         "1 when pass and lane counts equal the CPU reference's (lane counts only on a device whose subgroups run "
+         "in lock step; empty for branching elsewhere, where they are not compared)"});
 
 private:
     Column<double> eyeColumn(const std::string& axis) {
@@ -228,9 +253,10 @@ void runMethod(RunInProgress& p, const StrategyType& strategy, Row& row) {
         return trace(vk, structure, batch, *p.path, run, timing, row);
     };
     p.method = std::visit(Overloaded{traceBatch, tracePath}, strategy.trace);
-    row["cpu_reference_mismatches"] = p.method.cpuCompared ? std::to_string(p.method.cpuMismatches) : "";
+    const PipelineColumns& c = pipelineColumns();
+    put(row, c.cpuMismatches, p.method.cpuCompared ? std::optional<std::uint64_t>(p.method.cpuMismatches) : std::nullopt);
     refuseForeignTriangles(p.method.hits, mesh.triangles.size());
-    row["cpu_counts_match"] = !p.method.countsCompared ? "" : p.method.countsMismatch.empty() ? "1" : "0";
+    put(row, c.cpuCountsMatch, p.method.countsCompared ? std::optional<int>(p.method.countsMismatch.empty()) : std::nullopt);
     writeArchitectureColumns(p.method.metrics, structure, rays.size(), row);
 }
 
@@ -260,9 +286,12 @@ void judgeAgainstExact(const RunInProgress& p, const RunImage& imageOf, const Hi
     const StrategyRun& method = p.method;
     const unsigned width = p.width, height = p.height;
     const bool ownHits = imageOf.ownHits();
-    const ExactHits& exact = traceExact(run, scene.full, rays, caches, row);
+    const ExactHits& exact = traceExact(run, scene.full, rays, caches);
     const ExactAccuracy kernelAccuracy = compareExact(method.hits, exact, scene.sameTriangles, query);
-    row["exact_ties"] = std::to_string(kernelAccuracy.ties);
+    const PipelineColumns& c = pipelineColumns();
+    put(row, c.exactRays, exact.rays.size());
+    put(row, c.exactMs, exact.ms);
+    put(row, c.exactTies, kernelAccuracy.ties);
     writeExactColumns(false, kernelAccuracy, row);
     writeExactColumns(true, compareExact(p.embreeHits, exact, scene.sameTriangles, query), row);
     // The exact render: the exact hits' own triangles of the full scene, or the camera hits (the
@@ -286,8 +315,8 @@ void judgeAgainstExact(const RunInProgress& p, const RunImage& imageOf, const Hi
         writeImageAccuracy(shades, exactShades, unsigned(shades.size()), 1u, row);
     }
     if (!workload.fromCamera())  // the sampled rays' camera rays, judged too: did they leave from the exact scene's surface?
-        row["exact_parent_wrong"] = std::to_string(pathsLeavingWrongHits(exactReferenceFor(run, scene.full, caches), p.cameraRays,
-                                                                         workload, exact.rays, scene.sameTriangles));
+        put(row, c.exactParentWrong, pathsLeavingWrongHits(exactReferenceFor(run, scene.full, caches), p.cameraRays, workload,
+                                                           exact.rays, scene.sameTriangles));
 }
 
 // Agreement with Embree on the same rays.
@@ -338,6 +367,9 @@ void timeBuilds(RunInProgress& p, const StructureType& kind, const EmbreeReferen
 const std::vector<ColumnSpec>& batchColumns() { return pipelineColumns().batch.specs(); }
 const std::vector<ColumnSpec>& cameraAndStructureColumns() { return pipelineColumns().cameraAndStructure.specs(); }
 const std::vector<ColumnSpec>& agreementColumns() { return pipelineColumns().agreement.specs(); }
+const std::vector<ColumnSpec>& exactSampleColumns() { return pipelineColumns().exactSample.specs(); }
+const ColumnSpec& embreeRaysColumn() { return pipelineColumns().embreeRays.spec(); }
+const std::vector<ColumnSpec>& selfCheckColumns() { return pipelineColumns().selfCheck.specs(); }
 
 std::unique_ptr<RunInProgress> prepareRun(const ExperimentPlan& plan, const RunConfig& run, Caches& caches, Row& row) {
     auto p = std::make_unique<RunInProgress>();
@@ -373,7 +405,7 @@ void finishRun(RunInProgress& p, const FolderIdentity& folder, Caches& caches, R
     samples = p.rounds->result().samples;
     samples.insert(samples.end(), p.buildSamples.begin(), p.buildSamples.end());
     writeTimingResults(run, vk, p.path ? p.path->rays() : rays.size(), p.rounds->result(), p.started, row);
-    row["embree_rays"] = std::to_string(p.embreeRays);
+    put(row, pipelineColumns().embreeRays, p.embreeRays);
     checkTimedRecords(p.method, p.shadingMismatch, rays.size());
     const RunImage imageOf{p};
     const HitImage image = imageOf(p.method.hits, p.scene->traced);

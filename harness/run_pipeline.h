@@ -51,6 +51,11 @@ struct RunInProgress {
 const std::vector<ColumnSpec>& batchColumns();
 const std::vector<ColumnSpec>& cameraAndStructureColumns();
 const std::vector<ColumnSpec>& agreementColumns();
+// The exact reference's sample (exact_rays, _ties, _ms, _parent_wrong), embree_rays, and the
+// self-checks against the CPU reference (cpu_reference_mismatches, cpu_counts_match).
+const std::vector<ColumnSpec>& exactSampleColumns();
+const ColumnSpec& embreeRaysColumn();
+const std::vector<ColumnSpec>& selfCheckColumns();
 
 // Everything up to the timing: the row gets every value known before it. Throws on a run that
 // cannot be run (its reason goes into the row as a failed run's error).

@@ -23,6 +23,7 @@
 #include "harness/output_folder.h"
 #include "harness/plan_view.h"
 #include "harness/resume.h"
+#include "harness/run_columns.h"
 #include "harness/run_inputs.h"
 #include "harness/sweep.h"
 #include "harness/timing_rounds.h"
@@ -274,14 +275,15 @@ Row identityRow(const RunConfig& run, const std::string& commit, const std::stri
     Row row;
     for (const auto& [key, value] : run.values)
         for (const auto& [column, cell] : keyCells(keySpec(key), value)) row[column] = cell;
-    row["run"] = runNumber(run);
-    row["label"] = run.label();
-    row["sweep"] = run.sweep;
-    row["config_hash"] = run.hash();
-    row["git_commit"] = commit;
-    row["device"] = device;
-    row["driver"] = driver;
-    row["cpu"] = cpu;
+    const RunColumns& c = runColumnsDeclared();
+    put(row, c.run, runNumber(run));
+    put(row, c.label, run.label());
+    put(row, c.sweep, run.sweep);
+    put(row, c.configHash, run.hash());
+    put(row, c.gitCommit, commit);
+    put(row, c.device, device);
+    put(row, c.driver, driver);
+    put(row, c.cpu, cpu);
     return row;
 }
 

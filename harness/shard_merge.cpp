@@ -12,6 +12,7 @@
 #include "check.h"
 #include "output_folder.h"
 #include "columns.h"
+#include "run_columns.h"
 #include "runner.h"
 #include "timing_rounds.h"
 #include "core/error.h"
@@ -123,8 +124,8 @@ void addMissingRuns(const ShardFiles& reference, const std::vector<std::string>&
             throw Error(reference.context.string() + ": run " + run + " of its plan is not the run its config text gives");
         Row row = identityRow(*it, commit, device, driver, cpu);
         for (const std::string& column : runColumns()) row.emplace(column, "");  // every cell, as a read row has
-        row["status"] = "failed";
-        row["error"] = "no row from its shard: " + missingReason;
+        put(row, runColumnsDeclared().status, std::string("failed"));
+        put(row, runColumnsDeclared().error, "no row from its shard: " + missingReason);
         byRun.emplace(run, std::move(row));
     }
 }

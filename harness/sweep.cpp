@@ -11,6 +11,7 @@
 #include "harness/run_pipeline.h"
 #include "harness/samples_check.h"
 #include "harness/writers.h"
+#include "run_columns.h"
 
 namespace rtbench {
 
@@ -62,14 +63,15 @@ public:
     // without a row, which a resume sets aside, never a row without its samples.
     void record(std::size_t k, const std::string& error, double seconds, const std::vector<TimingSample>& samples) {
         Row& row = rows_[k];
-        row["status"] = error.empty() ? "ok" : "failed";
+        const RunColumns& c = runColumnsDeclared();
+        put(row, c.status, std::string(error.empty() ? "ok" : "failed"));
         if (!error.empty()) {
-            row["error"] = error;
+            put(row, c.error, error);
             ++s_.result.failed;
         }
         executedSeconds_ += seconds;
         ++executed_;
-        row["wall_s"] = formatNumber(seconds, 4);
+        put(row, c.wallSeconds, seconds);
         say(row);
         s_.folder.check();  // the folder opened, not one put in its place since
         appendCsvRows(s_.files.samplesPath, sampleColumns(), sampleRows(row, samples));

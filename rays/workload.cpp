@@ -72,14 +72,14 @@ Workload followPaths(const WorkloadInputs& in, std::shared_ptr<const Surfaces> s
 }
 
 Workload followGenerations(const WorkloadInputs& in, Row& row, const std::vector<gpu::ShadingParams>& passes,
-                           const std::string& type, const std::string& key, const std::string& noun) {
+                           const std::string& type, const std::string& key, const std::string& noun, const ParentColumns& parents) {
     Workload w = followPaths(in, std::make_shared<const Surfaces>(), passes, gpu::kQueryClosest, [&](std::size_t pass, std::uint64_t rays, std::uint64_t) {
         return "rays.type = " + type + ": no rays at " + key + " " + std::to_string(pass + 1) + ": none of the " +
                std::to_string(rays) + " rays of " + noun + " " + std::to_string(pass) + " hit";
     });
     w.image = BatchImage::Hits;
-    row[type + "_parent_rays"] = std::to_string(w.parentRays);
-    row[type + "_parent_hits"] = std::to_string(w.parentHits);
+    put(row, parents.rays, w.parentRays);
+    put(row, parents.hits, w.parentHits);
     return w;
 }
 

@@ -12,6 +12,7 @@
 #include "device/vulkan_context.h"
 #include "strategies/ray_batch.h"
 #include "structures/structure.h"
+#include "schema/column.h"
 #include "schema/columns.h"
 #include "schema/keys.h"
 #include "scene/mesh.h"
@@ -88,12 +89,21 @@ Workload followPaths(const WorkloadInputs& in, std::shared_ptr<const Surfaces> s
                      const std::vector<gpu::ShadingParams>& passes, std::uint32_t query,
                      const std::function<std::string(std::size_t, std::uint64_t, std::uint64_t)>& noRays);
 
+// A ray type of generations' TYPE_parent_rays and TYPE_parent_hits (the generation the batch was
+// made from), declared by the ray type, written by followGenerations.
+struct ParentColumns {
+    ParentColumns(const std::string& type, const std::string& raysHelp, const std::string& hitsHelp, int since)
+        : rays(group.add<std::uint64_t>({type + "_parent_rays", ColumnKind::Exact, "rays", raysHelp, 0.0, false, {}, since})),
+          hits(group.add<std::uint64_t>({type + "_parent_hits", ColumnKind::Exact, "rays", hitsHelp, 0.0, false, {}, since})) {}
+    ColumnGroup group;
+    Column<std::uint64_t> rays, hits;
+};
+
 // followPaths for a ray type of generations (reflection and refraction iterations, path bounces):
 // closest hit; a pass that makes no ray is "rays.type = TYPE: no rays at KEY k: none of the N
-// rays of NOUN k - 1 hit"; the image shows each ray's own hit; writes TYPE_parent_rays and
-// TYPE_parent_hits (the generation the batch was made from).
+// rays of NOUN k - 1 hit"; the image shows each ray's own hit; writes `parents`.
 Workload followGenerations(const WorkloadInputs& in, Row& row, const std::vector<gpu::ShadingParams>& passes,
-                           const std::string& type, const std::string& key, const std::string& noun);
+                           const std::string& type, const std::string& key, const std::string& noun, const ParentColumns& parents);
 
 // Every shading pass of `workload` run again on the device (kernels/shading.comp) from the same
 // rays and hits, its rays compared bit for bit with the CPU's. Writes shading_* columns to `row`;

@@ -22,9 +22,10 @@ enum class ColumnKind { Parameter, Exact, Reference, Timing, Context, Scheduled 
 const char* columnKindName(ColumnKind kind);
 
 // What a column's cells hold, as readers type them (pandas: Int64, float64, boolean, string).
-// Inferred: from the unit, when the columns are gathered (harness/columns.cpp): an integer when
-// the unit counts things and the column is not a mean or a per-something ratio, else a number.
-// A column that names or explains (a label, a hash, a reason) declares Text where it is declared.
+// A typed column (schema/column.h) has the type of its value. Inferred, for the few columns still
+// declared as plain specs: from the unit, when the columns are gathered (harness/columns.cpp): an
+// integer when the unit counts things and the column is not a mean or a per-something ratio,
+// else a number.
 enum class ColumnType { Inferred, Integer, Number, Boolean, Text };
 
 struct ColumnSpec {
@@ -45,12 +46,6 @@ struct ColumnSpec {
     int since = 1;
     ColumnType type = ColumnType::Inferred;
 };
-
-// The column `c` as one whose cells are text.
-inline ColumnSpec textColumn(ColumnSpec c) {
-    c.type = ColumnType::Text;
-    return c;
-}
 
 // The schema of a results folder: which columns its runs.csv holds. Recorded in context.json as
 // "schema_version" from 5 on; older folders are known by their columns (harness/columns.cpp).

@@ -5,6 +5,7 @@
 #include "methods/cache/memory_trace.h"
 #include "strategies/multipass/multipass_simulator.h"
 #include "core/error.h"
+#include "schema/column.h"
 
 namespace rtbench {
 
@@ -90,24 +91,41 @@ const std::vector<KeySpec>& cacheKeys() {
     return keys;
 }
 
-const std::vector<ColumnSpec>& cacheColumns() {
-    static const std::vector<ColumnSpec> columns = [] {
-        using K = ColumnKind;
-        const std::vector<std::string> asked = {"cache.simulate=true"};
-        std::vector<ColumnSpec> c = {
-            {"cache_capacity_bytes", K::Exact, "bytes", "cache.simulate: the bytes the cache holds, sets x ways x line (64 KB of 48-byte lines: 65,520)", 0.0, false, asked},
-            {"cache_ratio_total", K::Exact, "fraction", "cache.simulate: memory traffic with the cache / without it, all data types (Purcell 2002 Fig. 9's bar: a missed line costs the whole line; writes cost their bytes either way)", 0.0, false, asked}};
+namespace {
+
+// cache.simulate's columns (results schema 16), declared once, here, where they are written: the
+// cache, the traffic ratio over all data, and per read data type its ratio and line hit rate.
+struct CacheColumns {
+    using K = ColumnKind;
+    ColumnGroup group;
+    Column<std::uint64_t> capacity = group.add<std::uint64_t>(
+        {"cache_capacity_bytes", K::Exact, "bytes", "cache.simulate: the bytes the cache holds, sets x ways x line (64 KB of 48-byte lines: 65,520)", 0.0, false, {"cache.simulate=true"}, 16});
+    Column<double> ratioTotal = group.add<double>(
+        {"cache_ratio_total", K::Exact, "fraction", "cache.simulate: memory traffic with the cache / without it, all data types (Purcell 2002 Fig. 9's bar: a missed line costs the whole line; writes cost their bytes either way)", 0.0, false, {"cache.simulate=true"}, 16});
+    struct ByKind {
+        Column<double> ratio, hitRate;
+    };
+    std::vector<ByKind> byKind = [this] {
+        std::vector<ByKind> kinds;
         for (const MemoryKind kind : kReadKinds) {
             const std::string name = memoryKindName(kind);
             const std::string without = kind == MemoryKind::Cells ? "bytes_voxel or bytes_node" : "bytes_" + name;
-            c.push_back({"cache_ratio_" + name, K::Exact, "fraction", "cache.simulate: traffic of " + name + " data with the cache / without it (" + without + ")", 0.0, false, asked});
-            c.push_back({"cache_hit_rate_" + name, K::Exact, "fraction", "cache.simulate: of the cache lines the " + name + " reads touch, the fraction found in the cache (empty: no reads)", 0.0, false, asked});
+            kinds.push_back(
+                {group.add<double>({"cache_ratio_" + name, K::Exact, "fraction", "cache.simulate: traffic of " + name + " data with the cache / without it (" + without + ")", 0.0, false, {"cache.simulate=true"}, 16}),
+                 group.add<double>({"cache_hit_rate_" + name, K::Exact, "fraction", "cache.simulate: of the cache lines the " + name + " reads touch, the fraction found in the cache (empty: no reads)", 0.0, false, {"cache.simulate=true"}, 16})});
         }
-        for (ColumnSpec& col : c) col.since = 16;
-        return c;
+        return kinds;
     }();
+};
+
+const CacheColumns& cacheColumnsDeclared() {
+    static const CacheColumns columns;
     return columns;
 }
+
+}  // namespace
+
+const std::vector<ColumnSpec>& cacheColumns() { return cacheColumnsDeclared().group.specs(); }
 
 std::optional<CacheConfig> cacheConfig(const RunConfig& run) {
     if (!run.has("cache.simulate") || !run.getBool("cache.simulate")) return std::nullopt;
@@ -131,13 +149,14 @@ std::string writeCacheColumns(const CacheSimulator& cache, const Bandwidth& acco
         with += cache.bytesWith(kind);
         without += s.bytesWithout();
     }
-    row["cache_capacity_bytes"] = std::to_string(cache.capacityBytes());
-    row["cache_ratio_total"] = formatNumber(without ? double(with) / double(without) : 1.0);
-    for (const MemoryKind kind : kReadKinds) {
+    const CacheColumns& c = cacheColumnsDeclared();
+    put(row, c.capacity, cache.capacityBytes());
+    put(row, c.ratioTotal, without ? double(with) / double(without) : 1.0);
+    for (std::size_t k = 0; k < std::size(kReadKinds); ++k) {
+        const MemoryKind kind = kReadKinds[k];
         const CacheKindStats& s = cache.stats(kind);
-        const std::string name = memoryKindName(kind);
-        if (s.bytesWithout()) row["cache_ratio_" + name] = formatNumber(double(cache.bytesWith(kind)) / double(s.bytesWithout()));
-        if (s.lineLookups) row["cache_hit_rate_" + name] = formatNumber(double(s.lineHits) / double(s.lineLookups));
+        if (s.bytesWithout()) put(row, c.byKind[k].ratio, double(cache.bytesWith(kind)) / double(s.bytesWithout()));
+        if (s.lineLookups) put(row, c.byKind[k].hitRate, double(s.lineHits) / double(s.lineLookups));
     }
     return differs.empty() ? "" : "the cache replay's bytes differ from the bandwidth accounting's: " + differs;
 }

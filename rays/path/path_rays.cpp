@@ -6,6 +6,12 @@ namespace rtbench {
 
 namespace {
 
+const ParentColumns& pathColumns() {
+    static const ParentColumns columns("path", "path: rays of the bounce before (1: the camera rays)",
+                                       "path: of those, the rays that hit (bounce 1: each starts path.samples paths)", 9);
+    return columns;
+}
+
 Workload pathWorkload(const WorkloadInputs& in, Row& row) {
     const auto bounce = std::uint32_t(in.run.getInt("path.bounce"));
     const auto samples = std::uint32_t(in.run.getInt("path.samples"));
@@ -13,14 +19,13 @@ Workload pathWorkload(const WorkloadInputs& in, Row& row) {
     // Bounce 1 starts `samples` paths at each camera hit; later bounces go on with one ray each.
     std::vector<gpu::ShadingParams> passes;
     for (std::uint32_t b = 1; b <= bounce; ++b) passes.push_back(diffusePass(b == 1 ? samples : 1, b, seed, gpu::kNoHitT));
-    return followGenerations(in, row, passes, "path", "path.bounce", "bounce");
+    return followGenerations(in, row, passes, "path", "path.bounce", "bounce", pathColumns());
 }
 
 }  // namespace
 
 const RayType& pathRayType() {
     static const RayType type = [] {
-        using K = ColumnKind;
         RayType t;
         t.name = "path";
         t.help = "diffuse path tracing: cosine-weighted bounces from the previous bounce's hits, every surface diffuse";
@@ -33,10 +38,7 @@ const RayType& pathRayType() {
              ConfigValue{std::int64_t(1)}, false, 1, 1024},
             randomSeedKey("path.seed", "path rays"),
         };
-        t.columns = {
-            {"path_parent_rays", K::Exact, "rays", "path: rays of the bounce before (1: the camera rays)"},
-            {"path_parent_hits", K::Exact, "rays", "path: of those, the rays that hit (bounce 1: each starts path.samples paths)"},
-        };
+        t.columns = pathColumns().group.specs();
         t.make = pathWorkload;
         setSince(t, 9);
         return t;

@@ -24,12 +24,32 @@ std::uint64_t countTotalInternalReflections(const TriangleMesh& scene, const std
 
 namespace {
 
+// Refraction's own columns (results schema 9): the iteration the batch was made from, and the
+// rays total internal reflection turned back.
+struct RefractionColumns {
+    ParentColumns parents{"refraction", "refraction: rays of the iteration before (1: the camera rays)",
+                          "refraction: of those, the rays that hit: each makes one ray", 9};
+    Column<std::uint64_t> totalInternal{{"refraction_total_internal", ColumnKind::Exact, "rays",
+                                         "refraction: rays reflected past the critical angle (total internal reflection) instead of transmitted",
+                                         0.0, false, {}, 9}};
+    std::vector<ColumnSpec> specs() const {
+        std::vector<ColumnSpec> s = parents.group.specs();
+        s.push_back(totalInternal.spec());
+        return s;
+    }
+};
+
+const RefractionColumns& refractionColumns() {
+    static const RefractionColumns columns;
+    return columns;
+}
+
 Workload refractionWorkload(const WorkloadInputs& in, Row& row) {
     const auto iteration = std::size_t(in.run.getInt("refraction.iteration"));
     const auto ior = float(in.run.getFloat("refraction.ior"));
     Workload w = followGenerations(in, row, std::vector<gpu::ShadingParams>(iteration, refractPass(ior)), "refraction",
-                                   "refraction.iteration", "iteration");
-    row["refraction_total_internal"] = std::to_string(countTotalInternalReflections(in.scene, in.cameraRays, w));
+                                   "refraction.iteration", "iteration", refractionColumns().parents);
+    put(row, refractionColumns().totalInternal, countTotalInternalReflections(in.scene, in.cameraRays, w));
     return w;
 }
 
@@ -37,7 +57,6 @@ Workload refractionWorkload(const WorkloadInputs& in, Row& row) {
 
 const RayType& refractionRayType() {
     static const RayType type = [] {
-        using K = ColumnKind;
         RayType t;
         t.name = "refraction";
         t.help = "the refractions of the previous iteration's hits, every surface glass (total internal reflection: the mirror ray)";
@@ -50,12 +69,7 @@ const RayType& refractionRayType() {
              "refraction rays: the index of refraction of every surface against 1 outside (glass: 1.5)", ConfigValue{1.5},
              false, 0.01, 100},
         };
-        t.columns = {
-            {"refraction_parent_rays", K::Exact, "rays", "refraction: rays of the iteration before (1: the camera rays)"},
-            {"refraction_parent_hits", K::Exact, "rays", "refraction: of those, the rays that hit: each makes one ray"},
-            {"refraction_total_internal", K::Exact, "rays",
-             "refraction: rays reflected past the critical angle (total internal reflection) instead of transmitted"},
-        };
+        t.columns = refractionColumns().specs();
         t.make = refractionWorkload;
         setSince(t, 9);
         return t;
