@@ -11,6 +11,7 @@
 #include "output_folder.h"
 #include "samples_check.h"
 #include "core/error.h"
+#include "rays/registry.h"
 
 namespace rtbench {
 namespace fs = std::filesystem;
@@ -37,15 +38,17 @@ std::vector<const RunConfig*> filterRuns(const ExperimentPlan& plan, const std::
 
 namespace {
 
-// The rays a run traces, as far as the plan knows them: the camera rays of primary rays; for the
-// later generations (their batch is the rays that continue from the hits) a bound, "<= N".
+// The rays a run traces, as far as the plan knows them (its ray type's PlannedRays): the camera
+// rays of primary rays; for the later generations (their batch is the rays that continue from the
+// hits) a bound, "<= N".
 std::string tracedRays(const RunConfig& run, std::uint64_t cameraRays) {
-    const std::string type = run.has("rays.type") ? run.getString("rays.type") : "primary";
-    std::uint64_t perCameraRay = 1;
-    if (type == "path") perCameraRay = std::uint64_t(run.getInt("path.samples"));
-    if (type == "ao") perCameraRay = std::uint64_t(run.getInt("ao.samples"));
-    if (type == "primary") return " " + std::to_string(cameraRays);
-    if (type == "whitted") return "~" + std::to_string(cameraRays);  // lights and both branches: no bound here
+    const RayType& type = rayType(run.getString("rays.type"));
+    switch (type.planned) {
+        case PlannedRays::OnePerCameraRay: return " " + std::to_string(cameraRays);
+        case PlannedRays::About: return "~" + std::to_string(cameraRays);
+        case PlannedRays::AtMost: break;
+    }
+    const auto perCameraRay = type.perCameraRayKey.empty() ? 1 : std::uint64_t(run.getInt(type.perCameraRayKey));
     return "<= " + std::to_string(cameraRays * perCameraRay);
 }
 

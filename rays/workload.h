@@ -114,9 +114,18 @@ const std::vector<ColumnSpec>& shadingColumns();
 std::string checkShadingOnDevice(VulkanContext& vk, unsigned workgroupSize, const TriangleMesh& scene,
                                  const std::vector<gpu::Ray>& cameraRays, const Workload& workload, Row& row);
 
+// How many rays a run of a ray type traces, as its plan knows them before tracing (`rtbench plan`).
+enum class PlannedRays {
+    OnePerCameraRay,  // exactly the camera rays
+    AtMost,           // at most the camera rays times perCameraRayKey: the rays that continue from hits
+    About,            // about the camera rays: rays branch by material and light, no bound before tracing
+};
+
 struct RayType {
     std::string name;  // the rays.type value
     std::string help;
+    PlannedRays planned = PlannedRays::AtMost;
+    std::string perCameraRayKey;  // the integer key that multiplies an AtMost bound ("" for one ray per camera ray)
     std::vector<KeySpec> keys;        // read only when rays.type is this name
     std::vector<ColumnSpec> columns;  // written only by its runs
     // Makes the batch; writes its own columns. Throws rtbench::Error for what it cannot make.

@@ -44,6 +44,7 @@ const RayType& aoRayType() {
         RayType t;
         t.name = "ao";
         t.help = "ambient occlusion: ao.samples any-hit cosine-weighted rays of length ao.radius from each camera hit";
+        t.perCameraRayKey = "ao.samples";
         t.keys = {
             {"ao.samples", ValueType::Int, "ambient-occlusion rays per camera hit", ConfigValue{std::int64_t(4)}, false, 1, 256},
             {"ao.radius", ValueType::Float,

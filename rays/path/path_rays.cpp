@@ -29,6 +29,7 @@ const RayType& pathRayType() {
         RayType t;
         t.name = "path";
         t.help = "diffuse path tracing: cosine-weighted bounces from the previous bounce's hits, every surface diffuse";
+        t.perCameraRayKey = "path.samples";
         t.keys = {
             {"path.bounce", ValueType::Int,
              "path rays: the bounce traced (1: rays leaving the camera hits; k: those leaving bounce k - 1's hits, the "

@@ -18,6 +18,7 @@ const RayType& cameraRayType() {
         RayType t;
         t.name = "primary";
         t.help = "one closest-hit ray from the camera through each pixel (ray casting)";
+        t.planned = PlannedRays::OnePerCameraRay;
         t.make = cameraRays;
         return t;
     }();

@@ -130,6 +130,7 @@ const RayType& whittedRayType() {
         t.name = "whitted";
         t.help = "Whitted ray tracing by material: generation whitted.depth's reflections and refractions, or the "
                  "shadow rays of its hits";
+        t.planned = PlannedRays::About;
         KeySpec reflectance{"whitted.reflectance", ValueType::Float,
                             "whitted rays: the reflectance of whitted.surface = mirror (the rest diffuse)",
                             ConfigValue{0.5}, false, 0.001, 1};
