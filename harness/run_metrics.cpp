@@ -101,7 +101,7 @@ void writeArchitectureColumns(const ArchitectureMetrics& m, const Structure& str
     const WorkStats& w = m.work;
     if (!m.countsKnown) return;  // left empty: not zero
     const ArchitectureColumns& c = architecture();
-    structure.writeWorkColumns(w.cellsPerRayMean, w.cellsPerRayMax, m.bytes.cells, row);
+    if (const WalkColumns* walk = structure.walkColumns()) walk->write(w.cellsPerRayMean, w.cellsPerRayMax, m.bytes.cells, row);
     put(row, c.workPerRayMean, double(w.cellsTotal + w.trianglesTotal) / double(rays));
     put(row, c.trianglesPerRayMean, w.trianglesPerRayMean);
     put(row, c.trianglesPerRayMax, w.trianglesPerRayMax);

@@ -14,11 +14,33 @@
 #include "device/gpu_buffers.h"
 #include "kernels/gpu_layout.h"
 #include "structures/structure_kernels.h"
+#include "schema/column.h"
 #include "schema/columns.h"
 #include "schema/keys.h"
 #include "scene/mesh.h"
 
 namespace rtbench {
+
+// A structure's per-ray work in its own words (voxels, nodes): the cells a ray visits, mean and
+// max, and the bytes of cells read, three columns a structure adds to its group where it declares
+// them (the runner writes them through Structure::walkColumns).
+struct WalkColumns {
+    // `cells`: the columns' prefix and unit ("voxels": voxels_per_ray_mean...); `visited`: what is
+    // counted ("voxels visited per ray"); `bytes`: the byte column's name and meaning.
+    WalkColumns(ColumnGroup& group, const std::string& cells, const std::string& visited, const std::string& bytesName,
+                const std::string& bytesMeaning)
+        : perRayMean(group.add<double>({cells + "_per_ray_mean", ColumnKind::Exact, cells, visited + ", mean"})),
+          perRayMax(group.add<std::uint32_t>({cells + "_per_ray_max", ColumnKind::Exact, cells, visited + ", max"})),
+          bytes(group.add<std::uint64_t>({bytesName, ColumnKind::Exact, "bytes", bytesMeaning})) {}
+    void write(double cellsPerRayMean, std::uint32_t cellsPerRayMax, std::uint64_t cellBytes, Row& row) const {
+        put(row, perRayMean, cellsPerRayMean);
+        put(row, perRayMax, cellsPerRayMax);
+        put(row, bytes, cellBytes);
+    }
+    Column<double> perRayMean;
+    Column<std::uint32_t> perRayMax;
+    Column<std::uint64_t> bytes;
+};
 
 // One of the structure's device buffers, in binding order from gpu::kBindingStructure; the
 // host data is owned by the structure.
@@ -83,8 +105,7 @@ public:
     // The structure's own columns (its statistics), and its words for per-ray work.
     virtual void writeColumns(Row& row) const = 0;
     // Per-ray cells visited under the structure's name ("voxels_per_ray_mean"...); none for brute force.
-    virtual void writeWorkColumns(double cellsPerRayMean, std::uint32_t cellsPerRayMax,
-                                  std::uint64_t cellBytes, Row& row) const = 0;
+    virtual const WalkColumns* walkColumns() const { return nullptr; }
 
     // The arithmetic its kernels and CPU reference run (KernelArithmetic): set by the runner after
     // the build, read by the strategies. A structure that wraps another passes it on.

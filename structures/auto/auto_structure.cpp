@@ -49,10 +49,7 @@ public:
         put(row, autoColumns().choice, choice_);
         put(row, autoColumns().predictions, predictions_);
     }
-    void writeWorkColumns(double cellsPerRayMean, std::uint32_t cellsPerRayMax, std::uint64_t cellBytes,
-                          Row& row) const override {
-        chosen_->writeWorkColumns(cellsPerRayMean, cellsPerRayMax, cellBytes, row);
-    }
+    const WalkColumns* walkColumns() const override { return chosen_->walkColumns(); }
 
 private:
     std::unique_ptr<Structure> chosen_;

@@ -55,7 +55,6 @@ public:
     }
 
     void writeColumns(Row&) const override {}
-    void writeWorkColumns(double, std::uint32_t, std::uint64_t, Row&) const override {}
 
 private:
     std::vector<gpu::Triangle> triangles_;

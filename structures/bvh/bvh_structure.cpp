@@ -23,9 +23,7 @@ struct BvhColumns {
     Column<unsigned> largestLeaf = group.add<unsigned>({"bvh_largest_leaf", K::Exact, "triangles", "most triangles in one leaf"});
     Column<U64> references = group.add<U64>({"bvh_references", K::Exact, "references", "triangle-list entries (each triangle once)"});
     Column<double> sahCost = group.add<double>({"bvh_sah_cost", K::Exact, "", "SAH cost of the tree (traversal and intersection cost 1)"});
-    Column<double> nodesPerRayMean = group.add<double>({"nodes_per_ray_mean", K::Exact, "nodes", "BVH inner nodes visited per ray, mean"});
-    Column<std::uint32_t> nodesPerRayMax = group.add<std::uint32_t>({"nodes_per_ray_max", K::Exact, "nodes", "BVH inner nodes visited per ray, max"});
-    Column<U64> bytesNode = group.add<U64>({"bytes_node", K::Exact, "bytes", "BVH nodes read"});
+    WalkColumns walk{group, "nodes", "BVH inner nodes visited per ray", "bytes_node", "BVH nodes read"};
 };
 
 const BvhColumns& bvhColumns() {
@@ -91,13 +89,7 @@ public:
         put(row, c.sahCost, s.sahCost);
     }
 
-    void writeWorkColumns(double cellsPerRayMean, std::uint32_t cellsPerRayMax, std::uint64_t cellBytes,
-                          Row& row) const override {
-        const BvhColumns& c = bvhColumns();
-        put(row, c.nodesPerRayMean, cellsPerRayMean);
-        put(row, c.nodesPerRayMax, cellsPerRayMax);
-        put(row, c.bytesNode, cellBytes);
-    }
+    const WalkColumns* walkColumns() const override { return &bvhColumns().walk; }
 
 private:
     FlatBvh bvh_;

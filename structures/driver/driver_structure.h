@@ -26,7 +26,6 @@ public:
     // The driver's traversal is not rtbench's to model: none (predicted_work_per_ray stays empty).
     double predictedWork(const std::vector<gpu::Ray>&) const override { return -1.0; }
     void writeColumns(Row& row) const override;
-    void writeWorkColumns(double, std::uint32_t, std::uint64_t, Row&) const override {}
     void setArithmetic(const KernelArithmetic& arithmetic) override;
     const VertexLattice& vertexLattice() const override { return cpu_->vertexLattice(); }
     // The driver builds its structure: memoryBytes become its two levels' storage, buildMs the

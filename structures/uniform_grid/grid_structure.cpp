@@ -57,9 +57,7 @@ struct GridColumns {
         {"grid_voxel_margin", K::Exact, "scene units", "structure.conservative: how far beyond its box a voxel lists triangles (0: exact voxels)"}, 4);
     Column<double> buildMs = group.add<double>(
         {"grid_build_ms", K::Timing, "ms", "CPU build time of the grid: wall time, the triangles binned in parallel on TBB's threads, as Embree builds its BVH"}, 4);
-    Column<double> voxelsPerRayMean = group.add<double>({"voxels_per_ray_mean", K::Exact, "voxels", "voxels visited per ray, mean"});
-    Column<std::uint32_t> voxelsPerRayMax = group.add<std::uint32_t>({"voxels_per_ray_max", K::Exact, "voxels", "voxels visited per ray, max"});
-    Column<std::uint64_t> bytesVoxel = group.add<std::uint64_t>({"bytes_voxel", K::Exact, "bytes", "voxel offsets read"});
+    WalkColumns walk{group, "voxels", "voxels visited per ray", "bytes_voxel", "voxel offsets read"};
 };
 
 const GridColumns& gridColumns() {
@@ -135,13 +133,7 @@ public:
         put(row, c.buildMs, g.buildMs);
     }
 
-    void writeWorkColumns(double cellsPerRayMean, std::uint32_t cellsPerRayMax, std::uint64_t cellBytes,
-                          Row& row) const override {
-        const GridColumns& c = gridColumns();
-        put(row, c.voxelsPerRayMean, cellsPerRayMean);
-        put(row, c.voxelsPerRayMax, cellsPerRayMax);
-        put(row, c.bytesVoxel, cellBytes);
-    }
+    const WalkColumns* walkColumns() const override { return &gridColumns().walk; }
 
 private:
     UniformGrid grid_;
