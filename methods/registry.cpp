@@ -14,6 +14,7 @@
 #include "structures/driver/driver_structure.h"
 #include "strategies/path_megakernel/path_megakernel_strategy.h"
 #include "strategies/ray_query/ray_query_strategy.h"
+#include "strategies/sorted/sorted_strategy.h"
 #include "strategies/wavefront/wavefront_strategy.h"
 #include "core/error.h"
 
@@ -30,7 +31,8 @@ const std::vector<const StrategyType*>& strategyTypes() {
                                                                  &persistentStrategyType(), &megakernelStrategyType(),
                                                                  &rayQueryStrategyType(), &plainStrategyType(),
                                                                  &cpuStrategyType(), &wavefrontStrategyType(),
-                                                                 &pathMegakernelStrategyType(), &controlStrategyType()};
+                                                                 &pathMegakernelStrategyType(), &controlStrategyType(),
+                                                                 &sortedStrategyType()};
     return types;
 }
 

@@ -200,14 +200,20 @@ const WholeTraversalColumns& wholeTraversalColumns() {
     return columns;
 }
 
-namespace {
-
-StrategyRun runBranchingStrategy(VulkanContext& vk, const Structure& structure, const RayBatch& batch,
-                                 const RunConfig& config, const TimingOptions& timing, Row& row) {
+StrategyRun traceBranching(VulkanContext& vk, const Structure& structure, const RayBatch& batch, const TimingOptions& timing,
+                           Row& row) {
     StrategyRun run =
         judgeWholeTraversal(vk, structure, batch, runBranching(vk, structure, batch.rays, timing, batch.query), row);
     run.metrics.instructions = wholeTraversalInstructions(embeddedKernel(structure.kernelPrefix() + "_branching"),
                                                           kernelEvents(structure, run.metrics.work), batch.rays.size());
+    return run;
+}
+
+namespace {
+
+StrategyRun runBranchingStrategy(VulkanContext& vk, const Structure& structure, const RayBatch& batch,
+                                 const RunConfig& config, const TimingOptions& timing, Row& row) {
+    StrategyRun run = traceBranching(vk, structure, batch, timing, row);
     if (const auto cache = cacheConfig(config))
         run.modelMismatch =
             writeCacheColumns(branchingCacheReplay(structure, batch.rays, batch.query, *cache), run.metrics.bytes, row);

@@ -73,6 +73,11 @@ std::string loopLimitWhy(const DeviceInfo& device, std::uint64_t iterations, std
 // columns of wholeTraversalColumns() to `row`.
 StrategyRun judgeWholeTraversal(VulkanContext& vk, const Structure& structure, const RayBatch& batch,
                                 BranchingRun&& kernel, Row& row);
+// The branching strategy's trace of `batch` without its cache replay: runBranching judged by
+// judgeWholeTraversal, with the kernel's instruction estimate (a variant that traces the same
+// kernel over other rays, the sorted one, calls it).
+StrategyRun traceBranching(VulkanContext& vk, const Structure& structure, const RayBatch& batch, const TimingOptions& timing,
+                           Row& row);
 // The same against the counts of another lane model, `model` (a kernel whose lanes each trace
 // several rays: the path megakernel, pathLaneCounts); `longLoops` follows loopLimitWhy's text in
 // the message of a run cut short.

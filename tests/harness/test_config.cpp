@@ -92,7 +92,7 @@ TEST_F(Config, OutOfRange) {
 
 TEST_F(Config, ValueNotInTheAllowedSet) {
     EXPECT_EQ(errorOf(kMinimal + "[strategy]\ntype = \"ray_sorting\"\n"),
-              path_ + ":6: key 'strategy.type': 'ray_sorting' is not allowed (allowed: branching, multipass, persistent, megakernel, ray_query, plain, cpu, wavefront, path_megakernel, control)");
+              path_ + ":6: key 'strategy.type': 'ray_sorting' is not allowed (allowed: branching, multipass, persistent, megakernel, ray_query, plain, cpu, wavefront, path_megakernel, control, sorted)");
 }
 
 TEST_F(Config, MissingRequiredKey) {
