@@ -274,16 +274,21 @@ std::vector<ColumnSpec> timingColumns(TimingColumnPart part) {
     return {};
 }
 
-void writeTimingResults(const RunConfig& run, const VulkanContext& vk, std::size_t rays, const RoundsResult& timed,
-                        const CpuTimes& before, Row& row) {
+void writeTimingResults(const RunConfig& run, const VulkanContext& vk, const StrategyType& strategy, std::size_t rays,
+                        const RoundsResult& timed, const CpuTimes& before, Row& row) {
     const TimingColumns& c = timingColumnsDeclared();
     const SampleStats k = c.kernel.write(timed.of("kernel"), rays, row);
     const SampleStats e1 = c.embree1.write(timed.of("embree1"), rays, row);
     const SampleStats e16 = c.embree16.write(timed.of("embree16"), rays, row);
-    // The strategy's own series, the columns it declares: the parts of a repetition, its host-controlled loops.
+    // The strategy's own series, each with the column it declares: the parts of a repetition, its
+    // host-controlled loops. A series it does not declare is a timer out of step with its strategy.
     for (const auto& [name, ms] : timed.series) {
-        if (name.rfind("kernel_", 0) == 0) row["kernel_ms_" + name.substr(7)] = formatNumber(median(ms));
-        else if (name != "kernel" && name != "embree1" && name != "embree16") row[name + "_ms_median"] = formatNumber(median(ms));
+        if (name == "kernel" || name == "embree1" || name == "embree16") continue;
+        const auto declared = std::find_if(strategy.series.begin(), strategy.series.end(),
+                                           [&name](const TimedSeries* s) { return s->name == name; });
+        if (declared == strategy.series.end())
+            throw Error("strategy.type = " + strategy.name + ": its timer made the series " + name + ", which it does not declare");
+        put(row, (*declared)->median, median(ms));
     }
     put(row, c.speedRatio, k.median > 0 ? e1.median / k.median : 0.0);
     const std::optional<Interval> ratio = ratioOfMediansInterval(timed.of("embree1"), timed.of("kernel"));

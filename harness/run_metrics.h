@@ -33,10 +33,10 @@ enum class TimingColumnPart { Methods, Ratio, Rounds, Machine };
 std::vector<ColumnSpec> timingColumns(TimingColumnPart part);
 
 // A run's timing (harness/timing_rounds.h) into `row`: each method's statistics, the strategy's
-// own series, the speed ratio with its interval, and the noise guard's reading of the window
-// from `before` to now (harness/noise_guard.h).
-void writeTimingResults(const RunConfig& run, const VulkanContext& vk, std::size_t rays, const RoundsResult& timed,
-                        const CpuTimes& before, Row& row);
+// own series (StrategyType::series), the speed ratio with its interval, and the noise guard's
+// reading of the window from `before` to now (harness/noise_guard.h).
+void writeTimingResults(const RunConfig& run, const VulkanContext& vk, const StrategyType& strategy, std::size_t rays,
+                        const RoundsResult& timed, const CpuTimes& before, Row& row);
 
 // Accuracy against the exact reference into <prefix>false_misses, _false_hits, _wrong_primitive,
 // _wrong_ppm and the distance errors (prefix "exact_" for the kernel, "embree_exact_" for Embree),

@@ -202,12 +202,10 @@ void makeWorkload(RunInProgress& p, const RayType& rayKind, const PinholeCamera&
     const TriangleMesh& mesh = p.scene->traced;
     Structure& structure = *p.structure;
     const WorkloadInputs inputs{run, mesh, p.cameraRays, structure, camera.up,
-                                [&run](glm::vec3 point) { return sceneTransform(run, point); }};
+                                [&run](glm::vec3 point) { return sceneTransform(run, point); }, p.cameraFrame};
     p.workload = rayKind.make(inputs, row);
     if (const std::string query = run.getString("rays.query"); query != "own")
         p.workload.batch.query = queryOfName(query);
-    if (p.workload.fromCamera())  // the camera rays, as a kernel that makes them itself makes them
-        p.workload.batch.camera = p.cameraFrame;
     const RayBatch& batch = p.workload.batch;
     const std::vector<gpu::Ray>& rays = batch.rays;
     validateRays(rays);
@@ -242,7 +240,7 @@ void runMethod(RunInProgress& p, const StrategyType& strategy, Row& row) {
         // back in the batch's order. Embree traces them row by row.
         const std::vector<std::uint32_t> order = tileOrder(p.width, p.height, tile);
         if (order.empty()) return trace(vk, structure, batch, run, timing, row);
-        p.tiled = inTileOrder(batch, order);
+        p.tiled = inOrder(batch, order);
         StrategyRun method = trace(vk, structure, p.tiled, run, timing, row);
         method.hits = inBatchOrder(method.hits, order);
         return method;
@@ -404,7 +402,8 @@ void finishRun(RunInProgress& p, const FolderIdentity& folder, Caches& caches, R
     const std::vector<gpu::Ray>& rays = p.workload.batch.rays;
     samples = p.rounds->result().samples;
     samples.insert(samples.end(), p.buildSamples.begin(), p.buildSamples.end());
-    writeTimingResults(run, vk, p.path ? p.path->rays() : rays.size(), p.rounds->result(), p.started, row);
+    writeTimingResults(run, vk, strategyType(run.getString("strategy.type")), p.path ? p.path->rays() : rays.size(),
+                       p.rounds->result(), p.started, row);
     put(row, pipelineColumns().embreeRays, p.embreeRays);
     checkTimedRecords(p.method, p.shadingMismatch, rays.size());
     const RunImage imageOf{p};

@@ -2,6 +2,7 @@
 
 #include "core/error.h"
 #include "rays/ao/ao_rays.h"
+#include "rays/jitter/jitter_rays.h"
 #include "rays/primary/primary_rays.h"
 #include "rays/path/path_rays.h"
 #include "rays/reflection/reflection_rays.h"
@@ -12,7 +13,7 @@
 namespace rtbench {
 
 const std::vector<const RayType*>& rayTypes() {
-    static const std::vector<const RayType*> types = {&cameraRayType(), &shadowRayType(), &reflectionRayType(), &refractionRayType(), &pathRayType(), &aoRayType(), &whittedRayType()};
+    static const std::vector<const RayType*> types = {&cameraRayType(), &shadowRayType(), &reflectionRayType(), &refractionRayType(), &pathRayType(), &aoRayType(), &whittedRayType(), &jitterRayType()};
     return types;
 }
 

@@ -15,6 +15,7 @@
 #include "schema/column.h"
 #include "schema/columns.h"
 #include "schema/keys.h"
+#include "scene/camera.h"
 #include "scene/mesh.h"
 #include "rays/shading.h"
 
@@ -28,6 +29,9 @@ struct WorkloadInputs {
     glm::vec3 cameraUp;
     // A point given in the scene's own coordinates, moved as the scene is (scene.scale, scene.translate).
     std::function<glm::vec3(glm::vec3)> toScene;
+    // The frame cameraRays were made from (scene/camera.h): a ray type whose batch is those rays in
+    // their order says so (RayBatch::camera); one that makes camera rays of its own reads it.
+    std::shared_ptr<const CameraFrame> cameraFrame = nullptr;
 };
 
 // Rays traced before the batch, one generation of a path (a reflection iteration): each ray, its

@@ -105,7 +105,8 @@ struct ColumnSpec {
 //  28  the noise guard judges each method's median by its 95% interval (experiment.noise_ci) where
 //        6 or more repetitions give one, the CV (experiment.noise_cv) only below 6 (before: the
 //        CV at any count, which one slow repetition of ten inflates while the median stays).
-//  29  + the sorted-rays branching variant (strategy.type = sorted: sorted_sort_ms, sorted_rays_moved).
+//  29  + the sorted-rays branching variant (strategy.type = sorted: sorted_sort_ms, sorted_rays_moved);
+//        + jittered camera rays (rays.type = jitter, jitter.seed).
 constexpr int kSchemaVersion = 29;
 
 // The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".

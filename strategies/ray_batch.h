@@ -53,6 +53,25 @@ struct RayBatch {
     std::shared_ptr<const CameraFrame> camera;
 };
 
+// The batch's rays in another order (order[i]: the batch's ray that goes i-th), for a method that
+// traces them so (camera.tile's tiles, the sorted strategy's coherent order); not the camera's
+// rays in their order any more. inBatchOrder puts the records made so back.
+inline RayBatch inOrder(const RayBatch& batch, const std::vector<std::uint32_t>& order) {
+    RayBatch reordered;
+    reordered.query = batch.query;
+    reordered.rays.reserve(order.size());
+    for (std::uint32_t i : order) reordered.rays.push_back(batch.rays.at(i));
+    return reordered;
+}
+
+// Records made in `order`, back in the batch's order.
+inline std::vector<gpu::HitRecord> inBatchOrder(const std::vector<gpu::HitRecord>& reordered,
+                                                const std::vector<std::uint32_t>& order) {
+    std::vector<gpu::HitRecord> hits(reordered.size());
+    for (std::size_t i = 0; i < order.size(); ++i) hits.at(order[i]) = reordered.at(i);
+    return hits;
+}
+
 // The query's name, as the rays.query column and the messages write it, and the query a name
 // (a rays.query value other than "own") asks.
 inline const char* queryName(std::uint32_t query) { return query == gpu::kQueryAny ? "any" : "closest"; }

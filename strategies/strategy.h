@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "device/vulkan_context.h"
 #include "methods/accounting.h"
+#include "schema/column.h"
 #include "strategies/ray_batch.h"
 #include "structures/structure.h"
 
@@ -30,7 +31,7 @@ struct TimedBatch {
     double warmupMs = 0.0;   // the untimed warm-ups before them, together
     std::vector<double> ms;  // each repetition's GPU time
     // A repetition made of parts (multipass: its pass kinds): each part's GPU time per repetition.
-    // Part p's median goes to the column kernel_ms_<p>, which the strategy declares.
+    // Part p is the series kernel_<p>, which the strategy declares (StrategyType::series).
     std::vector<std::pair<std::string, std::vector<double>>> parts;
 };
 
@@ -52,8 +53,8 @@ public:
     virtual TimedBatch time(int warmups, int repetitions) = 0;
     // Loops the host controls, timed on the host once per round: series name -> ms (multipass:
     // "multipass_live", the instrumented pass loop with the oracle's per-pass read-backs,
-    // the CPU-controlled loop of Christen 2005 §4.2.2 and §4.3.4). Series s's median goes to the column
-    // <s>_ms_median, which the strategy declares.
+    // the CPU-controlled loop of Christen 2005 §4.2.2 and §4.3.4), a series the strategy declares
+    // (StrategyType::series).
     virtual std::vector<std::pair<std::string, double>> timeHostLoops() { return {}; }
     // Throws (expectSameHits) when the last timed repetition's hits differ from the instrumented run's.
     virtual void checkHits() = 0;
@@ -79,11 +80,21 @@ struct StrategyRun {
     std::string truncatedWhy;
 };
 
+// A series of times a strategy's timer adds beside its repetitions' totals, declared with the
+// column its median goes to: a part of every repetition (TimedBatch::parts; samples.csv names it
+// kernel_<part>) or a loop the host controls, timed once a round (KernelTimer::timeHostLoops).
+struct TimedSeries {
+    std::string name;  // samples.csv's method: "kernel_traverse", "multipass_live"
+    Column<double> median;
+};
+
 struct StrategyType {
     std::string name;  // the strategy.type value
     std::string help;
     std::vector<KeySpec> keys;        // read only when strategy.type is this name
     std::vector<ColumnSpec> columns;  // written only by its runs
+    // Its timer's series (their columns are among `columns`); a run whose timer makes another fails.
+    std::vector<const TimedSeries*> series;
     // Device bytes per ray its own buffers take at least (multipass's state), for the runner's
     // refusal before the structure (and so the exact size) is known; 0: none per ray.
     std::uint64_t ownBytesPerRay = 0;

@@ -8,6 +8,7 @@ Workload cameraRays(const WorkloadInputs& in, Row&) {
     Workload w;
     w.batch.rays = in.cameraRays;
     w.batch.query = gpu::kQueryClosest;
+    w.batch.camera = in.cameraFrame;  // the camera's rays in their order: a kernel may make them itself
     return w;
 }
 

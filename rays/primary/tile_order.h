@@ -1,7 +1,7 @@
 // Purcell et al. 2002 §5.3's tiled rendering: "break the image into small tiles, each tile
 // rendered to completion before proceeding to the next", so that a tile's working set fits the
-// cache. camera.tile hands a method its camera rays tile by tile (a permutation of the batch) and
-// puts its records back in the batch's order, so every check, image and comparison reads them as
+// cache. camera.tile hands a method its camera rays tile by tile (a permutation of the batch:
+// strategies/ray_batch.h inOrder) and puts its records back in the batch's order (inBatchOrder), so every check, image and comparison reads them as
 // without tiles. Multipass renders a tile to completion when its batches are tiles
 // (strategy.batch_rays = tile x tile).
 #pragma once
@@ -30,23 +30,6 @@ inline std::vector<std::uint32_t> tileOrder(unsigned width, unsigned height, uns
             for (unsigned y = ty; y < ty + tile; ++y)
                 for (unsigned x = tx; x < tx + tile; ++x) order.push_back(y * width + x);
     return order;
-}
-
-// The batch's rays in `order` (order[i]: the batch's ray that goes i-th).
-inline RayBatch inTileOrder(const RayBatch& batch, const std::vector<std::uint32_t>& order) {
-    RayBatch tiled;
-    tiled.query = batch.query;
-    tiled.rays.reserve(order.size());
-    for (std::uint32_t i : order) tiled.rays.push_back(batch.rays.at(i));
-    return tiled;
-}
-
-// Records made in `order`, back in the batch's order.
-inline std::vector<gpu::HitRecord> inBatchOrder(const std::vector<gpu::HitRecord>& tiled,
-                                                const std::vector<std::uint32_t>& order) {
-    std::vector<gpu::HitRecord> hits(tiled.size());
-    for (std::size_t i = 0; i < order.size(); ++i) hits.at(order[i]) = tiled.at(i);
-    return hits;
 }
 
 }  // namespace rtbench

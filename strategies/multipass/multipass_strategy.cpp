@@ -496,9 +496,32 @@ MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const s
     return run;
 }
 
+namespace {
+
+// The series multipass's timer makes (harness/timing_rounds.h), each with the column of its median:
+// the replay's pass kinds and the oracle as parts of a repetition, and the live loop.
+struct MultipassSeries {
+    using K = ColumnKind;
+    TimedSeries setup{"kernel_setup", Column<double>({"kernel_ms_setup", K::Timing, "ms", "multipass: GPU time of the setup passes, median (with strategy.control = host: in the replay, kernel_ms_replay)"})};
+    TimedSeries traverse{"kernel_traverse", Column<double>({"kernel_ms_traverse", K::Timing, "ms", "multipass: GPU time of the traverse passes, median (with strategy.control = host: in the replay, kernel_ms_replay)"})};
+    TimedSeries intersect{"kernel_intersect", Column<double>({"kernel_ms_intersect", K::Timing, "ms", "multipass: GPU time of the intersect passes, median (with strategy.control = host: in the replay, kernel_ms_replay)"})};
+    TimedSeries write{"kernel_write", Column<double>({"kernel_ms_write", K::Timing, "ms", "multipass: GPU time of the write pass, median (with strategy.control = host: in the replay, kernel_ms_replay)"})};
+    TimedSeries stencilPass{"kernel_stencil_pass", Column<double>({"kernel_ms_stencil_pass", K::Timing, "ms", "multipass with strategy.control = host: GPU time of one more traverse pass over the stream when every ray is done (after the write pass, not in kernel_ms): what the ray-state test alone costs a pass, which Christen 2005 §5.5's early-z culling paid a masking pass for (not counted in passes_total: our kernels test the state byte themselves, bytes_stencil), median", 0.0, false, {"strategy.control=host"}, 17})};
+    TimedSeries oracle{"kernel_oracle", Column<double>({"kernel_ms_oracle", K::Timing, "ms", "multipass with strategy.control = device: GPU time of the oracle kernel (one invocation after each pass), median", 0.0, false, {"strategy.control=device"}, 13})};
+    TimedSeries replay{"kernel_replay", Column<double>({"kernel_ms_replay", K::Timing, "ms", "multipass with strategy.control = host: GPU time of the live loop's pass sequence replayed in one submission without the oracle's read-backs (before results schema 25, the headline kernel_ms), median", 0.0, false, {"strategy.control=host"}, 25})};
+    TimedSeries live{"multipass_live", Column<double>({"multipass_live_ms_median", K::Timing, "ms", "multipass: host wall time of the instrumented live pass loop, median of one per round: with strategy.control = host the instrumented passes with the oracle's read-back after each (Christen 2005 §4.3.4's CPU-controlled loop); with device, the instrumented loop in submissions of 341 oracle iterations (the last partly idle), its control block and log read after each, and the log's replay on the host", 0.0, false, {}, 5})};
+    std::vector<const TimedSeries*> all() const { return {&setup, &traverse, &intersect, &write, &stencilPass, &oracle, &replay, &live}; }
+};
+
+const MultipassSeries& multipassSeries() {
+    static const MultipassSeries series;
+    return series;
+}
+
+}  // namespace
+
 const StrategyType& multipassStrategyType() {
     static const StrategyType type = [] {
-        using K = ColumnKind;
         StrategyType t;
         t.name = "multipass";
         t.help = "a pass per traverse/intersect step with a ray-state stencil and an oracle (Purcell et al. 2002 §3.2)";
@@ -522,18 +545,10 @@ const StrategyType& multipassStrategyType() {
             if (k.name == "strategy.oracle_basis") k.since = 14;
             if (k.name == "strategy.list_partitions") k.since = 20;
         }
-        // The pass counts, the timings harness/run_metrics.cpp writes from the timer's parts, the checks.
+        // The pass counts, the timer's series (harness/run_metrics.cpp writes their medians), the checks.
         t.columns = multipassColumns().passes.specs();
-        t.columns.insert(t.columns.end(), {
-            {"kernel_ms_setup", K::Timing, "ms", "multipass: GPU time of the setup passes, median (with strategy.control = host: in the replay, kernel_ms_replay)"},
-            {"kernel_ms_traverse", K::Timing, "ms", "multipass: GPU time of the traverse passes, median (with strategy.control = host: in the replay, kernel_ms_replay)"},
-            {"kernel_ms_intersect", K::Timing, "ms", "multipass: GPU time of the intersect passes, median (with strategy.control = host: in the replay, kernel_ms_replay)"},
-            {"kernel_ms_write", K::Timing, "ms", "multipass: GPU time of the write pass, median (with strategy.control = host: in the replay, kernel_ms_replay)"},
-            {"kernel_ms_stencil_pass", K::Timing, "ms", "multipass with strategy.control = host: GPU time of one more traverse pass over the stream when every ray is done (after the write pass, not in kernel_ms): what the ray-state test alone costs a pass, which Christen 2005 §5.5's early-z culling paid a masking pass for (not counted in passes_total: our kernels test the state byte themselves, bytes_stencil), median", 0.0, false, {"strategy.control=host"}, 17},
-            {"kernel_ms_oracle", K::Timing, "ms", "multipass with strategy.control = device: GPU time of the oracle kernel (one invocation after each pass), median", 0.0, false, {"strategy.control=device"}, 13},
-            {"kernel_ms_replay", K::Timing, "ms", "multipass with strategy.control = host: GPU time of the live loop's pass sequence replayed in one submission without the oracle's read-backs (before results schema 25, the headline kernel_ms), median", 0.0, false, {"strategy.control=host"}, 25},
-            {"multipass_live_ms_median", K::Timing, "ms", "multipass: host wall time of the instrumented live pass loop, median of one per round: with strategy.control = host the instrumented passes with the oracle's read-back after each (Christen 2005 §4.3.4's CPU-controlled loop); with device, the instrumented loop in submissions of 341 oracle iterations (the last partly idle), its control block and log read after each, and the log's replay on the host", 0.0, false, {}, 5},
-        });
+        t.series = multipassSeries().all();
+        for (const TimedSeries* series : t.series) t.columns.push_back(series->median.spec());
         for (const ColumnSpec& c : multipassColumns().run.specs()) t.columns.push_back(c);
         t.trace = runMultipassStrategy;
         return t;

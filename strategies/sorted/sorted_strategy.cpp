@@ -59,9 +59,7 @@ StrategyRun runSorted(VulkanContext& vk, const Structure& structure, const RayBa
                       const TimingOptions& timing, Row& row) {
     const auto start = std::chrono::steady_clock::now();
     const std::vector<std::uint32_t> order = coherentOrder(batch.rays);
-    RayBatch sorted{{}, batch.query, nullptr};  // no longer the camera's rays in their order
-    sorted.rays.reserve(order.size());
-    for (std::uint32_t i : order) sorted.rays.push_back(batch.rays[i]);
+    const RayBatch sorted = inOrder(batch, order);
     put(row, sortedColumns().sortMs, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
     std::uint64_t moved = 0;
     for (std::size_t i = 0; i < order.size(); ++i) moved += order[i] != i;
@@ -70,9 +68,7 @@ StrategyRun runSorted(VulkanContext& vk, const Structure& structure, const RayBa
     // Traced and judged as branching is, on the rays in their new order: records against rtTrace,
     // lanes against the model.
     StrategyRun run = traceBranching(vk, structure, sorted, timing, row);
-    std::vector<gpu::HitRecord> hits(run.hits.size());
-    for (std::size_t i = 0; i < order.size(); ++i) hits[order[i]] = run.hits[i];
-    run.hits = std::move(hits);
+    run.hits = inBatchOrder(run.hits, order);
     return run;
 }
 

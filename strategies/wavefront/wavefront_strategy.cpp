@@ -252,19 +252,26 @@ StrategyRun runWavefrontStrategy(VulkanContext& vk, const Structure& structure, 
 
 }  // namespace
 
+// The parts of a repetition the wavefront's timer makes (TimedBatch::parts), each with the column
+// of its median.
+struct WavefrontStages {
+    using K = ColumnKind;
+    TimedSeries trace{"kernel_trace", Column<double>({"kernel_ms_trace", K::Timing, "ms", "wavefront: median GPU time of its trace stages per repetition"})};
+    TimedSeries shade{"kernel_shade", Column<double>({"kernel_ms_shade", K::Timing, "ms", "wavefront: median GPU time of its shading stages per repetition"})};
+    TimedSeries queue{"kernel_queue", Column<double>({"kernel_ms_queue", K::Timing, "ms", "wavefront: median GPU time of its setup, scans and compactions per repetition"})};
+};
+
 const StrategyType& wavefrontStrategyType() {
+    static const WavefrontStages stages;
     static const StrategyType type = [] {
-        using K = ColumnKind;
         StrategyType t;
         t.name = "wavefront";
         t.help = "the whole path on the device, stage by stage over compacted queues: trace, shade, compact (Laine, Karras & Aila 2013)";
         // The camera rays' copy, a queue entry, a made ray and its flags (fan-out 1).
         t.ownBytesPerRay = sizeof(gpu::Ray) + 16 + sizeof(gpu::Ray) + 16;
-        t.columns = wholePathStrategyColumns({
-            queueCapacityColumn().spec(),
-            {"kernel_ms_trace", K::Timing, "ms", "wavefront: median GPU time of its trace stages per repetition"},
-            {"kernel_ms_shade", K::Timing, "ms", "wavefront: median GPU time of its shading stages per repetition"},
-            {"kernel_ms_queue", K::Timing, "ms", "wavefront: median GPU time of its setup, scans and compactions per repetition"}});
+        t.series = {&stages.trace, &stages.shade, &stages.queue};
+        t.columns = wholePathStrategyColumns({queueCapacityColumn().spec(), stages.trace.median.spec(),
+                                              stages.shade.median.spec(), stages.queue.median.spec()});
         t.trace = runWavefrontStrategy;
         return t;
     }();

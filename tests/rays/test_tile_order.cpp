@@ -23,7 +23,7 @@ TEST(TileOrder, WalksTilesRowByRowAndEachTileRowByRow) {
     RayBatch batch;
     for (int i = 0; i < 24; ++i) batch.rays.push_back({glm::vec4(float(i), 0, 0, 0), glm::vec4(0, 0, 1, 1)});
     const std::vector<std::uint32_t> order = tileOrder(6, 4, 2);
-    const RayBatch tiled = inTileOrder(batch, order);
+    const RayBatch tiled = inOrder(batch, order);
     std::vector<gpu::HitRecord> records(24);
     for (int i = 0; i < 24; ++i) records[i].t = tiled.rays[i].originTMin.x;  // a record made from its ray
     const std::vector<gpu::HitRecord> back = inBatchOrder(records, order);
