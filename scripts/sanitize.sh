@@ -54,9 +54,12 @@ status=0
 # check, the campaign and Slurm scripts; tests/CMakeLists.txt), as a sanitizer sees only the C++
 # they call, which the C++ tests run; and those below, which repeat another test's C++ on an input
 # only an uninstrumented library sees (Embree's code path per ISA: Golden.ReproducesAndAChangedCountFails
-# and cli.check_golden run the same check here).
+# and cli.check_golden run the same check here), or that repeat on every structure C++ another
+# sanitized test runs: the two WavefrontRuns.*OnEveryStructure (the wavefront's host code, which
+# WavefrontKernels.* run here) and EndToEnd.SimplifiedSceneIsJudgedAgainstTheFullScene (the
+# simplification, which Simplify.* run here): the slowest here, 274 s of ASan test time.
 select=(-LE script)
-repeats='|^Golden[.]ReproducesWithEmbreeForcedToEveryIsaThisCpuRuns$'
+repeats='|^Golden[.]ReproducesWithEmbreeForcedToEveryIsaThisCpuRuns$|^WavefrontRuns[.].*OnEveryStructure$|^EndToEnd[.]SimplifiedSceneIsJudgedAgainstTheFullScene$'
 if [ "${SANITIZE_TESTS:-}" = all ]; then
   select=()
   repeats=
