@@ -77,14 +77,14 @@ void Rounds::runRound() {
                                                    options_.repetitions * round / initialRounds_
                                              : std::min(perRound_, options_.maxRepetitions - result_.repetitions);
     if (hostLoops_)
-        for (const auto& [name, ms] : hostLoops_()) add(name, round, ms, seconds(origin_, Clock::now()) - ms / 1e3);
+        for (const auto& [series, ms] : hostLoops_()) add(series->name, round, ms, seconds(origin_, Clock::now()) - ms / 1e3);
     for (const TimedMethod& method : methods_) {
         const double batchStart = seconds(origin_, Clock::now());
         const TimedBatch batch = method.time(warmedUp_ ? 0 : options_.warmups, count);
         double t = batchStart + batch.warmupMs / 1e3;
         for (std::size_t i = 0; i < batch.ms.size(); ++i) {
             add(method.name, round, batch.ms[i], t);
-            for (const auto& [part, ms] : batch.parts) add(method.name + "_" + part, round, ms.at(i), t);
+            for (const auto& [part, ms] : batch.parts) add(part->name, round, ms.at(i), t);
             t += batch.ms[i] / 1e3;
         }
     }

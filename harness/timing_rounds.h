@@ -52,7 +52,7 @@ struct TimingSample {
 
 struct RoundsResult {
     std::vector<TimingSample> samples;  // in the order taken
-    // Each series' ms in order: the methods, their parts (<name>_<part>), the host loops.
+    // Each series' ms in order: the methods, their parts, the host loops (by TimedSeries::name).
     std::vector<std::pair<std::string, std::vector<double>>> series;
     int rounds = 0;
     int repetitions = 0;  // of each method
@@ -62,7 +62,7 @@ struct RoundsResult {
 };
 
 // The strategy's host-controlled loops, timed once per round (KernelTimer::timeHostLoops).
-using HostLoops = std::function<std::vector<std::pair<std::string, double>>()>;
+using HostLoops = std::function<HostLoopTimes()>;
 
 // One run's rounds, a round at a time: a sweep timed in interleaved order (experiment.order)
 // runs round r of every run before round r + 1 of any.

@@ -26,14 +26,26 @@ struct TimingOptions {
     int repetitions = 5;
 };
 
+// A series of times a strategy's timer adds beside its repetitions' totals, declared with the
+// column its median goes to: a part of every repetition (TimedBatch::parts) or a loop the host
+// controls, timed once a round (KernelTimer::timeHostLoops). The timer hands over the declaration
+// itself, so samples.csv's names and the columns come from one place.
+struct TimedSeries {
+    std::string name;  // samples.csv's method: "kernel_traverse", "multipass_live"
+    Column<double> median;
+};
+
 // One batch of timed repetitions, uninstrumented.
 struct TimedBatch {
     double warmupMs = 0.0;   // the untimed warm-ups before them, together
     std::vector<double> ms;  // each repetition's GPU time
-    // A repetition made of parts (multipass: its pass kinds): each part's GPU time per repetition.
-    // Part p is the series kernel_<p>, which the strategy declares (StrategyType::series).
-    std::vector<std::pair<std::string, std::vector<double>>> parts;
+    // A repetition made of parts (multipass: its pass kinds): each part's GPU time per repetition,
+    // as the series the strategy declares for it (StrategyType::series).
+    std::vector<std::pair<const TimedSeries*, std::vector<double>>> parts;
 };
+
+// The host-controlled loops' times of one round, each as its declared series.
+using HostLoopTimes = std::vector<std::pair<const TimedSeries*, double>>;
 
 // The TimedBatch of a submission of identical repetitions, whose times `ms` come in order:
 // the first `warmups` summed as the warm-up, the rest one each.
@@ -51,11 +63,10 @@ public:
     virtual ~KernelTimer() = default;
     // `warmups` untimed then `repetitions` timed repetitions, recorded into one submission.
     virtual TimedBatch time(int warmups, int repetitions) = 0;
-    // Loops the host controls, timed on the host once per round: series name -> ms (multipass:
-    // "multipass_live", the instrumented pass loop with the oracle's per-pass read-backs,
-    // the CPU-controlled loop of Christen 2005 §4.2.2 and §4.3.4), a series the strategy declares
-    // (StrategyType::series).
-    virtual std::vector<std::pair<std::string, double>> timeHostLoops() { return {}; }
+    // Loops the host controls, timed on the host once per round, each a series the strategy
+    // declares (multipass: its live loop, the instrumented passes with the oracle's per-pass
+    // read-backs, the CPU-controlled loop of Christen 2005 §4.2.2 and §4.3.4).
+    virtual HostLoopTimes timeHostLoops() { return {}; }
     // Throws (expectSameHits) when the last timed repetition's hits differ from the instrumented run's.
     virtual void checkHits() = 0;
 };
@@ -78,14 +89,6 @@ struct StrategyRun {
     // count against DeviceInfo::loopIterationLimit), and why; fails the run first.
     std::uint64_t truncatedRays = 0;
     std::string truncatedWhy;
-};
-
-// A series of times a strategy's timer adds beside its repetitions' totals, declared with the
-// column its median goes to: a part of every repetition (TimedBatch::parts; samples.csv names it
-// kernel_<part>) or a loop the host controls, timed once a round (KernelTimer::timeHostLoops).
-struct TimedSeries {
-    std::string name;  // samples.csv's method: "kernel_traverse", "multipass_live"
-    Column<double> median;
 };
 
 struct StrategyType {

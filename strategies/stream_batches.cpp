@@ -40,8 +40,8 @@ TimedBatch BatchedTimer::time(int warmups, int repetitions) {
     return all;
 }
 
-std::vector<std::pair<std::string, double>> BatchedTimer::timeHostLoops() {
-    std::vector<std::pair<std::string, double>> all;
+HostLoopTimes BatchedTimer::timeHostLoops() {
+    HostLoopTimes all;
     for (const auto& batch : batches_) {
         const auto loops = batch->timeHostLoops();
         if (all.empty())

@@ -39,7 +39,7 @@ class BatchedTimer : public KernelTimer {
 public:
     explicit BatchedTimer(std::vector<std::unique_ptr<KernelTimer>> batches) : batches_(std::move(batches)) {}
     TimedBatch time(int warmups, int repetitions) override;
-    std::vector<std::pair<std::string, double>> timeHostLoops() override;
+    HostLoopTimes timeHostLoops() override;
     void checkHits() override;
 
 private:

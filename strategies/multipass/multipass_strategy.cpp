@@ -60,10 +60,35 @@ PassSums passSums(const std::uint64_t* counts) {
     return sums;
 }
 
-// The parts a repetition's GPU time is split into (kernel_ms_<part>): the pass kinds, and the
-// oracle kernel when it runs on the device.
+// The series multipass's timer makes (harness/timing_rounds.h), each with the column of its median:
+// the replay's pass kinds and the oracle as parts of a repetition, and the live loop.
+struct MultipassSeries {
+    using K = ColumnKind;
+    TimedSeries setup{"kernel_setup", Column<double>({"kernel_ms_setup", K::Timing, "ms", "multipass: GPU time of the setup passes, median (with strategy.control = host: in the replay, kernel_ms_replay)"})};
+    TimedSeries traverse{"kernel_traverse", Column<double>({"kernel_ms_traverse", K::Timing, "ms", "multipass: GPU time of the traverse passes, median (with strategy.control = host: in the replay, kernel_ms_replay)"})};
+    TimedSeries intersect{"kernel_intersect", Column<double>({"kernel_ms_intersect", K::Timing, "ms", "multipass: GPU time of the intersect passes, median (with strategy.control = host: in the replay, kernel_ms_replay)"})};
+    TimedSeries write{"kernel_write", Column<double>({"kernel_ms_write", K::Timing, "ms", "multipass: GPU time of the write pass, median (with strategy.control = host: in the replay, kernel_ms_replay)"})};
+    TimedSeries stencilPass{"kernel_stencil_pass", Column<double>({"kernel_ms_stencil_pass", K::Timing, "ms", "multipass with strategy.control = host: GPU time of one more traverse pass over the stream when every ray is done (after the write pass, not in kernel_ms): what the ray-state test alone costs a pass, which Christen 2005 §5.5's early-z culling paid a masking pass for (not counted in passes_total: our kernels test the state byte themselves, bytes_stencil), median", 0.0, false, {"strategy.control=host"}, 17})};
+    TimedSeries oracle{"kernel_oracle", Column<double>({"kernel_ms_oracle", K::Timing, "ms", "multipass with strategy.control = device: GPU time of the oracle kernel (one invocation after each pass), median", 0.0, false, {"strategy.control=device"}, 13})};
+    TimedSeries replay{"kernel_replay", Column<double>({"kernel_ms_replay", K::Timing, "ms", "multipass with strategy.control = host: GPU time of the live loop's pass sequence replayed in one submission without the oracle's read-backs (before results schema 25, the headline kernel_ms), median", 0.0, false, {"strategy.control=host"}, 25})};
+    TimedSeries live{"multipass_live", Column<double>({"multipass_live_ms_median", K::Timing, "ms", "multipass: host wall time of the instrumented live pass loop, median of one per round: with strategy.control = host the instrumented passes with the oracle's read-back after each (Christen 2005 §4.3.4's CPU-controlled loop); with device, the instrumented loop in submissions of 341 oracle iterations (the last partly idle), its control block and log read after each, and the log's replay on the host", 0.0, false, {}, 5})};
+    std::vector<const TimedSeries*> all() const { return {&setup, &traverse, &intersect, &write, &stencilPass, &oracle, &replay, &live}; }
+};
+
+const MultipassSeries& multipassSeries() {
+    static const MultipassSeries series;
+    return series;
+}
+
+// The parts a repetition's GPU time is split into: the pass kinds, and the oracle kernel when it
+// runs on the device or, with the host's control, the state-test pass.
 constexpr int kOraclePart = kPassKinds;
-const char* const kPartNames[kPassKinds + 1] = {"setup", "traverse", "intersect", "write", "oracle"};
+const TimedSeries& partSeries(int part, bool deviceControl) {
+    const MultipassSeries& s = multipassSeries();
+    const TimedSeries* parts[kPassKinds + 1] = {&s.setup, &s.traverse, &s.intersect, &s.write,
+                                                deviceControl ? &s.oracle : &s.stencilPass};
+    return *parts[part];
+}
 
 // ---- strategy.control = "device" ----
 // The control block and pass log (slot kBindingPassControl) and the two indirect passes.
@@ -286,7 +311,7 @@ public:
     TimedBatch time(int warmups, int repetitions) override {
         TimedBatch batch = replay(warmups, repetitions);
         if (options_.deviceControl) return batch;
-        batch.parts.push_back({"replay", std::move(batch.ms)});
+        batch.parts.push_back({&multipassSeries().replay, std::move(batch.ms)});
         batch.ms.clear();
         batch.warmupMs = 0.0;
         for (int i = 0; i < warmups; ++i) batch.warmupMs += liveLoopMs();
@@ -331,7 +356,7 @@ public:
         TimedBatch batch;
         for (std::size_t i = 0; i < std::size_t(warmups) * perRepetition; ++i) batch.warmupMs += ms[i];
         for (int k = 0; k < partCount; ++k)
-            batch.parts.push_back({k < kPassKinds || options_.deviceControl ? kPartNames[k] : "stencil_pass", {}});
+            batch.parts.push_back({&partSeries(k, options_.deviceControl), {}});
         for (int i = warmups; i < warmups + repetitions; ++i) {
             std::vector<double> byPart(std::size_t(partCount), 0.0);
             for (std::size_t c = 0; c < perRepetition; ++c) byPart[std::size_t(parts[c])] += ms[std::size_t(i) * perRepetition + c];
@@ -344,7 +369,7 @@ public:
         }
         return batch;
     }
-    std::vector<std::pair<std::string, double>> timeHostLoops() override {
+    HostLoopTimes timeHostLoops() override {
         const auto start = std::chrono::steady_clock::now();
         const MultipassCounts live = runLoop(vk_, *buffers_, *counted_, options_, cap_);
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
@@ -352,7 +377,7 @@ public:
             throw Error("multipass: the live pass loop ran another pass sequence than the first instrumented run "
                         "on the same rays (" + std::to_string(live.sequence.size()) + " passes against " +
                         std::to_string(counts_.sequence.size()) + ")");
-        return {{"multipass_live", ms}};
+        return {{&multipassSeries().live, ms}};
     }
     // Host control: the uninstrumented passes with the oracle's read-back of the ray-state counts
     // after each (they keep those counts: multipass_common.glsl mpReport), host wall time. Its pass
@@ -495,30 +520,6 @@ MultipassRun runMultipass(VulkanContext& vk, const Structure& structure, const s
     }
     return run;
 }
-
-namespace {
-
-// The series multipass's timer makes (harness/timing_rounds.h), each with the column of its median:
-// the replay's pass kinds and the oracle as parts of a repetition, and the live loop.
-struct MultipassSeries {
-    using K = ColumnKind;
-    TimedSeries setup{"kernel_setup", Column<double>({"kernel_ms_setup", K::Timing, "ms", "multipass: GPU time of the setup passes, median (with strategy.control = host: in the replay, kernel_ms_replay)"})};
-    TimedSeries traverse{"kernel_traverse", Column<double>({"kernel_ms_traverse", K::Timing, "ms", "multipass: GPU time of the traverse passes, median (with strategy.control = host: in the replay, kernel_ms_replay)"})};
-    TimedSeries intersect{"kernel_intersect", Column<double>({"kernel_ms_intersect", K::Timing, "ms", "multipass: GPU time of the intersect passes, median (with strategy.control = host: in the replay, kernel_ms_replay)"})};
-    TimedSeries write{"kernel_write", Column<double>({"kernel_ms_write", K::Timing, "ms", "multipass: GPU time of the write pass, median (with strategy.control = host: in the replay, kernel_ms_replay)"})};
-    TimedSeries stencilPass{"kernel_stencil_pass", Column<double>({"kernel_ms_stencil_pass", K::Timing, "ms", "multipass with strategy.control = host: GPU time of one more traverse pass over the stream when every ray is done (after the write pass, not in kernel_ms): what the ray-state test alone costs a pass, which Christen 2005 §5.5's early-z culling paid a masking pass for (not counted in passes_total: our kernels test the state byte themselves, bytes_stencil), median", 0.0, false, {"strategy.control=host"}, 17})};
-    TimedSeries oracle{"kernel_oracle", Column<double>({"kernel_ms_oracle", K::Timing, "ms", "multipass with strategy.control = device: GPU time of the oracle kernel (one invocation after each pass), median", 0.0, false, {"strategy.control=device"}, 13})};
-    TimedSeries replay{"kernel_replay", Column<double>({"kernel_ms_replay", K::Timing, "ms", "multipass with strategy.control = host: GPU time of the live loop's pass sequence replayed in one submission without the oracle's read-backs (before results schema 25, the headline kernel_ms), median", 0.0, false, {"strategy.control=host"}, 25})};
-    TimedSeries live{"multipass_live", Column<double>({"multipass_live_ms_median", K::Timing, "ms", "multipass: host wall time of the instrumented live pass loop, median of one per round: with strategy.control = host the instrumented passes with the oracle's read-back after each (Christen 2005 §4.3.4's CPU-controlled loop); with device, the instrumented loop in submissions of 341 oracle iterations (the last partly idle), its control block and log read after each, and the log's replay on the host", 0.0, false, {}, 5})};
-    std::vector<const TimedSeries*> all() const { return {&setup, &traverse, &intersect, &write, &stencilPass, &oracle, &replay, &live}; }
-};
-
-const MultipassSeries& multipassSeries() {
-    static const MultipassSeries series;
-    return series;
-}
-
-}  // namespace
 
 const StrategyType& multipassStrategyType() {
     static const StrategyType type = [] {

@@ -151,6 +151,20 @@ std::string generationMismatch(const WavefrontRun::Queue& q, const PathGeneratio
     return which + " (" + std::to_string(differing) + " of " + std::to_string(q.rays.size()) + " rays; first: " + first + ")";
 }
 
+// The parts of a repetition the wavefront's timer makes (TimedBatch::parts), each with the column
+// of its median.
+struct WavefrontStages {
+    using K = ColumnKind;
+    TimedSeries trace{"kernel_trace", Column<double>({"kernel_ms_trace", K::Timing, "ms", "wavefront: median GPU time of its trace stages per repetition"})};
+    TimedSeries shade{"kernel_shade", Column<double>({"kernel_ms_shade", K::Timing, "ms", "wavefront: median GPU time of its shading stages per repetition"})};
+    TimedSeries queue{"kernel_queue", Column<double>({"kernel_ms_queue", K::Timing, "ms", "wavefront: median GPU time of its setup, scans and compactions per repetition"})};
+};
+
+const WavefrontStages& wavefrontStages() {
+    static const WavefrontStages stages;
+    return stages;
+}
+
 class WavefrontTimer : public KernelTimer {
 public:
     WavefrontTimer(VulkanContext& vk, std::unique_ptr<WavefrontRun> run, std::vector<gpu::HitRecord> counted)
@@ -169,7 +183,8 @@ public:
         const std::vector<double> ms = vk_.dispatchAll(calls);
         const std::size_t perRepetition = calls.size() / std::size_t(warmups + repetitions);
         TimedBatch batch;
-        batch.parts = {{"trace", {}}, {"shade", {}}, {"queue", {}}};
+        const WavefrontStages& stages = wavefrontStages();
+        batch.parts = {{&stages.trace, {}}, {&stages.shade, {}}, {&stages.queue, {}}};
         for (int r = 0; r < warmups + repetitions; ++r) {
             double total = 0.0, parts[3] = {0.0, 0.0, 0.0};
             for (std::size_t i = r * perRepetition; i < (r + 1) * perRepetition; ++i) {
@@ -252,18 +267,9 @@ StrategyRun runWavefrontStrategy(VulkanContext& vk, const Structure& structure, 
 
 }  // namespace
 
-// The parts of a repetition the wavefront's timer makes (TimedBatch::parts), each with the column
-// of its median.
-struct WavefrontStages {
-    using K = ColumnKind;
-    TimedSeries trace{"kernel_trace", Column<double>({"kernel_ms_trace", K::Timing, "ms", "wavefront: median GPU time of its trace stages per repetition"})};
-    TimedSeries shade{"kernel_shade", Column<double>({"kernel_ms_shade", K::Timing, "ms", "wavefront: median GPU time of its shading stages per repetition"})};
-    TimedSeries queue{"kernel_queue", Column<double>({"kernel_ms_queue", K::Timing, "ms", "wavefront: median GPU time of its setup, scans and compactions per repetition"})};
-};
-
 const StrategyType& wavefrontStrategyType() {
-    static const WavefrontStages stages;
     static const StrategyType type = [] {
+        const WavefrontStages& stages = wavefrontStages();
         StrategyType t;
         t.name = "wavefront";
         t.help = "the whole path on the device, stage by stage over compacted queues: trace, shade, compact (Laine, Karras & Aila 2013)";

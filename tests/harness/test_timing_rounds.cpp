@@ -71,9 +71,12 @@ TEST(TimingRounds, RepetitionsAreSplitEvenlyAndRoundsNeverExceedThem) {
 
 TEST(TimingRounds, PartsAndHostLoopsBecomeSeriesOfTheirOwn) {
     int loops = 0;
+    static const TimedSeries setup{"kernel_setup", Column<double>({"kernel_ms_setup", ColumnKind::Timing, "ms", "setup"})};
+    static const TimedSeries traverse{"kernel_traverse", Column<double>({"kernel_ms_traverse", ColumnKind::Timing, "ms", "traverse"})};
+    static const TimedSeries live{"multipass_live", Column<double>({"multipass_live_ms_median", ColumnKind::Timing, "ms", "live"})};
     TimedMethod kernel{"kernel", [](int, int repetitions) {
                            TimedBatch b;
-                           b.parts = {{"setup", {}}, {"traverse", {}}};
+                           b.parts = {{&setup, {}}, {&traverse, {}}};
                            for (int i = 0; i < repetitions; ++i) {
                                b.ms.push_back(3.0);
                                b.parts[0].second.push_back(1.0);
@@ -83,7 +86,7 @@ TEST(TimingRounds, PartsAndHostLoopsBecomeSeriesOfTheirOwn) {
                        }};
     const RoundsResult r = timeInRounds({kernel}, [&] {
         ++loops;
-        return std::vector<std::pair<std::string, double>>{{"multipass_live", 9.0}};
+        return HostLoopTimes{{&live, 9.0}};
     }, fixed(4, 2, 0), std::chrono::steady_clock::now());
     EXPECT_EQ(loops, 2);  // once per round
     EXPECT_EQ(r.of("kernel_setup"), std::vector<double>(4, 1.0));

@@ -215,10 +215,11 @@ TEST_F(MultipassDeviceControl, TimedRepetitionsRunTheSameLoop) {
     EXPECT_EQ(r.gpuMs.size(), 3u);
     const TimedBatch batch = r.timer->time(0, 2);
     ASSERT_EQ(batch.parts.size(), 5u);
-    EXPECT_EQ(batch.parts[4].first, "oracle");
+    EXPECT_EQ(batch.parts[4].first->name, "kernel_oracle");
     EXPECT_NO_THROW(r.timer->checkHits());
     const auto live = r.timer->timeHostLoops();  // the instrumented loop again, checked against the first
     ASSERT_EQ(live.size(), 1u);
+    EXPECT_EQ(live[0].first->name, "multipass_live");
 }
 
 // Batches with the control on the device: each batch its own lists and oracle loop; records and
