@@ -13,6 +13,7 @@
 #include "config.h"
 #include "statistics.h"
 #include "core/error.h"
+#include "methods/registry.h"
 #include "timing_rounds.h"
 #include "samples_check.h"
 #include "writers.h"
@@ -145,6 +146,25 @@ std::vector<std::string> countDifferences(const Side& a, const Side& b, const Ro
     return differences;
 }
 
+// The change of measure the row's strategy declares (StrategyType::kernelMeasureChanges) between
+// two schemas, if any; a key the row's schema did not have yet takes its default.
+const MeasureChange* measureChangeBetween(int schemaA, int schemaB, const Row& row) {
+    const std::string name = cellText(row, "strategy_type");
+    const auto& types = strategyTypes();
+    const auto type = std::find_if(types.begin(), types.end(), [&](const StrategyType* t) { return t->name == name; });
+    if (type == types.end()) return nullptr;
+    auto valueOf = [&](const std::string& key) -> std::optional<std::string> {
+        const std::string cell = cellText(row, paramColumn(key));
+        if (!cell.empty()) return cell;
+        const KeySpec& spec = keySpec(key);
+        return spec.defaultValue ? std::optional<std::string>(formatValue(*spec.defaultValue)) : std::nullopt;
+    };
+    for (const MeasureChange& change : (*type)->kernelMeasureChanges)
+        if ((schemaA < change.schema) != (schemaB < change.schema) && conditionsHold(change.appliesWhen, valueOf))
+            return &change;
+    return nullptr;
+}
+
 // One matched pair, its verdict not yet given (that waits for the Holm correction over all).
 ComparedRun compareRun(const Side& a, const Side& b, const Row& rowA, const Row& rowB, const CompareOptions& options) {
     ComparedRun run;
@@ -190,13 +210,10 @@ ComparedRun compareRun(const Side& a, const Side& b, const Row& rowA, const Row&
     if (run.flagged)
         run.why = std::string("timing warning in ") +
                   (cellText(rowA, "timing_warning").empty() ? "B" : cellText(rowB, "timing_warning").empty() ? "A" : "A and B");
-    // Host-controlled multipass's kernel time became its live loop at results schema 25 (before:
-    // the replayed passes): two measures, not a change.
-    const bool hostMultipass = cellText(rowA, "strategy_type") == "multipass" && cellText(rowA, "strategy_control") != "device";
-    if (hostMultipass && (a.schema < 25) != (b.schema < 25)) {
+    // A strategy whose kernel_ms became another measure between the two folders' schemas.
+    if (const MeasureChange* change = measureChangeBetween(a.schema, b.schema, rowA)) {
         run.flagged = true;
-        run.why = "kernel_ms of multipass with the oracle on the host is its live loop from results schema 25 on, "
-                  "the replayed passes before (A: schema " + std::to_string(a.schema) + ", B: " + std::to_string(b.schema) +
+        run.why = change->what + " (A: schema " + std::to_string(a.schema) + ", B: " + std::to_string(b.schema) +
                   "): not the same measure";
     }
     return run;

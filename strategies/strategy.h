@@ -91,6 +91,14 @@ struct StrategyRun {
     std::string truncatedWhy;
 };
 
+// A results schema from which the strategy's kernel_ms measures another thing in the runs the
+// conditions select: a comparison across it is of two measures, not a change (rtbench compare).
+struct MeasureChange {
+    int schema;                            // the first schema of the new measure
+    std::vector<std::string> appliesWhen;  // "section.key=value" conditions, as KeySpec::appliesWhen's
+    std::string what;                      // what kernel_ms is from `schema` on, and what it was
+};
+
 struct StrategyType {
     std::string name;  // the strategy.type value
     std::string help;
@@ -98,6 +106,7 @@ struct StrategyType {
     std::vector<ColumnSpec> columns;  // written only by its runs
     // Its timer's series (their columns are among `columns`); a run whose timer makes another fails.
     std::vector<const TimedSeries*> series;
+    std::vector<MeasureChange> kernelMeasureChanges;  // oldest first
     // Device bytes per ray its own buffers take at least (multipass's state), for the runner's
     // refusal before the structure (and so the exact size) is known; 0: none per ray.
     std::uint64_t ownBytesPerRay = 0;

@@ -551,6 +551,9 @@ const StrategyType& multipassStrategyType() {
         t.series = multipassSeries().all();
         for (const TimedSeries* series : t.series) t.columns.push_back(series->median.spec());
         for (const ColumnSpec& c : multipassColumns().run.specs()) t.columns.push_back(c);
+        t.kernelMeasureChanges = {{25, {"strategy.control=host"},
+                                   "kernel_ms of multipass with the oracle on the host is its live loop from results schema 25 "
+                                   "on, the replayed passes before"}};
         t.trace = runMultipassStrategy;
         return t;
     }();
