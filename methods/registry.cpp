@@ -6,6 +6,7 @@
 #include "structures/brute_force/brute_structure.h"
 #include "strategies/cpu/cpu_strategy.h"
 #include "structures/bvh/bvh_structure.h"
+#include "structures/median_bvh/median_bvh_structure.h"
 #include "structures/uniform_grid/grid_structure.h"
 #include "strategies/megakernel/megakernel_strategy.h"
 #include "strategies/multipass/multipass_strategy.h"
@@ -22,7 +23,8 @@ namespace rtbench {
 
 const std::vector<const StructureType*>& structureTypes() {
     static const std::vector<const StructureType*> types = {&gridStructureType(), &bvhStructureType(), &bruteStructureType(),
-                                                                  &autoStructureType(), &driverStructureType()};
+                                                                  &autoStructureType(), &driverStructureType(),
+                                                                  &medianBvhStructureType()};
     return types;
 }
 

@@ -134,6 +134,7 @@ struct StructureType {
     std::vector<KeySpec> keys;        // read only when structure.type is this name
     std::vector<ColumnSpec> columns;  // written only by its runs
     std::string onlyStrategy;         // the one strategy.type that can trace it ("": any)
+    bool autoCandidate = true;        // built and predicted by structure.type = auto
     // Builds the structure for a scene and the rays it will trace; refuses (throws rtbench::Error
     // naming the size and the limit) before allocating what the device could not hold.
     std::unique_ptr<Structure> (*build)(const TriangleMesh& mesh, const std::vector<gpu::Ray>& rays, const RunConfig& run,

@@ -75,8 +75,9 @@ std::unique_ptr<Structure> buildAuto(const TriangleMesh& mesh, const std::vector
     std::string bestName, predictions;
     double bestWork = std::numeric_limits<double>::infinity(), buildMs = 0.0;
     for (const StructureType* candidate : structureTypes()) {
-        // Not itself, nor a structure only one strategy traces (the driver's: its cost is not rtbench's to model).
-        if (candidate == &autoStructureType() || !candidate->onlyStrategy.empty()) continue;
+        // Not itself, nor a structure only one strategy traces (the driver's: its cost is not
+        // rtbench's to model), nor one that declares itself no candidate.
+        if (candidate == &autoStructureType() || !candidate->onlyStrategy.empty() || !candidate->autoCandidate) continue;
         predictions += (predictions.empty() ? "" : " ") + candidate->name + "=";
         std::unique_ptr<Structure> built;
         try {

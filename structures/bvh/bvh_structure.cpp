@@ -106,11 +106,7 @@ BvhBuildOptions buildOptions(const RunConfig& run) {
 
 std::unique_ptr<Structure> buildBvhStructure(const TriangleMesh& mesh, const std::vector<gpu::Ray>&, const RunConfig& run,
                                              const DeviceInfo& device) {
-    // What the device must hold is known before the build but for the node count (at most
-    // 2n - 1 for n triangles; checked again at upload).
-    const std::uint64_t n = mesh.triangles.size();
-    checkBindingSize(device, "triangle vertex (" + std::to_string(n) + " triangles)", n * triangleVertexBytes(mesh.lattice));
-    checkBindingSize(device, "BVH triangle list (" + std::to_string(n) + " references)", n * 4);
+    refuseBvhOverBindings(mesh, device);
     return bvhStructure(buildBvh(mesh, buildOptions(run)));
 }
 
@@ -132,16 +128,31 @@ std::vector<gpu::HitRecord> traceBvhReference(const FlatBvh& bvh, const std::vec
 
 std::unique_ptr<Structure> bvhStructure(FlatBvh bvh) { return std::make_unique<BvhStructure>(std::move(bvh)); }
 
+void refuseBvhOverBindings(const TriangleMesh& mesh, const DeviceInfo& device) {
+    // What the device must hold is known before the build but for the node count (at most
+    // 2n - 1 for n triangles; checked again at upload).
+    const std::uint64_t n = mesh.triangles.size();
+    checkBindingSize(device, "triangle vertex (" + std::to_string(n) + " triangles)", n * triangleVertexBytes(mesh.lattice));
+    checkBindingSize(device, "BVH triangle list (" + std::to_string(n) + " references)", n * 4);
+}
+
+std::vector<ColumnSpec> bvhColumnSpecs() { return bvhColumns().group.specs(); }
+
+KeySpec bvhLeafSizeKey() {
+    return {"structure.leaf_size", ValueType::Int, "BVH: most triangles per leaf (Embree's maxLeafSize)", std::int64_t(4), false, 1,
+            double(gpu::kBvhMaxLeafSize)};
+}
+
 const StructureType& bvhStructureType() {
     static const StructureType type = [] {
         StructureType t;
         t.name = "bvh";
         t.help = "binary BVH from Embree's builder (rtcBuildBVH), both child boxes per node (Aila & Laine 2009)";
         t.keys = {
-            {"structure.leaf_size", ValueType::Int, "BVH: most triangles per leaf (Embree's maxLeafSize)", std::int64_t(4), false, 1, double(gpu::kBvhMaxLeafSize)},
+            bvhLeafSizeKey(),
             {"structure.quality", ValueType::String, "BVH: medium (binned SAH) or low (Morton codes: faster build, worse tree)", std::string("medium"), false, -1e300, 1e300, {"medium", "low"}},
         };
-        t.columns = bvhColumns().group.specs();
+        t.columns = bvhColumnSpecs();
         t.build = buildBvhStructure;
         return t;
     }();

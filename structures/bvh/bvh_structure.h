@@ -10,6 +10,12 @@ namespace rtbench {
 
 const StructureType& bvhStructureType();
 
+// What every tree of the BVH's layout writes and reads: its columns (bvh_*) and structure.leaf_size.
+std::vector<ColumnSpec> bvhColumnSpecs();
+KeySpec bvhLeafSizeKey();
+// Throws rtbench::Error when the device could not bind a tree of the mesh's triangles.
+void refuseBvhOverBindings(const TriangleMesh& mesh, const DeviceInfo& device);
+
 // A built BVH as a Structure (tests run strategies on trees they build themselves).
 std::unique_ptr<Structure> bvhStructure(FlatBvh bvh);
 

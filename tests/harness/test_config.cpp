@@ -153,9 +153,9 @@ TEST_F(Config, AKeyNoRunReadsIsAnError) {
 // The registry (methods/registry.cpp) gives structure.type its values and each structure its keys.
 TEST_F(Config, AnUnknownStructureListsTheKnownOnesAndAStructuresKeyGivenToAnotherIsNamed) {
     EXPECT_EQ(errorOf(kMinimal + "[structure]\ntype = \"octree\"\n"),
-              path_ + ":6: key 'structure.type': 'octree' is not allowed (allowed: uniform_grid, bvh, brute_force, auto, driver)");
+              path_ + ":6: key 'structure.type': 'octree' is not allowed (allowed: uniform_grid, bvh, brute_force, auto, driver, median_bvh)");
     EXPECT_EQ(errorOf(kMinimal + "[structure]\ntype = \"uniform_grid\"\nleaf_size = 8\n"),
-              path_ + ":7: key 'structure.leaf_size' is never read: it applies only when structure.type=bvh");
+              path_ + ":7: key 'structure.leaf_size' is never read: it applies only when structure.type=bvh|median_bvh");
     EXPECT_EQ(errorOf(kMinimal + "[structure]\ntype = \"bvh\"\nmin_dim = 8\n"),
               path_ + ":7: key 'structure.min_dim' is never read: it applies only when structure.type=uniform_grid");
     // A sweep over structures gives each its own keys only.
@@ -286,7 +286,7 @@ TEST_F(Config, SkipRulesCompareTypedValues) {
     EXPECT_THAT(errorOf(kMinimal + "[structure]\nconservative = [true, false]\n[[sweep]]\nskip = [\"structure.conservative=1\"]\n"),
                 HasSubstr("key 'structure.conservative': expected true or false"));
     EXPECT_THAT(errorOf(kMinimal + "[structure]\ntype = [\"bvh\", \"uniform_grid\"]\n[[sweep]]\nskip = [\"structure.type=BVH\"]\n"),
-                HasSubstr("'BVH' is not allowed (allowed: uniform_grid, bvh, brute_force, auto, driver)"));
+                HasSubstr("'BVH' is not allowed (allowed: uniform_grid, bvh, brute_force, auto, driver, median_bvh)"));
     EXPECT_EQ(loadExperiment(write(kMinimal + "[structure]\ntype = \"brute_force\"\nmax_tests = [1e9, 2e9]\n[[sweep]]\nskip = [\"structure.max_tests=1000000000\"]\n"))
                   .runs.size(),
               1u);

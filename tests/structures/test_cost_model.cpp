@@ -15,6 +15,7 @@
 namespace rtbench {
 namespace {
 using ::testing::HasSubstr;
+using ::testing::Not;
 
 gpu::Ray ray(glm::vec3 o, glm::vec3 d) { return {glm::vec4(o, 0.0f), glm::vec4(d, gpu::kNoHitT)}; }
 
@@ -63,6 +64,7 @@ TEST(AutoStructure, BuildsEveryCandidateAndRunsTheOneWithTheLeastPredictedWork) 
     chosen->writeColumns(row);
     // Scene B: 2,004 triangles. Brute force predicts 2,004 tests per ray; the BVH's SAH far less.
     EXPECT_THAT(row.at("auto_predictions"), HasSubstr("brute_force=2004"));
+    EXPECT_THAT(row.at("auto_predictions"), Not(HasSubstr("median_bvh"))) << "not a candidate";
     EXPECT_THAT(row.at("auto_predictions"), HasSubstr("uniform_grid="));
     EXPECT_EQ(row.at("auto_choice"), "bvh");
     EXPECT_EQ(chosen->kernelPrefix(), "bvh");
