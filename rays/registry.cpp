@@ -2,7 +2,6 @@
 
 #include "core/error.h"
 #include "rays/ao/ao_rays.h"
-#include "rays/jitter/jitter_rays.h"
 #include "rays/primary/primary_rays.h"
 #include "rays/path/path_rays.h"
 #include "rays/reflection/reflection_rays.h"
@@ -13,7 +12,7 @@
 namespace rtbench {
 
 const std::vector<const RayType*>& rayTypes() {
-    static const std::vector<const RayType*> types = {&cameraRayType(), &shadowRayType(), &reflectionRayType(), &refractionRayType(), &pathRayType(), &aoRayType(), &whittedRayType(), &jitterRayType()};
+    static const std::vector<const RayType*> types = {&cameraRayType(), &shadowRayType(), &reflectionRayType(), &refractionRayType(), &pathRayType(), &aoRayType(), &whittedRayType()};
     return types;
 }
 

@@ -41,7 +41,6 @@ CameraFrame cameraFrame(const PinholeCamera& camera, unsigned width, unsigned he
     frame.down = glm::cross(frame.forward, frame.right);  // image rows grow downwards
     const float halfHeight = std::tan(glm::radians(0.5f * camera.verticalFovDegrees));
     const float halfWidth = halfHeight * static_cast<float>(width) / static_cast<float>(height);
-    frame.pixelSize = glm::vec2(2.0f * halfWidth / static_cast<float>(width), 2.0f * halfHeight / static_cast<float>(height));
     for (unsigned x = 0; x < width; ++x)
         frame.columnOffsets.push_back((2.0f * (static_cast<float>(x) + 0.5f) / width - 1.0f) * halfWidth);
     for (unsigned y = 0; y < height; ++y)

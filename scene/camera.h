@@ -25,7 +25,6 @@ PinholeCamera fitCamera(const Bounds3& bounds, float verticalFovDegrees = 45.0f)
 struct CameraFrame {
     glm::vec3 eye{0.0f}, forward{0.0f}, right{0.0f}, down{0.0f};
     std::vector<float> columnOffsets, rowOffsets;
-    glm::vec2 pixelSize{0.0f};  // a pixel's width and height along right and down (the offsets' spacing)
     unsigned width() const { return unsigned(columnOffsets.size()); }
     unsigned height() const { return unsigned(rowOffsets.size()); }
 };

@@ -106,7 +106,8 @@ struct ColumnSpec {
 //        6 or more repetitions give one, the CV (experiment.noise_cv) only below 6 (before: the
 //        CV at any count, which one slow repetition of ten inflates while the median stays).
 //  29  + the sorted-rays branching variant (strategy.type = sorted: sorted_sort_ms, sorted_rays_moved);
-//        + jittered camera rays (rays.type = jitter, jitter.seed).
+//        + jittered camera rays (rays.type = jitter, jitter.seed; removed again without a schema of
+//        its own: issue 46's example of a new ray type, which no config of record used).
 constexpr int kSchemaVersion = 29;
 
 // The CSV column of a config key: "structure.min_dim" -> "structure_min_dim".

@@ -54,7 +54,7 @@ TEST_F(Config, UnknownKeyNamesFileLineAndAllowedKeys) {
 TEST_F(Config, UnknownSection) {
     EXPECT_THAT(errorOf(kMinimal + "\n[strategies]\ntype = \"x\"\n"),
                 HasSubstr(path_ + ":6: unknown section [strategies] (allowed: experiment, scene, camera, structure, "
-                                  "strategy, cache, rays, light, reflection, refraction, path, ao, whitted, jitter, intersection, baseline, accuracy, device, output, sweep)"));
+                                  "strategy, cache, rays, light, reflection, refraction, path, ao, whitted, intersection, baseline, accuracy, device, output, sweep)"));
 }
 
 TEST_F(Config, VertexBitsArePackedWidthsOrFloat) {
