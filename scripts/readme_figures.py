@@ -20,7 +20,7 @@ from pathlib import Path
 import pandas as pd
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from rtbench_results import (CHRISTEN_SCENES, EMBREE_SPEED, auto_summary, auto_verdicts, commit_text, division_names,  # noqa: E402
+from rtbench_results import (CHRISTEN_SCENES, EMBREE_SPEED, against_sah, auto_summary, auto_verdicts, commit_text, division_names,  # noqa: E402
                              embree_on, embree_speed_caption, faster_of, host_against_device, interval_of, leaders,
                              live_headline, masking_share, method_name, passes_gpu_ms, ranked_text, read_runs, read_samples, round_ratios, round_times,
                              scene_name, structure_names, verdict_counts, whitted_frames, with_interval, wrong_rays)
@@ -1101,6 +1101,35 @@ def christen2005() -> list:
     return out + [""]
 
 
+def trees() -> list:
+    if not (folder_of("trees") / "runs.csv").exists():
+        return []
+    runs, context = load("trees")
+    ok = against_sah(runs[runs.status == "ok"])
+    out = ["### `results/trees/`: does a worse tree cost multipass more than branching?", "", provenance("trees", runs, context),
+           "", "Full table: [`results/trees/tables.md`](results/trees/tables.md). Three BVHs of one layout and one set of "
+           "kernels, leaf size 4: Embree's binned SAH (`bvh`), its Morton build (`bvh`, `quality = \"low\"`) and the "
+           "median split (`median_bvh`, no cost model). Each count over the SAH tree's on the same rays (deterministic): "
+           "the tree's SAH cost, inner nodes visited per ray (the same for both strategies), and multipass's passes "
+           "(Purcell's K = M = 1). Build: the tree's build time over the SAH tree's in the same sweep (one build each, "
+           "this machine's).", "",
+           "| scene | rays | tree | SAH cost × | nodes/ray × | passes × | build × |", "|---|---|---|---|---|---|---|"]
+    multipass = ok[ok.strategy_type == "multipass"].copy()
+    sah_build = multipass[multipass.tree == "SAH"].set_index(["scene", "rays_type"]).structure_build_ms
+    worse = multipass[multipass.tree != "SAH"]
+    for r in worse.sort_values(["scene_triangles", "rays_type", "tree"]).itertuples():
+        build = r.structure_build_ms / sah_build.get((r.scene, r.rays_type), float("nan"))
+        out.append(f"| {r.scene} | {r.rays_type} | {r.tree} | {num(r.bvh_sah_cost_x)} | {num(r.nodes_per_ray_mean_x)} | "
+                   f"{num(r.passes_total_x)} | {num(build, 2)} |")
+    median = worse[worse.tree == "median split"]
+    if len(median):
+        headline("trees", "Does a worse tree cost multipass more than branching?",
+                 f"the median-split tree visits {span(median.nodes_per_ray_mean_x.min(), median.nodes_per_ray_mean_x.max())}× "
+                 f"the SAH tree's nodes per ray, and multipass needs {span(median.passes_total_x.min(), median.passes_total_x.max())}× "
+                 "its passes (counts)", context)
+    return out + [""]
+
+
 def golden() -> list:
     runs, context = load("golden")
     return ["### `results/golden/`: the counts CI checks", "",
@@ -1146,7 +1175,7 @@ def results_page() -> str:
            "is called faster than another (or the fastest) only where their 95% intervals do not overlap; where they "
            "overlap it is a tie, given with both intervals; a run without an interval (one timed repetition) is not "
            "ranked.", ""]
-    for part in (bunny, structures, builds, purcell2002, stability, accuracy, raytypes, strategies, multipass_device, wavefront, division, control, driver, christen2005, golden, h200):
+    for part in (bunny, structures, builds, purcell2002, stability, accuracy, raytypes, strategies, multipass_device, wavefront, division, control, driver, christen2005, trees, golden, h200):
         lines = part()
         if lines:
             ANCHORS[re.search(r"`results/([^`]+)/`", lines[0]).group(1)] = anchor(lines[0].lstrip("# "))

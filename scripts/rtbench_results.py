@@ -469,3 +469,28 @@ def verdict_counts(verdicts: list, what: str) -> str:
     """faster_of()'s verdicts counted: "branching faster on 2 of 3 scenes, tie on 1"."""
     counted = pd.Series(verdicts).value_counts()
     return ", ".join(f"{v} on {n}" + (f" of {len(verdicts)} {what}" if i == 0 else "") for i, (v, n) in enumerate(counted.items()))
+
+
+TREES = {("bvh", "medium"): "SAH", ("bvh", "low"): "Morton", ("median_bvh", None): "median split"}
+
+
+def tree_names(runs: pd.DataFrame) -> pd.Series:
+    """The BVH a run traced (configs/trees.toml): Embree's binned SAH ("SAH", structure.quality
+    medium), its Morton build ("Morton", low) or the median split (structure.type = median_bvh)."""
+    quality = runs.structure_quality if "structure_quality" in runs else pd.Series(None, index=runs.index)
+    return pd.Series([TREES.get((t, q if t == "bvh" else None), t) for t, q in zip(runs.structure_type, quality)],
+                     index=runs.index)
+
+
+def against_sah(runs: pd.DataFrame) -> pd.DataFrame:
+    """Each run beside the SAH tree's run of the same scene, ray type and strategy: the ok runs with
+    a `tree` column and, for SAH cost, nodes visited per ray and passes, `<column>_x`, the run's value
+    over the SAH tree's (1 for the SAH tree itself)."""
+    runs = runs.copy()
+    runs["tree"] = tree_names(runs)
+    key = ["scene", "rays_type", "strategy_type"]
+    sah = runs[runs.tree == "SAH"].set_index(key)
+    for column in ["bvh_sah_cost", "nodes_per_ray_mean", "passes_total"]:
+        base = [sah[column].get(tuple(k), float("nan")) for k in runs[key].itertuples(index=False)]
+        runs[column + "_x"] = runs[column] / pd.Series(base, index=runs.index)
+    return runs
