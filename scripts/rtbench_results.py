@@ -494,3 +494,35 @@ def against_sah(runs: pd.DataFrame) -> pd.DataFrame:
         base = [sah[column].get(tuple(k), float("nan")) for k in runs[key].itertuples(index=False)]
         runs[column + "_x"] = runs[column] / pd.Series(base, index=runs.index)
     return runs
+
+
+def sorted_beside_branching(runs: pd.DataFrame) -> pd.DataFrame:
+    """configs/order.toml's pairs: each sorted run (strategy.type = sorted) beside branching's run of
+    the same scene, ray type and structure, a row each: scene, triangles, rays_type, structure, rays,
+    lanes (branching's SIMD lane utilisation), sorted_lanes, moved (rays the sort moved), sort_share
+    (the host sort's time over the sorted kernel's), and both runs' speed over Embree with their
+    95% intervals (speed, speed_span; sorted_speed, sorted_span)."""
+    runs = runs.copy()
+    runs["structure"] = [method_name(r) for _, r in runs.iterrows()]
+    key = ["scene", "rays_type", "structure"]
+    branching = runs[runs.strategy_type == "branching"].set_index(key)
+    rows = []
+    for r in runs[runs.strategy_type == "sorted"].itertuples():
+        k = (r.scene, r.rays_type, r.structure)
+        if k not in branching.index:
+            continue
+        b = branching.loc[k]
+        rows.append({"scene": r.scene, "triangles": r.scene_triangles, "rays_type": r.rays_type, "structure": r.structure,
+                     "rays": r.rays, "lanes": b.simd_lane_utilisation, "sorted_lanes": r.simd_lane_utilisation,
+                     "moved": r.sorted_rays_moved, "sort_share": r.sorted_sort_ms / r.kernel_ms_median,
+                     "speed": b.speed_ratio_vs_embree1, "speed_span": interval_of(b, "speed_ratio"),
+                     "sorted_speed": r.speed_ratio_vs_embree1, "sorted_span": interval_of(r, "speed_ratio")})
+    return pd.DataFrame(rows)
+
+
+def speed_verdict(span, other_span) -> str:
+    """"faster" or "slower" where the first run's 95% interval of speed lies wholly above or below
+    the other's, "tie" where they overlap, "not ranked" where either has none."""
+    if not span or not other_span:
+        return "not ranked"
+    return "faster" if span[0] > other_span[1] else "slower" if span[1] < other_span[0] else "tie"
