@@ -1153,13 +1153,14 @@ def order() -> list:
     secondary = pairs[pairs.rays_type != "primary"]
     if len(secondary):
         gain = secondary.sorted_lanes / secondary.lanes
-        counted = ", ".join(f"{verdicts.count(v)} {v}" for v in ["faster", "tie", "slower", "not ranked"] if verdicts.count(v))
+        counted = ", ".join(f"{verdicts.count(v)} {word}" for v, word in [("faster", "faster"), ("tie", "tied"), ("slower", "slower"),
+                                                                        ("not ranked", "not ranked")] if verdicts.count(v))
         out += ["", f"- Secondary rays (reflection, path): sorting multiplies lane utilisation by {span(gain.min(), gain.max())}; "
-                f"the host sort takes {span(secondary.sort_share.min(), secondary.sort_share.max())} of the sorted kernel's "
-                f"time. Speed against branching, every pair: {counted}."]
+                f"the host sort takes {span(100 * secondary.sort_share.min(), 100 * secondary.sort_share.max())}% of the sorted "
+                f"kernel's time. Speed against branching, all {len(verdicts)} pairs: {counted}."]
         headline("order", "What does sorting rays do to the branching kernel?",
-                 f"lane utilisation × {span(gain.min(), gain.max())} on reflection and path rays; speed against unsorted: "
-                 f"{counted}", context)
+                 f"lane utilisation × {span(gain.min(), gain.max())} on reflection and path rays; speed against unsorted, "
+                 f"{len(verdicts)} pairs: {counted}", context)
     return out + [""]
 
 
