@@ -30,7 +30,8 @@ struct WorkloadInputs {
     // A point given in the scene's own coordinates, moved as the scene is (scene.scale, scene.translate).
     std::function<glm::vec3(glm::vec3)> toScene;
     // The frame cameraRays were made from (scene/camera.h): a ray type whose batch is those rays in
-    // their order says so (RayBatch::camera); one that makes camera rays of its own reads it.
+    // their order says so (RayBatch::camera), so that a strategy making camera rays itself (the
+    // control) is handed the frame only then.
     std::shared_ptr<const CameraFrame> cameraFrame = nullptr;
 };
 

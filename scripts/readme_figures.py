@@ -1109,10 +1109,11 @@ def trees() -> list:
     ok = against_sah(runs[runs.status == "ok"])
     out = ["### `results/trees/`: does a worse tree cost multipass more than branching?", "", provenance("trees", runs, context),
            "", "Full table: [`results/trees/tables.md`](results/trees/tables.md). Three BVHs of one layout and one set of "
-           "kernels, leaf size 4: Embree's binned SAH (`bvh`), its Morton build (`bvh`, `quality = \"low\"`) and the "
+           f"kernels, leaf size {' and '.join(str(int(v)) for v in sorted(ok.structure_leaf_size.unique()))}: Embree's binned SAH (`bvh`), its Morton build (`bvh`, `quality = \"low\"`) and the "
            "median split (`median_bvh`, no cost model). Each count over the SAH tree's on the same rays (deterministic): "
            "the tree's SAH cost, inner nodes visited per ray (the same for both strategies), and multipass's passes "
-           "(Purcell's K = M = 1). Build times and speeds, single builds and noisy here, are in the full table only.", "",
+           f"(K = {' and '.join(str(int(v)) for v in sorted(ok.strategy_traverse_steps_per_pass.dropna().unique()))} steps, "
+           f"M = {' and '.join(str(int(v)) for v in sorted(ok.strategy_intersections_per_pass.dropna().unique()))} tests a pass). Build times and speeds, single builds and noisy here, are in the full table only.", "",
            "| scene | rays | tree | SAH cost × | nodes/ray × | passes × |", "|---|---|---|---|---|---|"]
     multipass = ok[ok.strategy_type == "multipass"]
     worse = multipass[multipass.tree != "SAH"]
@@ -1120,7 +1121,7 @@ def trees() -> list:
         out.append(f"| {r.scene} | {r.rays_type} | {r.tree} | {num(r.bvh_sah_cost_x)} | {num(r.nodes_per_ray_mean_x)} | "
                    f"{num(r.passes_total_x)} |")
     out.append("")
-    for tree, g in worse.groupby("tree"):
+    for tree, g in worse.dropna(subset=["passes_total_x", "nodes_per_ray_mean_x"]).groupby("tree"):
         more = int((g.passes_total_x > g.nodes_per_ray_mean_x).sum())
         out.append(f"- {tree}: multipass's passes grow more than the nodes a ray visits (what branching's work follows) "
                    f"in {more} of {len(g)} scene and ray-type pairs.")

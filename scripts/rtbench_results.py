@@ -488,8 +488,8 @@ def against_sah(runs: pd.DataFrame) -> pd.DataFrame:
     over the SAH tree's (1 for the SAH tree itself)."""
     runs = runs.copy()
     runs["tree"] = tree_names(runs)
-    key = ["scene", "rays_type", "strategy_type"]
-    sah = runs[runs.tree == "SAH"].set_index(key)
+    key = ["scene", "rays_type", "strategy_type", "structure_leaf_size", "camera_width", "camera_height"]
+    sah = runs[runs.tree == "SAH"].set_index(key, verify_integrity=True)
     for column in ["bvh_sah_cost", "nodes_per_ray_mean", "passes_total"]:
         base = [sah[column].get(tuple(k), float("nan")) for k in runs[key].itertuples(index=False)]
         runs[column + "_x"] = runs[column] / pd.Series(base, index=runs.index)
@@ -504,20 +504,21 @@ def sorted_beside_branching(runs: pd.DataFrame) -> pd.DataFrame:
     95% intervals (speed, speed_span; sorted_speed, sorted_span)."""
     runs = runs.copy()
     runs["structure"] = [method_name(r) for _, r in runs.iterrows()]
-    key = ["scene", "rays_type", "structure"]
-    branching = runs[runs.strategy_type == "branching"].set_index(key)
+    key = ["scene", "rays_type", "structure", "camera_width", "camera_height"]
+    branching = runs[runs.strategy_type == "branching"].set_index(key, verify_integrity=True)
     rows = []
     for r in runs[runs.strategy_type == "sorted"].itertuples():
-        k = (r.scene, r.rays_type, r.structure)
+        k = tuple(getattr(r, column) for column in key)
         if k not in branching.index:
-            continue
+            raise ValueError(f"run {r.run}: a sorted run without branching's of the same scene, rays and structure")
         b = branching.loc[k]
         rows.append({"scene": r.scene, "triangles": r.scene_triangles, "rays_type": r.rays_type, "structure": r.structure,
                      "rays": r.rays, "lanes": b.simd_lane_utilisation, "sorted_lanes": r.simd_lane_utilisation,
                      "moved": r.sorted_rays_moved, "sort_share": r.sorted_sort_ms / r.kernel_ms_median,
                      "speed": b.speed_ratio_vs_embree1, "speed_span": interval_of(b, "speed_ratio"),
                      "sorted_speed": r.speed_ratio_vs_embree1, "sorted_span": interval_of(r, "speed_ratio")})
-    return pd.DataFrame(rows)
+    return pd.DataFrame(rows, columns=["scene", "triangles", "rays_type", "structure", "rays", "lanes", "sorted_lanes", "moved",
+                                       "sort_share", "speed", "speed_span", "sorted_speed", "sorted_span"])
 
 
 def speed_verdict(span, other_span) -> str:

@@ -19,10 +19,10 @@ sys.path.insert(0, str(HERE))
 import rtbench_results  # noqa: E402
 
 TABLES = ["strategies_tables.py", "structures_tables.py", "raytypes_tables.py", "wavefront_tables.py",
-          "purcell_tables.py", "division_tables.py", "christen_tables.py"]
+          "purcell_tables.py", "division_tables.py", "christen_tables.py", "trees_tables.py", "order_tables.py"]
 FOLDER = {"strategies_tables.py": "strategies", "structures_tables.py": "structures", "raytypes_tables.py": "raytypes",
           "wavefront_tables.py": "wavefront", "purcell_tables.py": "purcell2002", "division_tables.py": "division",
-          "christen_tables.py": "christen2005"}
+          "christen_tables.py": "christen2005", "trees_tables.py": "trees", "order_tables.py": "order"}
 
 
 def copy_of(name: str, root: Path) -> Path:
@@ -38,6 +38,18 @@ def run(script: str, folder: Path):
     env = dict(os.environ, MPLBACKEND="Agg", MPLCONFIGDIR=tempfile.mkdtemp(prefix="test_results_io_mpl."))
     return subprocess.run(["/usr/bin/python3", str(HERE / script), str(folder)], capture_output=True, text=True,
                           timeout=120, env=env)
+
+
+class SpeedVerdict(unittest.TestCase):
+    """Faster or slower only where the two 95% intervals separate."""
+
+    def test_separated_overlapping_and_missing_intervals(self):
+        verdict = rtbench_results.speed_verdict
+        self.assertEqual(verdict((1.2, 1.4), (1.0, 1.1)), "faster")
+        self.assertEqual(verdict((0.5, 0.9), (1.0, 1.1)), "slower")
+        self.assertEqual(verdict((1.0, 1.2), (1.1, 1.3)), "tie")
+        self.assertEqual(verdict((1.0, 1.1), (1.1, 1.3)), "tie")  # touching ends overlap
+        self.assertEqual(verdict(None, (1.0, 1.1)), "not ranked")
 
 
 class ResultsIo(unittest.TestCase):

@@ -87,8 +87,9 @@ struct Flattener {
 }  // namespace
 
 FlatBvh buildBvh(const TriangleMesh& mesh, const BvhBuildOptions& options) {
+    refuseBvhInput(mesh, options.maxLeafSize);
     const auto start = std::chrono::steady_clock::now();
-    FlatBvh out = startFlatBvh(mesh, options.maxLeafSize);
+    FlatBvh out = startFlatBvh(mesh);
     std::vector<RTCBuildPrimitive> prims(out.triangles.size());
     for (std::size_t i = 0; i < out.triangles.size(); ++i) {
         const gpu::Triangle& t = out.triangles[i];

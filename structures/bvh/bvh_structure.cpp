@@ -72,7 +72,7 @@ public:
     StepFunctions stepFunctions() const override { return {{"rtBvhChildren"}, /*perCellVisited=*/true}; }  // an inner node
     WalkBounds walkBounds() const override { return {bvh_.stats.innerNodes + bvh_.stats.leaves, bvh_.stats.largestLeaf}; }
 
-    // The tree's SAH cost (computed by the flattener with both costs 1) per ray entering its box.
+    // The tree's SAH cost (FlatBvhWriter's, with both costs 1) per ray entering its box.
     double predictedWork(const std::vector<gpu::Ray>& rays) const override {
         return double(raysEnteringBox(rays, glm::vec3(bvh_.params.boundsMin), glm::vec3(bvh_.params.boundsMax))) *
                bvh_.stats.sahCost;
@@ -139,7 +139,7 @@ void refuseBvhOverBindings(const TriangleMesh& mesh, const DeviceInfo& device) {
 std::vector<ColumnSpec> bvhColumnSpecs() { return bvhColumns().group.specs(); }
 
 KeySpec bvhLeafSizeKey() {
-    return {"structure.leaf_size", ValueType::Int, "BVH: most triangles per leaf (Embree's maxLeafSize)", std::int64_t(4), false, 1,
+    return {"structure.leaf_size", ValueType::Int, "BVH and median BVH: most triangles per leaf (bvh: Embree's maxLeafSize)", std::int64_t(4), false, 1,
             double(gpu::kBvhMaxLeafSize)};
 }
 

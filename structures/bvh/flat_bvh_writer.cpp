@@ -14,11 +14,14 @@ double boxArea(glm::vec3 lo, glm::vec3 hi) {
     return 2.0 * (e.x * e.y + e.y * e.z + e.z * e.x);
 }
 
-FlatBvh startFlatBvh(const TriangleMesh& mesh, unsigned maxLeafSize) {
+void refuseBvhInput(const TriangleMesh& mesh, unsigned maxLeafSize) {
     if (mesh.triangles.empty()) throw Error("BVH: the scene has no triangles");
     if (maxLeafSize < 1 || maxLeafSize > gpu::kBvhMaxLeafSize)
         throw Error("BVH: leaf size " + std::to_string(maxLeafSize) + " outside 1.." + std::to_string(gpu::kBvhMaxLeafSize));
     validateSceneRange(mesh);
+}
+
+FlatBvh startFlatBvh(const TriangleMesh& mesh) {
     FlatBvh out;
     out.lattice = mesh.lattice;
     out.triangles.reserve(mesh.triangles.size());

@@ -12,9 +12,12 @@ namespace rtbench {
 // Surface area of a box (0 for an empty or inverted one), in double.
 double boxArea(glm::vec3 lo, glm::vec3 hi);
 
-// A FlatBvh of the mesh with no nodes yet: its triangles, lattice and scene box. Throws
-// rtbench::Error for an empty mesh, a leaf size outside 1..kBvhMaxLeafSize or a scene out of range.
-FlatBvh startFlatBvh(const TriangleMesh& mesh, unsigned maxLeafSize);
+// Throws rtbench::Error for an empty mesh, a leaf size outside 1..kBvhMaxLeafSize or a scene out
+// of range; a builder calls it before its build time starts (as Embree's own build time leaves it out).
+void refuseBvhInput(const TriangleMesh& mesh, unsigned maxLeafSize);
+
+// A FlatBvh of the mesh with no nodes yet: its triangles, lattice and scene box.
+FlatBvh startFlatBvh(const TriangleMesh& mesh);
 
 class FlatBvhWriter {
 public:

@@ -61,8 +61,9 @@ struct MedianSplit {
 }  // namespace
 
 FlatBvh buildMedianBvh(const TriangleMesh& mesh, unsigned maxLeafSize) {
+    refuseBvhInput(mesh, maxLeafSize);
     const auto start = std::chrono::steady_clock::now();
-    FlatBvh out = startFlatBvh(mesh, maxLeafSize);
+    FlatBvh out = startFlatBvh(mesh);
     std::vector<Primitive> prims(out.triangles.size());
     for (std::size_t i = 0; i < out.triangles.size(); ++i) {
         const glm::vec3 a(out.triangles[i].v0), b(out.triangles[i].v1), c(out.triangles[i].v2);

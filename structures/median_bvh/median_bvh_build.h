@@ -2,8 +2,9 @@
 // median of their centroids along the centroid box's longest axis (pbrt-v4's
 // SplitMethod::EqualCounts), with no cost model, into the same flat layout as Embree's SAH tree
 // (structures/bvh/bvh_layout.h), so every strategy traces it with the BVH's kernels. A balanced
-// tree of depth ceil(log2(n / leaf size)), built in O(n log n) on one thread: the cheap end of the
-// build-time against tree-quality trade that the SAH builds (structure.type = "bvh") sit on.
+// tree of depth about log2(n / leaf size), built in O(n log n) on one thread: a cheaper build
+// than Embree's binned SAH (structure.type = "bvh"), and a worse tree (results/trees; Embree's
+// Morton build, quality = "low", is faster still and its tree better by the SAH).
 #pragma once
 #include "structures/bvh/bvh_build.h"
 

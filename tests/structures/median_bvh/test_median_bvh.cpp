@@ -110,6 +110,9 @@ TEST(MedianBvh, EveryKindOfStrategyTracesItAgainstTheReferences) {
         SCOPED_TRACE(row.at("label"));
         EXPECT_EQ(row.at("status"), "ok") << cellText(row, "error");
         EXPECT_EQ(cellText(row, "exact_wrong_ppm"), "0");
+        EXPECT_EQ(cellText(row, "hit_miss_mismatches"), "0") << "Embree hit where it missed, or missed where it hit";
+        // Any-hit queries (shadow rays) may end on any triangle: only the closest hit names one.
+        if (cellText(row, "rays_type") == "primary") EXPECT_EQ(cellText(row, "primitive_mismatches"), "0") << "Embree hit another triangle";
         EXPECT_EQ(cellText(row, "bvh_largest_leaf"), "2");
     }
 }
