@@ -22,7 +22,7 @@
 #                                           build and libraries, MAX_RUNS runs of each config
 #
 # Environment (defaults in brackets):
-#   CONFIGS        configs/<name>.toml to run [strategies multipass_device wavefront division control bunny structures purcell2002 christen2005 stability accuracy raytypes]
+#   CONFIGS        configs/<name>.toml to run [strategies multipass_device wavefront division control bunny structures purcell2002 christen2005 stability accuracy raytypes trees order]
 #   RUN_CAP_S      seconds one run may take before its process is killed [120]
 #   BUDGET_S       seconds from the start by which every run has ended: a run is capped at what is
 #                  left, none starts with under 20 s left; the rest are failed rows saying so. Merging
@@ -39,7 +39,7 @@ script_start=$(date +%s)
 called_from=$PWD
 cd "$(dirname "$0")/.."
 
-CONFIGS=${CONFIGS:-strategies multipass_device wavefront division control bunny structures purcell2002 christen2005 stability accuracy raytypes}
+CONFIGS=${CONFIGS:-strategies multipass_device wavefront division control bunny structures purcell2002 christen2005 stability accuracy raytypes trees order}
 RUN_CAP_S=${RUN_CAP_S:-120}
 BUDGET_S=${BUDGET_S:-420}
 EMBREE_CONFIG=${EMBREE_CONFIG:-isa=avx2}

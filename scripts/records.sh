@@ -1,6 +1,6 @@
 #!/bin/bash
 # Runs the configs of record and makes their charts and tables: results/bunny, results/structures, results/builds,
-# results/purcell2002, results/stability, results/accuracy, results/raytypes, results/strategies, results/multipass_device, results/division, results/control, results/driver, results/christen2005, results/wavefront (or under OUT, e.g. results/nvidia-h200 on a GPU machine; DEVICE picks the
+# results/purcell2002, results/stability, results/accuracy, results/raytypes, results/strategies, results/multipass_device, results/division, results/control, results/driver, results/christen2005, results/wavefront, results/trees, results/order (or under OUT, e.g. results/nvidia-h200 on a GPU machine; DEVICE picks the
 # Vulkan device by a name substring).
 #   scripts/records.sh [OUT] [DEVICE]        (about 3.5 hours on 2 cores with lavapipe; purcell2002 alone 112 minutes)
 # Environment:
@@ -12,7 +12,7 @@
 #   CONFIGS="bunny ..."   only these configs of record (default: all)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-configs=(${CONFIGS:-bunny structures builds purcell2002 stability accuracy raytypes strategies multipass_device division control driver christen2005 wavefront})
+configs=(${CONFIGS:-bunny structures builds purcell2002 stability accuracy raytypes strategies multipass_device division control driver christen2005 wavefront trees order})
 bin=${RTBENCH_BIN:-build/rtbench}
 
 charts() {
@@ -30,6 +30,8 @@ charts() {
   /usr/bin/python3 scripts/division_tables.py "$out/division" > /dev/null
   /usr/bin/python3 scripts/christen_tables.py "$out/christen2005" > /dev/null
   /usr/bin/python3 scripts/wavefront_tables.py "$out/wavefront" > /dev/null
+  /usr/bin/python3 scripts/trees_tables.py "$out/trees" > /dev/null
+  /usr/bin/python3 scripts/order_tables.py "$out/order" > /dev/null
 }
 
 if [ "${1:-}" = "--charts" ]; then
