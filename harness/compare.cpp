@@ -149,17 +149,15 @@ std::vector<std::string> countDifferences(const Side& a, const Side& b, const Ro
 // The change of measure the row's strategy declares (StrategyType::kernelMeasureChanges) between
 // two schemas, if any; a key the row's schema did not have yet takes its default.
 const MeasureChange* measureChangeBetween(int schemaA, int schemaB, const Row& row) {
-    const std::string name = cellText(row, "strategy_type");
-    const auto& types = strategyTypes();
-    const auto type = std::find_if(types.begin(), types.end(), [&](const StrategyType* t) { return t->name == name; });
-    if (type == types.end()) return nullptr;
+    const StrategyType* type = findStrategyType(cellText(row, "strategy_type"));
+    if (!type) return nullptr;
     auto valueOf = [&](const std::string& key) -> std::optional<std::string> {
         const std::string cell = cellText(row, paramColumn(key));
         if (!cell.empty()) return cell;
         const KeySpec& spec = keySpec(key);
         return spec.defaultValue ? std::optional<std::string>(formatValue(*spec.defaultValue)) : std::nullopt;
     };
-    for (const MeasureChange& change : (*type)->kernelMeasureChanges)
+    for (const MeasureChange& change : type->kernelMeasureChanges)
         if ((schemaA < change.schema) != (schemaB < change.schema) && conditionsHold(change.appliesWhen, valueOf))
             return &change;
     return nullptr;

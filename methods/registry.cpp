@@ -40,15 +40,22 @@ const std::vector<const StrategyType*>& strategyTypes() {
 
 namespace {
 template <class Type>
+const Type* find(const std::vector<const Type*>& types, const std::string& name) {
+    for (const Type* t : types)
+        if (t->name == name) return t;
+    return nullptr;
+}
+
+template <class Type>
 const Type& byName(const std::vector<const Type*>& types, const std::string& name, const char* what) {
+    if (const Type* t = find(types, name)) return *t;
     std::string known;
-    for (const Type* t : types) {
-        if (t->name == name) return *t;
-        known += (known.empty() ? "" : ", ") + t->name;
-    }
+    for (const Type* t : types) known += (known.empty() ? "" : ", ") + t->name;
     throw Error("unknown " + std::string(what) + " '" + name + "' (known: " + known + ")");
 }
 }  // namespace
+
+const StrategyType* findStrategyType(const std::string& name) { return find(strategyTypes(), name); }
 
 const StructureType& structureType(const std::string& name) { return byName(structureTypes(), name, "structure.type"); }
 const StrategyType& strategyType(const std::string& name) { return byName(strategyTypes(), name, "strategy.type"); }

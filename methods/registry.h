@@ -17,6 +17,8 @@ const std::vector<const StrategyType*>& strategyTypes();
 // By config value; throws rtbench::Error naming the value and the known ones.
 const StructureType& structureType(const std::string& name);
 const StrategyType& strategyType(const std::string& name);
+// By config value, or null for one rtbench no longer has (an old results folder's).
+const StrategyType* findStrategyType(const std::string& name);
 
 // Throws rtbench::Error when the structure and the strategy cannot make a method together (the
 // driver's acceleration structure and its ray query go only with each other).

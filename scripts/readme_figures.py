@@ -24,7 +24,7 @@ from rtbench_results import (CHRISTEN_SCENES, EMBREE_SPEED, against_sah, auto_su
                              embree_on, embree_speed_caption, faster_of, host_against_device, interval_of, leaders,
                              live_headline, masking_share, method_name, passes_gpu_ms, ranked_text, read_runs, read_samples, round_ratios, round_times,
                              scene_name, sorted_beside_branching, speed_verdict, structure_names, verdict_counts, whitted_frames,
-                             with_interval, wrong_rays)
+                             values_text, with_interval, wrong_rays)
 from purcell_tables import PURCELL_TABLE_2  # noqa: E402  (his Table 2, the paper's numbers)
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -1109,11 +1109,11 @@ def trees() -> list:
     ok = against_sah(runs[runs.status == "ok"])
     out = ["### `results/trees/`: does a worse tree cost multipass more than branching?", "", provenance("trees", runs, context),
            "", "Full table: [`results/trees/tables.md`](results/trees/tables.md). Three BVHs of one layout and one set of "
-           f"kernels, leaf size {' and '.join(str(int(v)) for v in sorted(ok.structure_leaf_size.unique()))}: Embree's binned SAH (`bvh`), its Morton build (`bvh`, `quality = \"low\"`) and the "
+           f"kernels, leaf size {values_text(ok.structure_leaf_size)}: Embree's binned SAH (`bvh`), its Morton build (`bvh`, `quality = \"low\"`) and the "
            "median split (`median_bvh`, no cost model). Each count over the SAH tree's on the same rays (deterministic): "
            "the tree's SAH cost, inner nodes visited per ray (the same for both strategies), and multipass's passes "
-           f"(K = {' and '.join(str(int(v)) for v in sorted(ok.strategy_traverse_steps_per_pass.dropna().unique()))} steps, "
-           f"M = {' and '.join(str(int(v)) for v in sorted(ok.strategy_intersections_per_pass.dropna().unique()))} tests a pass). Build times and speeds, single builds and noisy here, are in the full table only.", "",
+           f"(K = {values_text(ok.strategy_traverse_steps_per_pass)} steps, "
+           f"M = {values_text(ok.strategy_intersections_per_pass)} tests a pass). Build times and speeds, single builds and noisy here, are in the full table only.", "",
            "| scene | rays | tree | SAH cost × | nodes/ray × | passes × |", "|---|---|---|---|---|---|"]
     multipass = ok[ok.strategy_type == "multipass"]
     worse = multipass[multipass.tree != "SAH"]

@@ -527,3 +527,8 @@ def speed_verdict(span, other_span) -> str:
     if not span or not other_span:
         return "not ranked"
     return "faster" if span[0] > other_span[1] else "slower" if span[1] < other_span[0] else "tie"
+
+
+def values_text(column: pd.Series) -> str:
+    """An integer column's distinct values as a caption gives them: "4", "1 and 4"."""
+    return " and ".join(str(int(v)) for v in sorted(column.dropna().unique())) or "?"

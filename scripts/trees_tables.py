@@ -10,15 +10,11 @@ Uses Debian's python3-pandas only.
 """
 import sys
 
-from rtbench_results import (against_sah, command_text, embree_speed_caption, failed_rows, fmt, interval_of, interval_text,
+from rtbench_results import (against_sah, command_text, embree_speed_caption, failed_rows, fmt, interval_of, interval_text, values_text,
                              open_results, write_tables)
 
 TREE_ORDER = {"SAH": 0, "Morton": 1, "median split": 2}
 
-
-def values(column) -> str:
-    """A column's distinct values as a config would write them: "4", "1 and 4"."""
-    return " and ".join(str(int(v)) for v in sorted(column.dropna().unique())) or "?"
 
 
 def main() -> int:
@@ -27,11 +23,11 @@ def main() -> int:
     lines = [f"# Tree quality against the strategy — {device}, {context.get('cpu', '?')}", "",
              command_text(context) + f" {len(runs)} runs ok, {len(failed)} failed.",
              "tree: Embree's binned SAH (`structure.type = \"bvh\"`, `quality = \"medium\"`), its Morton build "
-             "(`quality = \"low\"`) or the median split (`median_bvh`), leaf size " + values(runs.structure_leaf_size) +
+             "(`quality = \"low\"`) or the median split (`median_bvh`), leaf size " + values_text(runs.structure_leaf_size) +
              ", one layout and one set of kernels; build ms: the two runs' median; "
              "SAH cost: the tree's (`bvh_sah_cost`, node and test cost 1); nodes/ray: inner nodes visited per ray "
-             "(mean); passes: multipass's (K = " + values(runs.strategy_traverse_steps_per_pass) + ", M = " +
-             values(runs.strategy_intersections_per_pass) + "); lanes: the branching kernel's SIMD lane "
+             "(mean); passes: multipass's (K = " + values_text(runs.strategy_traverse_steps_per_pass) + ", M = " +
+             values_text(runs.strategy_intersections_per_pass) + "); lanes: the branching kernel's SIMD lane "
              "utilisation; × SAH: the count over the SAH tree's on the same rays; " + embree_speed_caption(runs) +
              " In the same run, with its 95% interval. Counts are deterministic; times are this machine's.", "",
              "| scene | rays | tree | SAH cost | inner nodes | depth | build ms | nodes/ray | × SAH | lanes | "

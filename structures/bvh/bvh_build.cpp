@@ -92,10 +92,8 @@ FlatBvh buildBvh(const TriangleMesh& mesh, const BvhBuildOptions& options) {
     FlatBvh out = startFlatBvh(mesh);
     std::vector<RTCBuildPrimitive> prims(out.triangles.size());
     for (std::size_t i = 0; i < out.triangles.size(); ++i) {
-        const gpu::Triangle& t = out.triangles[i];
-        const glm::vec3 lo = glm::min(glm::vec3(t.v0), glm::min(glm::vec3(t.v1), glm::vec3(t.v2)));
-        const glm::vec3 hi = glm::max(glm::vec3(t.v0), glm::max(glm::vec3(t.v1), glm::vec3(t.v2)));
-        prims[i] = {lo.x, lo.y, lo.z, 0u, hi.x, hi.y, hi.z, std::uint32_t(i)};
+        const Bounds3 b = triangleBox(out.triangles[i]);
+        prims[i] = {b.min.x, b.min.y, b.min.z, 0u, b.max.x, b.max.y, b.max.z, std::uint32_t(i)};
     }
 
     RTCDevice device = rtcNewDevice(options.embreeConfig.empty() ? nullptr : options.embreeConfig.c_str());

@@ -9,6 +9,11 @@
 
 namespace rtbench {
 
+Bounds3 triangleBox(const gpu::Triangle& t) {
+    const glm::vec3 a(t.v0), b(t.v1), c(t.v2);
+    return {glm::min(a, glm::min(b, c)), glm::max(a, glm::max(b, c))};
+}
+
 double boxArea(glm::vec3 lo, glm::vec3 hi) {
     const glm::dvec3 e = glm::max(glm::dvec3(hi) - glm::dvec3(lo), glm::dvec3(0.0));
     return 2.0 * (e.x * e.y + e.y * e.z + e.z * e.x);
@@ -29,7 +34,8 @@ FlatBvh startFlatBvh(const TriangleMesh& mesh) {
     for (const glm::uvec3 t : mesh.triangles) {
         const glm::vec3 a = mesh.vertices[t.x], b = mesh.vertices[t.y], c = mesh.vertices[t.z];
         out.triangles.push_back({glm::vec4(a, 0.0f), glm::vec4(b, 0.0f), glm::vec4(c, 0.0f)});
-        box.extend(glm::min(a, glm::min(b, c))), box.extend(glm::max(a, glm::max(b, c)));
+        const Bounds3 own = triangleBox(out.triangles.back());
+        box.extend(own.min), box.extend(own.max);
     }
     out.params.boundsMin = glm::vec4(box.min, 0.0f);
     out.params.boundsMax = glm::vec4(box.max, 0.0f);

@@ -9,6 +9,9 @@
 
 namespace rtbench {
 
+// The box of a triangle's three vertices.
+Bounds3 triangleBox(const gpu::Triangle& t);
+
 // Surface area of a box (0 for an empty or inverted one), in double.
 double boxArea(glm::vec3 lo, glm::vec3 hi);
 

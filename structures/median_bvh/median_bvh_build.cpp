@@ -20,6 +20,14 @@ Bounds3 boxOf(const Primitive* first, const Primitive* last) {
     return box;
 }
 
+// The triangle ids of [first, last), ascending (a leaf's order).
+std::vector<std::uint32_t> idsOf(const Primitive* first, const Primitive* last) {
+    std::vector<std::uint32_t> ids;
+    for (const Primitive* p = first; p != last; ++p) ids.push_back(p->id);
+    std::sort(ids.begin(), ids.end());
+    return ids;
+}
+
 struct MedianSplit {
     FlatBvhWriter& writer;
     unsigned maxLeafSize;
@@ -28,9 +36,7 @@ struct MedianSplit {
     std::uint32_t node(Primitive* first, Primitive* last, double area, unsigned depth) {
         const std::size_t count = std::size_t(last - first);
         if (count <= maxLeafSize) {
-            std::vector<std::uint32_t> ids;
-            for (const Primitive* p = first; p != last; ++p) ids.push_back(p->id);
-            std::sort(ids.begin(), ids.end());
+            const std::vector<std::uint32_t> ids = idsOf(first, last);
             return writer.leaf(ids.data(), std::uint32_t(ids.size()), area, depth);
         }
         const std::uint32_t index = writer.openInner(area, depth);
@@ -66,16 +72,14 @@ FlatBvh buildMedianBvh(const TriangleMesh& mesh, unsigned maxLeafSize) {
     FlatBvh out = startFlatBvh(mesh);
     std::vector<Primitive> prims(out.triangles.size());
     for (std::size_t i = 0; i < out.triangles.size(); ++i) {
-        const glm::vec3 a(out.triangles[i].v0), b(out.triangles[i].v1), c(out.triangles[i].v2);
-        const glm::vec3 lo = glm::min(a, glm::min(b, c)), hi = glm::max(a, glm::max(b, c));
-        prims[i] = {lo, hi, 0.5f * (lo + hi), std::uint32_t(i)};
+        const Bounds3 b = triangleBox(out.triangles[i]);
+        prims[i] = {b.min, b.max, 0.5f * (b.min + b.max), std::uint32_t(i)};
     }
     FlatBvhWriter writer(out, 1.0f, 1.0f);
     Primitive* first = prims.data();
     Primitive* last = first + prims.size();
     if (prims.size() <= maxLeafSize) {
-        std::vector<std::uint32_t> ids(prims.size());
-        for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = std::uint32_t(i);
+        const std::vector<std::uint32_t> ids = idsOf(first, last);
         writer.leafRoot(ids.data(), std::uint32_t(ids.size()));
     } else {
         MedianSplit{writer, maxLeafSize}.node(first, last, writer.rootArea(), 0);
